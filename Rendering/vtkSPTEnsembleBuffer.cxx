@@ -1,0 +1,258 @@
+#include "vtkSPTEnsembleBuffer.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkSPTAccumulateFS.h"
+#include "vtkSPTResolveFS.h"
+
+vtkStandardNewMacro(vtkSPTEnsembleBuffer);
+
+vtkSPTEnsembleBuffer::vtkSPTEnsembleBuffer() = default;
+
+vtkSPTEnsembleBuffer::~vtkSPTEnsembleBuffer() = default;
+
+int vtkSPTEnsembleBuffer::SceneDepthFormat(int* hasDepth) const
+{
+  // glBlitFramebuffer copies depth only between identical formats, so the scene depth texture
+  // takes the format of the depth buffer it copies.
+  GLint readFramebuffer = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+  const GLenum attachment = readFramebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
+  GLint objectType = GL_NONE;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &objectType);
+  *hasDepth = objectType != GL_NONE;
+  if (!*hasDepth)
+  {
+    return vtkTextureObject::Float32;
+  }
+  GLint componentType = GL_FLOAT;
+  GLint bits = 32;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &componentType);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  if (componentType == GL_FLOAT)
+  {
+    return vtkTextureObject::Float32;
+  }
+  return bits <= 16 ? vtkTextureObject::Fixed16
+                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
+}
+
+bool vtkSPTEnsembleBuffer::Prepare(
+  vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel)
+{
+  int hasDepth = 0;
+  const int depthFormat = this->SceneDepthFormat(&hasDepth);
+  if (renWin != this->Context || width != this->Width || height != this->Height ||
+    subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepthTextureFormat)
+  {
+    if (this->Context && this->Context != renWin)
+    {
+      this->ReleaseGraphicsResources(this->Context);
+    }
+    this->Width = width;
+    this->Height = height;
+    this->SubpixelLevel = subpixelLevel;
+    this->SceneDepthTextureFormat = depthFormat;
+    this->Allocate(renWin);
+  }
+  return this->Context != nullptr;
+}
+
+void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
+{
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
+         this->SceneDepth.Get() })
+  {
+    texture->SetContext(renWin);
+    texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  }
+  bool ok = this->PassColor->Allocate2D(w, h, 4, VTK_FLOAT) &&
+    this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
+    this->Sum->Allocate2D(w, h, 4, VTK_FLOAT) &&
+    this->SceneDepth->AllocateDepth(this->Width, this->Height, this->SceneDepthTextureFormat);
+
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushFramebufferBindings();
+  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
+         this->SumFramebuffer.Get(), this->SceneDepthFramebuffer.Get() })
+  {
+    framebuffer->SetContext(renWin);
+  }
+  this->PassFramebuffer->Bind();
+  this->PassFramebuffer->AddColorAttachment(0, this->PassColor);
+  this->PassFramebuffer->AddDepthAttachment(this->PassDepth);
+  this->PassFramebuffer->ActivateDrawBuffers(1);
+  ok = ok && this->PassFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  this->SumFramebuffer->Bind();
+  this->SumFramebuffer->AddColorAttachment(0, this->Sum);
+  this->SumFramebuffer->ActivateDrawBuffers(1);
+  ok = ok && this->SumFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  this->SceneDepthFramebuffer->Bind();
+  this->SceneDepthFramebuffer->AddDepthAttachment(this->SceneDepth);
+  ok = ok && this->SceneDepthFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  ostate->PopFramebufferBindings();
+
+  if (!this->Accumulate)
+  {
+    this->Accumulate.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTAccumulateFS, ""));
+    this->Mean.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTResolveFS, ""));
+  }
+  ok = ok && this->Accumulate->Program && this->Mean->Program;
+  if (!ok)
+  {
+    vtkErrorMacro("Could not allocate the " << w << "x" << h
+                                            << " float framebuffers of the ensemble.");
+    this->ReleaseGraphicsResources(renWin);
+    return;
+  }
+  this->Context = renWin;
+}
+
+void vtkSPTEnsembleBuffer::CaptureSceneDepth(int x, int y)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  int hasDepth = 0;
+  this->SceneDepthFormat(&hasDepth);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->PushDrawFramebufferBinding();
+  this->SceneDepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  if (hasDepth)
+  {
+    ostate->vtkglBlitFramebuffer(x, y, x + this->Width, y + this->Height, 0, 0, this->Width,
+      this->Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  }
+  if (!hasDepth || glGetError() != GL_NO_ERROR)
+  {
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglClearDepth(1.0);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
+  ostate->PopDrawFramebufferBinding();
+}
+
+void vtkSPTEnsembleBuffer::ClearSum()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  ostate->PushDrawFramebufferBinding();
+  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->SumFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  ostate->PopDrawFramebufferBinding();
+}
+
+void vtkSPTEnsembleBuffer::BeginPass()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->PassFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->PassFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClearDepth(1.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void vtkSPTEnsembleBuffer::EndPass()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->SumFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  this->Context->GetShaderCache()->ReadyShaderProgram(this->Accumulate->Program);
+  this->PassColor->Activate();
+  this->Accumulate->Program->SetUniformi("passTexture", this->PassColor->GetTextureUnit());
+  this->Accumulate->Render();
+  this->PassColor->Deactivate();
+}
+
+void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDepthMask(GL_FALSE);
+  // The mean is premultiplied: "over" the scene.
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  vtkShaderProgram* program = this->Mean->Program;
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  this->Sum->Activate();
+  program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformf("inverseSampleCount",
+    1.0f / (float(numberOfPasses) * float(this->SubpixelLevel * this->SubpixelLevel)));
+  this->Mean->Render();
+  this->Sum->Deactivate();
+}
+
+size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
+{
+  if (!this->Context)
+  {
+    return 0;
+  }
+  const size_t samples = size_t(this->GetPassWidth()) * size_t(this->GetPassHeight());
+  const size_t pixels = size_t(this->Width) * size_t(this->Height);
+  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel.
+  return samples * (16 + 16 + 4) + pixels * 4;
+}
+
+void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Accumulate.reset();
+  this->Mean.reset();
+  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
+         this->SumFramebuffer.Get(), this->SceneDepthFramebuffer.Get() })
+  {
+    framebuffer->ReleaseGraphicsResources(window);
+  }
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
+         this->SceneDepth.Get() })
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  this->Context = nullptr;
+  this->Width = this->Height = this->SubpixelLevel = 0;
+  this->SceneDepthTextureFormat = -1;
+}
+
+void vtkSPTEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
+  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+}

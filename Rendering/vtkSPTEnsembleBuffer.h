@@ -1,0 +1,117 @@
+/**
+ * @class   vtkSPTEnsembleBuffer
+ * @brief   the framebuffers of stochastic (ensemble-averaged) rendering
+ *
+ * Sorting-free stochastic renderers (SPT, PBVR) draw the same scene many times with opaque,
+ * randomly kept fragments and average the passes. This class holds what that takes, at
+ * SubpixelLevel^2 samples per pixel:
+ * - the pass framebuffer: float color and a depth buffer, cleared before each pass;
+ * - the sum: a float RGBA texture to which every pass is added (an 8-bit running mean would
+ *   lose the result);
+ * - the scene depth: the depth of the opaque geometry drawn before the volume, one texel per
+ *   pixel, for the fragment shaders to test against;
+ * and resolves the sum into the mean, blended premultiplied "over" the render window.
+ *
+ * Private helper of the SPT module, shared by its mappers; not wrapped.
+ */
+
+#ifndef vtkSPTEnsembleBuffer_h
+#define vtkSPTEnsembleBuffer_h
+
+#include "SPTRenderingModule.h" // For export macro
+#include "vtkNew.h"             // For the framebuffers
+#include "vtkObject.h"
+
+#include <memory> // For the quad helpers
+
+class vtkOpenGLFramebufferObject;
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class SPTRENDERING_EXPORT vtkSPTEnsembleBuffer : public vtkObject
+{
+public:
+  static vtkSPTEnsembleBuffer* New();
+  vtkTypeMacro(vtkSPTEnsembleBuffer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Size the buffers for a viewport of width x height pixels at the given subpixel level.
+   * Buffers are reallocated only when the size, the level or the context changes.
+   */
+  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel);
+
+  /**
+   * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
+   * corner is (x, y), into the scene depth texture. Without a readable depth buffer, the scene
+   * depth is the far plane.
+   */
+  void CaptureSceneDepth(int x, int y);
+
+  /**
+   * Start a new ensemble: the sum is cleared.
+   */
+  void ClearSum();
+
+  /**
+   * Bind the pass framebuffer, set the viewport to it and clear its color and depth. The caller
+   * draws one pass, then calls EndPass(), which adds it to the sum. The caller brackets all
+   * passes with vtkOpenGLState::PushFramebufferBindings() / PopFramebufferBindings().
+   */
+  void BeginPass();
+  void EndPass();
+
+  /**
+   * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
+   * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2.
+   */
+  void Resolve(int x, int y, int numberOfPasses);
+
+  ///@{
+  /**
+   * The scene depth texture, the size of one pass in samples, and the subpixel level.
+   */
+  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth; }
+  int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
+  int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
+  int GetSubpixelLevel() const { return this->SubpixelLevel; }
+  ///@}
+
+  /**
+   * Bytes held on the GPU by the framebuffers.
+   */
+  size_t GetGPUMemorySize() const;
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkSPTEnsembleBuffer();
+  ~vtkSPTEnsembleBuffer() override;
+
+private:
+  vtkSPTEnsembleBuffer(const vtkSPTEnsembleBuffer&) = delete;
+  void operator=(const vtkSPTEnsembleBuffer&) = delete;
+
+  void Allocate(vtkOpenGLRenderWindow* renWin);
+  int SceneDepthFormat(int* hasDepth) const;
+
+  vtkOpenGLRenderWindow* Context = nullptr;
+  int Width = 0;
+  int Height = 0;
+  int SubpixelLevel = 0;
+  int SceneDepthTextureFormat = -1;
+
+  vtkNew<vtkTextureObject> PassColor;
+  vtkNew<vtkTextureObject> PassDepth;
+  vtkNew<vtkTextureObject> Sum;
+  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> SceneDepthFramebuffer;
+  std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
+  std::unique_ptr<vtkOpenGLQuadHelper> Mean;
+};
+
+#endif

@@ -1,0 +1,438 @@
+#include "vtkSPTMeshBuffers.h"
+
+#include "vtkAbstractMapper.h"
+#include "vtkCellArray.h"
+#include "vtkCellArrayIterator.h"
+#include "vtkCellType.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetTriangleFilter.h"
+#include "vtkIdList.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPoints.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace
+{
+// Draw calls are split so that their index counts stay far below GLsizei's range.
+constexpr vtkIdType MaxTetrahedraPerDraw = vtkIdType(1) << 22;
+
+double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
+{
+  if (component >= 0)
+  {
+    return array->GetComponent(tuple, component);
+  }
+  const int n = array->GetNumberOfComponents();
+  if (n == 1)
+  {
+    return array->GetComponent(tuple, 0);
+  }
+  double sum = 0.0;
+  for (int c = 0; c < n; ++c)
+  {
+    const double v = array->GetComponent(tuple, c);
+    sum += v * v;
+  }
+  return std::sqrt(sum);
+}
+}
+
+vtkStandardNewMacro(vtkSPTMeshBuffers);
+
+vtkSPTMeshBuffers::vtkSPTMeshBuffers() = default;
+
+vtkSPTMeshBuffers::~vtkSPTMeshBuffers() = default;
+
+bool vtkSPTMeshBuffers::Fail(const std::string& reason)
+{
+  this->LastError = reason;
+  this->Points.clear();
+  this->Scalars.clear();
+  this->Tetrahedra.clear();
+  this->BuildTime.Modified();
+  return false;
+}
+
+bool vtkSPTMeshBuffers::Update(vtkDataSet* input, const ScalarSelection& selection)
+{
+  if (!input)
+  {
+    this->LastInput = nullptr;
+    return this->Fail("The mapper has no input data set.");
+  }
+  int cellFlag = -1;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, selection.ScalarMode,
+    selection.ArrayAccessMode, selection.ArrayId, selection.ArrayName.c_str(), cellFlag);
+  if (input == this->LastInput && scalars == this->LastScalars &&
+    selection == this->LastSelection && this->BuildTime > input->GetMTime() &&
+    (!scalars || this->BuildTime > scalars->GetMTime()))
+  {
+    return this->LastError.empty();
+  }
+  this->LastInput = input;
+  this->LastScalars = scalars;
+  this->LastSelection = selection;
+  this->LastError.clear();
+  this->SkippedCells = 0;
+
+  if (!scalars)
+  {
+    std::ostringstream reason;
+    reason << "The input has no scalars to render";
+    if (!selection.ArrayName.empty() || selection.ArrayId >= 0)
+    {
+      reason << " (the selected array '" << selection.ArrayName << "', id " << selection.ArrayId
+             << ", is not in its point or cell data)";
+    }
+    reason << ". Select a point or cell array with SelectScalarArray() and SetScalarMode().";
+    return this->Fail(reason.str());
+  }
+  if (cellFlag != 0 && cellFlag != 1)
+  {
+    return this->Fail("Field-data scalars cannot be volume rendered; use point or cell data.");
+  }
+  if (selection.Component >= scalars->GetNumberOfComponents())
+  {
+    std::ostringstream reason;
+    reason << "Component " << selection.Component << " was selected, but the array '"
+           << (scalars->GetName() ? scalars->GetName() : "") << "' has only "
+           << scalars->GetNumberOfComponents() << " component(s).";
+    return this->Fail(reason.str());
+  }
+  if (!this->CheckConnectivity(input))
+  {
+    return false;
+  }
+  vtkSmartPointer<vtkDataSet> tetrahedra = this->Tetrahedralize(input);
+  vtkDataArray* tetrahedraScalars = scalars;
+  if (tetrahedra != input)
+  {
+    int flag = -1;
+    tetrahedraScalars = vtkAbstractMapper::GetScalars(tetrahedra, selection.ScalarMode,
+      selection.ArrayAccessMode, selection.ArrayId, selection.ArrayName.c_str(), flag);
+    if (!tetrahedraScalars)
+    {
+      return this->Fail("The scalars did not survive the split into tetrahedra.");
+    }
+  }
+  return this->Extract(tetrahedra, tetrahedraScalars, cellFlag == 1, selection.Component);
+}
+
+bool vtkSPTMeshBuffers::CheckConnectivity(vtkDataSet* input)
+{
+  // Point ids out of range would crash the triangulation and the GPU draw alike.
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!grid || !grid->GetCells())
+  {
+    return true;
+  }
+  const vtkIdType numberOfPoints = grid->GetNumberOfPoints();
+  auto cells = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    vtkIdType count;
+    const vtkIdType* ids;
+    cells->GetCurrentCell(count, ids);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      if (ids[i] < 0 || ids[i] >= numberOfPoints)
+      {
+        std::ostringstream reason;
+        reason << "Cell " << cells->GetCurrentCellId() << " refers to point id " << ids[i]
+               << ", but the grid has " << numberOfPoints << " points.";
+        return this->Fail(reason.str());
+      }
+    }
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(vtkDataSet* input)
+{
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (grid)
+  {
+    vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+    if (grid->GetNumberOfCells() == 0 ||
+      (types && types->GetNumberOfTuples() == 1 && types->GetValue(0) == VTK_TETRA))
+    {
+      return input;
+    }
+  }
+  vtkNew<vtkDataSetTriangleFilter> triangulate;
+  triangulate->SetInputData(input);
+  triangulate->TetrahedraOnlyOn();
+  triangulate->Update();
+  // A copy, so that the filter (and through it the input) is not kept alive.
+  auto output = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  output->ShallowCopy(triangulate->GetOutput());
+  return output;
+}
+
+bool vtkSPTMeshBuffers::Extract(
+  vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component)
+{
+  const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
+  if (numberOfPoints > vtkIdType(std::numeric_limits<unsigned int>::max()))
+  {
+    return this->Fail("The mesh has more points than 32-bit indices can address.");
+  }
+  this->CellScalars = cellScalars;
+
+  // Finite coordinates and scalar values; anything else leaves its tetrahedra out.
+  std::vector<double> coordinates(3 * numberOfPoints);
+  std::vector<char> pointIsValid(numberOfPoints, 1);
+  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN,
+    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+  for (vtkIdType i = 0; i < numberOfPoints; ++i)
+  {
+    double* p = &coordinates[3 * i];
+    tetrahedra->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      pointIsValid[i] = 0;
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], p[a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], p[a]);
+    }
+  }
+  const vtkIdType numberOfValues = scalars->GetNumberOfTuples();
+  std::vector<double> values(numberOfValues);
+  double range[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+  for (vtkIdType i = 0; i < numberOfValues; ++i)
+  {
+    values[i] = ScalarOf(scalars, i, component);
+    if (std::isfinite(values[i]))
+    {
+      range[0] = std::min(range[0], values[i]);
+      range[1] = std::max(range[1], values[i]);
+    }
+  }
+  if (range[0] > range[1])
+  {
+    range[0] = range[1] = 0.0; // no finite value: every tetrahedron is left out below
+  }
+  this->ScalarRange[0] = range[0];
+  this->ScalarRange[1] = range[1];
+  const double width = range[1] - range[0];
+  auto toTable = [&](double v) { return width > 0.0 ? float((v - range[0]) / width) : 0.0f; };
+
+  double diagonal = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Center[a] = bounds[2 * a] <= bounds[2 * a + 1] ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
+    const double extent = bounds[2 * a] <= bounds[2 * a + 1] ? bounds[2 * a + 1] - bounds[2 * a] : 0.0;
+    diagonal = std::max(diagonal, extent);
+  }
+  this->Scale = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1.0;
+
+  this->Points.resize(3 * numberOfPoints);
+  for (vtkIdType i = 0; i < 3 * numberOfPoints; ++i)
+  {
+    this->Points[i] = float((coordinates[i] - this->Center[i % 3]) / this->Scale);
+  }
+  this->Scalars.clear();
+  if (!cellScalars)
+  {
+    this->Scalars.resize(numberOfPoints);
+    for (vtkIdType i = 0; i < numberOfPoints; ++i)
+    {
+      pointIsValid[i] = pointIsValid[i] && i < numberOfValues && std::isfinite(values[i]);
+      this->Scalars[i] = pointIsValid[i] ? toTable(values[i]) : 0.0f;
+    }
+  }
+
+  const vtkIdType numberOfCells = tetrahedra->GetNumberOfCells();
+  this->Tetrahedra.clear();
+  this->Tetrahedra.reserve(4 * numberOfCells);
+  if (cellScalars)
+  {
+    this->Scalars.reserve(numberOfCells);
+  }
+  this->MaxEdgeLength = 0.0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType cell = 0; cell < numberOfCells; ++cell)
+  {
+    if (tetrahedra->GetCellType(cell) != VTK_TETRA)
+    {
+      continue;
+    }
+    tetrahedra->GetCellPoints(cell, ids);
+    bool valid = !cellScalars || (cell < numberOfValues && std::isfinite(values[cell]));
+    for (int v = 0; v < 4 && valid; ++v)
+    {
+      valid = pointIsValid[ids->GetId(v)] != 0;
+    }
+    if (!valid)
+    {
+      ++this->SkippedCells;
+      continue;
+    }
+    for (int v = 0; v < 4; ++v)
+    {
+      this->Tetrahedra.push_back(static_cast<unsigned int>(ids->GetId(v)));
+      const float* p = &this->Points[3 * ids->GetId(v)];
+      for (int w = v + 1; w < 4; ++w)
+      {
+        const float* q = &this->Points[3 * ids->GetId(w)];
+        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+        this->MaxEdgeLength = std::max(this->MaxEdgeLength, std::sqrt(dx * dx + dy * dy + dz * dz));
+      }
+    }
+    if (cellScalars)
+    {
+      this->Scalars.push_back(toTable(values[cell]));
+    }
+  }
+  this->BuildTime.Modified();
+  return true;
+}
+
+void vtkSPTMeshBuffers::GetNormalizationMatrix(vtkMatrix4x4* matrix) const
+{
+  matrix->Identity();
+  for (int a = 0; a < 3; ++a)
+  {
+    matrix->SetElement(a, a, this->Scale);
+    matrix->SetElement(a, 3, this->Center[a]);
+  }
+}
+
+bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
+{
+  if (this->Context == renWin && this->UploadTime > this->BuildTime)
+  {
+    return true;
+  }
+  if (this->Context && this->Context != renWin)
+  {
+    this->ReleaseGraphicsResources(this->Context);
+  }
+  this->Context = renWin;
+  this->UploadedBytes = 0;
+  this->BoundProgram = nullptr;
+  if (this->Tetrahedra.empty())
+  {
+    this->UploadTime.Modified();
+    return true;
+  }
+  bool ok = this->PointBuffer->Upload(this->Points, vtkOpenGLBufferObject::ArrayBuffer) &&
+    this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer);
+  if (this->CellScalars)
+  {
+    ok = ok && this->ScalarBuffer->Upload(this->Scalars, vtkOpenGLBufferObject::TextureBuffer);
+    if (ok)
+    {
+      if (!this->CellScalarTexture)
+      {
+        this->CellScalarTexture = vtkSmartPointer<vtkTextureObject>::New();
+      }
+      this->CellScalarTexture->SetContext(renWin);
+      ok = this->CellScalarTexture->CreateTextureBuffer(
+        static_cast<unsigned int>(this->Scalars.size()), 1, VTK_FLOAT, this->ScalarBuffer);
+    }
+  }
+  else
+  {
+    ok = ok && this->ScalarBuffer->Upload(this->Scalars, vtkOpenGLBufferObject::ArrayBuffer);
+  }
+  if (!ok)
+  {
+    vtkErrorMacro("Could not upload " << this->GetNumberOfTetrahedra()
+                                      << " tetrahedra to the GPU (out of GPU memory?).");
+    this->ReleaseGraphicsResources(renWin);
+    return false;
+  }
+  this->UploadedBytes = sizeof(float) * (this->Points.size() + this->Scalars.size()) +
+    sizeof(unsigned int) * this->Tetrahedra.size();
+  this->UploadTime.Modified();
+  return true;
+}
+
+void vtkSPTMeshBuffers::Bind(vtkShaderProgram* program)
+{
+  const bool programChanged = program != this->BoundProgram;
+  if (programChanged)
+  {
+    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
+  }
+  this->VertexArray->Bind();
+  if (programChanged)
+  {
+    this->VertexArray->AddAttributeArray(
+      program, this->PointBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
+    if (!this->CellScalars)
+    {
+      this->VertexArray->AddAttributeArray(
+        program, this->ScalarBuffer, "scalarTF", 0, sizeof(float), VTK_FLOAT, 1, false);
+    }
+    this->BoundProgram = program;
+  }
+  this->IndexBuffer->Bind();
+}
+
+void vtkSPTMeshBuffers::Unbind()
+{
+  this->IndexBuffer->Release();
+  this->VertexArray->Release();
+}
+
+void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
+{
+  const vtkIdType end = std::min(first + count, this->GetNumberOfTetrahedra());
+  for (vtkIdType begin = first; begin < end; begin += MaxTetrahedraPerDraw)
+  {
+    const vtkIdType batch = std::min(MaxTetrahedraPerDraw, end - begin);
+    program->SetUniformi("primitiveOffset", static_cast<int>(begin));
+    glDrawElements(GL_LINES_ADJACENCY, static_cast<GLsizei>(4 * batch), GL_UNSIGNED_INT,
+      reinterpret_cast<const void*>(static_cast<uintptr_t>(4 * sizeof(unsigned int) * begin)));
+  }
+}
+
+size_t vtkSPTMeshBuffers::GetGPUMemorySize() const
+{
+  return this->UploadedBytes;
+}
+
+void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->PointBuffer->ReleaseGraphicsResources();
+  this->ScalarBuffer->ReleaseGraphicsResources();
+  this->IndexBuffer->ReleaseGraphicsResources();
+  this->VertexArray->ReleaseGraphicsResources();
+  if (this->CellScalarTexture)
+  {
+    this->CellScalarTexture->ReleaseGraphicsResources(window);
+    this->CellScalarTexture = nullptr;
+  }
+  this->Context = nullptr;
+  this->BoundProgram = nullptr;
+  this->UploadedBytes = 0;
+}
+
+void vtkSPTMeshBuffers::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
+  os << indent << "NumberOfPoints: " << this->GetNumberOfPoints() << "\n";
+  os << indent << "CellScalars: " << this->CellScalars << "\n";
+  os << indent << "ScalarRange: " << this->ScalarRange[0] << " " << this->ScalarRange[1] << "\n";
+  os << indent << "SkippedCells: " << this->SkippedCells << "\n";
+  os << indent << "GPUMemorySize: " << this->UploadedBytes << "\n";
+}

@@ -1,0 +1,109 @@
+/**
+ * @class   vtkSPTPreIntegrationTable
+ * @brief   pre-integrated color and opacity of linear ray segments, as a 3D texture
+ *
+ * The table holds, for a ray segment whose scalar varies linearly from a front value to a back
+ * value over a given length, the premultiplied color and the opacity of that segment
+ * (Roettger, Kraus and Ertl 2000; Engel, Kraus and Ertl 2001). Axes: front scalar, back scalar,
+ * and the square root of the length (finer where short segments, the common case, change
+ * fastest).
+ *
+ * The optical model is the one of VTK's vtkUnstructuredGridLinearRayIntegrator, the reference
+ * of this project: the attenuation coefficient is tau(s) = opacity(s) / unit distance, and the
+ * emitted light is C(s) tau(s) (Moreland and Angel 2004), so a homogeneous segment of length d
+ * has alpha = 1 - exp(-tau d) and premultiplied color C alpha.
+ *
+ * Private helper of the SPT module, shared by its mappers; not wrapped.
+ */
+
+#ifndef vtkSPTPreIntegrationTable_h
+#define vtkSPTPreIntegrationTable_h
+
+#include "SPTRenderingModule.h" // For export macro
+#include "vtkObject.h"
+#include "vtkSmartPointer.h" // For the texture
+#include "vtkTimeStamp.h"    // For the build time
+
+#include <vector> // For the table
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkVolumeProperty;
+class vtkWindow;
+
+class SPTRENDERING_EXPORT vtkSPTPreIntegrationTable : public vtkObject
+{
+public:
+  static vtkSPTPreIntegrationTable* New();
+  vtkTypeMacro(vtkSPTPreIntegrationTable, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Build the table for the first component of the property's transfer functions, over the
+   * scalar range and for lengths from 0 to maxLength (world units). Rebuilds only when one of
+   * these, or the property, changed since the last build. Returns false, with an error, when
+   * the property cannot be integrated (no transfer function, unit distance not positive).
+   */
+  bool Update(vtkVolumeProperty* property, const double scalarRange[2], double maxLength,
+    int scalarResolution, int lengthResolution);
+
+  ///@{
+  /**
+   * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
+   */
+  int GetScalarResolution() const { return this->ScalarResolution; }
+  int GetLengthResolution() const { return this->LengthResolution; }
+  const std::vector<float>& GetTable() const { return this->Table; }
+  ///@}
+
+  ///@{
+  /**
+   * The scalar and the length that sample (i, j or k) of the table stands for.
+   */
+  double GetScalar(int i) const;
+  double GetLength(int k) const;
+  double GetMaxLength() const { return this->MaxLength; }
+  ///@}
+
+  /**
+   * The table as a trilinearly filtered 3D texture of the given context, uploaded when the
+   * table changed since the last upload.
+   */
+  vtkTextureObject* GetTexture(vtkOpenGLRenderWindow* renWin);
+
+  /**
+   * Bytes held on the GPU.
+   */
+  size_t GetGPUMemorySize() const;
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkSPTPreIntegrationTable();
+  ~vtkSPTPreIntegrationTable() override;
+
+private:
+  vtkSPTPreIntegrationTable(const vtkSPTPreIntegrationTable&) = delete;
+  void operator=(const vtkSPTPreIntegrationTable&) = delete;
+
+  bool SampleTransferFunctions(vtkVolumeProperty* property);
+  void IntegrateScalarPair(int front, int back, float* out) const;
+
+  int ScalarResolution = 0;
+  int LengthResolution = 0;
+  double ScalarRange[2] = { 0.0, 0.0 };
+  double MaxLength = 0.0;
+
+  // Color and attenuation (opacity / unit distance) sampled finely over the scalar range.
+  int TransferFunctionSamples = 0;
+  std::vector<double> Color;       // RGB
+  std::vector<double> Attenuation; // per world unit
+
+  std::vector<float> Table;
+  vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
+  vtkTimeStamp BuildTime;
+  vtkTimeStamp UploadTime;
+  vtkSmartPointer<vtkTextureObject> Texture;
+};
+
+#endif

@@ -1,0 +1,158 @@
+/**
+ * @class   vtkSPTVolumeMapper
+ * @brief   sorting-free pre-integrated projected tetrahedra (SPT) for unstructured grids
+ *
+ * vtkSPTVolumeMapper volume renders a vtkUnstructuredGrid (any linear or quadratic 3D cells,
+ * split into tetrahedra once per input change) without sorting anything, as described in
+ *
+ *   N. Sakamoto, T. Kawamura, H. Kuwano and K. Koyamada, "Sorting-free pre-integrated
+ *   projected tetrahedra", Proc. Workshop on Ultrascale Visualization (UltraVis), 2009.
+ *
+ * Every tetrahedron is projected and split into 3 or 4 triangles (Shirley and Tuchman) on the
+ * GPU. Each fragment reads the pre-integrated color and opacity of its ray segment from a 3D
+ * table indexed by (front scalar, back scalar, thickness), is kept with probability equal to
+ * that opacity, and is then written opaque with the depth test. The image is the mean of
+ * RepetitionLevel such passes, each with SubpixelLevel^2 samples per pixel; its expected value
+ * is exact front-to-back compositing, and its noise falls as 1 / sqrt(RepetitionLevel *
+ * SubpixelLevel^2).
+ *
+ * The optical model is the one of vtkUnstructuredGridLinearRayIntegrator: the scalar opacity
+ * transfer function divided by ScalarOpacityUnitDistance is the attenuation coefficient, and
+ * the color transfer function is the emitted color per unit of attenuation. Only the first
+ * component's transfer functions are used; a multi-component array is rendered as its
+ * magnitude or as one component (SetVectorMode()).
+ *
+ * Opaque geometry drawn before the volume hides it and cuts the segments it passes through.
+ * The camera must be outside the volume: tetrahedra reaching behind the eye are not drawn.
+ *
+ * @sa
+ * vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper
+ */
+
+#ifndef vtkSPTVolumeMapper_h
+#define vtkSPTVolumeMapper_h
+
+#include "SPTRenderingModule.h" // For export macro
+#include "vtkUnstructuredGridVolumeMapper.h"
+
+#include <memory> // For the internals
+
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class SPTRENDERING_EXPORT vtkSPTVolumeMapper : public vtkUnstructuredGridVolumeMapper
+{
+public:
+  static vtkSPTVolumeMapper* New();
+  vtkTypeMacro(vtkSPTVolumeMapper, vtkUnstructuredGridVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Number of stochastic passes averaged into one image (the paper's L_R). The noise falls as
+   * 1 / sqrt(RepetitionLevel). Range 1 to 65536, default 32.
+   */
+  vtkSetClampMacro(RepetitionLevel, int, 1, 65536);
+  vtkGetMacro(RepetitionLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Supersampling: each pass is drawn at SubpixelLevel times the width and the height and
+   * averaged down (the paper's L_S), which multiplies the samples per pixel by
+   * SubpixelLevel^2 for the memory of that many pixels. Range 1 to 8, default 1.
+   */
+  vtkSetClampMacro(SubpixelLevel, int, 1, 8);
+  vtkGetMacro(SubpixelLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random numbers. The same seed, input and camera give the same image; change
+   * it for an independent image. Default 0.
+   */
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  ///@}
+
+  ///@{
+  /**
+   * Samples of the pre-integration table along each scalar axis (front and back). Range 8 to
+   * 1024, default 128.
+   */
+  vtkSetClampMacro(PreIntegrationScalarResolution, int, 8, 1024);
+  vtkGetMacro(PreIntegrationScalarResolution, int);
+  ///@}
+
+  ///@{
+  /**
+   * Samples of the pre-integration table along the thickness axis, from zero to the longest
+   * edge of the mesh (spaced by the square root of the thickness). Range 4 to 1024,
+   * default 64.
+   */
+  vtkSetClampMacro(PreIntegrationThicknessResolution, int, 4, 1024);
+  vtkGetMacro(PreIntegrationThicknessResolution, int);
+  ///@}
+
+  enum VectorModeType
+  {
+    MAGNITUDE = 0,
+    COMPONENT = 1
+  };
+
+  ///@{
+  /**
+   * How a multi-component scalar array becomes one scalar: its MAGNITUDE (default) or one
+   * COMPONENT, chosen by VectorComponent (default 0). Single-component arrays are used as is.
+   */
+  vtkSetClampMacro(VectorMode, int, MAGNITUDE, COMPONENT);
+  vtkGetMacro(VectorMode, int);
+  void SetVectorModeToMagnitude() { this->SetVectorMode(MAGNITUDE); }
+  void SetVectorModeToComponent() { this->SetVectorMode(COMPONENT); }
+  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
+  vtkGetMacro(VectorComponent, int);
+  ///@}
+
+  ///@{
+  /**
+   * What the last render drew: tetrahedra, cells left out (non-finite coordinates or scalars),
+   * and the bytes this mapper holds on the GPU (mesh buffers, pre-integration table and
+   * ensemble framebuffers).
+   */
+  vtkIdType GetNumberOfTetrahedra();
+  vtkIdType GetNumberOfSkippedCells();
+  vtkIdType GetGPUMemorySize();
+  ///@}
+
+  /**
+   * Render the volume. Called by vtkVolume; not meant to be called directly.
+   */
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+
+  /**
+   * Release every GPU resource this mapper holds for the window.
+   */
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkSPTVolumeMapper();
+  ~vtkSPTVolumeMapper() override;
+
+  int RepetitionLevel = 32;
+  int SubpixelLevel = 1;
+  unsigned int Seed = 0;
+  int PreIntegrationScalarResolution = 128;
+  int PreIntegrationThicknessResolution = 64;
+  int VectorMode = MAGNITUDE;
+  int VectorComponent = 0;
+
+private:
+  vtkSPTVolumeMapper(const vtkSPTVolumeMapper&) = delete;
+  void operator=(const vtkSPTVolumeMapper&) = delete;
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

@@ -1,0 +1,210 @@
+"""Tests of spt.data: the embedded default mesh, data-directory lookup,
+blanked-cell removal, transfer functions and (when the data directory is
+available) the real data sets' tet counts."""
+
+import math
+
+import numpy as np
+import pytest
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import (
+    VTK_TETRA,
+    vtkStaticCellLocator,
+    vtkStructuredGrid,
+)
+
+import spt.data as data
+
+# Tets after vtkDataSetTriangleFilter, from shared/data/README.md.
+README_TETS = {
+    "tetramesh": 160, "postvtk": 8750, "torus": 9216, "spx": 12936,
+    "office": 36100, "disk": 44832, "fire": 62772, "hexa": 63888,
+    "ironprot": 66960, "ironprot_full": 1503815, "bluntfin": 187395,
+    "post": 513375,
+}
+
+
+@pytest.fixture(scope="module")
+def mesh():
+    return data.make_default_mesh()
+
+
+def _points(grid):
+    return vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+
+
+def _tet_volumes(grid):
+    conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    corners = _points(grid)[conn.reshape(-1, 4)]
+    edges = corners[:, 1:] - corners[:, :1]
+    return np.linalg.det(edges) / 6.0
+
+
+def test_default_mesh_is_tetrahedral(mesh):
+    types = vtk_to_numpy(mesh.GetCellTypesArray())
+    assert np.all(types == VTK_TETRA)
+    assert 40000 <= mesh.GetNumberOfCells() <= 60000
+
+
+def test_default_mesh_tets_positive(mesh):
+    volumes = _tet_volumes(mesh)
+    assert np.all(volumes > 0.0)
+    # Tube of radius 0.3 around a helix of length 2 turns * sqrt(...)
+    length = 2 * math.hypot(2 * math.pi, 1.0)
+    assert volumes.sum() == pytest.approx(math.pi * 0.09 * length, rel=0.02)
+
+
+def test_default_mesh_is_not_convex(mesh):
+    locator = vtkStaticCellLocator()
+    locator.SetDataSet(mesh)
+    locator.BuildLocator()
+    theta = 0.3
+    centers = data.helix_center(np.array([theta, theta + 2 * math.pi]))
+    # Both centre-line points are inside the mesh...
+    for point in centers:
+        assert locator.FindCell(tuple(point)) >= 0
+    # ...but the midpoint between two turns (inside the convex hull) and
+    # the helix axis are not.
+    assert locator.FindCell(tuple(centers.mean(axis=0))) == -1
+    assert locator.FindCell((0.0, 0.0, 0.0)) == -1
+
+
+def test_default_mesh_scalar(mesh):
+    scalars = mesh.GetPointData().GetScalars()
+    assert scalars.GetName() == data.DEFAULT_FIELD_NAME
+    assert mesh.GetPointData().GetNumberOfArrays() == 1
+    values = vtk_to_numpy(scalars)
+    assert np.all(np.isfinite(values))
+    assert values.min() >= 0.0 and values.max() <= 1.05
+    assert values.max() - values.min() > 0.8
+
+
+def test_default_mesh_is_deterministic(mesh):
+    again = data.make_default_mesh()
+    np.testing.assert_array_equal(_points(mesh), _points(again))
+    np.testing.assert_array_equal(
+        vtk_to_numpy(mesh.GetPointData().GetScalars()),
+        vtk_to_numpy(again.GetPointData().GetScalars()))
+
+
+def test_default_mesh_resolution_scaling(mesh):
+    finer = data.make_default_mesh(2)
+    assert finer.GetNumberOfCells() == 8 * mesh.GetNumberOfCells()
+    with pytest.raises(ValueError):
+        data.make_default_mesh(0)
+
+
+def test_default_transfer_function(mesh):
+    prop = data.default_transfer_function(mesh)
+    diagonal = mesh.GetLength()
+    assert prop.GetScalarOpacityUnitDistance() == pytest.approx(
+        diagonal / 20.0)
+    assert not prop.GetShade()
+    opacity = prop.GetScalarOpacity()
+    low, high = mesh.GetPointData().GetScalars().GetRange()
+    assert opacity.GetValue(low) < 0.05
+    assert 0.6 <= opacity.GetValue(high) <= 0.8
+
+
+@pytest.mark.parametrize("preset", ["default", "steep"])
+def test_transfer_function_presets(mesh, preset):
+    prop = data.transfer_function(mesh, preset, opacity_scale=0.5)
+    assert prop.GetScalarOpacityUnitDistance() == pytest.approx(
+        mesh.GetLength() / 40.0)
+    low, high = mesh.GetPointData().GetScalars().GetRange()
+    opacity = prop.GetScalarOpacity()
+    if preset == "default":
+        assert opacity.GetValue(high) == pytest.approx(0.4)
+    else:
+        assert opacity.GetValue(low + 0.5 * (high - low)) == 0.0
+        assert opacity.GetValue(low + 0.65 * (high - low)) == \
+            pytest.approx(0.45)
+    with pytest.raises(ValueError):
+        data.transfer_function(mesh, "no-such-preset")
+
+
+def _blanked_grid():
+    """3x3x3-point structured grid (8 hexes) with one blanked corner."""
+    z, y, x = np.meshgrid(*(np.arange(3.0),) * 3, indexing="ij")
+    coords = np.stack([x, y, z], axis=-1).reshape(-1, 3)
+    grid = vtkStructuredGrid()
+    grid.SetDimensions(3, 3, 3)
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(coords, deep=True))
+    grid.SetPoints(points)
+    iblank = np.ones(27, dtype=np.int32)
+    iblank[0] = 0            # blanked: removes the one hex using point 0
+    iblank[26] = -1          # overset interface point: kept
+    for name, values in (("IBlank", iblank), ("s", coords[:, 0].copy())):
+        array = numpy_to_vtk(values, deep=True)
+        array.SetName(name)
+        grid.GetPointData().AddArray(array)
+    return grid
+
+
+def test_blanked_cells_are_removed():
+    grid = _blanked_grid()
+    data._flag_hidden_cells(grid)
+    tets = data._to_unstructured(grid, "s", tetrahedralize=True)
+    assert tets.GetNumberOfCells() == 7 * 5
+    assert tets.GetCellData().GetNumberOfArrays() == 0
+    hexes = data._to_unstructured(grid, "s", tetrahedralize=False)
+    assert hexes.GetNumberOfCells() == 7
+
+
+def test_data_dir_env(tmp_path, monkeypatch):
+    monkeypatch.setenv(data.DATA_DIR_ENV, str(tmp_path))
+    assert data.data_dir() == tmp_path.resolve()
+    monkeypatch.setenv(data.DATA_DIR_ENV, str(tmp_path / "missing"))
+    with pytest.raises(FileNotFoundError, match=data.DATA_DIR_ENV):
+        data.data_dir()
+
+
+def test_data_dir_walks_up(tmp_path, monkeypatch):
+    monkeypatch.delenv(data.DATA_DIR_ENV, raising=False)
+    (tmp_path / "shared" / "data").mkdir(parents=True)
+    work = tmp_path / "repo" / "sub"
+    work.mkdir(parents=True)
+    monkeypatch.chdir(work)
+    assert data.data_dir() == (tmp_path / "shared" / "data").resolve()
+
+
+def test_unknown_dataset():
+    with pytest.raises(KeyError):
+        data.load("no-such-data-set")
+
+
+def _require_data_dir():
+    try:
+        return data.data_dir()
+    except FileNotFoundError as error:
+        pytest.skip(str(error))
+
+
+@pytest.mark.parametrize("name", sorted(README_TETS))
+def test_real_dataset_tet_counts(name):
+    _require_data_dir()
+    grid = data.load(name)
+    assert grid.GetNumberOfCells() == README_TETS[name]
+    assert np.all(vtk_to_numpy(grid.GetCellTypesArray()) == VTK_TETRA)
+    scalars = grid.GetPointData().GetScalars()
+    assert scalars is not None
+    assert scalars.GetName() == data.DATASETS[name][1]
+    assert grid.GetPointData().GetNumberOfArrays() == 1
+    assert grid.GetCellData().GetNumberOfArrays() == 0
+
+
+def test_readme_scalar_ranges():
+    _require_data_dir()
+    expected = {"spx": (0.0, 2.254), "bluntfin": (0.193, 4.978),
+                "post": (0.0, 1.391)}
+    for name, (low, high) in expected.items():
+        got = data.load(name).GetPointData().GetScalars().GetRange()
+        assert got == pytest.approx((low, high), abs=1e-3)
+
+
+def test_structured_load_without_tetrahedralize():
+    _require_data_dir()
+    hexes = data.load("bluntfin", tetrahedralize=False)
+    assert hexes.GetNumberOfCells() == 39 * 31 * 31

@@ -1,0 +1,20 @@
+"""SPT: sorting-free pre-integrated projected tetrahedra for VTK.
+
+The compiled mappers are re-exported here, next to the pure-Python helpers:
+
+    import vtk, spt
+    mapper = spt.vtkSPTVolumeMapper()
+
+Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.render``
+(rendering helpers and the reference), ``spt.metrics`` (image error), ``spt.accuracy``
+(the paper's accuracy experiment) and ``spt.figures``; ``python3 -m spt`` is the command line.
+"""
+
+# The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.
+from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
+from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
+
+from .SPTRendering import vtkSPTVolumeMapper
+
+__all__ = ["vtkSPTVolumeMapper"]
+__version__ = "0.1.0"

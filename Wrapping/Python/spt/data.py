@@ -1,0 +1,548 @@
+"""Data sets for the SPT volume mapper: real meshes, an embedded default mesh
+and transfer-function presets.
+
+Every loader returns a ``vtkUnstructuredGrid`` whose point data holds exactly
+one array, the scalar to render, set as the active point scalars. By default
+meshes are converted to tetrahedra with ``vtkDataSetTriangleFilter``
+(TetrahedraOnly on), which is what the SPT mapper consumes.
+
+The real data sets are not part of the repository. They are looked up in the
+directory named by the environment variable ``SPT_DATA_DIR`` or, failing
+that, in the first ``shared/data`` directory found walking up from the
+current working directory (see :func:`data_dir`).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import pathlib
+from typing import Callable, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import (
+    vtkDataObject,
+    vtkDataObjectTreeIterator,
+    vtkDataSet,
+    vtkDataSetAttributes,
+    vtkPiecewiseFunction,
+    vtkStructuredGrid,
+    vtkUnstructuredGrid,
+)
+from vtkmodules.vtkFiltersCore import vtkAppendFilter, vtkThreshold
+from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
+from vtkmodules.vtkIOExodus import vtkExodusIIReader
+from vtkmodules.vtkIOLegacy import (
+    vtkStructuredGridReader,
+    vtkStructuredPointsReader,
+    vtkUnstructuredGridReader,
+)
+from vtkmodules.vtkIOParallel import vtkMultiBlockPLOT3DReader
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+from vtkmodules.vtkRenderingCore import (
+    vtkColorTransferFunction,
+    vtkVolumeProperty,
+)
+
+#: Environment variable naming the directory that holds the real data sets.
+DATA_DIR_ENV = "SPT_DATA_DIR"
+
+#: Name of the scalar array of :func:`make_default_mesh`.
+DEFAULT_FIELD_NAME = "field"
+
+#: name -> (description, point scalar array). Treat as read-only.
+DATASETS: Dict[str, Tuple[str, str]] = {
+    "spx": ("SPX, Super Phoenix reactor coolant (spx.vtk)", "scalars"),
+    "bluntfin": ("NASA Blunt Fin, PLOT3D 40x32x32 (bluntfin*.bin)",
+                 "Density"),
+    "post": ("NASA Liquid Oxygen Post, PLOT3D 38x76x38 with IBLANK "
+             "(post*.bin)", "VelocityMagnitude"),
+    "torus": ("torus tet mesh, many inverted tets (torus.vtk)", "scalars"),
+    "tetramesh": ("tiny tet mesh, 160 tets (tetraMesh.vtk)", "scalars"),
+    "postvtk": ("tet mesh of a post, VTK test data (post.vtk)", "Pressure"),
+    "office": ("office air flow, structured grid 21x20x20 "
+               "(office.binary.vtk)", "scalars"),
+    "fire": ("room fire CFD, hexahedra (fire_ug.vtu)", "t"),
+    "hexa": ("AMR-like hexahedral mesh (hexa.vtk)", "scalars"),
+    "disk": ("ParaView disk example, Exodus II (disk_out_ref.ex2)", "Temp"),
+    "ironprot": ("iron protein 68^3 image thresholded to 80..255, as in "
+                 "VTK's projected tetrahedra test (ironProt.vtk)", "scalars"),
+    "ironprot_full": ("iron protein 68^3 image in full, 1.5 M tets "
+                      "(ironProt.vtk)", "scalars"),
+}
+
+# Marks a helper cell array that flags cells to drop (blanked in PLOT3D).
+_HIDDEN_ARRAY = "spt_hidden"
+
+
+# --------------------------------------------------------------------------
+# Locating the data
+# --------------------------------------------------------------------------
+
+def data_dir() -> pathlib.Path:
+    """Return the directory holding the real data sets.
+
+    ``$SPT_DATA_DIR`` wins when set. Otherwise the current working directory
+    and its parents are searched for a ``shared/data`` sub-directory (so
+    ``../shared/data`` is found when running from the repository root).
+
+    Raises:
+        FileNotFoundError: if ``$SPT_DATA_DIR`` is set but is not a
+            directory, or if no ``shared/data`` directory is found.
+    """
+    env = os.environ.get(DATA_DIR_ENV)
+    if env:
+        path = pathlib.Path(env).expanduser()
+        if not path.is_dir():
+            raise FileNotFoundError(
+                f"{DATA_DIR_ENV}={env!r} is not a directory")
+        return path.resolve()
+    cwd = pathlib.Path.cwd().resolve()
+    for folder in (cwd, *cwd.parents):
+        candidate = folder / "shared" / "data"
+        if candidate.is_dir():
+            return candidate
+    raise FileNotFoundError(
+        "SPT data directory not found: set the environment variable "
+        f"{DATA_DIR_ENV} to the folder holding the data sets, or run from "
+        f"a directory below one containing 'shared/data' (searched from "
+        f"{cwd})")
+
+
+def _data_file(filename: str) -> str:
+    """Full path of a data file, checking that it exists."""
+    path = data_dir() / filename
+    if not path.is_file():
+        raise FileNotFoundError(f"data file {path} is missing")
+    return str(path)
+
+
+# --------------------------------------------------------------------------
+# Readers: each returns a vtkDataSet with the wanted point array present
+# --------------------------------------------------------------------------
+
+def _read_legacy_ug(filename: str) -> vtkDataSet:
+    reader = vtkUnstructuredGridReader()
+    reader.SetFileName(_data_file(filename))
+    reader.ReadAllScalarsOn()
+    reader.Update()
+    return reader.GetOutput()
+
+
+def _read_legacy_sg(filename: str) -> vtkDataSet:
+    reader = vtkStructuredGridReader()
+    reader.SetFileName(_data_file(filename))
+    reader.ReadAllScalarsOn()
+    reader.Update()
+    return reader.GetOutput()
+
+
+def _read_legacy_image(filename: str) -> vtkDataSet:
+    reader = vtkStructuredPointsReader()
+    reader.SetFileName(_data_file(filename))
+    reader.Update()
+    return reader.GetOutput()
+
+
+def _read_xml_ug(filename: str) -> vtkDataSet:
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(_data_file(filename))
+    reader.Update()
+    return reader.GetOutput()
+
+
+def _read_exodus(filename: str, array: str) -> vtkDataSet:
+    """Read an Exodus II file and merge its element blocks into one grid."""
+    reader = vtkExodusIIReader()
+    reader.SetFileName(_data_file(filename))
+    reader.UpdateInformation()
+    reader.SetPointResultArrayStatus(array, 1)
+    reader.SetGenerateObjectIdCellArray(0)
+    reader.SetGenerateGlobalElementIdArray(0)
+    reader.SetGenerateGlobalNodeIdArray(0)
+    reader.Update()
+    append = vtkAppendFilter()
+    append.MergePointsOn()
+    iterator = vtkDataObjectTreeIterator()
+    iterator.SetDataSet(reader.GetOutput())
+    iterator.InitTraversal()
+    while not iterator.IsDoneWithTraversal():
+        append.AddInputData(iterator.GetCurrentDataObject())
+        iterator.GoToNextItem()
+    append.Update()
+    return append.GetOutput()
+
+
+def _read_plot3d(stem: str, function: Optional[int],
+                 iblanking: bool) -> vtkDataSet:
+    """Read block 0 of a single-grid big-endian binary PLOT3D pair.
+
+    ``function`` is a PLOT3D derived-scalar number (e.g. 153 for
+    VelocityMagnitude); ``None`` keeps the reader's default scalar
+    (100, Density). With ``iblanking`` the returned grid carries a cell
+    array flagging blanked cells (see :func:`_flag_hidden_cells`).
+    """
+    reader = vtkMultiBlockPLOT3DReader()
+    reader.SetXYZFileName(_data_file(stem + "xyz.bin"))
+    reader.SetQFileName(_data_file(stem + "q.bin"))
+    reader.AutoDetectFormatOff()
+    reader.BinaryFileOn()
+    reader.MultiGridOff()
+    reader.SetByteOrderToBigEndian()
+    reader.SetIBlanking(1 if iblanking else 0)
+    if function is not None:
+        reader.SetScalarFunctionNumber(function)
+    reader.Update()
+    grid = reader.GetOutput().GetBlock(0)
+    if grid is None or grid.GetNumberOfCells() == 0:
+        raise RuntimeError(f"PLOT3D reader produced no grid for {stem}")
+    _flag_hidden_cells(grid)
+    return grid
+
+
+def _read_iron_protein(threshold: bool) -> vtkDataSet:
+    """ironProt.vtk; with ``threshold`` keep voxels with all values in
+    80..255, like VTK's own projected-tetrahedra test."""
+    image = _read_legacy_image("ironProt.vtk")
+    if not threshold:
+        return image
+    thresh = vtkThreshold()
+    thresh.SetInputData(image)
+    thresh.SetInputArrayToProcess(0, 0, 0, 0, "scalars")  # point scalars
+    thresh.SetLowerThreshold(80.0)
+    thresh.SetUpperThreshold(255.0)
+    thresh.SetThresholdFunction(vtkThreshold.THRESHOLD_BETWEEN)
+    thresh.Update()
+    return thresh.GetOutput()
+
+
+# name -> function reading the (not yet converted) data set.
+_READERS: Dict[str, Callable[[], vtkDataSet]] = {
+    "spx": lambda: _read_legacy_ug("spx.vtk"),
+    "bluntfin": lambda: _read_plot3d("bluntfin", None, False),
+    "post": lambda: _read_plot3d("post", 153, True),
+    "torus": lambda: _read_legacy_ug("torus.vtk"),
+    "tetramesh": lambda: _read_legacy_ug("tetraMesh.vtk"),
+    "postvtk": lambda: _read_legacy_ug("post.vtk"),
+    "office": lambda: _read_legacy_sg("office.binary.vtk"),
+    "fire": lambda: _read_xml_ug("fire_ug.vtu"),
+    "hexa": lambda: _read_legacy_ug("hexa.vtk"),
+    "disk": lambda: _read_exodus("disk_out_ref.ex2", "Temp"),
+    "ironprot": lambda: _read_iron_protein(threshold=True),
+    "ironprot_full": lambda: _read_iron_protein(threshold=False),
+}
+
+
+# --------------------------------------------------------------------------
+# Conversion to a clean (tetrahedral) unstructured grid
+# --------------------------------------------------------------------------
+
+def _flag_hidden_cells(grid: vtkStructuredGrid) -> None:
+    """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``.
+
+    A cell is hidden when the ghost array marks it HIDDENCELL, or when any
+    of its corners has IBLANK 0 (blanked point). Negative IBLANK values
+    (overset interface points) are kept, as VTK's reader does.
+    """
+    hidden = np.zeros(grid.GetNumberOfCells(), dtype=np.uint8)
+    ghosts = grid.GetCellData().GetArray(
+        vtkDataSetAttributes.GhostArrayName())
+    if ghosts is not None:
+        bits = vtk_to_numpy(ghosts) & vtkDataSetAttributes.HIDDENCELL
+        hidden |= (bits != 0).astype(np.uint8)
+    iblank = grid.GetPointData().GetArray("IBlank")
+    if iblank is not None:
+        dims = [0, 0, 0]
+        grid.GetDimensions(dims)
+        blank = vtk_to_numpy(iblank).reshape(dims[2], dims[1], dims[0]) == 0
+        corners = np.zeros(
+            (dims[2] - 1, dims[1] - 1, dims[0] - 1), dtype=bool)
+        for dk in (0, 1):
+            for dj in (0, 1):
+                for di in (0, 1):
+                    corners |= blank[dk:dk + dims[2] - 1,
+                                     dj:dj + dims[1] - 1,
+                                     di:di + dims[0] - 1]
+        hidden |= corners.ravel().astype(np.uint8)
+    array = numpy_to_vtk(hidden, deep=True)
+    array.SetName(_HIDDEN_ARRAY)
+    grid.GetCellData().AddArray(array)
+
+
+def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
+    """Shallow copy of ``dataset`` keeping only point array ``array_name``
+    (set as active scalars) and the ``spt_hidden`` cell array, if any."""
+    scalars = dataset.GetPointData().GetArray(array_name)
+    if scalars is None:
+        raise KeyError(f"point array {array_name!r} not found")
+    stripped = dataset.NewInstance()
+    stripped.CopyStructure(dataset)
+    stripped.GetPointData().AddArray(scalars)
+    stripped.GetPointData().SetActiveScalars(array_name)
+    hidden = dataset.GetCellData().GetArray(_HIDDEN_ARRAY)
+    if hidden is not None:
+        stripped.GetCellData().AddArray(hidden)
+    return stripped
+
+
+def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
+    """Drop the cells flagged by the ``spt_hidden`` cell array and the
+    array itself."""
+    flags = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
+    if flags is None:
+        return grid
+    if flags.GetRange(0)[1] > 0:
+        thresh = vtkThreshold()
+        thresh.SetInputData(grid)
+        thresh.SetInputArrayToProcess(
+            0, 0, 0, vtkDataObject.FIELD_ASSOCIATION_CELLS, _HIDDEN_ARRAY)
+        thresh.SetLowerThreshold(0.0)
+        thresh.SetUpperThreshold(0.0)
+        thresh.SetThresholdFunction(vtkThreshold.THRESHOLD_BETWEEN)
+        thresh.Update()
+        grid = thresh.GetOutput()
+    result = vtkUnstructuredGrid()
+    result.ShallowCopy(grid)
+    result.GetCellData().RemoveArray(_HIDDEN_ARRAY)
+    return result
+
+
+def _to_unstructured(dataset: vtkDataSet, array_name: str,
+                     tetrahedralize: bool) -> vtkUnstructuredGrid:
+    """Convert a data set to an unstructured grid (tetrahedra when
+    ``tetrahedralize``) whose only array is point scalar ``array_name``;
+    cells flagged as hidden are removed."""
+    dataset = _strip_arrays(dataset, array_name)
+    if tetrahedralize:
+        converter = vtkDataSetTriangleFilter()
+        converter.TetrahedraOnlyOn()
+    else:
+        converter = vtkAppendFilter()
+    converter.SetInputData(dataset)
+    converter.Update()
+    grid = _remove_hidden(converter.GetOutput())
+    result = vtkUnstructuredGrid()
+    result.CopyStructure(grid)
+    result.GetPointData().ShallowCopy(grid.GetPointData())
+    result.GetPointData().SetActiveScalars(array_name)
+    return result
+
+
+def load(name: str, tetrahedralize: bool = True) -> vtkUnstructuredGrid:
+    """Load a real data set by name (see :data:`DATASETS`).
+
+    Args:
+        name: data set name, case-insensitive, e.g. ``"spx"``.
+        tetrahedralize: convert to tetrahedra with vtkDataSetTriangleFilter
+            (TetrahedraOnly on). Otherwise the original cells are kept.
+
+    Returns:
+        An unstructured grid whose only point array is the data set's
+        scalar, set active. PLOT3D blanked cells are removed.
+    """
+    key = name.lower()
+    if key == "default":
+        return make_default_mesh()
+    if key not in _READERS:
+        known = ", ".join(["default", *sorted(DATASETS)])
+        raise KeyError(f"unknown data set {name!r}; known: {known}")
+    dataset = _READERS[key]()
+    return _to_unstructured(dataset, DATASETS[key][1], tetrahedralize)
+
+
+# --------------------------------------------------------------------------
+# The embedded default mesh: a solid tube swept along a helix
+# --------------------------------------------------------------------------
+
+# Geometry of the default mesh (model units).
+_HELIX_RADIUS = 1.0
+_HELIX_PITCH = 1.0       # rise per turn; tube diameter 0.6 leaves a 0.4 gap
+_HELIX_TURNS = 2.0
+_TUBE_RADIUS = 0.3
+_SEGMENTS_ALONG = 150    # per unit resolution
+_SEGMENTS_ACROSS = 8     # per unit resolution, each of u and v
+
+
+def _square_to_disk(u: np.ndarray, v: np.ndarray
+                    ) -> Tuple[np.ndarray, np.ndarray]:
+    """Elliptical grid mapping of [-1, 1]^2 onto the unit disk."""
+    x = u * np.sqrt(1.0 - 0.5 * v * v)
+    y = v * np.sqrt(1.0 - 0.5 * u * u)
+    return x, y
+
+
+def helix_center(theta: np.ndarray) -> np.ndarray:
+    """Points of the default mesh's centre line at helix angles ``theta``
+    (radians, 0 .. 2*pi*turns), shape (..., 3)."""
+    c = _HELIX_PITCH / (2.0 * math.pi)
+    z0 = 0.5 * _HELIX_PITCH * _HELIX_TURNS
+    theta = np.asarray(theta, dtype=float)
+    return np.stack([_HELIX_RADIUS * np.cos(theta),
+                     _HELIX_RADIUS * np.sin(theta),
+                     c * theta - z0], axis=-1)
+
+
+def _helix_frame(theta: np.ndarray
+                 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Frenet frame (T, N, B) of the helix, each of shape (n, 3).
+
+    N points towards the helix axis and (N, B, T) is right-handed, so a
+    grid indexed (u along N, v along B, t along T) has positive cells.
+    """
+    r, c = _HELIX_RADIUS, _HELIX_PITCH / (2.0 * math.pi)
+    norm = math.hypot(r, c)
+    cos, sin = np.cos(theta), np.sin(theta)
+    zeros = np.zeros_like(theta)
+    tangent = np.stack([-r * sin, r * cos, np.full_like(theta, c)], -1)
+    normal = np.stack([-cos, -sin, zeros], -1)
+    binormal = np.stack([c * sin, -c * cos, np.full_like(theta, r)], -1)
+    return tangent / norm, normal, binormal / norm
+
+
+def _helix_points(n_along: int, n_across: int) -> np.ndarray:
+    """Point coordinates of the tube, shape (n_along, n_across, n_across, 3)
+    in VTK structured order (u fastest, then v, then along)."""
+    theta = np.linspace(0.0, 2.0 * math.pi * _HELIX_TURNS, n_along)
+    s = np.linspace(-1.0, 1.0, n_across)
+    v, u = np.meshgrid(s, s, indexing="ij")
+    x, y = _square_to_disk(u, v)
+    _, normal, binormal = _helix_frame(theta)
+    center = helix_center(theta)
+    offset = (x[None, :, :, None] * normal[:, None, None, :]
+              + y[None, :, :, None] * binormal[:, None, None, :])
+    return center[:, None, None, :] + _TUBE_RADIUS * offset
+
+
+def default_field(points: np.ndarray) -> np.ndarray:
+    """Smooth analytic scalar of the default mesh, roughly in 0..1.
+
+    Gaussian blobs centred on the helix centre line plus a gentle
+    sinusoid; a function of position only, so it does not depend on the
+    mesh resolution.
+    """
+    points = np.asarray(points, dtype=float)
+    blob_angles = 2.0 * math.pi * _HELIX_TURNS * np.array(
+        [0.1, 0.3, 0.5, 0.7, 0.9])
+    amplitudes = np.array([1.0, 0.6, 0.9, 0.5, 0.8])
+    sigma = 0.22
+    field = np.zeros(points.shape[:-1])
+    for center, amplitude in zip(helix_center(blob_angles), amplitudes):
+        dist2 = np.sum((points - center) ** 2, axis=-1)
+        field += amplitude * np.exp(-dist2 / (2.0 * sigma * sigma))
+    wave = 0.5 + 0.5 * np.sin(2.0 * points[..., 0] + 3.0 * points[..., 2])
+    return 0.75 * field + 0.25 * wave
+
+
+def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
+    """Build the project's embedded default data set.
+
+    A solid tube of radius 0.3 swept along a 2-turn helix (radius 1,
+    pitch 1): a non-convex tetrahedral mesh that view rays cross several
+    times with empty gaps between the turns. Its cross-section is a disk
+    parameterised by the elliptical grid mapping of a square, so there is
+    no singular axis. The grid has 150*r x 8*r x 8*r hexahedra (r =
+    ``resolution``), each split into 5 tetrahedra: 48,000 * r**3 tets.
+    The point scalar ``"field"`` (active) is given by
+    :func:`default_field`. The result is deterministic.
+    """
+    if resolution < 1:
+        raise ValueError("resolution must be >= 1")
+    n_along = _SEGMENTS_ALONG * resolution + 1
+    n_across = _SEGMENTS_ACROSS * resolution + 1
+    coords = _helix_points(n_along, n_across).reshape(-1, 3)
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(coords.astype(np.float32), deep=True))
+    structured = vtkStructuredGrid()
+    structured.SetDimensions(n_across, n_across, n_along)
+    structured.SetPoints(points)
+    field = numpy_to_vtk(default_field(coords).astype(np.float32), deep=True)
+    field.SetName(DEFAULT_FIELD_NAME)
+    structured.GetPointData().AddArray(field)
+    return _to_unstructured(structured, DEFAULT_FIELD_NAME,
+                            tetrahedralize=True)
+
+
+# --------------------------------------------------------------------------
+# Transfer functions
+# --------------------------------------------------------------------------
+
+def _scalar_range(grid: vtkDataSet) -> Tuple[float, float]:
+    """Range of the active point scalars, widened if degenerate."""
+    scalars = grid.GetPointData().GetScalars()
+    if scalars is None:
+        raise ValueError("grid has no active point scalars")
+    low, high = scalars.GetRange(0)
+    if high <= low:
+        low, high = low - 0.5, high + 0.5
+    return float(low), float(high)
+
+
+def _diagonal(grid: vtkDataSet) -> float:
+    """Length of the bounding-box diagonal (1.0 if degenerate)."""
+    length = grid.GetLength()
+    return length if length > 0.0 else 1.0
+
+
+def _make_property(grid: vtkDataSet,
+                   colors: Sequence[Tuple[float, float, float, float]],
+                   opacities: Sequence[Tuple[float, float]],
+                   unit_fraction: float) -> vtkVolumeProperty:
+    """Volume property from (t, r, g, b) and (t, opacity) control points,
+    t in 0..1 of the active scalar range; unit distance is
+    ``unit_fraction`` of the bounding diagonal."""
+    low, high = _scalar_range(grid)
+    color = vtkColorTransferFunction()
+    for t, red, green, blue in colors:
+        color.AddRGBPoint(low + t * (high - low), red, green, blue)
+    opacity = vtkPiecewiseFunction()
+    for t, value in opacities:
+        opacity.AddPoint(low + t * (high - low), min(max(value, 0.0), 1.0))
+    prop = vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(unit_fraction * _diagonal(grid))
+    prop.ShadeOff()
+    prop.SetInterpolationTypeToLinear()
+    return prop
+
+
+def default_transfer_function(grid: vtkDataSet) -> vtkVolumeProperty:
+    """A clearly visible, colourful volume property for the default mesh:
+    blue through teal and yellow to red, opacity rising to 0.7,
+    unit distance 1/20 of the bounding diagonal."""
+    colors = [(0.0, 0.15, 0.35, 0.85), (0.3, 0.10, 0.75, 0.80),
+              (0.6, 0.98, 0.85, 0.25), (1.0, 0.95, 0.20, 0.10)]
+    opacities = [(0.0, 0.02), (0.15, 0.08), (0.5, 0.3), (1.0, 0.7)]
+    return _make_property(grid, colors, opacities, 1.0 / 20.0)
+
+
+# Paraview-like "cool to warm" diverging colour map.
+_COOL_TO_WARM = [(0.0, 0.230, 0.299, 0.754), (0.5, 0.865, 0.865, 0.865),
+                 (1.0, 0.706, 0.016, 0.150)]
+
+
+def transfer_function(grid: vtkDataSet, preset: str = "default",
+                      opacity_scale: float = 1.0) -> vtkVolumeProperty:
+    """Generic volume property over the active scalar range.
+
+    Presets:
+        ``"default"``: cool-to-warm colours, opacity linear from 0 to
+        0.8 * opacity_scale.
+        ``"steep"``: cool-to-warm colours, opacity 0 up to 60 % of the
+        range, rising to 0.9 * opacity_scale at 65 % and back to 0 at 70 %
+        (a thin, sharp feature that stresses pre-integration).
+
+    The unit distance is the bounding diagonal / 40. Opacities are clamped
+    to 1.
+    """
+    if preset == "default":
+        opacities = [(0.0, 0.0), (1.0, 0.8 * opacity_scale)]
+    elif preset == "steep":
+        peak = 0.9 * opacity_scale
+        opacities = [(0.0, 0.0), (0.6, 0.0), (0.65, peak), (0.7, 0.0),
+                     (1.0, 0.0)]
+    else:
+        raise ValueError(f"unknown preset {preset!r} (default, steep)")
+    return _make_property(grid, _COOL_TO_WARM, opacities, 1.0 / 40.0)

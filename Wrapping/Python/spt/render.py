@@ -1,0 +1,159 @@
+"""Rendering helpers: one scene, several volume mappers, float RGBA images back.
+
+Every renderer of the comparison (SPT, VTK's projected tetrahedra, the reference ray caster)
+is drawn through :func:`render`, with the same camera, transfer functions and window size,
+on a transparent black background, so that the image read back is the volume's own
+premultiplied RGBA.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from typing import Callable, Dict, Optional, Tuple
+
+import numpy as np
+from vtkmodules.vtkCommonDataModel import vtkDataSet
+from vtkmodules.vtkRenderingCore import (
+    vtkAbstractVolumeMapper,
+    vtkRenderer,
+    vtkRenderWindow,
+    vtkVolume,
+    vtkVolumeProperty,
+    vtkWindowToImageFilter,
+)
+from vtkmodules.vtkRenderingVolume import (
+    vtkProjectedTetrahedraMapper,
+    vtkUnstructuredGridLinearRayIntegrator,
+    vtkUnstructuredGridVolumeRayCastMapper,
+)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window factories)
+import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
+
+from . import metrics
+from .SPTRendering import vtkSPTVolumeMapper
+
+
+@dataclasses.dataclass(frozen=True)
+class View:
+    """A camera placed around a data set's bounding box."""
+
+    azimuth: float = 30.0
+    elevation: float = 20.0
+    zoom: float = 1.0
+    parallel: bool = False
+
+
+def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0
+               ) -> vtkSPTVolumeMapper:
+    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed."""
+    mapper = vtkSPTVolumeMapper()
+    mapper.SetRepetitionLevel(repetitions)
+    mapper.SetSubpixelLevel(subpixels)
+    mapper.SetSeed(seed)
+    return mapper
+
+
+def projected_tetrahedra_mapper() -> vtkProjectedTetrahedraMapper:
+    """VTK's own projected tetrahedra (cell-centre visibility sort on the CPU)."""
+    return vtkProjectedTetrahedraMapper()
+
+
+def reference_mapper() -> vtkUnstructuredGridVolumeRayCastMapper:
+    """The reference: VTK's ray caster with the exact piecewise-linear integrator, one ray per
+    pixel and no adaptive sampling."""
+    mapper = vtkUnstructuredGridVolumeRayCastMapper()
+    mapper.SetRayIntegrator(vtkUnstructuredGridLinearRayIntegrator())
+    mapper.SetImageSampleDistance(1.0)
+    mapper.SetAutoAdjustSampleDistances(0)
+    return mapper
+
+
+MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
+    "spt": spt_mapper,
+    "pt": projected_tetrahedra_mapper,
+    "reference": reference_mapper,
+}
+
+
+def make_window(width: int, height: int) -> Tuple[vtkRenderWindow, vtkRenderer]:
+    """An off-screen window with alpha planes and a transparent black background."""
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetAlphaBitPlanes(1)
+    window.SetMultiSamples(0)
+    window.SetSize(width, height)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.0, 0.0, 0.0)
+    renderer.SetBackgroundAlpha(0.0)
+    window.AddRenderer(renderer)
+    return window, renderer
+
+
+def place_camera(renderer: vtkRenderer, bounds, view: View) -> None:
+    """Look at the bounding box from the view's direction, framing it with the view's zoom."""
+    camera = renderer.GetActiveCamera()
+    center = [(bounds[2 * i] + bounds[2 * i + 1]) / 2.0 for i in range(3)]
+    camera.SetFocalPoint(center)
+    camera.SetPosition(center[0], center[1] - 1.0, center[2])
+    camera.SetViewUp(0.0, 0.0, 1.0)
+    camera.Azimuth(view.azimuth)
+    camera.Elevation(view.elevation)
+    camera.OrthogonalizeViewUp()
+    camera.SetParallelProjection(view.parallel)
+    renderer.ResetCamera(bounds)
+    camera.Zoom(view.zoom)
+    renderer.ResetCameraClippingRange(bounds)
+
+
+def read_rgba(window: vtkRenderWindow) -> np.ndarray:
+    """The back buffer as float premultiplied RGBA in [0, 1], row 0 at the top."""
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGBA()
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOff()
+    grab.Update()
+    return metrics.from_vtk_image(grab.GetOutput(), as_float_rgba=True)
+
+
+@dataclasses.dataclass
+class Rendering:
+    """An image and what it cost."""
+
+    image: np.ndarray
+    seconds: float
+    mapper: vtkAbstractVolumeMapper
+
+
+def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
+           view: View = View(), size: Tuple[int, int] = (256, 256),
+           window: Optional[vtkRenderWindow] = None) -> Rendering:
+    """Render ``grid`` with ``mapper`` and return the image and the wall time of the render.
+
+    The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``); a first,
+    untimed render builds the caches (tables, buffers, shaders) that later frames reuse.
+    """
+    own_window = window is None
+    if own_window:
+        window, renderer = make_window(*size)
+    else:
+        renderer = window.GetRenderers().GetFirstRenderer()
+        renderer.RemoveAllViewProps()
+    mapper.SetInputData(grid)
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer.AddVolume(volume)
+    place_camera(renderer, grid.GetBounds(), view)
+    window.Render()
+    window.WaitForCompletion()
+    start = time.perf_counter()
+    window.Render()
+    window.WaitForCompletion()
+    seconds = time.perf_counter() - start
+    image = read_rgba(window)
+    renderer.RemoveVolume(volume)
+    if own_window:
+        window.Finalize()
+    return Rendering(image=image, seconds=seconds, mapper=mapper)
