@@ -37,11 +37,13 @@ public:
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkMTimeType ReportedMeshError = 0;
 
-  // Model (normalized) -> view (normalized), view -> clip and clip -> view, column-major.
+  // Model (normalized) -> view (normalized), view -> clip and clip -> view, column-major;
+  // and the linear part of view -> model, which turns view-space segments into lengths in
+  // the normalized model units of the mesh.
   float MCVC[16];
   float VCDC[16];
   float DCVC[16];
-  double WorldScale = 1.0; // world units per normalized view unit
+  float VCMCLinear[9];
 
   void ComputeMatrices(vtkRenderer* ren, vtkVolume* vol);
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars);
@@ -49,9 +51,9 @@ public:
 
 void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolume* vol)
 {
-  // Everything is composed in double and handed to the GPU in units of the mesh's own size,
-  // so that float precision holds whatever the coordinates' magnitude. The view transform is
-  // rigid, so lengths in normalized view units are world lengths / WorldScale.
+  // Everything is composed in double and handed to the GPU in units of the mesh's own size
+  // (view coordinates divided by viewScale), so that float precision holds whatever the
+  // magnitude of the coordinates.
   vtkNew<vtkMatrix4x4> normalization;
   this->Mesh->GetNormalizationMatrix(normalization);
   vtkMatrix4x4* model = vol->GetMatrix();
@@ -65,7 +67,7 @@ void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolu
   }
   vtkMath::SingularValueDecomposition3x3(linear, u, w, vt);
   const double modelScale = std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
-  this->WorldScale = this->Mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
+  const double viewScale = this->Mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
 
   vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> modelToView;
@@ -77,8 +79,8 @@ void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolu
   {
     for (int j = 0; j < 3; ++j)
     {
-      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / this->WorldScale);
-      viewToClip->SetElement(i, j, viewToClip->GetElement(i, j) * this->WorldScale);
+      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / viewScale);
+      viewToClip->SetElement(i, j, viewToClip->GetElement(i, j) * viewScale);
     }
   }
   vtkNew<vtkMatrix4x4> clipToView;
@@ -86,6 +88,22 @@ void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolu
   vtkSPTShaderUtilities::ToColumnMajor(modelToView, this->MCVC);
   vtkSPTShaderUtilities::ToColumnMajor(viewToClip, this->VCDC);
   vtkSPTShaderUtilities::ToColumnMajor(clipToView, this->DCVC);
+  double viewToModel[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      linear[i][j] = modelToView->GetElement(i, j);
+    }
+  }
+  vtkMath::Invert3x3(linear, viewToModel);
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      this->VCMCLinear[3 * column + row] = static_cast<float>(viewToModel[row][column]);
+    }
+  }
 }
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(
@@ -179,7 +197,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   internals.ComputeMatrices(ren, vol);
   const double maxThickness = internals.Mesh->GetMaxEdgeLength();
   if (!internals.Table->Update(property, internals.Mesh->GetScalarRange(),
-        maxThickness * internals.WorldScale, this->PreIntegrationScalarResolution,
+        maxThickness * internals.Mesh->GetScale(), this->PreIntegrationScalarResolution,
         this->PreIntegrationThicknessResolution) ||
     !internals.Mesh->Upload(renWin))
   {
@@ -257,6 +275,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       program->SetUniformMatrix4x4("MCVCMatrix", internals.MCVC);
       program->SetUniformMatrix4x4("VCDCMatrix", internals.VCDC);
       program->SetUniformMatrix4x4("DCVCMatrix", internals.DCVC);
+      program->SetUniformMatrix3x3("VCMCLinear", internals.VCMCLinear);
       program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
       program->SetUniform3f("tableTexelScale", texelScale);
       program->SetUniform3f("tableTexelOffset", texelOffset);

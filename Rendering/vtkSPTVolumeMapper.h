@@ -22,6 +22,10 @@
  * component's transfer functions are used; a multi-component array is rendered as its
  * magnitude or as one component (SetVectorMode()).
  *
+ * Lengths are measured in the data's own coordinates, so ScalarOpacityUnitDistance is a data
+ * length and transforming the vtkVolume does not change its opacity (as with
+ * vtkUnstructuredGridVolumeRayCastMapper).
+ *
  * Opaque geometry drawn before the volume hides it and cuts the segments it passes through.
  * The camera must be outside the volume: tetrahedra reaching behind the eye are not drawn.
  *

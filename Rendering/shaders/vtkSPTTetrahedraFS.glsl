@@ -15,7 +15,9 @@ flat in int tetrahedronId;
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
 uniform vec3 tableTexelScale;          // maps [0, 1] onto the centers of the first and last texels
 uniform vec3 tableTexelOffset;
-uniform float thicknessToTable;        // 1 / largest thickness in the table, view units
+uniform float thicknessToTable;        // 1 / largest thickness in the table, model units
+uniform mat3 VCMCLinear;               // view -> model, for lengths: the unit distance of the
+                                       // opacity is a length in the data's own coordinates
 
 uniform sampler2D sceneDepthTexture;   // depth of the opaque scene, one texel per pixel
 uniform int subpixelLevel;
@@ -74,7 +76,7 @@ void main()
     }
   }
 
-  float thickness = distance(frontVC, backVC);
+  float thickness = length(VCMCLinear * (backVC - frontVC));
   vec3 coordinate = vec3(clamp(frontScalar, 0.0, 1.0), clamp(backScalar, 0.0, 1.0),
     sqrt(min(thickness * thicknessToTable, 1.0)));
   vec4 segment = texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);

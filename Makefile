@@ -1,0 +1,63 @@
+# Quick start on a fresh Debian 12 machine (as root, or with sudo):
+#   make demo   install what is missing, build, install, and render the default data set
+#   make test   the same set-up, then every test (ctest, which also runs the Python tests)
+#
+# Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
+# build), JOBS (parallel build jobs, default: number of cores).
+
+PREFIX ?= /usr/local
+BUILD ?= build
+JOBS ?= $(shell nproc)
+PYTHON := /usr/bin/python3
+VTK_DIR := /usr/lib/x86_64-linux-gnu/cmake/paraview-5.11/vtk
+XVFB := xvfb-run -a -s "-screen 0 1280x1024x24 -noreset"
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+# ParaView 5.11 brings the VTK 9.2 SDK; the -dev packages are what its CMake package looks for
+# for the modules this project uses.
+PACKAGES := cmake ninja-build g++ make \
+	paraview paraview-dev python3-paraview \
+	libopenmpi-dev libglew-dev libx11-dev libgl-dev libpng-dev libjpeg-dev libtiff-dev \
+	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
+	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
+	libtet1.5-dev libglm-dev \
+	python3-numpy python3-matplotlib python3-pytest \
+	xvfb xauth libgl1-mesa-dri
+
+.PHONY: all deps configure build install demo test clean
+
+all: build
+
+deps:
+	@missing=$$(for p in $(PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "install ok installed" || echo $$p; \
+	done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing:" $$missing; \
+	  $(SUDO) apt-get update -q && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
+	else echo "All packages present."; fi
+
+configure: deps
+	cmake -S . -B $(BUILD) -G Ninja \
+	  -DCMAKE_BUILD_TYPE=Release \
+	  -DCMAKE_INSTALL_PREFIX=$(PREFIX) \
+	  -DVTK_DIR=$(VTK_DIR) \
+	  -DPython3_EXECUTABLE=$(PYTHON) \
+	  -DBUILD_SHARED_LIBS=ON
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+install: build
+	$(SUDO) cmake --install $(BUILD)
+	$(SUDO) ldconfig
+
+demo: install
+	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(CURDIR)/out/demo
+
+test: install
+	cd $(BUILD) && $(XVFB) ctest --output-on-failure --timeout 1500
+
+clean:
+	rm -rf $(BUILD) out

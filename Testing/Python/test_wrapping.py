@@ -1,0 +1,68 @@
+"""The wrapped mapper: importable next to vtk, VTK conventions for its settings, PrintSelf."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+import vtk
+
+import spt
+
+
+def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
+    assert mapper.GetClassName() == "vtkSPTVolumeMapper"
+
+
+@pytest.mark.parametrize("name, default, low, high", [
+    ("RepetitionLevel", 32, 1, 65536),
+    ("SubpixelLevel", 1, 1, 8),
+    ("PreIntegrationScalarResolution", 128, 8, 1024),
+    ("PreIntegrationThicknessResolution", 64, 4, 1024),
+])
+def test_settings_have_defaults_and_clamps(name, default, low, high):
+    mapper = spt.vtkSPTVolumeMapper()
+    get = getattr(mapper, "Get" + name)
+    set_ = getattr(mapper, "Set" + name)
+    assert get() == default
+    set_(low - 1)
+    assert get() == low
+    set_(high + 1)
+    assert get() == high
+
+
+def test_vector_mode_and_seed():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert mapper.GetVectorMode() == spt.vtkSPTVolumeMapper.MAGNITUDE
+    mapper.SetVectorModeToComponent()
+    mapper.SetVectorComponent(2)
+    assert (mapper.GetVectorMode(), mapper.GetVectorComponent()) == (1, 2)
+    mapper.SetSeed(4000000000)
+    assert mapper.GetSeed() == 4000000000
+
+
+def test_print_self_lists_every_setting():
+    text = str(spt.vtkSPTVolumeMapper())
+    for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+                    "PreIntegrationThicknessResolution", "VectorMode", "VectorComponent",
+                    "NumberOfTetrahedra", "GPUMemorySize", "ScalarMode"]:
+        assert setting + ":" in text
+
+
+def test_installed_package_imports_from_any_directory(tmp_path):
+    """After `make install`, Debian's python3 finds spt without PYTHONPATH (checked when the
+    Makefile ran the install: SPT_TEST_INSTALLED=1)."""
+    if os.environ.get("SPT_TEST_INSTALLED") != "1":
+        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    result = subprocess.run(
+        ["/usr/bin/python3", "-c", "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "vtkSPTVolumeMapper"
+    location = subprocess.run(
+        ["/usr/bin/python3", "-c", "import spt; print(spt.__file__)"], cwd=tmp_path, env=env,
+        capture_output=True, text=True, check=True).stdout
+    assert "dist-packages" in location and "/build/" not in location, location

@@ -1,0 +1,113 @@
+"""``python3 -m spt``: the demo and the paper's figures from the command line."""
+
+from __future__ import annotations
+
+import argparse
+import pathlib
+import sys
+from typing import List, Optional, Sequence
+
+MAX_IMAGE_SIZE = 4096
+
+
+def _positive_int(limit: int):
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+        if not 1 <= value <= limit:
+            raise argparse.ArgumentTypeError(f"{value} is outside 1..{limit}")
+        return value
+    return parse
+
+
+def _levels(text: str) -> List[int]:
+    parse = _positive_int(65536)
+    levels = [parse(part) for part in text.split(",") if part.strip()]
+    if not levels:
+        raise argparse.ArgumentTypeError("give at least one repetition level")
+    return levels
+
+
+def _datasets(text: str) -> List[str]:
+    from .figures import SCENES
+
+    names = [part.strip() for part in text.split(",") if part.strip()]
+    unknown = [name for name in names if name not in SCENES]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(
+            f"unknown data set(s) {', '.join(unknown) or '(none)'}; choose from "
+            f"{', '.join(SCENES)}")
+    return names
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python3 -m spt",
+        description="Sorting-free pre-integrated projected tetrahedra (SPT) for VTK.")
+    commands = parser.add_subparsers(dest="command", required=True)
+
+    demo = commands.add_parser(
+        "demo", help="render a data set with SPT, VTK's projected tetrahedra and the reference")
+    demo.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/demo"))
+    demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=384,
+                      help="image width and height in pixels (default 384)")
+    demo.add_argument("--repetitions", type=_positive_int(65536), default=128,
+                      help="SPT RepetitionLevel (default 128)")
+    demo.add_argument("--dataset", type=lambda t: _datasets(t)[0], default="default",
+                      help="data set (default: the generated helix mesh)")
+
+    figures = commands.add_parser("figures", help="reproduce the paper's figures")
+    figure = figures.add_subparsers(dest="figure", required=True)
+    convergence = figure.add_parser(
+        "convergence", help="RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
+    convergence.add_argument("--output", type=pathlib.Path,
+                             default=pathlib.Path("out/figures/convergence"))
+    convergence.add_argument("--datasets", type=_datasets, default=["spx", "bluntfin", "post"])
+    convergence.add_argument("--levels", type=_levels, default=[4, 16, 64, 256, 1024])
+    convergence.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+    accuracy = figure.add_parser(
+        "accuracy", help="stochastic against exact brightness along random rays")
+    accuracy.add_argument("--output", type=pathlib.Path,
+                          default=pathlib.Path("out/figures/accuracy"))
+    accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
+    return parser
+
+
+def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
+    from .figures import _format
+
+    cells = [list(header)] + [[_format(v) for v in row] for row in rows]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(header))]
+    for index, row in enumerate(cells):
+        print("  ".join(value.ljust(width) for value, width in zip(row, widths)))
+        if index == 0:
+            print("  ".join("-" * width for width in widths))
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Run the command line; returns the exit status."""
+    arguments = _parser().parse_args(argv)
+    from . import figures
+
+    try:
+        if arguments.command == "demo":
+            rows = figures.demo(arguments.output, arguments.size, arguments.repetitions,
+                                arguments.dataset)
+            _print_table(["method", "RMSE", "PSNR [dB]", "pixels off > 0.05", "time [s]",
+                          "time / VTK PT"], rows)
+            print(f"Images and comparison.png written to {arguments.output}")
+        elif arguments.figure == "convergence":
+            results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
+                                          arguments.output)
+            print((arguments.output / "convergence.md").read_text())
+            print(f"{len(results)} data sets; figures written to {arguments.output}")
+        else:
+            result = figures.accuracy_figure(arguments.output, arguments.rays)
+            print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "
+                  f"plot written to {arguments.output / 'accuracy.png'}")
+    except (FileNotFoundError, ValueError) as error:
+        print(f"python3 -m spt: error: {error}", file=sys.stderr)
+        return 1
+    return 0

@@ -1,0 +1,188 @@
+"""The paper's figures on real data: scenes, convergence against repetitions, accuracy.
+
+Every figure writes PNG images, a plot, a JSON file of the numbers and a Markdown table into
+its output folder, and returns the numbers.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import pathlib
+from typing import Callable, Dict, List, Optional, Sequence
+
+import numpy as np
+from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+from vtkmodules.vtkRenderingCore import vtkVolumeProperty
+
+from . import accuracy, data, metrics, render
+
+PathLike = pathlib.Path
+
+
+@dataclasses.dataclass
+class Scene:
+    """A data set, its transfer functions and a camera."""
+
+    name: str
+    grid: vtkUnstructuredGrid
+    property: vtkVolumeProperty
+    view: render.View
+
+
+def _default_scene() -> Scene:
+    grid = data.make_default_mesh()
+    return Scene("default", grid, data.default_transfer_function(grid),
+                 render.View(azimuth=30.0, elevation=30.0))
+
+
+def _data_scene(name: str, view: render.View, opacity_scale: float = 1.0) -> Callable[[], Scene]:
+    def make() -> Scene:
+        grid = data.load(name)
+        return Scene(name, grid, data.transfer_function(grid, opacity_scale=opacity_scale), view)
+    return make
+
+
+SCENES: Dict[str, Callable[[], Scene]] = {
+    "default": _default_scene,
+    "spx": _data_scene("spx", render.View(azimuth=30.0, elevation=30.0)),
+    "bluntfin": _data_scene("bluntfin", render.View(azimuth=40.0, elevation=25.0), 0.5),
+    "post": _data_scene("post", render.View(azimuth=30.0, elevation=20.0), 0.5),
+    "torus": _data_scene("torus", render.View(azimuth=20.0, elevation=40.0)),
+}
+
+
+def scene(name: str) -> Scene:
+    """The named scene; raises ValueError for an unknown name."""
+    if name not in SCENES:
+        raise ValueError(f"unknown data set '{name}'; choose from {', '.join(SCENES)}")
+    return SCENES[name]()
+
+
+def _write_table(path: PathLike, header: Sequence[str], rows: List[Sequence[object]]) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    for row in rows:
+        lines.append("| " + " | ".join(_format(v) for v in row) + " |")
+    text = "\n".join(lines) + "\n"
+    path.write_text(text)
+    return text
+
+
+def _format(value: object) -> str:
+    if isinstance(value, float):
+        return "inf" if math.isinf(value) else f"{value:.4g}"
+    return str(value)
+
+
+def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
+            seed: int = 0) -> Dict[str, object]:
+    """Reference, VTK's projected tetrahedra and SPT at each repetition level on one scene:
+    images, difference images, footprint RMSE and PSNR, and render times."""
+    output.mkdir(parents=True, exist_ok=True)
+    shape = (size, size)
+    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
+    metrics.write_png(output / f"{s.name}_reference.png", reference.image)
+    metrics.write_png(output / f"{s.name}_vtk_pt.png", pt.image)
+    result = {"dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
+              "reference_seconds": reference.seconds, "pt_seconds": pt.seconds,
+              "pt_rmse": metrics.rmse(pt.image, reference.image),
+              "pt_psnr": metrics.psnr(pt.image, reference.image), "levels": []}
+    for level in levels:
+        spt = render.render(s.grid, s.property, render.spt_mapper(level, seed=seed), s.view, shape)
+        metrics.write_png(output / f"{s.name}_spt_{level}.png", spt.image)
+        metrics.write_png(output / f"{s.name}_spt_{level}_difference.png",
+                          metrics.difference_image(spt.image, reference.image))
+        result["levels"].append({
+            "repetitions": level, "rmse": metrics.rmse(spt.image, reference.image),
+            "psnr": metrics.psnr(spt.image, reference.image), "seconds": spt.seconds,
+            "seconds_per_repetition": spt.seconds / level})
+    return result
+
+
+def _plot_convergence(results: List[Dict[str, object]], path: PathLike) -> None:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(6.5, 4.5))
+    axes = figure.add_subplot()
+    for index, result in enumerate(results):
+        color = f"C{index}"
+        levels = [entry["repetitions"] for entry in result["levels"]]
+        errors = [entry["rmse"] for entry in result["levels"]]
+        axes.loglog(levels, errors, "o-", color=color, label=f"{result['dataset']} SPT")
+        axes.axhline(result["pt_rmse"], color=color, linestyle=":",
+                     label=f"{result['dataset']} VTK PT")
+        guide = errors[0] * np.sqrt(levels[0] / np.asarray(levels, dtype=float))
+        axes.loglog(levels, guide, "--", color=color, alpha=0.35)
+    axes.set_xlabel("RepetitionLevel")
+    axes.set_ylabel("footprint RMSE against the reference")
+    axes.set_title("SPT convergence (dashed: 1/sqrt(L) from the first level)")
+    axes.legend(fontsize=7)
+    figure.tight_layout()
+    FigureCanvasAgg(figure).print_png(str(path))
+
+
+def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
+                output: PathLike, seed: int = 0) -> List[Dict[str, object]]:
+    """The convergence figure: RMSE of SPT against the reference per repetition level, next to
+    VTK's projected tetrahedra, for each data set."""
+    output.mkdir(parents=True, exist_ok=True)
+    results = [compare(scene(name), levels, size, output, seed) for name in datasets]
+    _plot_convergence(results, output / "convergence.png")
+    (output / "convergence.json").write_text(json.dumps(results, indent=2))
+    rows = []
+    for result in results:
+        for entry in result["levels"]:
+            rows.append([result["dataset"], f"SPT L={entry['repetitions']}", entry["rmse"],
+                         entry["psnr"], entry["seconds"], entry["seconds"] / result["pt_seconds"]])
+        rows.append([result["dataset"], "VTK PT", result["pt_rmse"], result["pt_psnr"],
+                     result["pt_seconds"], 1.0])
+        rows.append([result["dataset"], "reference", 0.0, math.inf, result["reference_seconds"],
+                     result["reference_seconds"] / result["pt_seconds"]])
+    _write_table(output / "convergence.md",
+                 ["data set", "method", "RMSE", "PSNR [dB]", "time [s]", "time / VTK PT"], rows)
+    return results
+
+
+def accuracy_figure(output: PathLike, n_rays: int = 1000, seed: int = 2009) -> Dict[str, object]:
+    """The paper's "accuracy of stochastic volume rendering" along one ray."""
+    output.mkdir(parents=True, exist_ok=True)
+    result = accuracy.run(n_rays=n_rays, seed=seed)
+    accuracy.plot(result, output / "accuracy.png")
+    serializable = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.items()}
+    (output / "accuracy.json").write_text(json.dumps(serializable, indent=2))
+    return result
+
+
+def demo(output: PathLike, size: int = 384, repetitions: int = 128,
+         dataset: str = "default", seed: int = 0) -> List[List[object]]:
+    """The main job: one scene with SPT, VTK's projected tetrahedra and the reference; the
+    images, a side-by-side comparison and a table of error and time. Returns the table rows."""
+    output.mkdir(parents=True, exist_ok=True)
+    s = scene(dataset)
+    shape = (size, size)
+    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
+    spt = render.render(s.grid, s.property, render.spt_mapper(repetitions, seed=seed), s.view, shape)
+    names = {"spt": spt, "vtk_pt": pt, "reference": reference}
+    for name, rendering in names.items():
+        metrics.write_png(output / f"{name}.png", rendering.image)
+    comparison = metrics.side_by_side(
+        [spt.image, pt.image, reference.image,
+         metrics.difference_image(spt.image, reference.image),
+         metrics.difference_image(pt.image, reference.image)],
+        [f"SPT, {repetitions} repetitions", "VTK projected tetrahedra", "reference (ray caster)",
+         "|SPT - reference| x4", "|VTK PT - reference| x4"])
+    metrics.write_png(output / "comparison.png", comparison)
+    rows = []
+    for label, rendering in [(f"SPT (RepetitionLevel {repetitions})", spt), ("VTK PT", pt),
+                             ("reference", reference)]:
+        rows.append([label, metrics.rmse(rendering.image, reference.image),
+                     metrics.psnr(rendering.image, reference.image),
+                     metrics.fraction_off(rendering.image, reference.image),
+                     rendering.seconds, rendering.seconds / pt.seconds])
+    _write_table(output / "table.md", ["method", "RMSE", "PSNR [dB]", "pixels off > 0.05",
+                                       "time [s]", "time / VTK PT"], rows)
+    return rows
