@@ -153,6 +153,9 @@ void vtkSPTEnsembleBuffer::ClearSum()
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglClearColor clearColor(ostate);
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  // The renderer leaves the scissor box on its viewport, which need not cover these buffers.
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->PushDrawFramebufferBinding();
   this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   this->SumFramebuffer->ActivateDrawBuffers(1);
@@ -167,6 +170,7 @@ void vtkSPTEnsembleBuffer::BeginPass()
   vtkOpenGLState* ostate = this->Context->GetState();
   this->PassFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   this->PassFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthMask(GL_TRUE);

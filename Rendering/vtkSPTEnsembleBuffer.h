@@ -56,9 +56,10 @@ public:
   void ClearSum();
 
   /**
-   * Bind the pass framebuffer, set the viewport to it and clear its color and depth. The caller
-   * draws one pass, then calls EndPass(), which adds it to the sum. The caller brackets all
-   * passes with vtkOpenGLState::PushFramebufferBindings() / PopFramebufferBindings().
+   * Bind the pass framebuffer, set the viewport to it, turn the scissor test off and clear its
+   * color and depth. The caller draws one pass, then calls EndPass(), which adds it to the sum.
+   * The caller brackets all passes with vtkOpenGLState::PushFramebufferBindings() /
+   * PopFramebufferBindings() and restores the viewport and the scissor test.
    */
   void BeginPass();
   void EndPass();

@@ -4,8 +4,9 @@
 // SPT geometry stage: Shirley-Tuchman projected tetrahedra (Shirley and Tuchman 1990) on the
 // GPU. A tetrahedron (4 vertices of GL_LINES_ADJACENCY) is split into the 3 or 4 triangles of
 // its projected outline that share the "thick" point, the point where the tetrahedron is
-// thickest along the view ray. Degenerate projections (classes 3 and 4) are the limits of
-// classes 1 and 2 and simply emit fewer non-empty triangles.
+// thickest along the view ray; each fan is sent as one triangle strip. Degenerate projections
+// (classes 3 and 4) are the limits of classes 1 and 2: their extra triangles have no area and
+// draw nothing.
 //
 // Every emitted vertex carries the front and the back point of the view ray through it (both
 // in view coordinates) and the scalars there. They are passed divided by their own clip w and
@@ -13,12 +14,12 @@
 // back points of its own ray under perspective and parallel projection alike.
 
 layout(lines_adjacency) in;
-layout(triangle_strip, max_vertices = 12) out;
+layout(triangle_strip, max_vertices = 7) out;
 
 in vec3 positionVCVSOutput[];
+in vec4 positionDCVSOutput[];
 in float scalarVSOutput[];
 
-uniform mat4 VCDCMatrix;    // view -> clip
 uniform int primitiveOffset; // index of the first tetrahedron of this draw call
 #ifdef SPT_CELL_SCALARS
 uniform samplerBuffer cellScalars;
@@ -34,15 +35,22 @@ vec4 vertexDC[4];
 vec2 vertexNDC[4];
 float vertexScalar[4];
 
+// The thick point: its front and back points (view and clip coordinates) and scalars.
+vec3 thickFrontVC;
+vec3 thickBackVC;
+vec4 thickFrontDC;
+vec4 thickBackDC;
+float thickFrontScalar;
+float thickBackScalar;
+
 float orient2D(vec2 a, vec2 b, vec2 c)
 {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-void emitPoint(vec3 frontVC, float frontScalar, vec3 backVC, float backScalar)
+void emitPoint(vec3 frontVC, vec4 frontDC, float frontScalar, vec3 backVC, vec4 backDC,
+  float backScalar)
 {
-  vec4 frontDC = VCDCMatrix * vec4(frontVC, 1.0);
-  vec4 backDC = VCDCMatrix * vec4(backVC, 1.0);
   gl_Position = frontDC;
   frontVCOverW = vec4(frontVC, 1.0) / frontDC.w;
   backVCOverW = vec4(backVC, 1.0) / backDC.w;
@@ -51,36 +59,29 @@ void emitPoint(vec3 frontVC, float frontScalar, vec3 backVC, float backScalar)
   EmitVertex();
 }
 
-// One triangle of the outline: the thick point (front and back) and two outline vertices,
-// where the tetrahedron has zero thickness.
-void emitTriangle(vec3 thickFrontVC, float thickFrontScalar, vec3 thickBackVC,
-  float thickBackScalar, vec2 thickNDC, int a, int b)
+// An outline vertex: the tetrahedron has zero thickness there.
+void emitOutline(int i)
 {
-  if (orient2D(thickNDC, vertexNDC[a], vertexNDC[b]) == 0.0)
-  {
-    return; // empty in projection: the degenerate classes 3 and 4
-  }
-  emitPoint(thickFrontVC, thickFrontScalar, thickBackVC, thickBackScalar);
-  emitPoint(vertexVC[a], vertexScalar[a], vertexVC[a], vertexScalar[a]);
-  emitPoint(vertexVC[b], vertexScalar[b], vertexVC[b], vertexScalar[b]);
-  EndPrimitive();
+  emitPoint(vertexVC[i], vertexDC[i], vertexScalar[i], vertexVC[i], vertexDC[i], vertexScalar[i]);
+}
+
+void emitThick()
+{
+  emitPoint(thickFrontVC, thickFrontDC, thickFrontScalar, thickBackVC, thickBackDC,
+    thickBackScalar);
 }
 
 // The nearer of two points on one view ray is the one with the larger view-space z, for
 // perspective and parallel projection alike (the camera looks down -z).
-void emitFan(vec3 pVC, float pScalar, vec3 qVC, float qScalar, vec2 thickNDC, int outline[4],
-  int count)
+void setThick(vec3 pVC, vec4 pDC, float pScalar, vec3 qVC, vec4 qDC, float qScalar)
 {
   bool pInFront = pVC.z >= qVC.z;
-  vec3 frontVC = pInFront ? pVC : qVC;
-  vec3 backVC = pInFront ? qVC : pVC;
-  float frontScalar = pInFront ? pScalar : qScalar;
-  float backScalar = pInFront ? qScalar : pScalar;
-  for (int i = 0; i < count; ++i)
-  {
-    emitTriangle(frontVC, frontScalar, backVC, backScalar, thickNDC, outline[i],
-      outline[(i + 1) % count]);
-  }
+  thickFrontVC = pInFront ? pVC : qVC;
+  thickFrontDC = pInFront ? pDC : qDC;
+  thickFrontScalar = pInFront ? pScalar : qScalar;
+  thickBackVC = pInFront ? qVC : pVC;
+  thickBackDC = pInFront ? qDC : pDC;
+  thickBackScalar = pInFront ? qScalar : pScalar;
 }
 
 // Class 1: vertex i projects inside the triangle of the other three. The thick point is that
@@ -90,13 +91,21 @@ void emitClass1(int i, vec3 screenWeights)
   int j = (i + 1) % 4;
   int k = (i + 2) % 4;
   int l = (i + 3) % 4;
-  // Screen-space barycentric weights become perspective-correct ones through 1/w.
+  // Screen-space barycentric weights become perspective-correct ones through 1/w; clip
+  // coordinates are linear in view coordinates, so the same weights give the clip point.
   vec3 weights = screenWeights / vec3(vertexDC[j].w, vertexDC[k].w, vertexDC[l].w);
   weights /= weights.x + weights.y + weights.z;
   vec3 faceVC = weights.x * vertexVC[j] + weights.y * vertexVC[k] + weights.z * vertexVC[l];
+  vec4 faceDC = weights.x * vertexDC[j] + weights.y * vertexDC[k] + weights.z * vertexDC[l];
   float faceScalar = dot(weights, vec3(vertexScalar[j], vertexScalar[k], vertexScalar[l]));
-  int outline[4] = int[4](j, k, l, j);
-  emitFan(vertexVC[i], vertexScalar[i], faceVC, faceScalar, vertexNDC[i], outline, 3);
+  setThick(vertexVC[i], vertexDC[i], vertexScalar[i], faceVC, faceDC, faceScalar);
+  // The fan (thick; j, k, l) as the strip k, j, thick, l, k.
+  emitOutline(k);
+  emitOutline(j);
+  emitThick();
+  emitOutline(l);
+  emitOutline(k);
+  EndPrimitive();
 }
 
 // Class 2: the projections of edges (a, b) and (c, d) cross at screen parameters u and v.
@@ -105,13 +114,19 @@ void emitClass2(int a, int b, int c, int d, float u, float v)
   // Screen-space parameters on an edge become view-space ones through the clip w.
   float t = u * vertexDC[a].w / (u * vertexDC[a].w + (1.0 - u) * vertexDC[b].w);
   float s = v * vertexDC[c].w / (v * vertexDC[c].w + (1.0 - v) * vertexDC[d].w);
-  vec3 onFirstVC = mix(vertexVC[a], vertexVC[b], t);
-  vec3 onSecondVC = mix(vertexVC[c], vertexVC[d], s);
-  float onFirstScalar = mix(vertexScalar[a], vertexScalar[b], t);
-  float onSecondScalar = mix(vertexScalar[c], vertexScalar[d], s);
-  vec2 crossingNDC = mix(vertexNDC[a], vertexNDC[b], u);
-  int outline[4] = int[4](a, c, b, d); // the outline alternates between the two diagonals
-  emitFan(onFirstVC, onFirstScalar, onSecondVC, onSecondScalar, crossingNDC, outline, 4);
+  setThick(mix(vertexVC[a], vertexVC[b], t), mix(vertexDC[a], vertexDC[b], t),
+    mix(vertexScalar[a], vertexScalar[b], t), mix(vertexVC[c], vertexVC[d], s),
+    mix(vertexDC[c], vertexDC[d], s), mix(vertexScalar[c], vertexScalar[d], s));
+  // The outline alternates between the diagonals: a, c, b, d. The fan (thick; a, c, b, d) as
+  // the strip a, c, thick, b, thick, d, a (its fourth triangle has no area).
+  emitOutline(a);
+  emitOutline(c);
+  emitThick();
+  emitOutline(b);
+  emitThick();
+  emitOutline(d);
+  emitOutline(a);
+  EndPrimitive();
 }
 
 void main()
@@ -119,7 +134,7 @@ void main()
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
-    vertexDC[i] = VCDCMatrix * vec4(vertexVC[i], 1.0);
+    vertexDC[i] = positionDCVSOutput[i];
     if (vertexDC[i].w <= 0.0)
     {
       return; // reaches behind the eye: no valid projection

@@ -146,10 +146,24 @@ def _read_legacy_image(filename: str) -> vtkDataSet:
     return reader.GetOutput()
 
 
+class UnreadableDataError(RuntimeError):
+    """VTK's reader could not read a data file that is present."""
+
+
 def _read_xml_ug(filename: str) -> vtkDataSet:
+    path = _data_file(filename)
     reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(_data_file(filename))
+    reader.SetFileName(path)
     reader.Update()
+    if reader.GetErrorCode() or reader.GetOutput().GetNumberOfCells() == 0:
+        # Seen on Debian 12: VTK 9.2's XML parser hands expat its input in pieces around the
+        # appended data, which expat rejects as "not well-formed" since its security updates:
+        # reading worked with 2.5.0-1+deb12u1 and fails with 2.5.0-1+deb12u5.
+        raise UnreadableDataError(
+            f"VTK's XML reader could not read {path}. With VTK 9.2 this happens for files "
+            "with appended data under the security updates of the system's expat (Debian 12: "
+            "2.5.0-1+deb12u5 fails, 2.5.0-1+deb12u1 worked); convert the file with a newer "
+            "VTK or ParaView.")
     return reader.GetOutput()
 
 

@@ -62,7 +62,7 @@ def projected_tetrahedra_mapper() -> vtkProjectedTetrahedraMapper:
 def reference_mapper() -> vtkUnstructuredGridVolumeRayCastMapper:
     """The reference: VTK's ray caster with the exact piecewise-linear integrator, one ray per
     pixel and no adaptive sampling. :func:`render` corrects two faults of VTK 9.2 for it, see
-    :func:`reference_property` and :data:`REFERENCE_PIXEL_OFFSET`."""
+    :func:`reference_property` and :data:`REFERENCE_SUPERSAMPLING`."""
     mapper = vtkUnstructuredGridVolumeRayCastMapper()
     mapper.SetRayIntegrator(vtkUnstructuredGridLinearRayIntegrator())
     mapper.SetImageSampleDistance(1.0)
@@ -104,10 +104,13 @@ def reference_property(prop: vtkVolumeProperty) -> vtkVolumeProperty:
 
 
 # VTK's unstructured ray caster casts its rays through pixel corners, half a pixel off the pixel
-# centres that OpenGL rasterization (SPT, VTK's projected tetrahedra) samples; measured on SPX
-# and the default mesh: both rasterizers match it best one pixel right and up. Its camera is
-# shifted by this many pixels (x, y) to cast through the centres.
-REFERENCE_PIXEL_OFFSET = (0.5, 0.5)
+# centres that OpenGL rasterization (SPT, VTK's projected tetrahedra) samples, and shows its image
+# as a linearly filtered texture, so shifting its camera by half a pixel blurs the silhouette.
+# Instead it renders at twice the size: the corners of that grid include the centres of this
+# one, and every second ray (odd columns, even rows counted from the top) is a pixel-centre ray.
+# Measured on SPX at 1024 repetitions: SPT's mean alpha difference to it is -0.0006, against
+# -0.0058 with the plain ray caster.
+REFERENCE_SUPERSAMPLING = 2
 
 
 MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
@@ -175,22 +178,20 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``); a first,
     untimed render builds the caches (tables, buffers, shaders) that later frames reuse.
     """
-    own_window = window is None
+    reference = is_reference(mapper)
+    own_window = window is None or reference
     if own_window:
-        window, renderer = make_window(*size)
+        scale = REFERENCE_SUPERSAMPLING if reference else 1
+        window, renderer = make_window(size[0] * scale, size[1] * scale)
     else:
         renderer = window.GetRenderers().GetFirstRenderer()
         renderer.RemoveAllViewProps()
     mapper.SetInputData(grid)
     volume = vtkVolume()
     volume.SetMapper(mapper)
-    volume.SetProperty(reference_property(prop) if is_reference(mapper) else prop)
+    volume.SetProperty(reference_property(prop) if reference else prop)
     renderer.AddVolume(volume)
     place_camera(renderer, grid.GetBounds(), view)
-    if is_reference(mapper):
-        width, height = window.GetSize()
-        renderer.GetActiveCamera().SetWindowCenter(
-            2.0 * REFERENCE_PIXEL_OFFSET[0] / width, 2.0 * REFERENCE_PIXEL_OFFSET[1] / height)
     window.Render()
     window.WaitForCompletion()
     start = time.perf_counter()
@@ -198,6 +199,8 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     window.WaitForCompletion()
     seconds = time.perf_counter() - start
     image = read_rgba(window)
+    if reference:
+        image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
     renderer.RemoveVolume(volume)
     if own_window:
         window.Finalize()

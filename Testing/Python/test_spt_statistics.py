@@ -1,0 +1,121 @@
+"""SPT against the reference, statistically: fixed seeds, tolerances from the repetition count.
+
+For every scene, two independent SPT renders (seeds 1 and 2) per repetition level give the noise
+and the bias against the reference (spt.statistics). The tests check that
+- the noise is Monte Carlo noise: L x noise is the same at every level L;
+- the alpha noise is that of keeping each segment with probability alpha: a (1 - a) / L;
+- the bias floor is small, and the RMSE falls as expected towards it (about halving per 4x);
+- at 1024 repetitions SPT is at least as close to the reference as VTK's projected tetrahedra
+  (rendered on SPX; predicted from the measured bias and noise on the large data sets, where
+  1024 repetitions would cost minutes on a software rasterizer).
+Statistical tolerances are four standard errors of the estimates, estimated from the pixels.
+"""
+
+import math
+from functools import lru_cache
+
+import pytest
+
+from spt import figures, metrics, render, statistics
+
+from conftest import load_or_skip
+
+SIZE = 128
+LEVELS = {"default": (4, 16, 64), "spx": (4, 16, 64, 256), "bluntfin": (4, 16), "post": (4, 16)}
+SCENES = list(LEVELS)
+Z = 4.0  # standard errors
+
+
+@lru_cache(maxsize=None)
+def _scene(name):
+    if name != "default":
+        load_or_skip(name)
+    return figures.scene(name)
+
+
+@lru_cache(maxsize=None)
+def _reference(name):
+    s = _scene(name)
+    return render.render(s.grid, s.property, render.reference_mapper(), s.view, (SIZE, SIZE)).image
+
+
+@lru_cache(maxsize=None)
+def _projected_tetrahedra_rmse(name):
+    s = _scene(name)
+    pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view,
+                       (SIZE, SIZE)).image
+    return metrics.rmse(pt, _reference(name))
+
+
+@lru_cache(maxsize=None)
+def _spt(name, level, seed):
+    s = _scene(name)
+    return render.render(s.grid, s.property, render.spt_mapper(level, seed=seed), s.view,
+                         (SIZE, SIZE)).image
+
+
+@lru_cache(maxsize=None)
+def _estimate(name, level):
+    return statistics.estimate(_spt(name, level, 1), _spt(name, level, 2), _reference(name),
+                               level)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_images_are_volumes(name, have_display):
+    reference = _reference(name)
+    image = _spt(name, LEVELS[name][-1], 1)
+    covered = metrics.footprint(image, reference)
+    assert covered.mean() > 0.05, "the images are (almost) empty"
+    assert image[..., 3].max() > 0.2 and reference[..., 3].max() > 0.2
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_noise_falls_as_one_over_repetitions(name, have_display):
+    first = _estimate(name, LEVELS[name][0])
+    for level in LEVELS[name][1:]:
+        e = _estimate(name, level)
+        difference = level * e.noise - first.level * first.noise
+        tolerance = Z * math.hypot(level * e.noise_error, first.level * first.noise_error)
+        assert abs(difference) <= tolerance, (
+            f"L x noise: {first.level * first.noise:.4g} at L={first.level}, "
+            f"{level * e.noise:.4g} at L={level} (tolerance {tolerance:.3g})")
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_alpha_noise_is_bernoulli(name, have_display):
+    for level in LEVELS[name]:
+        e = _estimate(name, level)
+        # The reference's coverage stands in for SPT's expected coverage: allow for the bias.
+        tolerance = Z * e.alpha_noise_error + 2.0 * e.bias * math.sqrt(e.bernoulli_alpha_noise)
+        assert abs(e.alpha_noise - e.bernoulli_alpha_noise) <= tolerance, (
+            f"L={level}: alpha noise {e.alpha_noise:.4g}, a(1-a)/L {e.bernoulli_alpha_noise:.4g}")
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_rmse_falls_to_a_small_bias_floor(name, have_display):
+    estimates = [_estimate(name, level) for level in LEVELS[name]]
+    last = estimates[-1]
+    assert last.bias <= 0.012, f"bias floor {last.bias:.4f}"
+    for low, high in zip(estimates, estimates[1:]):
+        expected = high.predicted_rmse(low.level) / high.predicted_rmse(high.level)
+        measured = low.rmse / high.rmse
+        # Relative standard error of one RMSE over n pixels is about 1 / sqrt(2 n).
+        tolerance = Z * expected * math.sqrt(2.0 / (2.0 * min(low.pixels, high.pixels)))
+        assert abs(measured - expected) <= tolerance + 0.05 * expected, (
+            f"RMSE {low.rmse:.4f} at L={low.level}, {high.rmse:.4f} at L={high.level}: "
+            f"ratio {measured:.3f}, expected {expected:.3f}")
+    # Noise-dominated levels: about halving for each 4x.
+    assert estimates[0].rmse / estimates[1].rmse > 1.6
+
+
+@pytest.mark.parametrize("name", ["spx", "bluntfin", "post"])
+def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_display):
+    pt_rmse = _projected_tetrahedra_rmse(name)
+    last = _estimate(name, LEVELS[name][-1])
+    predicted = last.predicted_rmse(1024)
+    assert predicted <= pt_rmse, f"SPT at 1024 (predicted) {predicted:.4f}, VTK PT {pt_rmse:.4f}"
+    if name == "spx":
+        measured = metrics.rmse(_spt(name, 1024, 3), _reference(name))
+        noise_only = math.sqrt(last.noise * last.level / 1024)
+        assert measured <= pt_rmse, f"SPT at 1024 {measured:.4f}, VTK PT {pt_rmse:.4f}"
+        assert measured <= predicted + Z * noise_only / math.sqrt(2.0 * last.pixels) + 0.002
