@@ -88,6 +88,15 @@ bool vtkSPTMeshBuffers::Update(vtkDataSet* input, const ScalarSelection& selecti
   this->LastError.clear();
   this->SkippedCells = 0;
 
+  if (input->GetNumberOfCells() == 0)
+  {
+    // Nothing to draw is not an error.
+    this->Points.clear();
+    this->Scalars.clear();
+    this->Tetrahedra.clear();
+    this->BuildTime.Modified();
+    return true;
+  }
   if (!scalars)
   {
     std::ostringstream reason;
@@ -336,6 +345,17 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
     this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer);
   if (this->CellScalars)
   {
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    if (this->Scalars.size() > static_cast<size_t>(maxTexels))
+    {
+      vtkErrorMacro("The mesh has " << this->Scalars.size()
+                                    << " tetrahedra with cell scalars; this OpenGL context "
+                                       "holds at most "
+                                    << maxTexels << " in a buffer texture.");
+      this->ReleaseGraphicsResources(renWin);
+      return false;
+    }
     ok = ok && this->ScalarBuffer->Upload(this->Scalars, vtkOpenGLBufferObject::TextureBuffer);
     if (ok)
     {

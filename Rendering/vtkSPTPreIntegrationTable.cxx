@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 namespace
 {
@@ -45,8 +46,10 @@ bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* prope
   const double unitDistance = property->GetScalarOpacityUnitDistance(0);
   if (!(unitDistance > 0.0) || !std::isfinite(unitDistance))
   {
-    vtkErrorMacro("ScalarOpacityUnitDistance of the volume property is "
-      << unitDistance << "; it must be a positive, finite distance.");
+    std::ostringstream reason;
+    reason << "ScalarOpacityUnitDistance of the volume property is " << unitDistance
+           << "; it must be a positive, finite distance.";
+    this->LastError = reason.str();
     return false;
   }
   const int n = this->TransferFunctionSamples;
@@ -84,9 +87,10 @@ bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* prope
 bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double scalarRange[2],
   double maxLength, int scalarResolution, int lengthResolution)
 {
+  this->LastError.clear();
   if (!property)
   {
-    vtkErrorMacro("No volume property to pre-integrate.");
+    this->LastError = "No volume property to pre-integrate.";
     return false;
   }
   const bool unchanged = property == this->LastProperty &&

@@ -24,6 +24,7 @@
 #include "vtkSmartPointer.h" // For the texture
 #include "vtkTimeStamp.h"    // For the build time
 
+#include <string> // For the error
 #include <vector> // For the table
 
 class vtkOpenGLRenderWindow;
@@ -40,12 +41,14 @@ public:
 
   /**
    * Build the table for the first component of the property's transfer functions, over the
-   * scalar range and for lengths from 0 to maxLength (world units). Rebuilds only when one of
-   * these, or the property, changed since the last build. Returns false, with an error, when
-   * the property cannot be integrated (no transfer function, unit distance not positive).
+   * scalar range and for lengths from 0 to maxLength (data units). Rebuilds only when one of
+   * these, or the property, changed since the last build. Returns false when the property
+   * cannot be integrated (unit distance not positive); GetLastError() says why, for the
+   * caller to report.
    */
   bool Update(vtkVolumeProperty* property, const double scalarRange[2], double maxLength,
     int scalarResolution, int lengthResolution);
+  const std::string& GetLastError() const { return this->LastError; }
 
   ///@{
   /**
@@ -100,6 +103,7 @@ private:
   std::vector<double> Attenuation; // per world unit
 
   std::vector<float> Table;
+  std::string LastError;
   vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
   vtkTimeStamp BuildTime;
   vtkTimeStamp UploadTime;

@@ -36,6 +36,7 @@ public:
   vtkNew<vtkSPTEnsembleBuffer> Ensemble;
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkMTimeType ReportedMeshError = 0;
+  vtkMTimeType ReportedSkippedCells = 0;
 
   // Model (normalized) -> view (normalized), view -> clip and clip -> view, column-major;
   // and the linear part of view -> model, which turns view-space segments into lengths in
@@ -75,13 +76,17 @@ void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolu
   vtkMatrix4x4::Multiply4x4(modelToView, normalization, modelToView);
   vtkNew<vtkMatrix4x4> viewToClip;
   viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  // Normalized view coordinates are view coordinates / viewScale. The projection of a
+  // normalized point is P diag(viewScale, viewScale, viewScale, 1), which is the same
+  // projective map as P with its translation column divided by viewScale: clip coordinates
+  // (and w) stay O(1) too.
   for (int i = 0; i < 4; ++i)
   {
     for (int j = 0; j < 3; ++j)
     {
       modelToView->SetElement(j, i, modelToView->GetElement(j, i) / viewScale);
-      viewToClip->SetElement(i, j, viewToClip->GetElement(i, j) * viewScale);
     }
+    viewToClip->SetElement(i, 3, viewToClip->GetElement(i, 3) / viewScale);
   }
   vtkNew<vtkMatrix4x4> clipToView;
   vtkMatrix4x4::Invert(viewToClip, clipToView);
@@ -194,12 +199,24 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
                   "IndependentComponents on in the volume property.");
     return;
   }
+  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
+    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
+  {
+    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
+    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
+                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
+                       "are not drawn.");
+  }
   internals.ComputeMatrices(ren, vol);
   const double maxThickness = internals.Mesh->GetMaxEdgeLength();
   if (!internals.Table->Update(property, internals.Mesh->GetScalarRange(),
         maxThickness * internals.Mesh->GetScale(), this->PreIntegrationScalarResolution,
-        this->PreIntegrationThicknessResolution) ||
-    !internals.Mesh->Upload(renWin))
+        this->PreIntegrationThicknessResolution))
+  {
+    vtkErrorMacro(<< internals.Table->GetLastError());
+    return;
+  }
+  if (!internals.Mesh->Upload(renWin))
   {
     return;
   }

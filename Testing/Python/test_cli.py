@@ -1,0 +1,78 @@
+"""python3 -m spt: the demo and the figures run, and bad arguments are refused clearly."""
+
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import pytest
+
+import spt
+
+
+def environment(**overrides):
+    """This process's environment, with the spt package under test first on the path."""
+    env = os.environ.copy()
+    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
+    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
+    env.update(overrides)
+    return env
+
+
+def run(*arguments, cwd=None, **overrides):
+    return subprocess.run([sys.executable, "-m", "spt", *arguments], cwd=cwd,
+                          capture_output=True, text=True, env=environment(**overrides),
+                          check=False)
+
+
+def test_help():
+    result = run("--help")
+    assert result.returncode == 0
+    assert "demo" in result.stdout and "figures" in result.stdout
+
+
+@pytest.mark.parametrize("arguments, message", [
+    ((), "required"),
+    (("demo", "--size", "0"), "outside 1..4096"),
+    (("demo", "--size", "big"), "not a whole number"),
+    (("demo", "--repetitions", "-3"), "outside"),
+    (("demo", "--dataset", "nosuch"), "unknown data set"),
+    (("figures", "convergence", "--levels", "4,x"), "not a whole number"),
+    (("figures", "convergence", "--datasets", "spx,nosuch"), "nosuch"),
+    (("figures", "nosuch"), "invalid choice"),
+])
+def test_bad_arguments_are_refused(arguments, message):
+    result = run(*arguments)
+    assert result.returncode == 2
+    assert message in result.stderr
+
+
+def test_accuracy_figure(tmp_path):
+    result = run("figures", "accuracy", "--rays", "200", "--output", str(tmp_path))
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "accuracy.png").stat().st_size > 1000
+    slope = float(result.stdout.split("slope of the error:")[1].split()[0])
+    assert -0.6 < slope < -0.4
+
+
+def test_demo_writes_images_and_a_table(tmp_path, have_display):
+    result = run("demo", "--size", "64", "--repetitions", "8", "--output", str(tmp_path / "demo"))
+    assert result.returncode == 0, result.stderr
+    for name in ("spt.png", "vtk_pt.png", "reference.png", "comparison.png", "table.md"):
+        assert (tmp_path / "demo" / name).stat().st_size > 100, name
+    lines = result.stdout.splitlines()
+    header = re.split(r"\s{2,}", lines[0].strip())
+    rows = {cells[0]: dict(zip(header, cells))
+            for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[2:5])}
+    assert header[:2] == ["method", "RMSE"] and "VTK PT" in rows
+    spt_row = next(row for name, row in rows.items() if name.startswith("SPT"))
+    assert 0.0 < float(spt_row["RMSE"]) < 0.3
+    assert float(rows["reference"]["RMSE"]) == 0.0
+
+
+def test_missing_data_is_a_clear_error(tmp_path):
+    result = run("demo", "--dataset", "spx", "--output", str(tmp_path), cwd=tmp_path,
+                 SPT_DATA_DIR=str(tmp_path / "nothing"))
+    assert result.returncode == 1
+    assert "SPT_DATA_DIR" in result.stderr and "Traceback" not in result.stderr

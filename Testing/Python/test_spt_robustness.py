@@ -1,0 +1,330 @@
+"""vtkSPTVolumeMapper on bad and unusual input: a correct image or a clear error, never a crash,
+and the input is never modified. Also: re-rendering, several windows, resizes, releases."""
+
+import math
+
+import numpy as np
+import pytest
+import vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+import spt
+from spt import data, metrics, render
+
+SIZE = (96, 96)
+
+
+def _with_call_data(observer):
+    observer.CallDataType = vtk.VTK_STRING
+    return observer
+
+
+class Messages:
+    """The errors and warnings an object reported, with their text."""
+
+    def __init__(self):
+        self.errors, self.warnings = [], []
+
+
+def watch(obj) -> Messages:
+    """Collect the errors and warnings of obj."""
+    messages = Messages()
+    obj.AddObserver("ErrorEvent", _with_call_data(lambda o, e, text: messages.errors.append(text)))
+    obj.AddObserver("WarningEvent",
+                    _with_call_data(lambda o, e, text: messages.warnings.append(text)))
+    return messages
+
+
+def tetrahedra(points, cells, scalars=None, name="s"):
+    """An unstructured grid of tetrahedra from point and cell lists."""
+    grid = vtk.vtkUnstructuredGrid()
+    vtk_points = vtk.vtkPoints()
+    vtk_points.SetData(numpy_to_vtk(np.asarray(points, dtype=np.float64), deep=True))
+    grid.SetPoints(vtk_points)
+    for cell in cells:
+        grid.InsertNextCell(vtk.VTK_TETRA, len(cell), list(cell))
+    if scalars is not None:
+        array = numpy_to_vtk(np.asarray(scalars, dtype=np.float64), deep=True)
+        array.SetName(name)
+        grid.GetPointData().SetScalars(array)
+    return grid
+
+
+def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
+    color = vtk.vtkColorTransferFunction()
+    color.AddRGBPoint(low, 0.2, 0.4, 1.0)
+    color.AddRGBPoint(high, 1.0, 0.6, 0.2)
+    alpha = vtk.vtkPiecewiseFunction()
+    alpha.AddPoint(low, opacity)
+    alpha.AddPoint(high, opacity)
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(alpha)
+    prop.SetScalarOpacityUnitDistance(unit)
+    return prop
+
+
+ONE = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
+
+
+def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
+    """Render and return (image, mapper, messages); the input's MTime must not change."""
+    mapper = mapper or render.spt_mapper(repetitions, seed=1)
+    messages = watch(mapper)
+    prop = prop or property_for()
+    before = grid.GetMTime()
+    image = render.render(grid, prop, mapper, render.View(30, 30), size).image
+    assert grid.GetMTime() == before, "the input was modified"
+    return image, mapper, messages
+
+
+def test_one_tetrahedron_renders(have_display):
+    image, mapper, messages = draw(ONE)
+    assert not messages.errors
+    assert mapper.GetNumberOfTetrahedra() == 1
+    assert image[..., 3].max() > 0.2
+
+
+def test_empty_grid_draws_nothing_without_error(have_display):
+    image, mapper, messages = draw(vtk.vtkUnstructuredGrid())
+    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 0
+    assert image.max() == 0.0
+
+
+def test_no_scalars_is_a_clear_error(have_display):
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
+    image, _, messages = draw(grid)
+    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
+    assert image.max() == 0.0
+
+
+def test_missing_array_is_named(have_display):
+    mapper = render.spt_mapper(4)
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectScalarArray("pressure")
+    _, _, messages = draw(ONE, mapper=mapper)
+    assert messages.errors and "'pressure'" in messages.errors[0]
+
+
+def test_point_ids_out_of_range_are_a_clear_error(have_display):
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 7)],
+                      [0.0, 0.3, 0.6, 1.0])
+    image, _, messages = draw(grid)
+    assert messages.errors and "point id 7" in messages.errors[0]
+    assert image.max() == 0.0
+
+
+def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
+    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
+    for bad in (math.nan, math.inf):
+        grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, bad])
+        image, mapper, messages = draw(grid)
+        assert not messages.errors
+        assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
+        assert messages.warnings and "not finite" in messages.warnings[0]
+        assert np.isfinite(image).all() and image[..., 3].max() > 0.1
+
+
+def test_constant_field_matches_the_reference(have_display):
+    grid = data.make_default_mesh()
+    values = np.full(grid.GetNumberOfPoints(), 0.25)
+    array = numpy_to_vtk(values, deep=True)
+    array.SetName("constant")
+    grid.GetPointData().SetScalars(array)
+    prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
+    image, _, messages = draw(grid, prop, repetitions=64)
+    reference = render.render(grid, prop, render.reference_mapper(), render.View(30, 30),
+                              SIZE).image
+    assert not messages.errors
+    assert metrics.rmse(image, reference) < 0.05
+
+
+@pytest.mark.parametrize("mode, component, expected", [("magnitude", None, 5.0),
+                                                       ("component", 1, 4.0)])
+def test_multi_component_arrays(mode, component, expected, have_display):
+    """The magnitude, or one component, is rendered: the same image as that single array."""
+    vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * np.array([[0.2], [0.5], [0.8], [1.0]])
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
+    array = numpy_to_vtk(vectors, deep=True)
+    array.SetName("v")
+    grid.GetPointData().SetScalars(array)
+    mapper = render.spt_mapper(16, seed=1)
+    if mode == "component":
+        mapper.SetVectorModeToComponent()
+        mapper.SetVectorComponent(component)
+    prop = property_for(0.0, 5.0, opacity=0.9)
+    image, _, messages = draw(grid, prop, mapper)
+    single = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)],
+                        expected * np.array([0.2, 0.5, 0.8, 1.0]))
+    expected_image, _, _ = draw(single, prop, render.spt_mapper(16, seed=1))
+    assert not messages.errors
+    assert np.array_equal(image, expected_image)
+
+
+def test_component_out_of_range_is_a_clear_error(have_display):
+    mapper = render.spt_mapper(4)
+    mapper.SetVectorModeToComponent()
+    mapper.SetVectorComponent(3)
+    _, _, messages = draw(ONE, mapper=mapper)
+    assert messages.errors and "Component 3" in messages.errors[0]
+
+
+def test_mixed_and_quadratic_cells_are_split(have_display):
+    grid = vtk.vtkUnstructuredGrid()
+    points = vtk.vtkPoints()
+    for p in [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
+              (0, 1, 1), (0.5, 0.5, 2)]:
+        points.InsertNextPoint(p)
+    grid.SetPoints(points)
+    grid.InsertNextCell(vtk.VTK_HEXAHEDRON, 8, list(range(8)))
+    grid.InsertNextCell(vtk.VTK_PYRAMID, 5, [4, 5, 6, 7, 8])
+    grid.InsertNextCell(vtk.VTK_TRIANGLE, 3, [0, 1, 2])  # 2D cells are not volumes
+    scalars = numpy_to_vtk(np.linspace(0.0, 1.0, 9), deep=True)
+    scalars.SetName("s")
+    grid.GetPointData().SetScalars(scalars)
+    image, mapper, messages = draw(grid)
+    assert not messages.errors
+    assert mapper.GetNumberOfTetrahedra() >= 7
+    assert image[..., 3].max() > 0.2
+
+
+def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
+    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0.5, 0)]
+    cells = [(0, 1, 2, 3), (0, 2, 1, 3), (0, 1, 2, 4), (3, 3, 3, 3), (0, 1, 2, 3)]
+    grid = tetrahedra(points, cells, [0.0, 0.3, 0.6, 1.0, 0.5])
+    image, mapper, messages = draw(grid)
+    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 5
+    assert np.isfinite(image).all() and image[..., 3].max() > 0.2
+
+
+def _render_scaled(grid, prop, scale):
+    """Render with the camera of the unscaled data scaled by `scale`. VTK's own
+    ResetCameraClippingRange fails at 1e30 and 1e-30 (it returns 1.8e-21..1.8e-18), so the
+    camera is set by hand."""
+    window, renderer = render.make_window(*SIZE)
+    mapper = render.spt_mapper(8, seed=1)
+    messages = watch(mapper)
+    mapper.SetInputData(grid)
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer.AddVolume(volume)
+    bounds = [b / scale for b in grid.GetBounds()]
+    render.place_camera(renderer, bounds, render.View(30, 30))
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition([x * scale for x in camera.GetPosition()])
+    camera.SetFocalPoint([x * scale for x in camera.GetFocalPoint()])
+    camera.SetClippingRange([x * scale for x in camera.GetClippingRange()])
+    window.Render()
+    return render.read_rgba(window), messages
+
+
+@pytest.mark.parametrize("scale", [1e30, 1e-30])
+def test_extreme_coordinates_give_the_same_image(scale, have_display):
+    """Coordinates and unit distance scaled together: the same picture."""
+    grid = data.make_default_mesh()
+    prop = data.default_transfer_function(grid)
+    expected, _ = _render_scaled(grid, prop, 1.0)
+    scaled = vtk.vtkUnstructuredGrid()
+    scaled.DeepCopy(grid)
+    coordinates = vtk_to_numpy(scaled.GetPoints().GetData()).astype(np.float64) * scale
+    scaled.GetPoints().SetData(numpy_to_vtk(coordinates, deep=True))
+    scaled_prop = vtk.vtkVolumeProperty()
+    scaled_prop.DeepCopy(prop)
+    scaled_prop.SetScalarOpacityUnitDistance(prop.GetScalarOpacityUnitDistance() * scale)
+    image, messages = _render_scaled(scaled, scaled_prop, scale)
+    assert not messages.errors
+    assert expected[..., 3].max() > 0.2
+    assert metrics.rmse(image, expected) < 0.01
+
+
+@pytest.mark.parametrize("points", [0, 1])
+def test_transfer_functions_with_no_or_one_point(points, have_display):
+    prop = vtk.vtkVolumeProperty()
+    color = vtk.vtkColorTransferFunction()
+    opacity = vtk.vtkPiecewiseFunction()
+    if points:
+        color.AddRGBPoint(0.5, 1.0, 0.5, 0.0)
+        opacity.AddPoint(0.5, 0.7)
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    image, _, messages = draw(ONE, prop)
+    assert not messages.errors and np.isfinite(image).all()
+    if points:  # one point: constant over the range, as VTK's transfer functions clamp
+        assert image[..., 3].max() > 0.2
+    else:
+        assert image.max() == 0.0
+
+
+def test_opacity_one_everywhere(have_display):
+    image, _, messages = draw(ONE, property_for(opacity=1.0, unit=0.01), repetitions=4)
+    assert not messages.errors
+    # Almost every covered pixel is opaque at once.
+    covered = image[..., 3] > 0
+    assert covered.sum() > 50 and np.mean(image[..., 3][covered] > 0.99) > 0.9
+
+
+def test_unit_distance_zero_is_a_clear_error(have_display):
+    _, _, messages = draw(ONE, property_for(unit=0.0))
+    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
+
+
+def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
+    """The ensemble is cleared every frame, also for a viewport away from the window's origin
+    (the renderer's scissor box must not keep the clear from reaching it)."""
+    window = vtk.vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(2 * SIZE[0], SIZE[1])
+    renderer = vtk.vtkRenderer()
+    renderer.SetViewport(0.5, 0.0, 1.0, 1.0)
+    window.AddRenderer(renderer)
+    mapper = render.spt_mapper(8, seed=1)
+    mapper.SetInputData(data.make_default_mesh())
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(data.default_transfer_function(mapper.GetInput()))
+    renderer.AddVolume(volume)
+    window.Render()
+    first = render.read_rgba(window)
+    for _ in range(3):
+        window.Render()
+    assert first[..., 3].max() > 0.2
+    assert np.array_equal(render.read_rgba(window), first)
+
+
+def test_input_changes_release_windows_and_resizes(have_display):
+    grid = data.make_default_mesh()
+    prop = data.default_transfer_function(grid)
+    mapper = render.spt_mapper(4, seed=1)
+    messages = watch(mapper)
+    window, renderer = render.make_window(*SIZE)
+    mapper.SetInputData(grid)
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer.AddVolume(volume)
+    renderer.ResetCamera()
+    window.Render()
+    first = render.read_rgba(window)
+    # Points moved: the image changes.
+    moved = vtk_to_numpy(grid.GetPoints().GetData())
+    moved[:, 0] *= 0.5
+    grid.GetPoints().Modified()
+    window.Render()
+    assert not np.array_equal(render.read_rgba(window), first)
+    # Release, then render again; a resize; a zero-size viewport.
+    mapper.ReleaseGraphicsResources(window)
+    assert mapper.GetGPUMemorySize() == 0
+    window.Render()
+    window.SetSize(SIZE[0] + 17, SIZE[1] + 5)
+    window.Render()
+    assert render.read_rgba(window).shape[:2] == (SIZE[1] + 5, SIZE[0] + 17)
+    renderer.SetViewport(0.2, 0.2, 0.2, 0.2)
+    window.Render()
+    # The same mapper in a second window.
+    other, other_renderer = render.make_window(*SIZE)
+    other_renderer.AddVolume(volume)
+    other_renderer.ResetCamera()
+    other.Render()
+    assert render.read_rgba(other)[..., 3].max() > 0.1
+    assert not messages.errors
