@@ -57,7 +57,7 @@ demo: install
 	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(CURDIR)/out/demo
 
 test: install
-	cd $(BUILD) && $(XVFB) ctest --output-on-failure --timeout 1500
+	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) ctest --output-on-failure --timeout 1500
 
 clean:
 	rm -rf $(BUILD) out
