@@ -14,7 +14,9 @@ Statistical tolerances are four standard errors of the estimates, estimated from
 import math
 from functools import lru_cache
 
+import numpy as np
 import pytest
+import vtk
 
 from spt import figures, metrics, render, statistics
 
@@ -119,3 +121,58 @@ def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_dis
         noise_only = math.sqrt(last.noise * last.level / 1024)
         assert measured <= pt_rmse, f"SPT at 1024 {measured:.4f}, VTK PT {pt_rmse:.4f}"
         assert measured <= predicted + Z * noise_only / math.sqrt(2.0 * last.pixels) + 0.002
+
+
+def _block_mean(image, factor):
+    h, w, c = image.shape
+    return image.reshape(h // factor, factor, w // factor, factor, c).mean(axis=(1, 3))
+
+
+def test_subpixel_level_averages_subpixels(have_display):
+    """SubpixelLevel 2: the expectation is the 2x2 box filter of the reference at twice the
+    resolution, and the alpha noise is the subpixels' a (1 - a) / (4 L)."""
+    s = _scene("default")
+    level, size = 16, SIZE // 2
+    fine = render.render(s.grid, s.property, render.reference_mapper(), s.view,
+                         (2 * size, 2 * size)).image
+    reference = _block_mean(fine, 2)
+    first, second = (render.render(s.grid, s.property, render.spt_mapper(level, 2, seed), s.view,
+                                   (size, size)).image for seed in (1, 2))
+    e = statistics.estimate(first, second, reference, level)
+    mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
+    coverage = np.clip(fine[..., 3], 0.0, 1.0)
+    expected = _block_mean((coverage * (1.0 - coverage))[..., None], 2)[..., 0][mask].mean() / (
+        4 * level)
+    assert abs(e.alpha_noise - expected) <= Z * e.alpha_noise_error + 0.1 * expected, (
+        f"alpha noise {e.alpha_noise:.4g}, expected {expected:.4g}")
+    assert e.bias <= 0.012, f"bias {e.bias:.4f} against the box-filtered reference"
+
+
+def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
+    """An opaque plane through the middle of the volume: SPT and the reference (which stops its
+    rays at the z-buffer) agree within the noise, and the plane is really in the picture. The
+    plane fills the view, so that no edge of it (rasterized at the reference's double
+    resolution) is in the picture."""
+    s = _scene("default")
+    plane = vtk.vtkPlaneSource()
+    plane.SetOrigin(-50.0, -50.0, 0.2)
+    plane.SetPoint1(50.0, -50.0, 0.2)
+    plane.SetPoint2(-50.0, 50.0, 0.2)
+    plane_mapper = vtk.vtkPolyDataMapper()
+    plane_mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtk.vtkActor()
+    actor.SetMapper(plane_mapper)
+    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
+    actor.GetProperty().LightingOff()
+    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view,
+                              (SIZE, SIZE), actors=[actor]).image
+    level = 64
+    first, second = (render.render(s.grid, s.property, render.spt_mapper(level, seed=seed),
+                                   s.view, (SIZE, SIZE), actors=[actor]).image
+                     for seed in (1, 2))
+    without = _spt("default", LEVELS["default"][-1], 1)
+    plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
+    assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
+    assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
+    e = statistics.estimate(first, second, reference, level)
+    assert e.bias <= 0.015, f"bias {e.bias:.4f} against the reference with the plane"

@@ -10,12 +10,13 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from typing import Callable, Dict, Optional, Tuple
+from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
 from vtkmodules.vtkCommonDataModel import vtkDataSet
 from vtkmodules.vtkRenderingCore import (
     vtkAbstractVolumeMapper,
+    vtkProp,
     vtkRenderer,
     vtkRenderWindow,
     vtkVolume,
@@ -172,8 +173,10 @@ class Rendering:
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
            view: View = View(), size: Tuple[int, int] = (256, 256),
-           window: Optional[vtkRenderWindow] = None) -> Rendering:
-    """Render ``grid`` with ``mapper`` and return the image and the wall time of the render.
+           window: Optional[vtkRenderWindow] = None,
+           actors: Sequence[vtkProp] = ()) -> Rendering:
+    """Render ``grid`` with ``mapper`` (and any opaque ``actors``) and return the image and
+    the wall time of the render.
 
     The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``); a first,
     untimed render builds the caches (tables, buffers, shaders) that later frames reuse.
@@ -191,6 +194,8 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     volume.SetMapper(mapper)
     volume.SetProperty(reference_property(prop) if reference else prop)
     renderer.AddVolume(volume)
+    for actor in actors:
+        renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
     window.Render()
     window.WaitForCompletion()
@@ -202,6 +207,8 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     if reference:
         image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
     renderer.RemoveVolume(volume)
+    for actor in actors:
+        renderer.RemoveActor(actor)
     if own_window:
         window.Finalize()
     return Rendering(image=image, seconds=seconds, mapper=mapper)
