@@ -1,6 +1,7 @@
 # Quick start on a fresh Debian 12 machine (as root, or with sudo):
 #   make demo   install what is missing, build, install, and render the default data set
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
+#   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores).
@@ -24,7 +25,7 @@ PACKAGES := cmake ninja-build g++ make \
 	python3-numpy python3-matplotlib python3-pytest \
 	xvfb xauth libgl1-mesa-dri
 
-.PHONY: all deps configure build install demo test clean
+.PHONY: all deps configure build install demo test sanitize clean
 
 all: build
 
@@ -59,5 +60,25 @@ demo: install
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) ctest --output-on-failure --timeout 1500
 
+# The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
+# Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
+# anything in this project's code fails the run.
+SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+sanitize: deps
+	cmake -S . -B $(BUILD)-sanitize -G Ninja \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DVTK_DIR=$(VTK_DIR) \
+	  -DPython3_EXECUTABLE=$(PYTHON) \
+	  -DSPT_WRAP_PYTHON=OFF \
+	  -DCMAKE_CXX_FLAGS="$(SANITIZE_FLAGS)" \
+	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+	  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined"
+	cmake --build $(BUILD)-sanitize -j $(JOBS)
+	cd $(BUILD)-sanitize && \
+	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/Testing/Sanitizers/lsan.supp:print_suppressions=0 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$(CURDIR)/Testing/Sanitizers/ubsan.supp \
+	  $(XVFB) ctest --output-on-failure --timeout 1500
+
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(BUILD)-sanitize out
