@@ -25,8 +25,6 @@
 #include "vtkSPTTetrahedraVS.h"
 
 #include <algorithm>
-#include <cstdio>
-#define SPTCHK(l) { GLenum e = glGetError(); if (e) std::fprintf(stderr, "GLERR %x at %s\n", e, l); }
 
 class vtkSPTVolumeMapper::vtkInternals
 {
@@ -226,7 +224,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
 
-  SPTCHK("start")
+  vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
@@ -244,11 +242,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   ostate->PushFramebufferBindings();
-  SPTCHK("before push")
   ensemble->CaptureSceneDepth(x, y);
-  SPTCHK("capture")
   ensemble->ClearSum();
-  SPTCHK("clearsum")
 
   const bool cellScalars = internals.Mesh->GetCellScalars();
   vtkShaderProgram* program = internals.ReadyProgram(renWin, cellScalars);
@@ -259,7 +254,6 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   table->Activate();
-  SPTCHK("table")
   vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
   sceneDepth->Activate();
   vtkTextureObject* cellScalarTexture = internals.Mesh->GetCellScalarTexture();
@@ -284,7 +278,6 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   for (int repetition = 0; repetition < this->RepetitionLevel; ++repetition)
   {
     ensemble->BeginPass();
-  SPTCHK("begin")
     // The ensemble's accumulation binds its own program between passes.
     renWin->GetShaderCache()->ReadyShaderProgram(program);
     if (repetition == 0)
@@ -308,14 +301,10 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       }
     }
     program->SetUniformi("repetition", repetition);
-  SPTCHK("uniforms")
     internals.Mesh->Bind(program);
-  SPTCHK("bind")
     internals.Mesh->Draw(program, 0, internals.Mesh->GetNumberOfTetrahedra());
-  SPTCHK("draw")
     internals.Mesh->Unbind();
     ensemble->EndPass();
-  SPTCHK("endpass")
   }
 
   if (cellScalars)
@@ -326,7 +315,6 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   table->Deactivate();
   ostate->PopFramebufferBindings();
   ensemble->Resolve(x, y, this->RepetitionLevel);
-  SPTCHK("resolve")
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
