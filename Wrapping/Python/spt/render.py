@@ -162,6 +162,18 @@ def read_rgba(window: vtkRenderWindow) -> np.ndarray:
     return metrics.from_vtk_image(grab.GetOutput(), as_float_rgba=True)
 
 
+def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
+    """One untimed render that builds what later frames reuse (shaders, buffers, tables).
+    A stochastic mapper does it with one repetition: its caches do not depend on the count."""
+    repetitions = mapper.GetRepetitionLevel() if hasattr(mapper, "GetRepetitionLevel") else None
+    if repetitions is not None:
+        mapper.SetRepetitionLevel(1)
+    window.Render()
+    window.WaitForCompletion()
+    if repetitions is not None:
+        mapper.SetRepetitionLevel(repetitions)
+
+
 @dataclasses.dataclass
 class Rendering:
     """An image and what it cost."""
@@ -197,8 +209,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
-    window.Render()
-    window.WaitForCompletion()
+    _warm_up(window, mapper)
     start = time.perf_counter()
     window.Render()
     window.WaitForCompletion()
