@@ -66,3 +66,37 @@ def test_installed_package_imports_from_any_directory(tmp_path):
         ["/usr/bin/python3", "-c", "import spt; print(spt.__file__)"], cwd=tmp_path, env=env,
         capture_output=True, text=True, check=True).stdout
     assert "dist-packages" in location and "/build/" not in location, location
+
+
+CONSUMER_CMAKE = """
+cmake_minimum_required(VERSION 3.16)
+project(consumer CXX)
+find_package(SPT REQUIRED)
+add_executable(consumer main.cxx)
+target_link_libraries(consumer PRIVATE SPT::Rendering)
+"""
+
+CONSUMER_MAIN = """
+#include "vtkNew.h"
+#include "vtkSPTVolumeMapper.h"
+int main()
+{
+  vtkNew<vtkSPTVolumeMapper> mapper;
+  mapper->SetRepetitionLevel(7);
+  return mapper->GetRepetitionLevel() == 7 ? 0 : 1;
+}
+"""
+
+
+def test_installed_cmake_package_builds_a_cxx_program(tmp_path):
+    """After `make install`, find_package(SPT) gives SPT::Rendering to a C++ project."""
+    if os.environ.get("SPT_TEST_INSTALLED") != "1":
+        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+    (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE)
+    (tmp_path / "main.cxx").write_text(CONSUMER_MAIN)
+    build = tmp_path / "build"
+    for command in (["cmake", "-S", str(tmp_path), "-B", str(build)],
+                    ["cmake", "--build", str(build)],
+                    [str(build / "consumer")]):
+        result = subprocess.run(command, capture_output=True, text=True, check=False)
+        assert result.returncode == 0, result.stdout + result.stderr
