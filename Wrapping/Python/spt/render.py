@@ -135,6 +135,17 @@ def make_window(width: int, height: int) -> Tuple[vtkRenderWindow, vtkRenderer]:
     return window, renderer
 
 
+def add_volume(renderer: vtkRenderer, grid: vtkDataSet, prop: vtkVolumeProperty,
+               mapper: vtkAbstractVolumeMapper) -> vtkVolume:
+    """Show ``grid`` through ``mapper`` with ``prop`` in ``renderer``; returns the volume."""
+    mapper.SetInputData(grid)
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer.AddVolume(volume)
+    return volume
+
+
 def place_camera(renderer: vtkRenderer, bounds, view: View) -> None:
     """Look at the bounding box from the view's direction, framing it with the view's zoom."""
     camera = renderer.GetActiveCamera()
@@ -201,11 +212,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     else:
         renderer = window.GetRenderers().GetFirstRenderer()
         renderer.RemoveAllViewProps()
-    mapper.SetInputData(grid)
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(reference_property(prop) if reference else prop)
-    renderer.AddVolume(volume)
+    volume = add_volume(renderer, grid, reference_property(prop) if reference else prop, mapper)
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
