@@ -50,6 +50,11 @@ public:
     int scalarResolution, int lengthResolution);
   const std::string& GetLastError() const { return this->LastError; }
 
+  /**
+   * When the contents of the table last changed.
+   */
+  vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
+
   ///@{
   /**
    * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
@@ -105,7 +110,8 @@ private:
   std::vector<float> Table;
   std::string LastError;
   vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
-  vtkTimeStamp BuildTime;
+  vtkTimeStamp CheckTime; // the inputs were last compared
+  vtkTimeStamp BuildTime; // the contents last changed
   vtkTimeStamp UploadTime;
   vtkSmartPointer<vtkTextureObject> Texture;
 };

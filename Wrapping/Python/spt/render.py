@@ -45,13 +45,21 @@ class View:
     parallel: bool = False
 
 
-def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0
+def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
+               stratified: Optional[bool] = None, per_pass: Optional[int] = None
                ) -> vtkSPTVolumeMapper:
-    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed."""
+    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``
+    and ``per_pass`` set StratifiedSampling and RepetitionsPerPass (None keeps the defaults).
+    The time budget is off, so that the image has exactly ``repetitions`` repetitions."""
     mapper = vtkSPTVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
     mapper.SetSeed(seed)
+    mapper.SetAutoAdjustRepetitions(False)
+    if stratified is not None:
+        mapper.SetStratifiedSampling(stratified)
+    if per_pass is not None:
+        mapper.SetRepetitionsPerPass(per_pass)
     return mapper
 
 
