@@ -1,0 +1,178 @@
+"""Render a data set as "Volume (SPT)" with ParaView's own Python, for the plugin's tests.
+
+Run by pvpython (on its own or connected to a pvserver) and by pvbatch (one rank, or several
+under mpirun). Writes the view as a PNG over a black background, so that its RGB is the
+volume's premultiplied color, and a JSON report of what was rendered.
+
+    pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
+"""
+
+import argparse
+import json
+import sys
+
+from paraview import servermanager, simple
+
+REPRESENTATION = "Volume (SPT)"
+SETTINGS = ("RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+            "PreIntegrationThicknessResolution")
+
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--data", required=True, help="a legacy .vtk file or a .pvtk of pieces")
+    parser.add_argument("--output", required=True, help="the PNG to write")
+    parser.add_argument("--report", required=True, help="JSON reports go to REPORT.rankN.json")
+    parser.add_argument("--plugin", help="load this plugin (else PV_PLUGIN_PATH has loaded it)")
+    parser.add_argument("--connect", help="host:port of a pvserver to connect to")
+    parser.add_argument("--size", type=int, default=200)
+    parser.add_argument("--repetitions", type=int, default=16)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
+                        help="look along this axis (ParaView's default: z)")
+    return parser.parse_args(argv)
+
+
+def load_plugin(path, connected):
+    """Load the plugin where ParaView needs it: the server (if any) and this process."""
+    if connected:
+        simple.LoadPlugin(path, remote=True)
+    simple.LoadPlugin(path, remote=False)
+
+
+def rank_and_ranks():
+    module = servermanager.vtkProcessModule.GetProcessModule()
+    return module.GetPartitionId(), module.GetNumberOfLocalPartitions()
+
+
+def documentation(display, name):
+    doc = display.GetProperty(name).SMProperty.GetDocumentation()
+    return " ".join(doc.GetDescription().split()) if doc else ""
+
+
+def property_groups(display):
+    proxy = display.SMProxy
+    groups = {}
+    for index in range(proxy.GetNumberOfPropertyGroups()):
+        group = proxy.GetPropertyGroup(index)
+        names = [group.GetPropertyName(i) for i in range(group.GetNumberOfProperties())]
+        groups[group.GetXMLLabel() or ""] = names
+    return groups
+
+
+def mapper_object(display):
+    """This process's mapper of the active representation (vtkPVCompositeRepresentation ->
+    vtkSPTVolumeRepresentation -> its volume mapper)."""
+    active = display.GetClientSideObject().GetActiveRepresentation()
+    return active.GetActiveVolumeMapper() if hasattr(active, "GetActiveVolumeMapper") else None
+
+
+def setup_view(size):
+    view = simple.CreateView("RenderView")
+    view.ViewSize = [size, size]
+    view.OrientationAxesVisibility = 0
+    view.UseColorPaletteForBackground = 0
+    view.Background = [0.0, 0.0, 0.0]
+    # ParaView 5.11 turns FXAA on by default and applies it where the image is composited or
+    # sent to a client (pvbatch under MPI, pvserver), not in a single pvpython: it smooths the
+    # noise of a stochastic image, so images of the three would not compare. (With FXAA and a
+    # transparent background it also clears some opaque pixels.)
+    view.UseFXAA = 0
+    return view
+
+
+def show_volume(reader, view, args):
+    display = simple.Show(reader, view)
+    simple.ColorBy(display, ("POINTS", "field"))
+    display.RescaleTransferFunctionToDataRange(False, True)
+    display.SetRepresentationType(REPRESENTATION)
+    display.RepetitionLevel = args.repetitions
+    display.Seed = args.seed
+    return display
+
+
+def look_along(view, axis):
+    """Look along the axis from its negative side, the whole data set in view."""
+    direction = {"x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}[axis]
+    view.CameraFocalPoint = [0.0, 0.0, 0.0]
+    view.CameraPosition = [-d for d in direction]
+    view.CameraViewUp = [0.0, 1.0, 0.0] if axis == "z" else [0.0, 0.0, 1.0]
+    simple.ResetCamera(view)
+
+
+def loaded_libraries(word):
+    """The shared libraries of this process whose file name contains ``word`` (Linux)."""
+    try:
+        with open("/proc/self/maps") as maps:
+            paths = {line.split()[-1] for line in maps if "/" in line}
+    except OSError:
+        return []
+    return sorted(path for path in paths if word in path.rsplit("/", 1)[-1])
+
+
+def local_mapper_report(display):
+    """What this process's mapper drew. Importing spt inside ParaView's Python wraps the
+    plugin's vtkSPTVolumeMapper as spt.vtkSPTVolumeMapper."""
+    import spt
+
+    info = {"spt_file": spt.__file__, "spt_libraries": loaded_libraries("SPT")}
+    mapper = mapper_object(display)
+    if mapper is not None:
+        info["mapper_class"] = mapper.GetClassName()
+        info["mapper_is_spt"] = isinstance(mapper, spt.vtkSPTVolumeMapper)
+        if isinstance(mapper, spt.vtkSPTVolumeMapper):
+            info["tetrahedra"] = int(mapper.GetNumberOfTetrahedra())
+            info["mapper_input_bounds"] = list(mapper.GetInput().GetBounds())
+            info["mapper_settings"] = {
+                name: int(getattr(mapper, "Get" + name)()) for name in SETTINGS}
+    return info
+
+
+def report(display, reader, args):
+    """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
+    own file."""
+    rank, ranks = rank_and_ranks()
+    info = {"rank": rank, "ranks": ranks}
+    info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
+    info["representation_types"] = list(display.GetProperty("Representation").Available)
+    info["settings"] = {name: int(display.GetPropertyValue(name)) for name in SETTINGS}
+    info["documentation"] = {name: documentation(display, name) for name in SETTINGS}
+    info["property_groups"] = property_groups(display)
+    info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
+    process_ids = simple.ProcessIdScalars(Input=reader)
+    process_ids.UpdatePipeline()
+    info["process_ids"] = list(process_ids.PointData["ProcessId"].GetRange())
+    simple.Delete(process_ids)
+    info.update(local_mapper_report(display))
+    with open("%s.rank%d.json" % (args.report, rank), "w") as stream:
+        json.dump(info, stream, indent=1)
+
+
+def main(argv):
+    args = parse_arguments(argv)
+    connected = bool(args.connect)
+    if connected:
+        host, port = args.connect.rsplit(":", 1)
+        simple.Connect(host, int(port))
+    if args.plugin:
+        load_plugin(args.plugin, connected)
+
+    reader = simple.LegacyVTKReader(FileNames=[args.data])
+    view = setup_view(args.size)
+    display = show_volume(reader, view, args)
+    look_along(view, args.view_axis)
+    simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size])
+    report(display, reader, args)
+
+    # Leave nothing behind for the exit: the view goes before the data.
+    simple.Hide(reader, view)
+    simple.Delete(view)
+    simple.Delete(reader)
+    if connected:
+        simple.Disconnect()
+
+
+if __name__ == "__main__":
+    # No sys.exit(): under pvbatch every rank must leave the script normally, so that ParaView
+    # finalizes MPI; an exception still makes the process fail.
+    main(sys.argv[1:])
