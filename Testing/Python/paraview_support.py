@@ -78,6 +78,28 @@ def mpirun(ranks: int, command: Sequence[str], preload: Optional[str] = None) ->
     return arguments + [str(c) for c in command]
 
 
+def artifacts() -> Optional[pathlib.Path]:
+    """Where ctest keeps images and measures to look at (SPT_TEST_ARTIFACTS), if set."""
+    directory = os.environ.get("SPT_TEST_ARTIFACTS")
+    if not directory:
+        return None
+    path = pathlib.Path(directory)
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def keep(path: os.PathLike, name: str) -> None:
+    directory = artifacts()
+    if directory:
+        shutil.copy(path, directory / name)
+
+
+def keep_text(text: str, name: str) -> None:
+    directory = artifacts()
+    if directory:
+        (directory / name).write_text(text)
+
+
 def free_port() -> int:
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
@@ -102,15 +124,27 @@ def write_mesh(path: pathlib.Path, grid=None) -> pathlib.Path:
     return path
 
 
+def cell_centers(grid) -> np.ndarray:
+    """(cells, 3) array of the cells' centers."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkFiltersCore import vtkCellCenters
+
+    centers = vtkCellCenters()
+    centers.SetInputData(grid)
+    centers.Update()
+    return vtk_to_numpy(centers.GetOutput().GetPoints().GetData())
+
+
 def write_pieces(directory: pathlib.Path, cells_of_piece) -> pathlib.Path:
-    """The default mesh split into pieces by ``cells_of_piece(ids) -> [ids of each piece]``,
-    as a .pvtk file that ParaView's legacy reader hands out one piece per rank."""
+    """The default mesh split into pieces by ``cells_of_piece(grid) -> [cell ids of each
+    piece]``, as pieces.N.vtk and a pieces.pvtk that ParaView's legacy reader hands out one
+    piece per rank."""
     from vtkmodules.vtkCommonCore import vtkIdList
-    from vtkmodules.vtkFiltersExtraction import vtkExtractCells
+    from vtkmodules.vtkFiltersCore import vtkExtractCells
     from spt import data
 
     grid = data.make_default_mesh()
-    pieces = cells_of_piece(np.arange(grid.GetNumberOfCells()))
+    pieces = cells_of_piece(grid)
     entries = []
     for index, ids in enumerate(pieces):
         id_list = vtkIdList()

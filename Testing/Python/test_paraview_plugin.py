@@ -6,7 +6,6 @@ pvserver over loopback, and (after `make install`) the installed plugin found by
 import json
 import os
 import pathlib
-import shutil
 import subprocess
 import time
 
@@ -36,14 +35,6 @@ def read_report(output):
     return json.loads(output.with_suffix(".rank0.json").read_text())
 
 
-def keep(path, name):
-    """Copy an image where ctest keeps the artifacts (SPT_TEST_ARTIFACTS), to look at."""
-    directory = os.environ.get("SPT_TEST_ARTIFACTS")
-    if directory:
-        pathlib.Path(directory).mkdir(parents=True, exist_ok=True)
-        shutil.copy(path, pathlib.Path(directory) / name)
-
-
 def check_volume_image(image):
     """A volume, not an empty view: part of the view is covered, with varied colors."""
     covered = pvs.footprint(image)
@@ -58,7 +49,7 @@ def builtin(have_display, mesh, tmp_path_factory):
     """pvpython on its own: LoadPlugin, show the mesh as "Volume (SPT)", screenshot."""
     output = tmp_path_factory.mktemp("builtin") / "spt.png"
     pvs.run(render_command(mesh, output, "--plugin", pvs.plugin_path()))
-    keep(output, "pvpython_spt.png")
+    pvs.keep(output, "pvpython_spt.png")
     return output
 
 
@@ -134,7 +125,7 @@ def test_pvserver_with_a_pvpython_client_over_loopback(builtin, mesh, tmp_path):
         if server.poll() is None:
             server.kill()
             server.wait()
-    keep(output, "pvserver_client_spt.png")
+    pvs.keep(output, "pvserver_client_spt.png")
     report = read_report(output)
     assert report["representation"] == "Volume (SPT)"
     assert report["settings"]["RepetitionLevel"] == REPETITIONS

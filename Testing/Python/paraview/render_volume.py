@@ -2,7 +2,8 @@
 
 Run by pvpython (on its own or connected to a pvserver) and by pvbatch (one rank, or several
 under mpirun). Writes the view as a PNG over a black background, so that its RGB is the
-volume's premultiplied color, and a JSON report of what was rendered.
+volume's premultiplied color (or, with --transparent, as RGBA over a transparent background),
+and a JSON report of what was rendered.
 
     pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
 """
@@ -28,8 +29,14 @@ def parse_arguments(argv):
     parser.add_argument("--size", type=int, default=200)
     parser.add_argument("--repetitions", type=int, default=16)
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--use-data-partitions", action="store_true",
+                        help="keep the pieces where they were read (no redistribution)")
     parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
                         help="look along this axis (ParaView's default: z)")
+    parser.add_argument("--like", help="an earlier report (JSON) whose camera, scalar range and "
+                        "unit distance to use, for a part of that data set")
+    parser.add_argument("--transparent", action="store_true",
+                        help="RGBA over a transparent background instead of RGB over black")
     return parser.parse_args(argv)
 
 
@@ -81,13 +88,20 @@ def setup_view(size):
     return view
 
 
-def show_volume(reader, view, args):
+def show_volume(reader, view, args, like):
     display = simple.Show(reader, view)
     simple.ColorBy(display, ("POINTS", "field"))
-    display.RescaleTransferFunctionToDataRange(False, True)
+    if like:
+        for function in (simple.GetColorTransferFunction("field"),
+                         simple.GetOpacityTransferFunction("field")):
+            function.RescaleTransferFunction(*like["scalar_range"])
+        display.ScalarOpacityUnitDistance = like["unit_distance"]
+    else:
+        display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(REPRESENTATION)
     display.RepetitionLevel = args.repetitions
     display.Seed = args.seed
+    display.UseDataPartitions = int(args.use_data_partitions)
     return display
 
 
@@ -110,6 +124,25 @@ def loaded_libraries(word):
     return sorted(path for path in paths if word in path.rsplit("/", 1)[-1])
 
 
+CAMERA = ("CameraPosition", "CameraFocalPoint", "CameraViewUp", "CameraViewAngle",
+          "CameraParallelScale")
+
+
+def elements(proxy, name):
+    prop = proxy.SMProxy.GetProperty(name)
+    values = [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
+    return values if len(values) > 1 else values[0]
+
+
+def get_camera(view):
+    return {name: elements(view, name) for name in CAMERA}
+
+
+def set_camera(view, camera):
+    for name in CAMERA:
+        view.SetPropertyWithName(name, camera[name])
+
+
 def local_mapper_report(display):
     """What this process's mapper drew. Importing spt inside ParaView's Python wraps the
     plugin's vtkSPTVolumeMapper as spt.vtkSPTVolumeMapper."""
@@ -128,7 +161,7 @@ def local_mapper_report(display):
     return info
 
 
-def report(display, reader, args):
+def report(display, reader, view, args):
     """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
     own file."""
     rank, ranks = rank_and_ranks()
@@ -139,6 +172,10 @@ def report(display, reader, args):
     info["documentation"] = {name: documentation(display, name) for name in SETTINGS}
     info["property_groups"] = property_groups(display)
     info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
+    info["camera"] = get_camera(view)
+    points = elements(simple.GetOpacityTransferFunction("field"), "Points")
+    info["scalar_range"] = [points[0], points[-4]]
+    info["unit_distance"] = elements(display, "ScalarOpacityUnitDistance")
     process_ids = simple.ProcessIdScalars(Input=reader)
     process_ids.UpdatePipeline()
     info["process_ids"] = list(process_ids.PointData["ProcessId"].GetRange())
@@ -159,10 +196,18 @@ def main(argv):
 
     reader = simple.LegacyVTKReader(FileNames=[args.data])
     view = setup_view(args.size)
-    display = show_volume(reader, view, args)
-    look_along(view, args.view_axis)
-    simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size])
-    report(display, reader, args)
+    like = None
+    if args.like:
+        with open(args.like) as stream:
+            like = json.load(stream)
+    display = show_volume(reader, view, args, like)
+    if like:
+        set_camera(view, like["camera"])
+    else:
+        look_along(view, args.view_axis)
+    simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
+                          TransparentBackground=int(args.transparent))
+    report(display, reader, view, args)
 
     # Leave nothing behind for the exit: the view goes before the data.
     simple.Hide(reader, view)
