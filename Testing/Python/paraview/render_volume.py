@@ -14,7 +14,7 @@ import sys
 
 from paraview import servermanager, simple
 
-REPRESENTATION = "Volume (SPT)"
+# The SPT mapper's settings; a mapper with others names its own with --set.
 SETTINGS = ("RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
             "PreIntegrationThicknessResolution")
 
@@ -27,6 +27,9 @@ def parse_arguments(argv):
     parser.add_argument("--plugin", help="load this plugin (else PV_PLUGIN_PATH has loaded it)")
     parser.add_argument("--connect", help="host:port of a pvserver to connect to")
     parser.add_argument("--size", type=int, default=200)
+    parser.add_argument("--representation", default="Volume (SPT)")
+    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                        help="an integer setting of the representation, by its name")
     parser.add_argument("--repetitions", type=int, default=16)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--use-data-partitions", action="store_true",
@@ -88,6 +91,15 @@ def setup_view(size):
     return view
 
 
+def settings_to_set(args):
+    return {name: int(value) for name, value in (item.split("=", 1) for item in args.set)}
+
+
+def setting_names(args):
+    names = list(SETTINGS) if args.representation == "Volume (SPT)" else []
+    return names + [name for name in settings_to_set(args) if name not in names]
+
+
 def show_volume(reader, view, args, like):
     display = simple.Show(reader, view)
     simple.ColorBy(display, ("POINTS", "field"))
@@ -98,9 +110,12 @@ def show_volume(reader, view, args, like):
         display.ScalarOpacityUnitDistance = like["unit_distance"]
     else:
         display.RescaleTransferFunctionToDataRange(False, True)
-    display.SetRepresentationType(REPRESENTATION)
-    display.RepetitionLevel = args.repetitions
-    display.Seed = args.seed
+    display.SetRepresentationType(args.representation)
+    if args.representation == "Volume (SPT)":
+        display.RepetitionLevel = args.repetitions
+        display.Seed = args.seed
+    for name, value in settings_to_set(args).items():
+        display.SetPropertyWithName(name, value)
     display.UseDataPartitions = int(args.use_data_partitions)
     return display
 
@@ -143,7 +158,7 @@ def set_camera(view, camera):
         view.SetPropertyWithName(name, camera[name])
 
 
-def local_mapper_report(display):
+def local_mapper_report(display, names):
     """What this process's mapper drew. Importing spt inside ParaView's Python wraps the
     plugin's vtkSPTVolumeMapper as spt.vtkSPTVolumeMapper."""
     import spt
@@ -151,13 +166,16 @@ def local_mapper_report(display):
     info = {"spt_file": spt.__file__, "spt_libraries": loaded_libraries("SPT")}
     mapper = mapper_object(display)
     if mapper is not None:
+        # Wrapped as its own class once spt (which re-exports the project's mappers) is
+        # imported; the plugin's other mappers report what they have of the same.
         info["mapper_class"] = mapper.GetClassName()
         info["mapper_is_spt"] = isinstance(mapper, spt.vtkSPTVolumeMapper)
-        if isinstance(mapper, spt.vtkSPTVolumeMapper):
+        if hasattr(mapper, "GetNumberOfTetrahedra"):
             info["tetrahedra"] = int(mapper.GetNumberOfTetrahedra())
+        if hasattr(mapper, "GetInput") and mapper.GetInput() is not None:
             info["mapper_input_bounds"] = list(mapper.GetInput().GetBounds())
-            info["mapper_settings"] = {
-                name: int(getattr(mapper, "Get" + name)()) for name in SETTINGS}
+        info["mapper_settings"] = {name: int(getattr(mapper, "Get" + name)())
+                                   for name in names if hasattr(mapper, "Get" + name)}
     return info
 
 
@@ -168,8 +186,9 @@ def report(display, reader, view, args):
     info = {"rank": rank, "ranks": ranks}
     info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
     info["representation_types"] = list(display.GetProperty("Representation").Available)
-    info["settings"] = {name: int(display.GetPropertyValue(name)) for name in SETTINGS}
-    info["documentation"] = {name: documentation(display, name) for name in SETTINGS}
+    names = setting_names(args)
+    info["settings"] = {name: int(display.GetPropertyValue(name)) for name in names}
+    info["documentation"] = {name: documentation(display, name) for name in names}
     info["property_groups"] = property_groups(display)
     info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
     info["camera"] = get_camera(view)
@@ -180,7 +199,7 @@ def report(display, reader, view, args):
     process_ids.UpdatePipeline()
     info["process_ids"] = list(process_ids.PointData["ProcessId"].GetRange())
     simple.Delete(process_ids)
-    info.update(local_mapper_report(display))
+    info.update(local_mapper_report(display, names))
     with open("%s.rank%d.json" % (args.report, rank), "w") as stream:
         json.dump(info, stream, indent=1)
 
