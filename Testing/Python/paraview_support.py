@@ -14,6 +14,7 @@ import shutil
 import socket
 import struct
 import subprocess
+import time
 from typing import Dict, List, Optional, Sequence
 
 import numpy as np
@@ -98,6 +99,20 @@ def keep_text(text: str, name: str) -> None:
     directory = artifacts()
     if directory:
         (directory / name).write_text(text)
+
+
+def wait_for(process: subprocess.Popen, text: str, seconds: float) -> None:
+    """Read a process's output until a line contains ``text`` (a server ready to connect)."""
+    deadline = time.monotonic() + seconds
+    lines = []
+    while time.monotonic() < deadline:
+        line = process.stdout.readline()
+        if not line:
+            break
+        lines.append(line)
+        if text in line:
+            return
+    raise AssertionError(f"{process.args[0]} never said {text!r}:\n{''.join(lines)}")
 
 
 def free_port() -> int:

@@ -11,7 +11,6 @@ half of the mesh, rendered one by one and composited in the wrong order, do not 
 
 import json
 import os
-import pathlib
 import subprocess
 import sys
 
@@ -181,6 +180,34 @@ def test_two_ranks_match_one_rank_within_noise(images):
         metrics.write_png(pvs.artifacts() / "mpi_comparison.png",
                           np.concatenate([one, two, other_seed, difference], axis=1))
     assert within_noise(measures), json.dumps(measures, indent=1)
+
+
+def test_mpi_pvserver_with_a_pvpython_client(images, pieces, preload, tmp_path):
+    """`mpirun -np 2 pvserver` and a pvpython client over loopback: the client gets the image
+    that pvbatch renders on two ranks."""
+    two, _ = images["two_ranks"]
+    port = pvs.free_port()
+    plugins = str(pvs.plugin_path().parents[1])
+    command = pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload)
+    server = subprocess.Popen(command, env=pvs.environment(PV_PLUGIN_PATH=plugins),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        pvs.wait_for(server, "Accepting connection", 180)
+        output = tmp_path / "client.png"
+        pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
+                 "--data", pieces, "--output", output, "--report", output.with_suffix(""),
+                 "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
+                 "--connect", f"localhost:{port}"],
+                env=pvs.environment(PV_PLUGIN_PATH=plugins))
+        assert server.wait(timeout=180) == 0  # the servers end with their client
+    finally:
+        if server.poll() is None:
+            server.kill()
+            server.wait()
+    pvs.keep(output, "mpi_pvserver_client.png")
+    report = json.loads(output.with_suffix(".rank0.json").read_text())
+    assert report["process_ids"] == [0.0, 1.0] and report["representation"] == "Volume (SPT)"
+    assert np.abs(pvs.read_png(output) - two).max() <= 2.0 / 255.0
 
 
 def test_a_wrong_compositing_order_would_not_match(images, tmp_path):

@@ -7,7 +7,6 @@ import json
 import os
 import pathlib
 import subprocess
-import time
 
 import numpy as np
 import pytest
@@ -93,20 +92,6 @@ def test_image_is_a_volume(builtin):
     check_volume_image(pvs.read_png(builtin))
 
 
-def wait_for(process, text, seconds):
-    """Read the process's output until a line contains ``text``."""
-    deadline = time.monotonic() + seconds
-    lines = []
-    while time.monotonic() < deadline:
-        line = process.stdout.readline()
-        if not line:
-            break
-        lines.append(line)
-        if text in line:
-            return
-    raise AssertionError(f"pvserver never said {text!r}:\n{''.join(lines)}")
-
-
 def test_pvserver_with_a_pvpython_client_over_loopback(builtin, mesh, tmp_path):
     """The client loads the plugin on itself and on the server (what Tools > Manage Plugins
     does), renders remotely, and gets the same image as pvpython on its own."""
@@ -115,7 +100,7 @@ def test_pvserver_with_a_pvpython_client_over_loopback(builtin, mesh, tmp_path):
         [pvs.executable("pvserver"), f"--server-port={port}"], env=pvs.environment(),
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
-        wait_for(server, "Accepting connection", 120)
+        pvs.wait_for(server, "Accepting connection", 120)
         output = tmp_path / "client.png"
         pvs.run(render_command(mesh, output, "--plugin", pvs.plugin_path(),
                                "--connect", f"localhost:{port}"))
