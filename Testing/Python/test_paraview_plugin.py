@@ -14,7 +14,8 @@ import pytest
 import paraview_support as pvs
 
 SETTINGS = ("RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
-            "PreIntegrationThicknessResolution")
+            "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
+            "ProgressiveRefinement")
 REPETITIONS = 8
 SEED = 3
 
@@ -61,7 +62,8 @@ def test_representation_type_is_listed(builtin):
 def test_settings_reach_the_mapper_on_the_server(builtin):
     report = read_report(builtin)
     expected = {"RepetitionLevel": REPETITIONS, "SubpixelLevel": 1, "Seed": SEED,
-                "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64}
+                "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64,
+                "RepetitionsPerPass": 16, "StratifiedSampling": 1, "ProgressiveRefinement": 0}
     assert report["settings"] == expected
     assert report["mapper_class"] == "vtkSPTVolumeMapper" and report["mapper_is_spt"]
     assert report["mapper_settings"] == expected

@@ -16,7 +16,8 @@ from paraview import servermanager, simple
 
 # The SPT mapper's settings; a mapper with others names its own with --set.
 SETTINGS = ("RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
-            "PreIntegrationThicknessResolution")
+            "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
+            "ProgressiveRefinement")
 
 
 def parse_arguments(argv):
