@@ -34,32 +34,11 @@ glm::vec3 PointOf(const std::vector<float>& points, unsigned int id)
 {
   return glm::make_vec3(&points[3 * size_t(id)]);
 }
-}
 
-vtkStandardNewMacro(vtkHAVSFaceBuffers);
-
-vtkHAVSFaceBuffers::vtkHAVSFaceBuffers() = default;
-
-vtkHAVSFaceBuffers::~vtkHAVSFaceBuffers() = default;
-
-void vtkHAVSFaceBuffers::Update(const vtkSPTMeshBuffers* mesh)
+// Every face of every tetrahedron, sorted by vertex ids so that copies of a face are adjacent.
+std::vector<FaceOfTetrahedron> FacesOfTetrahedra(const std::vector<unsigned int>& tetrahedra)
 {
-  if (mesh->GetBuildTime() == this->MeshBuildTime && this->BuildTime.GetMTime() > 0)
-  {
-    return;
-  }
-  this->MeshBuildTime = mesh->GetBuildTime();
-  this->Build(mesh);
-}
-
-void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
-{
-  const std::vector<unsigned int>& tetrahedra = mesh->GetTetrahedra();
-  const std::vector<float>& points = mesh->GetPoints();
   const size_t numberOfTetrahedra = tetrahedra.size() / 4;
-
-  // Every face of every tetrahedron, grouped by its sorted vertex ids: a face that occurs
-  // once is on the boundary, one that occurs twice (or more, in a non-manifold mesh) inside.
   std::vector<FaceOfTetrahedron> all(4 * numberOfTetrahedra);
   for (size_t t = 0; t < numberOfTetrahedra; ++t)
   {
@@ -80,7 +59,43 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
     }
   }
   std::sort(all.begin(), all.end());
+  return all;
+}
 
+// Order a boundary face's vertices so that its normal (right-hand rule) points away from its
+// tetrahedron's fourth vertex: out of the mesh.
+void WindOutward(
+  const std::vector<float>& points, unsigned int opposite, std::array<unsigned int, 3>& ids)
+{
+  const glm::vec3 a = PointOf(points, ids[0]);
+  const glm::vec3 normal = glm::cross(PointOf(points, ids[1]) - a, PointOf(points, ids[2]) - a);
+  if (glm::dot(normal, PointOf(points, opposite) - a) > 0.0f)
+  {
+    std::swap(ids[1], ids[2]);
+  }
+}
+}
+
+vtkStandardNewMacro(vtkHAVSFaceBuffers);
+
+vtkHAVSFaceBuffers::vtkHAVSFaceBuffers() = default;
+
+vtkHAVSFaceBuffers::~vtkHAVSFaceBuffers() = default;
+
+void vtkHAVSFaceBuffers::Update(const vtkSPTMeshBuffers* mesh)
+{
+  if (mesh->GetBuildTime() == this->MeshBuildTime && this->BuildTime.GetMTime() > 0)
+  {
+    return;
+  }
+  this->MeshBuildTime = mesh->GetBuildTime();
+  this->Build(mesh);
+}
+
+void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
+{
+  const std::vector<float>& points = mesh->GetPoints();
+  const std::vector<FaceOfTetrahedron> all = FacesOfTetrahedra(mesh->GetTetrahedra());
   const size_t numberOfPoints = points.size() / 3;
   std::vector<unsigned int> boundaryCopy(numberOfPoints, ~0u);
   unsigned int numberOfCopies = 0;
@@ -90,6 +105,8 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
   this->NumberOfBoundaryFaces = 0;
   for (size_t begin = 0, end = 0; begin < all.size(); begin = end)
   {
+    // A face that occurs once is on the boundary, one that occurs twice (or more, in a
+    // non-manifold mesh) inside.
     for (end = begin + 1; end < all.size() && all[end].Ids == all[begin].Ids; ++end)
     {
     }
@@ -97,15 +114,8 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
     const bool boundary = end - begin == 1;
     if (boundary)
     {
-      // Wind the face so that its normal points away from its tetrahedron's fourth vertex:
-      // out of the mesh.
-      const glm::vec3 a = PointOf(points, ids[0]);
-      const glm::vec3 normal = glm::cross(PointOf(points, ids[1]) - a, PointOf(points, ids[2]) - a);
-      if (glm::dot(normal, PointOf(points, all[begin].Opposite) - a) > 0.0f)
-      {
-        std::swap(ids[1], ids[2]);
-      }
-      for (unsigned int& id : ids)
+      WindOutward(points, all[begin].Opposite, ids);
+      for (unsigned int id : ids)
       {
         if (boundaryCopy[id] == ~0u)
         {
@@ -123,8 +133,18 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
     this->Boundary.push_back(boundary ? 1 : 0);
     this->Centroids.insert(this->Centroids.end(), { centroid.x, centroid.y, centroid.z });
   }
+  this->BuildVertices(mesh, boundaryCopy, numberOfCopies);
+  this->Order.clear();
+  this->SortedTriangles.clear();
+  this->BuildTime.Modified();
+}
 
+void vtkHAVSFaceBuffers::BuildVertices(const vtkSPTMeshBuffers* mesh,
+  const std::vector<unsigned int>& boundaryCopy, unsigned int numberOfCopies)
+{
+  const std::vector<float>& points = mesh->GetPoints();
   const std::vector<float>& scalars = mesh->GetScalars();
+  const size_t numberOfPoints = points.size() / 3;
   this->Vertices.assign(points.begin(), points.end());
   this->VertexScalars.assign(scalars.begin(), scalars.end());
   this->VertexScalars.resize(numberOfPoints, 0.0f);
@@ -139,9 +159,6 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
       this->VertexScalars[copy] = this->VertexScalars[id] + BoundaryScalarOffset;
     }
   }
-  this->Order.clear();
-  this->SortedTriangles.clear();
-  this->BuildTime.Modified();
 }
 
 uint32_t vtkHAVSFaceBuffers::SortableKey(float value)

@@ -122,6 +122,8 @@ private:
   void operator=(const vtkHAVSFaceBuffers&) = delete;
 
   void Build(const vtkSPTMeshBuffers* mesh);
+  void BuildVertices(const vtkSPTMeshBuffers* mesh, const std::vector<unsigned int>& boundaryCopy,
+    unsigned int numberOfCopies);
 
   std::vector<unsigned int> Faces;
   std::vector<unsigned char> Boundary;

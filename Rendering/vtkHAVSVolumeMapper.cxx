@@ -48,6 +48,10 @@ public:
   std::string Source(const char* shader) const;
   int ChooseAccess(int requested);
   void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
+  bool DrawFaces(vtkTextureObject* table, int width, int height);
+  bool DrawFlush(vtkTextureObject* table);
+  bool StartTimer();
+  double StopTimer();
   void ReleaseGraphicsResources(vtkWindow* window);
 };
 
@@ -95,6 +99,79 @@ void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
   program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
   program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
   program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(
+  vtkTextureObject* table, int width, int height)
+{
+  vtkShaderProgram* program = this->Context->GetShaderCache()->ReadyShaderProgram(
+    vtkHAVSFacesVS, this->Source(vtkHAVSFacesFS).c_str(), "");
+  if (!program)
+  {
+    return false;
+  }
+  GLint frontFace = GL_CCW;
+  glGetIntegerv(GL_FRONT_FACE, &frontFace);
+  this->KBuffer->BeginPass(program);
+  this->SetKBufferUniforms(program, table);
+  program->SetUniformMatrix4x4("MCVCMatrix", this->Matrices.MCVC);
+  program->SetUniformMatrix4x4("VCDCMatrix", this->Matrices.VCDC);
+  const float viewportSize[2] = { float(width), float(height) };
+  program->SetUniform2f("viewportSize", viewportSize);
+  // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
+  // view mirrors space or front faces wind clockwise.
+  program->SetUniformi(
+    "exitIsFrontFacing", (frontFace == GL_CW) != this->Matrices.Mirrored ? 1 : 0);
+  this->Faces->Bind(program);
+  this->Faces->Draw();
+  this->Faces->Unbind();
+  this->KBuffer->EndPass();
+  return true;
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
+{
+  const std::string source = this->Source(vtkHAVSFlushFS);
+  if (!this->Flush || source != this->FlushSource)
+  {
+    this->Flush.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
+    this->FlushSource = source;
+  }
+  vtkShaderProgram* program = this->Flush->Program;
+  if (!program || !this->Context->GetShaderCache()->ReadyShaderProgram(program))
+  {
+    return false;
+  }
+  this->KBuffer->BeginPass(program);
+  this->SetKBufferUniforms(program, table);
+  this->Flush->Render();
+  this->KBuffer->EndPass();
+  return true;
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::StartTimer()
+{
+  // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
+  GLint activeQuery = 0;
+  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);
+  if (activeQuery != 0)
+  {
+    return false;
+  }
+  if (!this->TimerQuery)
+  {
+    glGenQueries(1, &this->TimerQuery);
+  }
+  glBeginQuery(GL_TIME_ELAPSED, this->TimerQuery);
+  return true;
+}
+
+double vtkHAVSVolumeMapper::vtkInternals::StopTimer()
+{
+  glEndQuery(GL_TIME_ELAPSED);
+  GLuint64 nanoseconds = 0;
+  glGetQueryObjectui64v(this->TimerQuery, GL_QUERY_RESULT, &nanoseconds);
+  return 1.0e-9 * static_cast<double>(nanoseconds);
 }
 
 void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
@@ -286,81 +363,26 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
   vtkOpenGLState::ScopedglViewport viewport(ostate);
-
-  GLint activeQuery = 0;
-  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);
-  const bool timed = activeQuery == 0;
-  if (timed)
-  {
-    if (!internals.TimerQuery)
-    {
-      glGenQueries(1, &internals.TimerQuery);
-    }
-    glBeginQuery(GL_TIME_ELAPSED, internals.TimerQuery);
-  }
+  const bool timed = internals.StartTimer();
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;
   ostate->PushFramebufferBindings();
   kbuffer->CaptureSceneDepth(x, y);
   kbuffer->Clear();
+  // Both facings are drawn: a boundary face's facing tells an exit from an entry.
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDepthMask(GL_FALSE);
-
   vtkTextureObject* table = internals.Table->GetTexture(renWin);
   table->Activate();
-  bool drawn = false;
-  vtkShaderProgram* faces = renWin->GetShaderCache()->ReadyShaderProgram(
-    vtkHAVSFacesVS, internals.Source(vtkHAVSFacesFS).c_str(), "");
-  if (faces)
-  {
-    GLint frontFace = GL_CCW;
-    glGetIntegerv(GL_FRONT_FACE, &frontFace);
-    kbuffer->BeginPass(faces);
-    internals.SetKBufferUniforms(faces, table);
-    faces->SetUniformMatrix4x4("MCVCMatrix", internals.Matrices.MCVC);
-    faces->SetUniformMatrix4x4("VCDCMatrix", internals.Matrices.VCDC);
-    const float viewportSize[2] = { float(width), float(height) };
-    faces->SetUniform2f("viewportSize", viewportSize);
-    // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
-    // view mirrors space or front faces wind clockwise.
-    faces->SetUniformi(
-      "exitIsFrontFacing", (frontFace == GL_CW) != internals.Matrices.Mirrored ? 1 : 0);
-    internals.Faces->Bind(faces);
-    internals.Faces->Draw();
-    internals.Faces->Unbind();
-    kbuffer->EndPass();
-
-    const std::string flushSource = internals.Source(vtkHAVSFlushFS);
-    if (!internals.Flush || flushSource != internals.FlushSource)
-    {
-      internals.Flush.reset(new vtkOpenGLQuadHelper(renWin, nullptr, flushSource.c_str(), ""));
-      internals.FlushSource = flushSource;
-    }
-    vtkShaderProgram* flush = internals.Flush->Program;
-    if (flush && renWin->GetShaderCache()->ReadyShaderProgram(flush))
-    {
-      kbuffer->BeginPass(flush);
-      internals.SetKBufferUniforms(flush, table);
-      internals.Flush->Render();
-      kbuffer->EndPass();
-      drawn = true;
-    }
-  }
+  const bool drawn = internals.DrawFaces(table, width, height) && internals.DrawFlush(table);
   table->Deactivate();
   ostate->PopFramebufferBindings();
   if (drawn)
   {
     kbuffer->Resolve(x, y);
   }
-  this->LastGPUTime = -1.0;
-  if (timed)
-  {
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 nanoseconds = 0;
-    glGetQueryObjectui64v(internals.TimerQuery, GL_QUERY_RESULT, &nanoseconds);
-    this->LastGPUTime = 1.0e-9 * static_cast<double>(nanoseconds);
-  }
+  this->LastGPUTime = timed ? internals.StopTimer() : -1.0;
   internals.AccessInUse = drawn ? access : -1;
   if (!drawn)
   {
