@@ -63,9 +63,16 @@ def convex():
     return block((12, 12, 12))
 
 
-def errors(grid, view, mappers, actors=()):
+def see_through(grid):
+    """Constant opacity, so that gaps would show: a block 6 deep lets 45 % through, and a gap
+    composited as a cell (at most the longest edge, 1.73) would add an opacity of 0.2."""
+    low, high = grid.GetPointData().GetScalars().GetRange()
+    return property_for(low, high, unit=3.0, opacity=0.4)
+
+
+def errors(grid, view, mappers, actors=(), prop=None):
     """RMSE against the reference of each mapper, and the reference image."""
-    prop = data.transfer_function(grid)
+    prop = prop or data.transfer_function(grid)
     reference = render.render(grid, prop, render.reference_mapper(), view, SIZE,
                               actors=actors).image
     assert reference[..., 3].max() > 0.3, "the reference is (almost) empty"
@@ -83,14 +90,17 @@ def test_convex_mesh_with_k6_is_as_close_as_vtk_projected_tetrahedra(parallel, h
     assert rmse["havs"] <= 1.1 * rmse["pt"], rmse
 
 
-@pytest.mark.parametrize("gap", [0.05, 0.8, 3.0])
+@pytest.mark.parametrize("gap", [0.8, 3.0])
 def test_gaps_between_disjoint_blocks_contribute_nothing(gap, have_display):
-    """Rays leave one block and enter the other. Composited, a gap of 0.8 (half the longest
-    tetrahedron edge, below what a length threshold could tell from a cell) would add an
-    opacity of about 0.8 where the blocks overlap on the screen. Measured RMSE: 0.008."""
-    rmse, reference = errors(two_blocks(gap), render.View(10, 15),
-                             {"k6": render.havs_mapper(6), "k2": render.havs_mapper(2)})
-    assert max(rmse.values()) <= 0.012, rmse
+    """Rays leave one block and enter the other. A gap of 0.8 is half the longest tetrahedron
+    edge, below what a length threshold could tell from a cell. Measured RMSE: 0.0041 (VTK PT
+    0.0040); with the gaps composited (the gap test of the shader turned off): 0.016 and 0.023.
+    (A gap of 0.05 holds too little to tell: 0.0043 either way.)"""
+    grid = two_blocks(gap)
+    rmse, reference = errors(grid, render.View(10, 15),
+                             {"k6": render.havs_mapper(6), "k2": render.havs_mapper(2)},
+                             prop=see_through(grid))
+    assert max(rmse.values()) <= 0.007, rmse
 
 
 def _render_transformed(grid, prop, mapper, scale, orientation, view):
@@ -114,21 +124,22 @@ def _render_transformed(grid, prop, mapper, scale, orientation, view):
 @pytest.mark.parametrize("parallel", [False, True])
 def test_mirrored_volume_keeps_gaps_and_cells_apart(parallel, have_display):
     """A negative scale mirrors the faces: the mapper must swap which boundary faces rays
-    leave the mesh through, or it drops the cells and composites the gap."""
+    leave the mesh through, or it takes the gap for a cell. Measured RMSE: 0.0046 and 0.0042
+    (parallel); with gaps composited 0.016 and 0.017."""
     grid = two_blocks(0.8)
-    prop = data.transfer_function(grid)
+    prop = see_through(grid)
     view = render.View(10, 15, parallel=parallel)
     transform = ((1.0, -0.8, 1.2), (0.0, 0.0, 20.0))
     reference = _render_transformed(grid, prop, render.reference_mapper(), *transform, view)
     havs = _render_transformed(grid, prop, render.havs_mapper(6), *transform, view)
     assert reference[..., 3].max() > 0.3
-    assert metrics.rmse(havs, reference) <= 0.015
+    assert metrics.rmse(havs, reference) <= 0.008
 
 
 def test_opaque_geometry_hides_the_volume(have_display):
-    """An opaque plane through the middle of the default mesh. The segment that reaches into
-    the plane ends at the last face in front of it, so the tolerance is wider than without it;
-    the plane must change the image."""
+    """An opaque plane through the middle of the default mesh, which must change the image.
+    The segment that reaches into the plane ends at the last face in front of it. Measured
+    RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
     grid = data.make_default_mesh()
     plane = vtk.vtkPlaneSource()
     plane.SetOrigin(-50.0, -50.0, 0.2)
@@ -148,7 +159,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     without = render.render(grid, prop, render.havs_mapper(6), view, SIZE).image
     assert np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1).mean() > 0.3
     assert metrics.rmse(with_plane.image, without) > 0.05, "the plane changes nothing"
-    assert metrics.rmse(with_plane.image, reference) <= 0.02
+    assert metrics.rmse(with_plane.image, reference) <= 0.003
 
 
 def test_every_synchronization_gives_the_same_image(have_display):
