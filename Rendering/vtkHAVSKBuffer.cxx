@@ -149,9 +149,10 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
     texture->SetMagnificationFilter(vtkTextureObject::Nearest);
     texture->SetWrapS(vtkTextureObject::ClampToEdge);
     texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    const int w = this->Width, h = this->Height;
     ok = ok &&
-      (t < targets ? texture->Allocate2D(this->Width, this->Height, 4, VTK_FLOAT)
-                   : texture->AllocateDepth(this->Width, this->Height, this->SceneDepthTextureFormat));
+      (t < targets ? texture->Allocate2D(w, h, 4, VTK_FLOAT)
+                   : texture->AllocateDepth(w, h, this->SceneDepthTextureFormat));
   }
 
   vtkOpenGLState* ostate = renWin->GetState();

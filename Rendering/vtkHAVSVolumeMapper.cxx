@@ -58,7 +58,8 @@ public:
 std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
 {
   std::string source = shader;
-  vtkShaderProgram::Substitute(source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions());
+  vtkShaderProgram::Substitute(
+    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions());
   vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
   return source;
 }

@@ -120,7 +120,8 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeSlottedBlock()
       for (int i = 0; i <= n[0]; ++i)
       {
         points->InsertNextPoint(i + jitter(random), j + jitter(random), k + jitter(random));
-        scalars->InsertNextValue(static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
+        scalars->InsertNextValue(
+          static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
       }
     }
   }
@@ -278,8 +279,9 @@ private:
     const float frontScalar = front.Scalar - 2.0f * frontCrossing;
     const float backScalar = back.Scalar - 2.0f * backCrossing;
     const float thickness = std::max(back.Distance - front.Distance, 0.0f) * this->LengthScale;
+    const float length = std::sqrt(std::min(thickness * this->ThicknessToTable, 1.0f));
     const glm::vec4 segment = LookUp(this->Table, glm::clamp(frontScalar, 0.0f, 1.0f),
-      glm::clamp(backScalar, 0.0f, 1.0f), std::sqrt(std::min(thickness * this->ThicknessToTable, 1.0f)));
+      glm::clamp(backScalar, 0.0f, 1.0f), length);
     this->Color += (1.0f - this->Color.a) * segment;
   }
 

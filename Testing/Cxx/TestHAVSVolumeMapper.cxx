@@ -214,8 +214,8 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
             << leftMapper->GetLastGPUTime() << " s; synchronization "
             << leftMapper->GetKBufferSynchronizationInUse() << "\n";
   if (shell->GetMTime() != inputTime || shell->GetNumberOfCells() != inputCells ||
-    tetrahedra < 5 * inputCells || tetrahedra > 6 * inputCells || 2 * faces != 4 * tetrahedra + boundary ||
-    rightMapper->GetNumberOfFaces() != faces)
+    tetrahedra < 5 * inputCells || tetrahedra > 6 * inputCells ||
+    2 * faces != 4 * tetrahedra + boundary || rightMapper->GetNumberOfFaces() != faces)
   {
     std::cerr << "The input was modified, or the faces do not match the tetrahedra.\n";
     ++failures;

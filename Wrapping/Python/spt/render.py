@@ -1,9 +1,9 @@
 """Rendering helpers: one scene, several volume mappers, float RGBA images back.
 
 Every renderer of the comparison (SPT, the HAVS-like sorted baseline, VTK's projected
-tetrahedra, the reference ray caster) is drawn through :func:`render`, with the same camera, transfer functions and window size,
-on a transparent black background, so that the image read back is the volume's own
-premultiplied RGBA.
+tetrahedra, the reference ray caster) is drawn through :func:`render`, with the same camera,
+transfer functions and window size, on a transparent black background, so that the image read
+back is the volume's own premultiplied RGBA.
 """
 
 from __future__ import annotations
