@@ -41,6 +41,8 @@ def test_help():
     (("figures", "convergence", "--levels", "4,x"), "not a whole number"),
     (("figures", "convergence", "--datasets", "spx,nosuch"), "nosuch"),
     (("figures", "nosuch"), "invalid choice"),
+    (("figures", "sorting", "--datasets", "nosuch"), "unknown data set"),
+    (("figures", "sorting", "--repetitions", "0"), "outside"),
 ])
 def test_bad_arguments_are_refused(arguments, message):
     result = run(*arguments)
@@ -76,3 +78,22 @@ def test_missing_data_is_a_clear_error(tmp_path):
                  SPT_DATA_DIR=str(tmp_path / "nothing"))
     assert result.returncode == 1
     assert "SPT_DATA_DIR" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
+    """The sorting figure on the default mesh only, tiny and with few repetitions."""
+    output = tmp_path / "sorting"
+    result = run("figures", "sorting", "--datasets", "default", "--size", "48",
+                 "--repetitions", "2", "--output", str(output))
+    assert result.returncode == 0, result.stderr
+    for key in ("reference", "spt", "havs_k2", "havs_k6", "vtk_pt"):
+        assert (output / f"default_{key}.png").stat().st_size > 100, key
+        if key != "reference":
+            assert (output / f"default_{key}_difference.png").stat().st_size > 100, key
+    assert (output / "default_comparison.png").stat().st_size > 1000
+    table = (output / "sorting.md").read_text()
+    for method in ("SPT L=2", "HAVS-like k=2", "HAVS-like k=6", "VTK PT", "reference"):
+        assert method in table and method in result.stdout, method
+    rows = [re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[2:7]]
+    havs = next(row for row in rows if row[1] == "HAVS-like k=6")
+    assert 0.0 < float(havs[2]) < 0.05 and float(havs[5]) > 0.0 and float(havs[6]) > 0.0

@@ -1,4 +1,4 @@
-"""The reference renderer: the two VTK 9.2 faults that spt.render works around stay fixed."""
+"""The reference renderer: the three VTK 9.2 faults that spt.render works around stay fixed."""
 
 import math
 
@@ -63,3 +63,59 @@ def test_reference_rays_pass_through_pixel_centres(have_display):
     for dx, dy in [(1, 0), (-1, 0), (0, 1), (0, -1)]:
         shifted = np.roll(np.roll(pt, dy, axis=0), dx, axis=1)
         assert aligned < 0.85 * metrics.rmse(shifted, reference), (dx, dy)
+
+
+def _tetrahedra(points, cells):
+    grid = vtk.vtkUnstructuredGrid()
+    vtk_points = vtk.vtkPoints()
+    for point in points:
+        vtk_points.InsertNextPoint(point)
+    grid.SetPoints(vtk_points)
+    for cell in cells:
+        grid.InsertNextCell(vtk.VTK_TETRA, 4, cell)
+    scalars = vtk.vtkFloatArray()
+    for i in range(len(points)):
+        scalars.InsertNextValue(float(i))
+    grid.GetPointData().SetScalars(scalars)
+    return grid
+
+
+def test_reference_grid_orients_tetrahedra_and_drops_flat_ones():
+    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0.5, 0)]
+    clean = _tetrahedra(points, [(0, 1, 2, 3)])
+    assert render.reference_grid(clean) is clean
+    grid = _tetrahedra(points, [(0, 1, 2, 3), (1, 0, 2, 3), (0, 1, 2, 4)])
+    labels = vtk.vtkIntArray()
+    labels.SetName("label")
+    for label in (10, 11, 12):
+        labels.InsertNextValue(label)
+    grid.GetCellData().AddArray(labels)
+    repaired = render.reference_grid(grid)
+    assert repaired.GetNumberOfCells() == 2 and grid.GetNumberOfCells() == 3
+    corners = np.array([[repaired.GetPoint(repaired.GetCell(c).GetPointId(i)) for i in range(4)]
+                        for c in range(2)])
+    edges = corners[:, 1:] - corners[:, :1]
+    assert (np.linalg.det(edges) > 0).all()
+    assert [repaired.GetCellData().GetArray("label").GetValue(c) for c in range(2)] == [10, 11]
+    assert repaired.GetPointData().GetScalars().GetNumberOfTuples() == 5
+
+
+def test_reference_of_the_torus_has_no_holes(have_display):
+    """VTK's ray caster loses rays in the torus as stored (about half its tetrahedra inverted,
+    30 flat): black holes, RMSE 0.08 against VTK's projected tetrahedra. From the repaired copy
+    that render() gives it, 0.017."""
+    from conftest import load_or_skip
+
+    torus = load_or_skip("torus")
+    prop = data.transfer_function(torus)
+    view = render.View(azimuth=20.0, elevation=40.0)
+    pt = render.render(torus, prop, render.projected_tetrahedra_mapper(), view, (128, 128)).image
+    repaired = render.render(torus, prop, render.reference_mapper(), view, (128, 128)).image
+    window, renderer = render.make_window(256, 256)
+    render.add_volume(renderer, torus, render.reference_property(prop), render.reference_mapper())
+    render.place_camera(renderer, torus.GetBounds(), view)
+    window.Render()
+    as_stored = np.ascontiguousarray(render.read_rgba(window)[0::2, 1::2])
+    window.Finalize()
+    assert metrics.rmse(as_stored, pt) > 0.05
+    assert metrics.rmse(repaired, pt) < 0.025

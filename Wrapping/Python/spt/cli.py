@@ -74,6 +74,15 @@ def _parser() -> argparse.ArgumentParser:
     sampling.add_argument("--dataset", type=lambda t: _datasets(t)[0], default="default")
     sampling.add_argument("--levels", type=_levels, default=[16, 32, 64, 128, 256])
     sampling.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+    sorting = figure.add_parser(
+        "sorting", help="SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)")
+    sorting.add_argument("--output", type=pathlib.Path,
+                         default=pathlib.Path("out/figures/sorting"))
+    sorting.add_argument("--datasets", type=_datasets,
+                         default=["spx", "bluntfin", "post", "torus", "default"])
+    sorting.add_argument("--repetitions", type=_positive_int(65536), default=144,
+                         help="SPT RepetitionLevel (default 144, as in the paper)")
+    sorting.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     accuracy = figure.add_parser(
         "accuracy", help="stochastic against exact brightness along random rays")
     accuracy.add_argument("--output", type=pathlib.Path,
@@ -122,6 +131,11 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                   f"{check['max_abs_difference']:.4f}")
             print(f"stratified thresholds reach the error of {result['levels'][-1]} independent "
                   f"repetitions with {result['stratified_repetitions_to_match']}")
+        elif arguments.figure == "sorting":
+            rows = figures.sorting(arguments.datasets, arguments.size, arguments.output,
+                                   arguments.repetitions)
+            _print_table(figures.SORTING_HEADER, rows)
+            print(f"Images, comparisons and sorting.md written to {arguments.output}")
         else:
             result = figures.accuracy_figure(arguments.output, arguments.rays)
             print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "

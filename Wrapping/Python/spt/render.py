@@ -1,9 +1,9 @@
 """Rendering helpers: one scene, several volume mappers, float RGBA images back.
 
-Every renderer of the comparison (SPT, VTK's projected tetrahedra, the reference ray caster)
-is drawn through :func:`render`, with the same camera, transfer functions and window size,
-on a transparent black background, so that the image read back is the volume's own
-premultiplied RGBA.
+Every renderer of the comparison (SPT, the HAVS-like sorted baseline, VTK's projected
+tetrahedra, the reference ray caster) is drawn through :func:`render`, with the same camera,
+transfer functions and window size, on a transparent black background, so that the image read
+back is the volume's own premultiplied RGBA.
 """
 
 from __future__ import annotations
@@ -13,7 +13,13 @@ import time
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
 import numpy as np
-from vtkmodules.vtkCommonDataModel import vtkDataSet
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import (
+    VTK_TETRA,
+    vtkCellArray,
+    vtkDataSet,
+    vtkUnstructuredGrid,
+)
 from vtkmodules.vtkRenderingCore import (
     vtkAbstractVolumeMapper,
     vtkProp,
@@ -32,7 +38,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics, raycast
-from .SPTRendering import vtkSPTVolumeMapper
+from .SPTRendering import vtkHAVSVolumeMapper, vtkSPTVolumeMapper
 
 
 @dataclasses.dataclass(frozen=True)
@@ -63,6 +69,16 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
     return mapper
 
 
+def havs_mapper(kbuffer_size: int = 6) -> vtkHAVSVolumeMapper:
+    """The HAVS-like sorted baseline (faces radix-sorted by centroid distance on the CPU, a
+    k-buffer of ``kbuffer_size`` fragments per pixel on the GPU)."""
+    if not 2 <= kbuffer_size <= 6:
+        raise ValueError(f"the k-buffer size must be 2..6, not {kbuffer_size}")
+    mapper = vtkHAVSVolumeMapper()
+    mapper.SetKBufferSize(kbuffer_size)
+    return mapper
+
+
 def projected_tetrahedra_mapper() -> vtkProjectedTetrahedraMapper:
     """VTK's own projected tetrahedra (cell-centre visibility sort on the CPU)."""
     return vtkProjectedTetrahedraMapper()
@@ -70,8 +86,9 @@ def projected_tetrahedra_mapper() -> vtkProjectedTetrahedraMapper:
 
 def reference_mapper() -> vtkUnstructuredGridVolumeRayCastMapper:
     """The reference: VTK's ray caster with the exact piecewise-linear integrator, one ray per
-    pixel and no adaptive sampling. :func:`render` corrects two faults of VTK 9.2 for it, see
-    :func:`reference_property` and :data:`REFERENCE_SUPERSAMPLING`."""
+    pixel and no adaptive sampling. :func:`render` corrects three faults of VTK 9.2 for it,
+    see :func:`reference_property`, :data:`REFERENCE_SUPERSAMPLING` and
+    :func:`reference_grid`."""
     mapper = vtkUnstructuredGridVolumeRayCastMapper()
     mapper.SetRayIntegrator(vtkUnstructuredGridLinearRayIntegrator())
     mapper.SetImageSampleDistance(1.0)
@@ -112,6 +129,51 @@ def reference_property(prop: vtkVolumeProperty) -> vtkVolumeProperty:
     return copy
 
 
+def reference_grid(grid: vtkDataSet) -> vtkDataSet:
+    """``grid``, or, if it has inverted or flat tetrahedra, a copy that VTK 9.2's ray caster
+    renders without holes.
+
+    The ray caster walks from cell to cell through shared faces and loses rays on meshes with
+    inverted tetrahedra (negative volume, as in about half of the torus) and flat ones (zero
+    volume): the torus shows holes. The copy lists every inverted tetrahedron with two points
+    swapped and leaves out the flat ones (which hold no volume); it is the same field on the
+    same points. Grids with other cells than tetrahedra are returned as they are.
+    """
+    if not isinstance(grid, vtkUnstructuredGrid) or grid.GetNumberOfCells() == 0:
+        return grid
+    types = grid.GetDistinctCellTypesArray()
+    if types is None or types.GetNumberOfTuples() != 1 or types.GetValue(0) != VTK_TETRA:
+        return grid
+    points = vtk_to_numpy(grid.GetPoints().GetData()).astype(np.float64)
+    cells = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).reshape(-1, 4)
+    a, b, c, d = (points[cells[:, i]] for i in range(4))
+    volumes = np.einsum("ij,ij->i", np.cross(b - a, c - a), d - a)
+    flat = np.abs(volumes) <= 1e-9 * max(np.abs(volumes).max(), np.finfo(float).tiny)
+    inverted = (volumes < 0.0) & ~flat
+    if not flat.any() and not inverted.any():
+        return grid
+    repaired = cells.copy()
+    repaired[inverted, 0], repaired[inverted, 1] = cells[inverted, 1], cells[inverted, 0]
+    repaired = repaired[~flat]
+    connectivity = vtkCellArray()
+    connectivity.SetData(
+        numpy_to_vtk(np.arange(0, 4 * len(repaired) + 1, 4, dtype=np.int64), deep=True),
+        numpy_to_vtk(repaired.ravel().astype(np.int64), deep=True))
+    copy = vtkUnstructuredGrid()
+    copy.SetPoints(grid.GetPoints())
+    copy.SetCells(VTK_TETRA, connectivity)
+    copy.GetPointData().ShallowCopy(grid.GetPointData())
+    cell_data = grid.GetCellData()
+    for index in range(cell_data.GetNumberOfArrays()):
+        array = cell_data.GetAbstractArray(index)
+        kept = numpy_to_vtk(vtk_to_numpy(array)[~flat], deep=True)
+        kept.SetName(array.GetName())
+        copy.GetCellData().AddArray(kept)
+    if cell_data.GetScalars() is not None:
+        copy.GetCellData().SetActiveScalars(cell_data.GetScalars().GetName())
+    return copy
+
+
 # VTK's unstructured ray caster casts its rays through pixel corners, half a pixel off the pixel
 # centres that OpenGL rasterization (SPT, VTK's projected tetrahedra) samples, and shows its image
 # as a linearly filtered texture, so shifting its camera by half a pixel blurs the silhouette.
@@ -124,6 +186,7 @@ REFERENCE_SUPERSAMPLING = 2
 
 MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
     "spt": spt_mapper,
+    "havs": havs_mapper,
     "pt": projected_tetrahedra_mapper,
     "reference": reference_mapper,
 }
@@ -220,7 +283,10 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     else:
         renderer = window.GetRenderers().GetFirstRenderer()
         renderer.RemoveAllViewProps()
-    volume = add_volume(renderer, grid, reference_property(prop) if reference else prop, mapper)
+    if reference:
+        volume = add_volume(renderer, reference_grid(grid), reference_property(prop), mapper)
+    else:
+        volume = add_volume(renderer, grid, prop, mapper)
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)

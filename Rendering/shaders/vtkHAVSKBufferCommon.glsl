@@ -1,0 +1,212 @@
+// The image-space half of HAVS (Callahan, Ikits, Comba and Silva 2005): a k-buffer of
+// KBUFFER_SIZE - 1 entries per pixel, each a (scalar, distance) pair of a fragment not yet
+// composited, next to the color composited so far. Inserting a fragment into a full buffer
+// composites the ray segment between the two nearest of the KBUFFER_SIZE candidates (the
+// entries and the fragment) front to back, through the pre-integration table, and drops the
+// nearer one. The flush pass composites what is left, in depth order.
+//
+// The buffer lives in KBUFFER_TARGETS RGBA32F textures: target 0 is the premultiplied color,
+// the others hold two entries each (scalar, distance, scalar, distance). One of these defines
+// chooses how a fragment reads and writes them:
+// - HAVS_FRAMEBUFFER_FETCH: the targets are the color attachments, read and written as inout
+//   outputs (GL_EXT_shader_framebuffer_fetch, coherent: each fragment reads what the
+//   fragments of earlier primitives wrote, in primitive order);
+// - HAVS_IMAGE: the targets are images, read and written with image load/store, inside a
+//   pixel_interlock_ordered critical section where HAVS_INTERLOCK is defined
+//   (GL_ARB_fragment_shader_interlock), else in whatever order the rasterizer shades them.
+//
+// An entry's scalar s in [0, 1] is stored as a code that also says where the ray crosses the
+// mesh's boundary: s inside, s + 2 where it leaves the mesh, s + 4 where it enters it. A
+// segment from a fragment where the ray leaves the mesh to one where it enters it again lies
+// in a gap outside the mesh and contributes nothing. (Asking for both ends keeps the segments
+// behind internal faces that look like boundary faces, as the two triangulations of a quad
+// shared by two hexahedra split differently: the ray leaves one cell and enters the next at
+// the same distance, in either order.)
+
+const float EMPTY_DISTANCE = 1.0e30;  // distance of an empty entry
+const float EXIT_CODE = 2.0;          // added to the scalar where the ray leaves the mesh
+const float ENTRY_CODE = 4.0;         // added to the scalar where the ray enters the mesh
+const float OPAQUE_ALPHA = 0.998046875; // 1 - 1/512: nothing behind changes an 8-bit pixel
+
+uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
+uniform vec3 tableTexelScale;          // maps [0, 1] onto the centers of the first and last texels
+uniform vec3 tableTexelOffset;
+uniform float thicknessToTable;        // 1 / largest thickness in the table, model units
+uniform mat3 VCMCLinear;               // view -> model, for lengths in the data's coordinates
+uniform mat4 DCVCMatrix;               // clip -> view, for the ray through a pixel
+uniform int parallelProjection;
+
+#ifdef HAVS_FRAMEBUFFER_FETCH
+layout(location = 0) inout vec4 kbufferTarget0;
+layout(location = 1) inout vec4 kbufferTarget1;
+#if KBUFFER_TARGETS > 2
+layout(location = 2) inout vec4 kbufferTarget2;
+#endif
+#if KBUFFER_TARGETS > 3
+layout(location = 3) inout vec4 kbufferTarget3;
+#endif
+#else
+layout(rgba32f) coherent uniform image2D kbufferTarget0;
+layout(rgba32f) coherent uniform image2D kbufferTarget1;
+#if KBUFFER_TARGETS > 2
+layout(rgba32f) coherent uniform image2D kbufferTarget2;
+#endif
+#if KBUFFER_TARGETS > 3
+layout(rgba32f) coherent uniform image2D kbufferTarget3;
+#endif
+#endif
+
+vec4 accumulated;
+vec2 entries[KBUFFER_SIZE - 1];
+
+#ifdef HAVS_FRAMEBUFFER_FETCH
+#define KBUFFER_READ(target) (target)
+#define KBUFFER_WRITE(target, value) target = (value)
+#else
+#define KBUFFER_READ(target) imageLoad(target, ivec2(gl_FragCoord.xy))
+#define KBUFFER_WRITE(target, value) imageStore(target, ivec2(gl_FragCoord.xy), value)
+#endif
+
+vec2 entryOf(vec4 pair, int second)
+{
+  return second == 0 ? pair.xy : pair.zw;
+}
+
+void loadKBuffer()
+{
+  accumulated = KBUFFER_READ(kbufferTarget0);
+  vec4 pairs[3];
+  pairs[0] = KBUFFER_READ(kbufferTarget1);
+#if KBUFFER_TARGETS > 2
+  pairs[1] = KBUFFER_READ(kbufferTarget2);
+#endif
+#if KBUFFER_TARGETS > 3
+  pairs[2] = KBUFFER_READ(kbufferTarget3);
+#endif
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    entries[i] = entryOf(pairs[i / 2], i % 2);
+  }
+}
+
+vec4 pairOf(int first)
+{
+  vec2 second = first + 1 < KBUFFER_SIZE - 1 ? entries[first + 1] : vec2(0.0, EMPTY_DISTANCE);
+  return vec4(entries[first], second);
+}
+
+void storeKBuffer()
+{
+  KBUFFER_WRITE(kbufferTarget0, accumulated);
+  KBUFFER_WRITE(kbufferTarget1, pairOf(0));
+#if KBUFFER_TARGETS > 2
+  KBUFFER_WRITE(kbufferTarget2, pairOf(2));
+#endif
+#if KBUFFER_TARGETS > 3
+  KBUFFER_WRITE(kbufferTarget3, pairOf(4));
+#endif
+}
+
+// The ray through the point of normalized device coordinates ndc, as a unit vector in view
+// coordinates.
+vec3 rayDirectionVC(vec2 ndc)
+{
+  if (parallelProjection != 0)
+  {
+    return vec3(0.0, 0.0, -1.0);
+  }
+  vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farVC = DCVCMatrix * vec4(ndc, 1.0, 1.0);
+  return normalize(farVC.xyz / farVC.w - nearVC.xyz / nearVC.w);
+}
+
+// Model length of a unit of distance along the ray through ndc.
+float modelLengthPerDistance(vec2 ndc)
+{
+  return length(VCMCLinear * rayDirectionVC(ndc));
+}
+
+// Front-to-back compositing of the segment from `front` to `back` (Engel, Kraus and Ertl
+// 2001: the table holds the premultiplied color and opacity of a linear segment).
+void compositeSegment(vec2 front, vec2 back, float lengthScale)
+{
+  float frontCrossing = floor(front.x * 0.5); // 0 inside, 1 exit, 2 entry
+  float backCrossing = floor(back.x * 0.5);
+  if (back.y >= EMPTY_DISTANCE || (frontCrossing == 1.0 && backCrossing == 2.0))
+  {
+    return; // nothing behind, or a gap outside the mesh
+  }
+  float frontScalar = front.x - 2.0 * frontCrossing;
+  float backScalar = back.x - 2.0 * backCrossing;
+  float thickness = max(back.y - front.y, 0.0) * lengthScale;
+  vec3 coordinate = vec3(clamp(frontScalar, 0.0, 1.0), clamp(backScalar, 0.0, 1.0),
+    sqrt(min(thickness * thicknessToTable, 1.0)));
+  vec4 segment = texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);
+  accumulated += (1.0 - accumulated.a) * segment;
+}
+
+// Insert one fragment: fill an empty entry, or composite the nearest pair and drop its front.
+void insertFragment(vec2 fragment, float lengthScale)
+{
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    if (entries[i].y >= EMPTY_DISTANCE)
+    {
+      entries[i] = fragment;
+      return;
+    }
+  }
+  // Candidates 0 .. KBUFFER_SIZE - 2 are the entries, KBUFFER_SIZE - 1 the fragment.
+  int nearest = KBUFFER_SIZE - 1;
+  vec2 nearestEntry = fragment;
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    if (entries[i].y < nearestEntry.y)
+    {
+      nearest = i;
+      nearestEntry = entries[i];
+    }
+  }
+  vec2 next = vec2(0.0, EMPTY_DISTANCE);
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    if (i != nearest && entries[i].y < next.y)
+    {
+      next = entries[i];
+    }
+  }
+  if (nearest != KBUFFER_SIZE - 1 && fragment.y < next.y)
+  {
+    next = fragment;
+  }
+  compositeSegment(nearestEntry, next, lengthScale);
+  if (nearest != KBUFFER_SIZE - 1)
+  {
+    entries[nearest] = fragment;
+  }
+}
+
+// Composite the entries left after the last face, in depth order, and empty the buffer.
+void flushKBuffer(float lengthScale)
+{
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    for (int j = i + 1; j < KBUFFER_SIZE - 1; ++j)
+    {
+      if (entries[j].y < entries[i].y)
+      {
+        vec2 swap = entries[i];
+        entries[i] = entries[j];
+        entries[j] = swap;
+      }
+    }
+  }
+  for (int i = 0; i + 1 < KBUFFER_SIZE - 1; ++i)
+  {
+    compositeSegment(entries[i], entries[i + 1], lengthScale);
+  }
+  for (int i = 0; i < KBUFFER_SIZE - 1; ++i)
+  {
+    entries[i] = vec2(0.0, EMPTY_DISTANCE);
+  }
+}

@@ -1,0 +1,342 @@
+#include "vtkHAVSKBuffer.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkSPTAccumulateFS.h"
+
+#include <cstring>
+#include <sstream>
+
+namespace
+{
+// Distance of an empty entry: the shaders' EMPTY_DISTANCE.
+constexpr float EmptyDistance = 1.0e30f;
+
+const char* TargetName(int target)
+{
+  static const char* names[] = { "kbufferTarget0", "kbufferTarget1", "kbufferTarget2",
+    "kbufferTarget3" };
+  return names[target];
+}
+}
+
+vtkStandardNewMacro(vtkHAVSKBuffer);
+
+vtkHAVSKBuffer::vtkHAVSKBuffer() = default;
+
+vtkHAVSKBuffer::~vtkHAVSKBuffer() = default;
+
+bool vtkHAVSKBuffer::HasExtension(const char* name)
+{
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+  {
+    const char* extension = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, i));
+    if (extension && std::strcmp(extension, name) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string vtkHAVSKBuffer::GetShaderDefinitions() const
+{
+  std::ostringstream defines;
+  if (this->AccessMode == FRAMEBUFFER_FETCH)
+  {
+    defines << "#extension GL_EXT_shader_framebuffer_fetch : require\n"
+               "#extension GL_ARB_explicit_attrib_location : require\n"
+               "#define HAVS_FRAMEBUFFER_FETCH\n";
+  }
+  else
+  {
+    defines << "#extension GL_ARB_shader_image_load_store : require\n"
+               "#define HAVS_IMAGE\n";
+  }
+  if (this->AccessMode == FRAGMENT_SHADER_INTERLOCK)
+  {
+    defines << "#extension GL_ARB_fragment_shader_interlock : require\n"
+               "#define HAVS_INTERLOCK\n"
+               "layout(pixel_interlock_ordered) in;\n"
+               "#define KBUFFER_BEGIN_CRITICAL_SECTION beginInvocationInterlockARB()\n"
+               "#define KBUFFER_END_CRITICAL_SECTION endInvocationInterlockARB()\n";
+  }
+  else
+  {
+    defines << "#define KBUFFER_BEGIN_CRITICAL_SECTION\n"
+               "#define KBUFFER_END_CRITICAL_SECTION\n";
+  }
+  defines << "#define KBUFFER_SIZE " << this->KBufferSize << "\n"
+          << "#define KBUFFER_TARGETS " << this->GetNumberOfTargets() << "\n";
+  return defines.str();
+}
+
+int vtkHAVSKBuffer::SceneDepthFormat(int* hasDepth) const
+{
+  // glBlitFramebuffer copies depth only between identical formats, so the scene depth texture
+  // takes the format of the depth buffer it copies.
+  GLint readFramebuffer = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+  const GLenum attachment = readFramebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
+  GLint objectType = GL_NONE;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &objectType);
+  *hasDepth = objectType != GL_NONE;
+  if (!*hasDepth)
+  {
+    return vtkTextureObject::Float32;
+  }
+  GLint componentType = GL_FLOAT;
+  GLint bits = 32;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &componentType);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  if (componentType == GL_FLOAT)
+  {
+    return vtkTextureObject::Float32;
+  }
+  return bits <= 16 ? vtkTextureObject::Fixed16
+                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
+}
+
+bool vtkHAVSKBuffer::Prepare(
+  vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize, int access)
+{
+  int hasDepth = 0;
+  const int depthFormat = this->SceneDepthFormat(&hasDepth);
+  if (renWin != this->Context || width != this->Width || height != this->Height ||
+    kbufferSize != this->KBufferSize || access != this->AccessMode ||
+    depthFormat != this->SceneDepthTextureFormat)
+  {
+    if (this->Context && this->Context != renWin)
+    {
+      this->ReleaseGraphicsResources(this->Context);
+    }
+    this->Width = width;
+    this->Height = height;
+    this->KBufferSize = kbufferSize;
+    this->AccessMode = access;
+    this->SceneDepthTextureFormat = depthFormat;
+    this->Allocate(renWin);
+  }
+  return this->Context != nullptr;
+}
+
+void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
+{
+  const int targets = this->GetNumberOfTargets();
+  bool ok = true;
+  for (int t = 0; t < MaximumTargets; ++t)
+  {
+    this->Targets[t]->ReleaseGraphicsResources(renWin);
+  }
+  for (int t = 0; t < targets + 1; ++t)
+  {
+    vtkTextureObject* texture = t < targets ? this->Targets[t].Get() : this->SceneDepth.Get();
+    texture->SetContext(renWin);
+    texture->SetMinificationFilter(vtkTextureObject::Nearest);
+    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    const int w = this->Width, h = this->Height;
+    ok = ok &&
+      (t < targets ? texture->Allocate2D(w, h, 4, VTK_FLOAT)
+                   : texture->AllocateDepth(w, h, this->SceneDepthTextureFormat));
+  }
+
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushFramebufferBindings();
+  this->Framebuffer->SetContext(renWin);
+  this->Framebuffer->Bind();
+  for (int t = 0; t < MaximumTargets; ++t)
+  {
+    this->Framebuffer->RemoveColorAttachment(t);
+  }
+  for (int t = 0; t < targets && ok; ++t)
+  {
+    this->Framebuffer->AddColorAttachment(t, this->Targets[t]);
+  }
+  this->Framebuffer->ActivateDrawBuffers(targets);
+  ok = ok && this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  this->SceneDepthFramebuffer->SetContext(renWin);
+  this->SceneDepthFramebuffer->Bind();
+  this->SceneDepthFramebuffer->AddDepthAttachment(this->SceneDepth);
+  ok = ok && this->SceneDepthFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  ostate->PopFramebufferBindings();
+
+  if (!this->Copy)
+  {
+    this->Copy.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTAccumulateFS, ""));
+  }
+  ok = ok && this->Copy->Program;
+  if (!ok)
+  {
+    vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height << " k-buffer ("
+                                            << targets << " RGBA32F targets).");
+    this->ReleaseGraphicsResources(renWin);
+    return;
+  }
+  this->Context = renWin;
+}
+
+void vtkHAVSKBuffer::CaptureSceneDepth(int x, int y)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  int hasDepth = 0;
+  this->SceneDepthFormat(&hasDepth);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->PushDrawFramebufferBinding();
+  this->SceneDepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  if (hasDepth)
+  {
+    ostate->vtkglBlitFramebuffer(x, y, x + this->Width, y + this->Height, 0, 0, this->Width,
+      this->Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  }
+  if (!hasDepth || glGetError() != GL_NO_ERROR)
+  {
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglClearDepth(1.0);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
+  ostate->PopDrawFramebufferBinding();
+}
+
+void vtkHAVSKBuffer::Clear()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  // The renderer leaves the scissor box on its viewport, which need not cover these targets.
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  this->Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->Framebuffer->ActivateDrawBuffers(this->GetNumberOfTargets());
+  const float color[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  const float entries[4] = { 0.0f, EmptyDistance, 0.0f, EmptyDistance };
+  glClearBufferfv(GL_COLOR, 0, color);
+  for (int t = 1; t < this->GetNumberOfTargets(); ++t)
+  {
+    glClearBufferfv(GL_COLOR, t, entries);
+  }
+}
+
+void vtkHAVSKBuffer::BeginPass(vtkShaderProgram* program)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglViewport(0, 0, this->Width, this->Height);
+  const int targets = this->GetNumberOfTargets();
+  if (this->AccessMode == FRAMEBUFFER_FETCH)
+  {
+    this->Framebuffer->ActivateDrawBuffers(targets);
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  else
+  {
+    // The fragments write the targets as images only: no draw buffers. (Masking every color
+    // write instead makes llvmpipe skip the fragment shader, image stores and all.)
+    this->Framebuffer->DeactivateDrawBuffers();
+    for (int t = 0; t < targets; ++t)
+    {
+      glBindImageTexture(static_cast<GLuint>(t), this->Targets[t]->GetHandle(), 0, GL_FALSE, 0,
+        GL_READ_WRITE, GL_RGBA32F);
+      program->SetUniformi(TargetName(t), t);
+    }
+  }
+  this->SceneDepthActive = program->IsUniformUsed("sceneDepthTexture");
+  if (this->SceneDepthActive)
+  {
+    this->SceneDepth->Activate();
+    program->SetUniformi("sceneDepthTexture", this->SceneDepth->GetTextureUnit());
+  }
+}
+
+void vtkHAVSKBuffer::EndPass()
+{
+  if (this->SceneDepthActive)
+  {
+    this->SceneDepth->Deactivate();
+    this->SceneDepthActive = false;
+  }
+  if (this->AccessMode != FRAMEBUFFER_FETCH)
+  {
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (int t = 0; t < this->GetNumberOfTargets(); ++t)
+    {
+      glBindImageTexture(
+        static_cast<GLuint>(t), 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    }
+  }
+}
+
+void vtkHAVSKBuffer::Resolve(int x, int y)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDepthMask(GL_FALSE);
+  // The composited color is premultiplied: "over" the scene.
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  vtkShaderProgram* program = this->Copy->Program;
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  this->Targets[0]->Activate();
+  program->SetUniformi("passTexture", this->Targets[0]->GetTextureUnit());
+  this->Copy->Render();
+  this->Targets[0]->Deactivate();
+}
+
+size_t vtkHAVSKBuffer::GetGPUMemorySize() const
+{
+  if (!this->Context)
+  {
+    return 0;
+  }
+  const size_t pixels = size_t(this->Width) * size_t(this->Height);
+  // RGBA32F targets and a depth texture of at most 32 bits.
+  return pixels * (16 * size_t(this->GetNumberOfTargets()) + 4);
+}
+
+void vtkHAVSKBuffer::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Copy.reset();
+  this->Framebuffer->ReleaseGraphicsResources(window);
+  this->SceneDepthFramebuffer->ReleaseGraphicsResources(window);
+  for (int t = 0; t < MaximumTargets; ++t)
+  {
+    this->Targets[t]->ReleaseGraphicsResources(window);
+  }
+  this->SceneDepth->ReleaseGraphicsResources(window);
+  this->Context = nullptr;
+  this->Width = this->Height = this->KBufferSize = this->AccessMode = 0;
+  this->SceneDepthTextureFormat = -1;
+}
+
+void vtkHAVSKBuffer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
+  os << indent << "KBufferSize: " << this->KBufferSize << "\n";
+  os << indent << "AccessMode: " << this->AccessMode << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+}

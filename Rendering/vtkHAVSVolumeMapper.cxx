@@ -1,0 +1,427 @@
+#include "vtkHAVSVolumeMapper.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "vtkHAVSFaceBuffers.h"
+#include "vtkHAVSKBuffer.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTViewMatrices.h"
+
+#include "vtkHAVSFacesFS.h"
+#include "vtkHAVSFacesVS.h"
+#include "vtkHAVSFlushFS.h"
+#include "vtkHAVSKBufferCommon.h"
+
+#include <memory>
+#include <string>
+
+class vtkHAVSVolumeMapper::vtkInternals
+{
+public:
+  vtkNew<vtkSPTMeshBuffers> Mesh;
+  vtkNew<vtkHAVSFaceBuffers> Faces;
+  vtkNew<vtkSPTPreIntegrationTable> Table;
+  vtkNew<vtkHAVSKBuffer> KBuffer;
+  vtkSPTViewMatrices Matrices;
+  vtkOpenGLRenderWindow* Context = nullptr;
+  std::unique_ptr<vtkOpenGLQuadHelper> Flush;
+  std::string FlushSource;
+  unsigned int TimerQuery = 0;
+  int AccessInUse = -1;
+  bool InterlockFailed = false;
+  vtkMTimeType ReportedMeshError = 0;
+  vtkMTimeType ReportedSkippedCells = 0;
+  int ReportedAccessError = -1;
+
+  std::string Source(const char* shader) const;
+  int ChooseAccess(int requested);
+  void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
+  bool DrawFaces(vtkTextureObject* table, int width, int height);
+  bool DrawFlush(vtkTextureObject* table);
+  bool StartTimer();
+  double StopTimer();
+  void ReleaseGraphicsResources(vtkWindow* window);
+};
+
+std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
+{
+  std::string source = shader;
+  vtkShaderProgram::Substitute(
+    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions());
+  vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
+  return source;
+}
+
+int vtkHAVSVolumeMapper::vtkInternals::ChooseAccess(int requested)
+{
+  const bool interlock =
+    !this->InterlockFailed && vtkHAVSKBuffer::HasExtension("GL_ARB_fragment_shader_interlock");
+  const bool fetch = vtkHAVSKBuffer::HasExtension("GL_EXT_shader_framebuffer_fetch");
+  const bool images = vtkHAVSKBuffer::HasExtension("GL_ARB_shader_image_load_store");
+  switch (requested)
+  {
+    case AUTOMATIC:
+      return interlock ? FRAGMENT_SHADER_INTERLOCK : (fetch ? FRAMEBUFFER_FETCH : 0);
+    case FRAGMENT_SHADER_INTERLOCK:
+      return interlock ? requested : 0;
+    case FRAMEBUFFER_FETCH:
+      return fetch ? requested : 0;
+    default:
+      return images ? requested : 0;
+  }
+}
+
+void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
+  vtkShaderProgram* program, vtkTextureObject* table)
+{
+  const int scalarSamples = this->Table->GetScalarResolution();
+  const int thicknessSamples = this->Table->GetLengthResolution();
+  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
+    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
+  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
+    0.5f / thicknessSamples };
+  const double maxThickness = this->Mesh->GetMaxEdgeLength();
+  program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
+  program->SetUniform3f("tableTexelScale", texelScale);
+  program->SetUniform3f("tableTexelOffset", texelOffset);
+  program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
+  program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
+  program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
+  program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(
+  vtkTextureObject* table, int width, int height)
+{
+  vtkShaderProgram* program = this->Context->GetShaderCache()->ReadyShaderProgram(
+    vtkHAVSFacesVS, this->Source(vtkHAVSFacesFS).c_str(), "");
+  if (!program)
+  {
+    return false;
+  }
+  GLint frontFace = GL_CCW;
+  glGetIntegerv(GL_FRONT_FACE, &frontFace);
+  this->KBuffer->BeginPass(program);
+  this->SetKBufferUniforms(program, table);
+  program->SetUniformMatrix4x4("MCVCMatrix", this->Matrices.MCVC);
+  program->SetUniformMatrix4x4("VCDCMatrix", this->Matrices.VCDC);
+  const float viewportSize[2] = { float(width), float(height) };
+  program->SetUniform2f("viewportSize", viewportSize);
+  // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
+  // view mirrors space or front faces wind clockwise.
+  program->SetUniformi(
+    "exitIsFrontFacing", (frontFace == GL_CW) != this->Matrices.Mirrored ? 1 : 0);
+  this->Faces->Bind(program);
+  this->Faces->Draw();
+  this->Faces->Unbind();
+  this->KBuffer->EndPass();
+  return true;
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
+{
+  const std::string source = this->Source(vtkHAVSFlushFS);
+  if (!this->Flush || source != this->FlushSource)
+  {
+    this->Flush.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
+    this->FlushSource = source;
+  }
+  vtkShaderProgram* program = this->Flush->Program;
+  if (!program || !this->Context->GetShaderCache()->ReadyShaderProgram(program))
+  {
+    return false;
+  }
+  this->KBuffer->BeginPass(program);
+  this->SetKBufferUniforms(program, table);
+  this->Flush->Render();
+  this->KBuffer->EndPass();
+  return true;
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::StartTimer()
+{
+  // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
+  GLint activeQuery = 0;
+  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);
+  if (activeQuery != 0)
+  {
+    return false;
+  }
+  if (!this->TimerQuery)
+  {
+    glGenQueries(1, &this->TimerQuery);
+  }
+  glBeginQuery(GL_TIME_ELAPSED, this->TimerQuery);
+  return true;
+}
+
+double vtkHAVSVolumeMapper::vtkInternals::StopTimer()
+{
+  glEndQuery(GL_TIME_ELAPSED);
+  GLuint64 nanoseconds = 0;
+  glGetQueryObjectui64v(this->TimerQuery, GL_QUERY_RESULT, &nanoseconds);
+  return 1.0e-9 * static_cast<double>(nanoseconds);
+}
+
+void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Mesh->ReleaseGraphicsResources(window);
+  this->Faces->ReleaseGraphicsResources(window);
+  this->Table->ReleaseGraphicsResources(window);
+  this->KBuffer->ReleaseGraphicsResources(window);
+  this->Flush.reset();
+  this->FlushSource.clear();
+  if (this->TimerQuery && this->Context)
+  {
+    glDeleteQueries(1, &this->TimerQuery);
+  }
+  this->TimerQuery = 0;
+  this->Context = nullptr;
+  this->InterlockFailed = false;
+}
+
+vtkStandardNewMacro(vtkHAVSVolumeMapper);
+
+vtkHAVSVolumeMapper::vtkHAVSVolumeMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkHAVSVolumeMapper::~vtkHAVSVolumeMapper() = default;
+
+int vtkHAVSVolumeMapper::GetKBufferSynchronizationInUse()
+{
+  return this->Internals->AccessInUse;
+}
+
+vtkIdType vtkHAVSVolumeMapper::GetNumberOfTetrahedra()
+{
+  return this->Internals->Mesh->GetNumberOfTetrahedra();
+}
+
+vtkIdType vtkHAVSVolumeMapper::GetNumberOfFaces()
+{
+  return this->Internals->Faces->GetNumberOfFaces();
+}
+
+vtkIdType vtkHAVSVolumeMapper::GetNumberOfBoundaryFaces()
+{
+  return this->Internals->Faces->GetNumberOfBoundaryFaces();
+}
+
+vtkIdType vtkHAVSVolumeMapper::GetNumberOfSkippedCells()
+{
+  return this->Internals->Mesh->GetNumberOfSkippedCells();
+}
+
+vtkIdType vtkHAVSVolumeMapper::GetGPUMemorySize()
+{
+  const vtkInternals& internals = *this->Internals;
+  return static_cast<vtkIdType>(internals.Faces->GetGPUMemorySize() +
+    internals.Table->GetGPUMemorySize() + internals.KBuffer->GetGPUMemorySize());
+}
+
+bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& internals = *this->Internals;
+  if (this->GetInputAlgorithm())
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  selection.ScalarMode = this->ScalarMode;
+  selection.ArrayAccessMode = this->ArrayAccessMode;
+  selection.ArrayId = this->ArrayId;
+  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
+  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
+  vtkSPTMeshBuffers* mesh = internals.Mesh;
+  const bool built = mesh->Update(this->GetDataSetInput(), selection);
+  if (!built || mesh->GetCellScalars())
+  {
+    if (mesh->GetBuildTime() != internals.ReportedMeshError)
+    {
+      internals.ReportedMeshError = mesh->GetBuildTime();
+      if (!built)
+      {
+        vtkErrorMacro(<< mesh->GetLastError());
+      }
+      else
+      {
+        vtkErrorMacro("vtkHAVSVolumeMapper renders point scalars only (its faces interpolate "
+                      "them); the selected array is cell data. Convert it with "
+                      "vtkCellDataToPointData, or render it with vtkSPTVolumeMapper.");
+      }
+    }
+    return false;
+  }
+  if (mesh->GetNumberOfTetrahedra() == 0)
+  {
+    return false;
+  }
+  vtkVolumeProperty* property = vol->GetProperty();
+  if (!property->GetIndependentComponents())
+  {
+    vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
+                  "IndependentComponents on in the volume property.");
+    return false;
+  }
+  if (mesh->GetNumberOfSkippedCells() > 0 && mesh->GetBuildTime() != internals.ReportedSkippedCells)
+  {
+    internals.ReportedSkippedCells = mesh->GetBuildTime();
+    vtkWarningMacro(<< mesh->GetNumberOfSkippedCells()
+                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
+                       "are not drawn.");
+  }
+  internals.Faces->Update(mesh);
+  internals.Matrices.Compute(ren, vol, mesh);
+  if (!internals.Table->Update(property, mesh->GetScalarRange(),
+        mesh->GetMaxEdgeLength() * mesh->GetScale(), this->PreIntegrationScalarResolution,
+        this->PreIntegrationThicknessResolution))
+  {
+    vtkErrorMacro(<< internals.Table->GetLastError());
+    return false;
+  }
+  return true;
+}
+
+void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& internals = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    vtkErrorMacro("vtkHAVSVolumeMapper needs an OpenGL render window.");
+    return;
+  }
+  int width, height, x, y;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  if (internals.Context && internals.Context != renWin)
+  {
+    this->ReleaseGraphicsResources(internals.Context);
+  }
+  internals.Context = renWin;
+  internals.AccessInUse = -1;
+  if (!this->PrepareInput(ren, vol))
+  {
+    return;
+  }
+  const int access = internals.ChooseAccess(this->KBufferSynchronization);
+  if (!access)
+  {
+    if (internals.ReportedAccessError != this->KBufferSynchronization)
+    {
+      internals.ReportedAccessError = this->KBufferSynchronization;
+      vtkErrorMacro("This OpenGL context cannot keep the k-buffer's read-modify-write in "
+                    "primitive order as requested (KBufferSynchronization "
+                    << this->KBufferSynchronization
+                    << "): it needs GL_ARB_fragment_shader_interlock or "
+                       "GL_EXT_shader_framebuffer_fetch. "
+                       "SetKBufferSynchronizationToRasterizationOrder() renders without "
+                       "either, correctly only where the rasterizer keeps primitive order.");
+    }
+    return;
+  }
+
+  internals.Faces->Sort(internals.Matrices.MCVC, internals.Matrices.ParallelProjection);
+  this->LastSortTime = internals.Faces->GetLastSortTime();
+  vtkTextureObject* table = internals.Table->GetTexture(renWin);
+  if (!table || !internals.Faces->Upload(renWin) ||
+    !internals.KBuffer->Prepare(renWin, width, height, this->KBufferSize, access))
+  {
+    return;
+  }
+  this->DrawKBuffer(ren, access);
+}
+
+void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
+{
+  vtkInternals& internals = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = internals.Context;
+  int width, height, x, y;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkOpenGLClearErrorMacro();
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  const bool timed = internals.StartTimer();
+
+  vtkHAVSKBuffer* kbuffer = internals.KBuffer;
+  ostate->PushFramebufferBindings();
+  kbuffer->CaptureSceneDepth(x, y);
+  kbuffer->Clear();
+  // Both facings are drawn: a boundary face's facing tells an exit from an entry.
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_CULL_FACE);
+  ostate->vtkglDepthMask(GL_FALSE);
+  vtkTextureObject* table = internals.Table->GetTexture(renWin);
+  table->Activate();
+  const bool drawn = internals.DrawFaces(table, width, height) && internals.DrawFlush(table);
+  table->Deactivate();
+  ostate->PopFramebufferBindings();
+  if (drawn)
+  {
+    kbuffer->Resolve(x, y);
+  }
+  this->LastGPUTime = timed ? internals.StopTimer() : -1.0;
+  internals.AccessInUse = drawn ? access : -1;
+  if (!drawn)
+  {
+    if (access == FRAGMENT_SHADER_INTERLOCK && this->KBufferSynchronization == AUTOMATIC)
+    {
+      internals.InterlockFailed = true; // the next render falls back to framebuffer fetch
+    }
+    vtkErrorMacro("Could not compile the HAVS k-buffer shaders (KBufferSize "
+      << this->KBufferSize << ", synchronization " << access << ").");
+  }
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+void vtkHAVSVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Internals->ReleaseGraphicsResources(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkHAVSVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "KBufferSize: " << this->KBufferSize << "\n";
+  os << indent << "KBufferSynchronization: " << this->KBufferSynchronization << "\n";
+  os << indent << "KBufferSynchronizationInUse: " << this->GetKBufferSynchronizationInUse()
+     << "\n";
+  os << indent << "PreIntegrationScalarResolution: " << this->PreIntegrationScalarResolution
+     << "\n";
+  os << indent << "PreIntegrationThicknessResolution: "
+     << this->PreIntegrationThicknessResolution << "\n";
+  os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
+     << "\n";
+  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
+  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
+  os << indent << "NumberOfFaces: " << this->GetNumberOfFaces() << "\n";
+  os << indent << "NumberOfBoundaryFaces: " << this->GetNumberOfBoundaryFaces() << "\n";
+  os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+  os << indent << "LastSortTime: " << this->LastSortTime << "\n";
+  os << indent << "LastGPUTime: " << this->LastGPUTime << "\n";
+}

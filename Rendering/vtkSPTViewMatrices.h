@@ -1,0 +1,42 @@
+/**
+ * @file    vtkSPTViewMatrices.h
+ * @brief   the matrices of one frame in the normalized units of a mesh; shared, not wrapped
+ *
+ * The mappers hand the GPU coordinates in units of the mesh's own size (vtkSPTMeshBuffers
+ * shifts and scales the points to O(1)), and compose every matrix in double on the CPU, so
+ * that float precision holds whatever the magnitude of the data's coordinates.
+ */
+
+#ifndef vtkSPTViewMatrices_h
+#define vtkSPTViewMatrices_h
+
+#include "SPTRenderingModule.h" // For export macro
+
+class vtkRenderer;
+class vtkSPTMeshBuffers;
+class vtkVolume;
+
+struct SPTRENDERING_EXPORT vtkSPTViewMatrices
+{
+  /// Normalized model -> normalized view, column-major (as glUniformMatrix4fv expects).
+  float MCVC[16];
+  /// Normalized view -> clip, and its inverse.
+  float VCDC[16];
+  float DCVC[16];
+  /// The linear part of view -> model: turns view-space segments into lengths in the
+  /// normalized model units of the mesh (column-major 3x3).
+  float VCMCLinear[9];
+  /// Whether the camera projects in parallel.
+  bool ParallelProjection = false;
+  /// Whether model -> view mirrors space (negative determinant), which swaps the facing of
+  /// triangles on the screen.
+  bool Mirrored = false;
+
+  /**
+   * The matrices of the renderer's active camera for the volume's matrix and the mesh's
+   * normalization.
+   */
+  void Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh);
+};
+
+#endif

@@ -1,0 +1,281 @@
+// Unit test of the object-space half of HAVS (vtkHAVSFaceBuffers), without OpenGL:
+// - unique faces and boundary marks: a cube split into 5 tetrahedra has 16 faces, 12 of them
+//   on the boundary; two disjoint tetrahedra have 8, all on the boundary; a 3x3x3 block of
+//   such cubes has the counts that Euler's formula gives;
+// - every boundary face is wound to face out of its tetrahedron (inverted tetrahedra too),
+//   and indexes vertex copies whose scalar carries the boundary offset;
+// - the float-to-key map keeps the order of floats, negative ones included;
+// - the radix sort agrees with std::stable_sort, and Sort() orders faces by the distance of
+//   their centroids from the eye (perspective) or by depth (parallel).
+
+#include "vtkHAVSFaceBuffers.h"
+#include "vtkSPTMeshBuffers.h"
+
+#include "vtkCellArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <numeric>
+#include <random>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+
+void Check(bool condition, const char* what)
+{
+  if (!condition)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+// A block of nx x ny x nz unit cubes, each split into 5 tetrahedra (alternating so that faces
+// match), with a point scalar. With `invert`, every other tetrahedron is listed inverted.
+vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, bool invert)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName("s");
+  for (int k = 0; k <= nz; ++k)
+  {
+    for (int j = 0; j <= ny; ++j)
+    {
+      for (int i = 0; i <= nx; ++i)
+      {
+        points->InsertNextPoint(i, j, k);
+        scalars->InsertNextValue(static_cast<float>(i + 2 * j + 3 * k));
+      }
+    }
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(scalars);
+  auto id = [=](int i, int j, int k) { return vtkIdType(i + (nx + 1) * (j + (ny + 1) * k)); };
+  int count = 0;
+  for (int k = 0; k < nz; ++k)
+  {
+    for (int j = 0; j < ny; ++j)
+    {
+      for (int i = 0; i < nx; ++i)
+      {
+        vtkIdType c[8];
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          c[corner] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
+        }
+        // Corners 0, 3, 5, 6 (or 1, 2, 4, 7 in odd cubes) form the central tetrahedron.
+        const bool odd = (i + j + k) % 2 == 1;
+        const int tets[2][5][4] = { { { 0, 1, 3, 5 }, { 0, 2, 6, 3 }, { 0, 4, 5, 6 },
+                                      { 3, 5, 6, 7 }, { 0, 3, 6, 5 } },
+          { { 1, 0, 2, 4 }, { 1, 3, 7, 2 }, { 1, 5, 4, 7 }, { 2, 4, 7, 6 }, { 1, 2, 7, 4 } } };
+        for (const auto& tet : tets[odd ? 1 : 0])
+        {
+          vtkIdType ids[4] = { c[tet[0]], c[tet[1]], c[tet[2]], c[tet[3]] };
+          if (invert && (count++ % 2 == 1))
+          {
+            std::swap(ids[0], ids[1]);
+          }
+          grid->InsertNextCell(VTK_TETRA, 4, ids);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+glm::vec3 Vertex(const vtkHAVSFaceBuffers* faces, unsigned int id)
+{
+  return glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]);
+}
+
+void CheckFaces(vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary,
+  const char* name)
+{
+  vtkNew<vtkSPTMeshBuffers> mesh;
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  Check(mesh->Update(grid, selection), "the mesh is accepted");
+  vtkNew<vtkHAVSFaceBuffers> faces;
+  faces->Update(mesh);
+  std::cout << name << ": " << faces->GetNumberOfFaces() << " faces, "
+            << faces->GetNumberOfBoundaryFaces() << " on the boundary\n";
+  Check(faces->GetNumberOfFaces() == expectedFaces, "number of unique faces");
+  Check(faces->GetNumberOfBoundaryFaces() == expectedBoundary, "number of boundary faces");
+
+  // The mesh is a union of unit cubes or tetrahedra whose centroid is inside: a boundary
+  // face's outward normal points away from the centroid of its own tetrahedron, checked here
+  // through the face's distance to the mesh's center of mass along the normal for convex
+  // meshes, and in general by the scalar offset and the winding test below.
+  const std::vector<unsigned int>& ids = faces->GetFaces();
+  const size_t numberOfPoints = mesh->GetPoints().size() / 3;
+  int wrongOffsets = 0;
+  for (vtkIdType f = 0; f < faces->GetNumberOfFaces(); ++f)
+  {
+    const bool boundary = faces->GetBoundary()[f] != 0;
+    for (int v = 0; v < 3; ++v)
+    {
+      const unsigned int vertex = ids[3 * f + v];
+      const float scalar = faces->GetVertexScalars()[vertex];
+      const bool copy = vertex >= numberOfPoints;
+      wrongOffsets += copy != boundary ||
+        (copy && std::abs(scalar - vtkHAVSFaceBuffers::BoundaryScalarOffset) > 1.0f + 1e-6f) ||
+        (!copy && (scalar < 0.0f || scalar > 1.0f));
+    }
+  }
+  Check(wrongOffsets == 0, "boundary faces (only they) use the offset vertex copies");
+}
+
+// Boundary faces of a convex mesh face away from its center.
+void CheckOutwardWinding(vtkUnstructuredGrid* grid, const char* name)
+{
+  vtkNew<vtkSPTMeshBuffers> mesh;
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  mesh->Update(grid, selection);
+  vtkNew<vtkHAVSFaceBuffers> faces;
+  faces->Update(mesh);
+  glm::vec3 center(0.0f);
+  for (size_t i = 0; i < mesh->GetPoints().size() / 3; ++i)
+  {
+    center += glm::make_vec3(&mesh->GetPoints()[3 * i]);
+  }
+  center /= float(mesh->GetPoints().size() / 3);
+  int inward = 0;
+  for (vtkIdType f = 0; f < faces->GetNumberOfFaces(); ++f)
+  {
+    if (!faces->GetBoundary()[f])
+    {
+      continue;
+    }
+    const unsigned int* v = &faces->GetFaces()[3 * f];
+    const glm::vec3 a = Vertex(faces, v[0]);
+    const glm::vec3 normal = glm::cross(Vertex(faces, v[1]) - a, Vertex(faces, v[2]) - a);
+    const glm::vec3 centroid = (a + Vertex(faces, v[1]) + Vertex(faces, v[2])) / 3.0f;
+    inward += glm::dot(normal, centroid - center) <= 0.0f;
+  }
+  std::cout << name << ": " << inward << " boundary faces wound inward\n";
+  Check(inward == 0, "boundary faces are wound to face out of the mesh");
+}
+
+void CheckKeysAndRadixSort()
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> uniform(-1000.0f, 1000.0f);
+  std::vector<float> values = { -0.0f, 0.0f, -1e-30f, 1e-30f, -3.0e38f, 3.0e38f, 1.0f, -1.0f };
+  for (int i = 0; i < 20000; ++i)
+  {
+    values.push_back(uniform(random) * (i % 3 == 0 ? 1e-6f : 1.0f));
+  }
+  for (int i = 0; i < 2000; ++i)
+  {
+    values.push_back(std::round(uniform(random) * 0.01f)); // many equal keys
+  }
+  int misordered = 0;
+  for (size_t i = 0; i + 1 < values.size(); ++i)
+  {
+    const float a = values[i], b = values[i + 1];
+    const uint32_t ka = vtkHAVSFaceBuffers::SortableKey(a);
+    const uint32_t kb = vtkHAVSFaceBuffers::SortableKey(b);
+    misordered += (a < b && !(ka < kb)) || (a > b && !(ka > kb));
+  }
+  Check(misordered == 0, "SortableKey keeps the order of floats");
+
+  std::vector<uint32_t> keys(values.size()), scratchKeys;
+  std::vector<unsigned int> order(values.size()), scratchOrder;
+  for (size_t i = 0; i < values.size(); ++i)
+  {
+    keys[i] = vtkHAVSFaceBuffers::SortableKey(values[i]);
+    order[i] = static_cast<unsigned int>(i);
+  }
+  vtkHAVSFaceBuffers::RadixSort(keys, order, scratchKeys, scratchOrder);
+  std::vector<unsigned int> expected(values.size());
+  std::iota(expected.begin(), expected.end(), 0u);
+  std::stable_sort(expected.begin(), expected.end(), [&](unsigned int a, unsigned int b) {
+    return vtkHAVSFaceBuffers::SortableKey(values[a]) < vtkHAVSFaceBuffers::SortableKey(values[b]);
+  });
+  Check(order == expected, "the radix sort is the stable sort by key");
+  Check(std::is_sorted(keys.begin(), keys.end()), "the sorted keys are in order");
+}
+
+void CheckSortOrder(bool parallel)
+{
+  vtkSmartPointer<vtkUnstructuredGrid> grid = MakeBlock(4, 3, 2, false);
+  vtkNew<vtkSPTMeshBuffers> mesh;
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  mesh->Update(grid, selection);
+  vtkNew<vtkHAVSFaceBuffers> faces;
+  faces->Update(mesh);
+  const glm::mat4 view = glm::lookAt(glm::vec3(1.3f, -2.0f, 1.7f), glm::vec3(0.0f),
+    glm::vec3(0.0f, 0.0f, 1.0f));
+  faces->Sort(glm::value_ptr(view), parallel);
+  const std::vector<unsigned int>& order = faces->GetOrder();
+  Check(order.size() == size_t(faces->GetNumberOfFaces()), "every face is sorted");
+  double previous = -1e30;
+  int misordered = 0;
+  std::vector<char> seen(order.size(), 0);
+  for (unsigned int face : order)
+  {
+    seen[face] = 1;
+    const unsigned int* v = &faces->GetFaces()[3 * size_t(face)];
+    const glm::vec3 centroid =
+      (Vertex(faces, v[0]) + Vertex(faces, v[1]) + Vertex(faces, v[2])) / 3.0f;
+    const glm::vec3 centroidVC = glm::vec3(view * glm::vec4(centroid, 1.0f));
+    const double key = parallel ? -centroidVC.z : glm::length(centroidVC);
+    misordered += key < previous - 1e-5;
+    previous = std::max(previous, key);
+  }
+  Check(misordered == 0, parallel ? "faces sorted by depth" : "faces sorted by eye distance");
+  Check(std::count(seen.begin(), seen.end(), 1) == long(seen.size()), "the order is a permutation");
+  Check(faces->GetLastSortTime() >= 0.0, "the sort time is measured");
+}
+}
+
+int TestHAVSFaceBuffers(int, char*[])
+{
+  // One cube: 5 tetrahedra, 4 faces shared by the central one: 20 - 4 = 16 unique, 12 outside.
+  CheckFaces(MakeBlock(1, 1, 1, false), 16, 12, "one cube");
+  CheckFaces(MakeBlock(1, 1, 1, true), 16, 12, "one cube, inverted tetrahedra");
+  // A 3x3x3 block: 27 cubes x 5 = 135 tetrahedra; boundary: 6 sides x 9 squares x 2 triangles;
+  // unique faces = (4 x 135 + 108) / 2.
+  CheckFaces(MakeBlock(3, 3, 3, false), (4 * 135 + 108) / 2, 108, "3x3x3 cubes");
+  CheckOutwardWinding(MakeBlock(3, 3, 3, false), "3x3x3 cubes");
+  CheckOutwardWinding(MakeBlock(3, 3, 3, true), "3x3x3 cubes, inverted tetrahedra");
+
+  // Two disjoint tetrahedra.
+  vtkNew<vtkUnstructuredGrid> two;
+  vtkNew<vtkPoints> points;
+  for (double offset : { 0.0, 3.0 })
+  {
+    points->InsertNextPoint(offset, 0, 0);
+    points->InsertNextPoint(offset + 1, 0, 0);
+    points->InsertNextPoint(offset, 1, 0);
+    points->InsertNextPoint(offset, 0, 1);
+  }
+  two->SetPoints(points);
+  const vtkIdType first[4] = { 0, 1, 2, 3 }, second[4] = { 4, 6, 5, 7 };
+  two->InsertNextCell(VTK_TETRA, 4, first);
+  two->InsertNextCell(VTK_TETRA, 4, second);
+  vtkNew<vtkFloatArray> scalars;
+  for (int i = 0; i < 8; ++i)
+  {
+    scalars->InsertNextValue(float(i));
+  }
+  two->GetPointData()->SetScalars(scalars);
+  CheckFaces(two, 8, 8, "two disjoint tetrahedra");
+
+  CheckKeysAndRadixSort();
+  CheckSortOrder(false);
+  CheckSortOrder(true);
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,605 @@
+// The proof that the GPU k-buffer of vtkHAVSVolumeMapper runs its read-modify-write one
+// fragment at a time, in primitive order: its image must equal a CPU simulation of the same
+// algorithm fed with the same fragments in the same order.
+//
+// The CPU rasterizes the mapper's own faces (vtkHAVSFaceBuffers, same mesh, same sort) at the
+// pixel centers in the mapper's draw order, interpolates scalar and eye distance as the GPU
+// does, runs the same k-buffer insertion, flush and early termination, and composites through
+// the same pre-integration table with trilinear filtering. Pixels whose center lies within
+// 0.01 pixels of a triangle edge (where coverage is a matter of rasterizer precision) are left
+// out of the comparison.
+//
+// The test can fail: the CPU image with a perturbed order (consecutive fragments of each pixel
+// swapped, or every fourth fragment's update lost, as in a read-modify-write race) differs
+// clearly from the GPU image, and the test checks that it does.
+//
+// Two meshes, k = 2 and k = 6, and every synchronization mode that the context has:
+// a soup of 40 overlapping random tetrahedra (every face on the boundary, fragments far from
+// sorted) and a jittered block of tetrahedra with a slot cut out (non-convex, gaps).
+
+#include "vtkHAVSFaceBuffers.h"
+#include "vtkHAVSKBuffer.h"
+#include "vtkHAVSVolumeMapper.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTViewMatrices.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTesting.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtk_glew.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace
+{
+constexpr int Size = 96;
+constexpr double EdgeMargin = 0.01; // pixels (llvmpipe snaps vertices to 1/256 pixel)
+constexpr float EmptyDistance = 1.0e30f;
+constexpr float OpaqueAlpha = 0.998046875f;
+
+struct Entry
+{
+  float Scalar; // plus 2 where the ray leaves the mesh, plus 4 where it enters it
+  float Distance;
+};
+
+// What the CPU rasterizer found for one pixel: its fragments in draw order.
+struct PixelFragments
+{
+  std::vector<Entry> Fragments;
+  bool Ambiguous = false;
+  float LengthScale = 0.0f;
+};
+
+enum class Perturbation
+{
+  None,
+  SwapPairs,
+  LoseEveryFourth
+};
+
+vtkSmartPointer<vtkUnstructuredGrid> MakeSoup()
+{
+  std::mt19937 random(2005);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalars;
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  for (int t = 0; t < 40; ++t)
+  {
+    const double center[3] = { uniform(random), uniform(random), uniform(random) };
+    vtkIdType ids[4];
+    for (vtkIdType& id : ids)
+    {
+      id = points->InsertNextPoint(center[0] + 0.5 * (uniform(random) - 0.5),
+        center[1] + 0.5 * (uniform(random) - 0.5), center[2] + 0.5 * (uniform(random) - 0.5));
+      scalars->InsertNextValue(static_cast<float>(uniform(random)));
+    }
+    grid->InsertNextCell(VTK_TETRA, 4, ids);
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(scalars);
+  return grid;
+}
+
+// 5 x 5 x 3 jittered cubes, 5 tetrahedra each, without the cubes of a slot through the middle.
+vtkSmartPointer<vtkUnstructuredGrid> MakeSlottedBlock()
+{
+  const int n[3] = { 5, 5, 3 };
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalars;
+  for (int k = 0; k <= n[2]; ++k)
+  {
+    for (int j = 0; j <= n[1]; ++j)
+    {
+      for (int i = 0; i <= n[0]; ++i)
+      {
+        points->InsertNextPoint(i + jitter(random), j + jitter(random), k + jitter(random));
+        scalars->InsertNextValue(
+          static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
+      }
+    }
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(scalars);
+  auto id = [&](int i, int j, int k) { return vtkIdType(i + (n[0] + 1) * (j + (n[1] + 1) * k)); };
+  const int tets[2][5][4] = { { { 0, 1, 3, 5 }, { 0, 2, 6, 3 }, { 0, 4, 5, 6 }, { 3, 5, 6, 7 },
+                                { 0, 3, 6, 5 } },
+    { { 1, 0, 2, 4 }, { 1, 3, 7, 2 }, { 1, 5, 4, 7 }, { 2, 4, 7, 6 }, { 1, 2, 7, 4 } } };
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      for (int i = 0; i < n[0]; ++i)
+      {
+        if (i == 2 && k > 0)
+        {
+          continue; // the slot
+        }
+        vtkIdType c[8];
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          c[corner] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
+        }
+        for (const auto& tet : tets[(i + j + k) % 2])
+        {
+          const vtkIdType ids[4] = { c[tet[0]], c[tet[1]], c[tet[2]], c[tet[3]] };
+          grid->InsertNextCell(VTK_TETRA, 4, ids);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double unitDistance)
+{
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(range[0], 0.1, 0.3, 1.0);
+  color->AddRGBPoint(0.5 * (range[0] + range[1]), 0.2, 1.0, 0.3);
+  color->AddRGBPoint(range[1], 1.0, 0.3, 0.1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(range[0], 0.1);
+  opacity->AddPoint(range[1], 0.6);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(unitDistance);
+  return property;
+}
+
+// Trilinear lookup of the table at (front, back, sqrt(thickness)) in [0, 1]^3, texel centers
+// at the ends, as the GPU's texture() with the mapper's scale and offset does.
+glm::vec4 LookUp(const vtkSPTPreIntegrationTable* table, float front, float back, float length)
+{
+  const int ns = table->GetScalarResolution();
+  const int nl = table->GetLengthResolution();
+  const float coordinate[3] = { front * (ns - 1), back * (ns - 1), length * (nl - 1) };
+  const int sizes[3] = { ns, ns, nl };
+  int lower[3];
+  float weight[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    lower[a] = std::min(static_cast<int>(std::floor(coordinate[a])), sizes[a] - 2);
+    weight[a] = coordinate[a] - lower[a];
+  }
+  glm::vec4 result(0.0f);
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const int i = lower[0] + (corner & 1), j = lower[1] + ((corner >> 1) & 1),
+              k = lower[2] + ((corner >> 2) & 1);
+    const float w = ((corner & 1) ? weight[0] : 1.0f - weight[0]) *
+      (((corner >> 1) & 1) ? weight[1] : 1.0f - weight[1]) *
+      (((corner >> 2) & 1) ? weight[2] : 1.0f - weight[2]);
+    result += w * glm::make_vec4(&table->GetTable()[4 * ((size_t(k) * ns + j) * ns + i)]);
+  }
+  return result;
+}
+
+// The k-buffer of the mapper's shaders, on the CPU.
+class KBuffer
+{
+public:
+  KBuffer(int size, const vtkSPTPreIntegrationTable* table, float thicknessToTable,
+    float lengthScale)
+    : Entries(size - 1, Entry{ 0.0f, EmptyDistance })
+    , Table(table)
+    , ThicknessToTable(thicknessToTable)
+    , LengthScale(lengthScale)
+  {
+  }
+
+  void Insert(Entry fragment)
+  {
+    if (this->Color.a >= OpaqueAlpha)
+    {
+      return;
+    }
+    for (Entry& entry : this->Entries)
+    {
+      if (entry.Distance >= EmptyDistance)
+      {
+        entry = fragment;
+        return;
+      }
+    }
+    auto nearest = std::min_element(this->Entries.begin(), this->Entries.end(),
+      [](const Entry& a, const Entry& b) { return a.Distance < b.Distance; });
+    if (fragment.Distance <= nearest->Distance)
+    {
+      this->Composite(fragment, *nearest);
+      return;
+    }
+    // Ties go to the stored entries, as in the shader.
+    Entry next{ 0.0f, EmptyDistance };
+    for (auto entry = this->Entries.begin(); entry != this->Entries.end(); ++entry)
+    {
+      if (entry != nearest && entry->Distance < next.Distance)
+      {
+        next = *entry;
+      }
+    }
+    if (fragment.Distance < next.Distance)
+    {
+      next = fragment;
+    }
+    this->Composite(*nearest, next);
+    *nearest = fragment;
+  }
+
+  glm::vec4 Flush()
+  {
+    if (this->Color.a < OpaqueAlpha)
+    {
+      std::stable_sort(this->Entries.begin(), this->Entries.end(),
+        [](const Entry& a, const Entry& b) { return a.Distance < b.Distance; });
+      for (size_t i = 0; i + 1 < this->Entries.size(); ++i)
+      {
+        this->Composite(this->Entries[i], this->Entries[i + 1]);
+      }
+    }
+    return this->Color;
+  }
+
+private:
+  void Composite(const Entry& front, const Entry& back)
+  {
+    const float frontCrossing = std::floor(front.Scalar * 0.5f);
+    const float backCrossing = std::floor(back.Scalar * 0.5f);
+    if (back.Distance >= EmptyDistance || (frontCrossing == 1.0f && backCrossing == 2.0f))
+    {
+      return;
+    }
+    const float frontScalar = front.Scalar - 2.0f * frontCrossing;
+    const float backScalar = back.Scalar - 2.0f * backCrossing;
+    const float thickness = std::max(back.Distance - front.Distance, 0.0f) * this->LengthScale;
+    const float length = std::sqrt(std::min(thickness * this->ThicknessToTable, 1.0f));
+    const glm::vec4 segment = LookUp(this->Table, glm::clamp(frontScalar, 0.0f, 1.0f),
+      glm::clamp(backScalar, 0.0f, 1.0f), length);
+    this->Color += (1.0f - this->Color.a) * segment;
+  }
+
+  std::vector<Entry> Entries;
+  glm::vec4 Color{ 0.0f };
+  const vtkSPTPreIntegrationTable* Table;
+  float ThicknessToTable;
+  float LengthScale;
+};
+
+// The fragments of the mapper's faces, in its draw order, at every pixel center.
+std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkSPTViewMatrices& m)
+{
+  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
+  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
+  const glm::mat4 clipToView = glm::make_mat4(m.DCVC);
+  const glm::mat3 viewToModel = glm::make_mat3(m.VCMCLinear);
+  std::vector<PixelFragments> pixels(Size * Size);
+  for (int y = 0; y < Size; ++y)
+  {
+    for (int x = 0; x < Size; ++x)
+    {
+      const glm::vec2 ndc((x + 0.5f) / Size * 2.0f - 1.0f, (y + 0.5f) / Size * 2.0f - 1.0f);
+      const glm::vec4 nearVC = clipToView * glm::vec4(ndc, -1.0f, 1.0f);
+      const glm::vec4 farVC = clipToView * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 ray = m.ParallelProjection
+        ? glm::vec3(0.0f, 0.0f, -1.0f)
+        : glm::normalize(glm::vec3(farVC) / farVC.w - glm::vec3(nearVC) / nearVC.w);
+      pixels[y * Size + x].LengthScale = glm::length(viewToModel * ray);
+    }
+  }
+  for (unsigned int face : faces->GetOrder())
+  {
+    glm::dvec3 vc[3];
+    glm::dvec2 window[3];
+    double w[3], scalar[3];
+    for (int v = 0; v < 3; ++v)
+    {
+      const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
+      vc[v] = glm::dvec3(modelToView *
+        glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
+      const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(vc[v], 1.0);
+      w[v] = clip.w;
+      window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
+      scalar[v] = faces->GetVertexScalars()[id];
+    }
+    const glm::dvec2 e01 = window[1] - window[0], e02 = window[2] - window[0];
+    const double area = e01.x * e02.y - e01.y * e02.x;
+    if (area == 0.0)
+    {
+      continue;
+    }
+    const bool boundary = scalar[0] > 1.5;
+    // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
+    const float crossing = boundary ? (area < 0.0 ? 2.0f : 4.0f) : 0.0f;
+    const double lo[2] = { std::min({ window[0].x, window[1].x, window[2].x }),
+      std::min({ window[0].y, window[1].y, window[2].y }) };
+    const double hi[2] = { std::max({ window[0].x, window[1].x, window[2].x }),
+      std::max({ window[0].y, window[1].y, window[2].y }) };
+    for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(Size - 1, int(hi[1]) + 1); ++y)
+    {
+      for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(Size - 1, int(hi[0]) + 1); ++x)
+      {
+        const glm::dvec2 p(x + 0.5, y + 0.5);
+        double barycentric[3], nearest = 1e30;
+        bool inside = true;
+        for (int v = 0; v < 3; ++v)
+        {
+          const glm::dvec2 a = window[(v + 1) % 3], b = window[(v + 2) % 3];
+          const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / area;
+          barycentric[v] = edge;
+          const double pixelsFromEdge = edge * std::abs(area) / glm::length(b - a);
+          nearest = std::min(nearest, std::abs(pixelsFromEdge));
+          inside = inside && pixelsFromEdge > -EdgeMargin;
+        }
+        if (!inside)
+        {
+          continue;
+        }
+        PixelFragments& pixel = pixels[y * Size + x];
+        if (nearest < EdgeMargin)
+        {
+          pixel.Ambiguous = true;
+          continue;
+        }
+        // Perspective-correct weights, as the GPU interpolates.
+        double sum = 0.0, weights[3];
+        for (int v = 0; v < 3; ++v)
+        {
+          weights[v] = barycentric[v] / w[v];
+          sum += weights[v];
+        }
+        glm::dvec3 positionVC(0.0);
+        double s = 0.0;
+        for (int v = 0; v < 3; ++v)
+        {
+          positionVC += weights[v] / sum * vc[v];
+          s += weights[v] / sum * scalar[v];
+        }
+        const double distance = m.ParallelProjection ? -positionVC.z : glm::length(positionVC);
+        const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
+        pixel.Fragments.push_back(Entry{ code, float(distance) });
+      }
+    }
+  }
+  return pixels;
+}
+
+std::vector<glm::vec4> Simulate(const std::vector<PixelFragments>& pixels, int kbufferSize,
+  const vtkSPTPreIntegrationTable* table, float thicknessToTable, Perturbation perturbation)
+{
+  std::vector<glm::vec4> image(pixels.size());
+  for (size_t p = 0; p < pixels.size(); ++p)
+  {
+    std::vector<Entry> fragments = pixels[p].Fragments;
+    if (perturbation == Perturbation::SwapPairs)
+    {
+      for (size_t i = 0; i + 1 < fragments.size(); i += 2)
+      {
+        std::swap(fragments[i], fragments[i + 1]);
+      }
+    }
+    KBuffer kbuffer(kbufferSize, table, thicknessToTable, pixels[p].LengthScale);
+    for (size_t i = 0; i < fragments.size(); ++i)
+    {
+      if (perturbation != Perturbation::LoseEveryFourth || i % 4 != 3)
+      {
+        kbuffer.Insert(fragments[i]);
+      }
+    }
+    image[p] = kbuffer.Flush();
+  }
+  return image;
+}
+
+struct Comparison
+{
+  int Compared = 0;
+  int Layered = 0; // compared pixels with 4 fragments or more
+  int Ambiguous = 0;
+  int Off = 0;        // pixels off by more than the tolerance
+  double Largest = 0; // largest channel difference
+};
+
+Comparison Compare(const std::vector<PixelFragments>& pixels, const std::vector<glm::vec4>& cpu,
+  vtkUnsignedCharArray* gpu, double tolerance)
+{
+  Comparison result;
+  for (size_t p = 0; p < pixels.size(); ++p)
+  {
+    if (pixels[p].Ambiguous)
+    {
+      ++result.Ambiguous;
+      continue;
+    }
+    ++result.Compared;
+    result.Layered += pixels[p].Fragments.size() >= 4;
+    double difference = 0.0;
+    for (int c = 0; c < 4; ++c)
+    {
+      difference = std::max(difference, std::abs(gpu->GetValue(4 * p + c) / 255.0 - cpu[p][c]));
+    }
+    result.Off += difference > tolerance;
+    result.Largest = std::max(result.Largest, difference);
+  }
+  return result;
+}
+
+// Whether the current context offers the synchronization. Rasterization order is only claimed
+// for Mesa's llvmpipe; anywhere else it is a data race that this test would rightly fail.
+bool Offers(int access)
+{
+  switch (access)
+  {
+    case vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK:
+      return vtkHAVSKBuffer::HasExtension("GL_ARB_fragment_shader_interlock");
+    case vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH:
+      return vtkHAVSKBuffer::HasExtension("GL_EXT_shader_framebuffer_fetch");
+    default:
+    {
+      const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+      return vtkHAVSKBuffer::HasExtension("GL_ARB_shader_image_load_store") && renderer &&
+        std::strstr(renderer, "llvmpipe") != nullptr;
+    }
+  }
+}
+
+// Render the mesh with the mapper; returns its RGBA pixels (bottom row first), or nullptr if
+// the mapper could not draw.
+vtkSmartPointer<vtkUnsignedCharArray> RenderOnGPU(
+  vtkRenderWindow* window, vtkHAVSVolumeMapper* mapper)
+{
+  window->Render();
+  if (mapper->GetKBufferSynchronizationInUse() < 0)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGBA();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  return vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+}
+
+int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, int* modesRun)
+{
+  int failures = 0;
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetAlphaBitPlanes(1);
+  window->SetMultiSamples(0);
+  window->SetSize(Size, Size);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  renderer->SetBackgroundAlpha(0.0);
+  window->AddRenderer(renderer);
+  vtkNew<vtkHAVSVolumeMapper> mapper;
+  mapper->SetInputData(grid);
+  double range[2];
+  grid->GetPointData()->GetScalars()->GetRange(range);
+  vtkSmartPointer<vtkVolumeProperty> property = MakeProperty(range, unitDistance);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  renderer->AddVolume(volume);
+  renderer->GetActiveCamera()->SetPosition(2.0, -3.0, 2.5);
+  renderer->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+  renderer->ResetCamera();
+  window->Render(); // creates the context, for Offers()
+
+  // The CPU side: the same mesh, faces, sort and table as the mapper.
+  vtkNew<vtkSPTMeshBuffers> mesh;
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  mesh->Update(grid, selection);
+  vtkNew<vtkHAVSFaceBuffers> faces;
+  faces->Update(mesh);
+  vtkSPTViewMatrices matrices;
+  matrices.Compute(renderer, volume, mesh);
+  faces->Sort(matrices.MCVC, matrices.ParallelProjection);
+  vtkNew<vtkSPTPreIntegrationTable> table;
+  table->Update(property, mesh->GetScalarRange(), mesh->GetMaxEdgeLength() * mesh->GetScale(),
+    mapper->GetPreIntegrationScalarResolution(), mapper->GetPreIntegrationThicknessResolution());
+  const float thicknessToTable = float(1.0 / mesh->GetMaxEdgeLength());
+  const std::vector<PixelFragments> pixels = Rasterize(faces, matrices);
+  size_t fragments = 0, longest = 0;
+  for (const PixelFragments& pixel : pixels)
+  {
+    fragments += pixel.Fragments.size();
+    longest = std::max(longest, pixel.Fragments.size());
+  }
+  std::cout << name << ": " << faces->GetNumberOfFaces() << " faces, " << fragments
+            << " fragments, up to " << longest << " per pixel\n";
+
+  const double tolerance = 3.0 / 255.0;
+  for (int k : { 2, 6 })
+  {
+    mapper->SetKBufferSize(k);
+    const std::vector<glm::vec4> expected =
+      Simulate(pixels, k, table, thicknessToTable, Perturbation::None);
+    const std::vector<glm::vec4> swapped =
+      Simulate(pixels, k, table, thicknessToTable, Perturbation::SwapPairs);
+    const std::vector<glm::vec4> lost =
+      Simulate(pixels, k, table, thicknessToTable, Perturbation::LoseEveryFourth);
+    for (int access : { vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK,
+           vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH, vtkHAVSVolumeMapper::RASTERIZATION_ORDER })
+    {
+      if (!Offers(access))
+      {
+        std::cout << "  k=" << k << ", synchronization " << access << ": not in this context\n";
+        continue;
+      }
+      mapper->SetKBufferSynchronization(access);
+      vtkSmartPointer<vtkUnsignedCharArray> gpu = RenderOnGPU(window, mapper);
+      if (!gpu)
+      {
+        std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
+        ++failures;
+        continue;
+      }
+      ++*modesRun;
+      const Comparison same = Compare(pixels, expected, gpu, tolerance);
+      const Comparison pairs = Compare(pixels, swapped, gpu, tolerance);
+      const Comparison races = Compare(pixels, lost, gpu, tolerance);
+      std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
+                << same.Compared << " pixels off (largest " << same.Largest << ", "
+                << same.Ambiguous << " on edges left out); perturbed orders, of "
+                << same.Layered << " pixels with 4 fragments or more: " << pairs.Off
+                << " off with pairs swapped, " << races.Off << " with every 4th update lost\n";
+      if (same.Off > 0 || same.Ambiguous > same.Compared / 20)
+      {
+        std::cerr << "FAILED: the GPU k-buffer differs from the CPU k-buffer fed in draw order.\n";
+        ++failures;
+      }
+      // A k-buffer of 6 absorbs swapped pairs; lost updates show at any size. Measured on
+      // llvmpipe: 70-80% (soup) and 28% (block) of the layered pixels off with lost updates,
+      // 92% and 94% with swapped pairs at k = 2; the bounds leave a factor of 2 or more.
+      if (races.Off < same.Layered / 8 || (k == 2 && pairs.Off < same.Layered / 4))
+      {
+        std::cerr << "FAILED: the comparison does not tell a perturbed order from the right one.\n";
+        ++failures;
+      }
+    }
+  }
+  return failures;
+}
+}
+
+int TestHAVSKBufferOrdering(int, char*[])
+{
+  int modesRun = 0;
+  int failures = CheckMesh(MakeSoup(), "soup of 40 overlapping tetrahedra", 0.4, &modesRun);
+  failures += CheckMesh(MakeSlottedBlock(), "jittered block with a slot", 2.0, &modesRun);
+  if (modesRun == 0)
+  {
+    std::cout << "The context has no way to synchronize the k-buffer; nothing to test.\n";
+    return VTK_SKIP_RETURN_CODE;
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,83 @@
+"""The claims of the sorting figure (python3 -m spt figures sorting), checked at 128 x 128.
+
+SPT's RMSE at a repetition level it is not rendered at is predicted from two renders with
+different seeds at a low level (spt.statistics: bias^2 + noise x L / level); renders at 1024
+repetitions measured 2 % (torus) and 12 % (default mesh) below the prediction.
+
+- Where the centroid sort is far from the per-pixel order, the sorted renderer shows
+  artifacts and SPT does not: on Blunt Fin, whose thin boundary-layer cells reach the pixels
+  up to 27 places out of order, HAVS-like with k = 6 is several times farther from the
+  reference than SPT at the figure's 144 repetitions.
+- The issue's claim, that on the torus and on the default (non-convex) mesh SPT at 1024
+  repetitions is closer to the reference than HAVS-like with k = 2 and than VTK's projected
+  tetrahedra, holds only against HAVS-like k = 2 on the torus. Elsewhere the sorted methods
+  are closer: on these meshes the centroid sort is nearly exact, and SPT keeps a bias of its
+  own (0.008 on the default mesh, 0.022 on the torus, mostly at the silhouette). Those cases
+  are strict expected failures, with the measured numbers, so that a change that makes the
+  claim hold is noticed.
+"""
+
+from functools import lru_cache
+
+import pytest
+
+from spt import figures, metrics, render, statistics
+
+from conftest import load_or_skip
+
+SIZE = (128, 128)
+
+
+@lru_cache(maxsize=None)
+def _scene(name):
+    if name != "default":
+        load_or_skip(name)
+    return figures.scene(name)
+
+
+@lru_cache(maxsize=None)
+def _reference(name):
+    s = _scene(name)
+    return render.render(s.grid, s.property, render.reference_mapper(), s.view, SIZE).image
+
+
+@lru_cache(maxsize=None)
+def _rmse(name, method):
+    s = _scene(name)
+    mapper = {"havs2": lambda: render.havs_mapper(2), "havs6": lambda: render.havs_mapper(6),
+              "pt": render.projected_tetrahedra_mapper}[method]()
+    return metrics.rmse(render.render(s.grid, s.property, mapper, s.view, SIZE).image,
+                        _reference(name))
+
+
+@lru_cache(maxsize=None)
+def _spt_estimate(name, level):
+    s = _scene(name)
+    first, second = (render.render(s.grid, s.property, render.spt_mapper(level, seed=seed),
+                                   s.view, SIZE).image for seed in (1, 2))
+    return statistics.estimate(first, second, _reference(name), level)
+
+
+def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
+    """Blunt Fin: measured HAVS-like k=6 0.083 and SPT (144) 0.026 at 256 x 256."""
+    spt_144 = _spt_estimate("bluntfin", 16).predicted_rmse(144)
+    havs = _rmse("bluntfin", "havs6")
+    assert havs > 2.0 * spt_144, f"HAVS-like k=6 {havs:.4f}, SPT at 144 {spt_144:.4f}"
+    assert _rmse("bluntfin", "havs2") > havs, "k = 2 repairs less of the order than k = 6"
+
+
+CLAIMS = [
+    ("torus", "havs2", None),
+    ("torus", "pt", "measured: SPT at 1024 0.0232, VTK PT 0.0229"),
+    ("default", "havs2", "measured: SPT at 1024 0.0110, HAVS-like k=2 0.0066"),
+    ("default", "pt", "measured: SPT at 1024 0.0110, VTK PT 0.0061"),
+]
+
+
+@pytest.mark.parametrize("name, method", [
+    pytest.param(name, method, marks=pytest.mark.xfail(strict=True, reason=reason)
+                 if reason else ()) for name, method, reason in CLAIMS])
+def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method, have_display):
+    predicted = _spt_estimate(name, 32 if name == "default" else 64).predicted_rmse(1024)
+    other = _rmse(name, method)
+    assert predicted < other, f"SPT at 1024 (predicted) {predicted:.4f}, {method} {other:.4f}"
