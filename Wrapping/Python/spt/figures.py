@@ -180,7 +180,7 @@ def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
     """One scene of the sorting figure: the reference, SPT, HAVS-like with k = 2 and 6 and
     VTK's projected tetrahedra, each with its difference image, error and render time."""
     shape = (size, size)
-    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    reference = render.reference(s.grid, s.property, s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
     result = {"dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
               "reference_seconds": reference.seconds, "methods": []}
