@@ -19,6 +19,7 @@
 #include "vtkNew.h"             // For the buffers
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For the buffers
+#include "vtkTextureObject.h" // For GetCellScalarTexture()
 #include "vtkTimeStamp.h"    // For the caches
 
 #include <string> // For the array name
@@ -31,7 +32,6 @@ class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
-class vtkTextureObject;
 class vtkWindow;
 
 class SPTRENDERING_EXPORT vtkSPTMeshBuffers : public vtkObject

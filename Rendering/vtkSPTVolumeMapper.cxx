@@ -1,8 +1,5 @@
 #include "vtkSPTVolumeMapper.h"
 
-#include "vtkCamera.h"
-#include "vtkMath.h"
-#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -18,13 +15,13 @@
 #include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTShaderUtilities.h"
+#include "vtkSPTViewTransforms.h"
 
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraVS.h"
 
-#include <algorithm>
+#include <string>
 
 class vtkSPTVolumeMapper::vtkInternals
 {
@@ -35,79 +32,10 @@ public:
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkMTimeType ReportedMeshError = 0;
   vtkMTimeType ReportedSkippedCells = 0;
+  vtkSPTViewTransforms Transforms;
 
-  // Model (normalized) -> view (normalized), view -> clip and clip -> view, column-major;
-  // and the linear part of view -> model, which turns view-space segments into lengths in
-  // the normalized model units of the mesh.
-  float MCVC[16];
-  float VCDC[16];
-  float DCVC[16];
-  float VCMCLinear[9];
-
-  void ComputeMatrices(vtkRenderer* ren, vtkVolume* vol);
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars);
 };
-
-void vtkSPTVolumeMapper::vtkInternals::ComputeMatrices(vtkRenderer* ren, vtkVolume* vol)
-{
-  // Everything is composed in double and handed to the GPU in units of the mesh's own size
-  // (view coordinates divided by viewScale), so that float precision holds whatever the
-  // magnitude of the coordinates.
-  vtkNew<vtkMatrix4x4> normalization;
-  this->Mesh->GetNormalizationMatrix(normalization);
-  vtkMatrix4x4* model = vol->GetMatrix();
-  double linear[3][3], u[3][3], w[3], vt[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      linear[i][j] = model->GetElement(i, j);
-    }
-  }
-  vtkMath::SingularValueDecomposition3x3(linear, u, w, vt);
-  const double modelScale = std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
-  const double viewScale = this->Mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
-
-  vtkCamera* camera = ren->GetActiveCamera();
-  vtkNew<vtkMatrix4x4> modelToView;
-  vtkMatrix4x4::Multiply4x4(camera->GetModelViewTransformMatrix(), model, modelToView);
-  vtkMatrix4x4::Multiply4x4(modelToView, normalization, modelToView);
-  vtkNew<vtkMatrix4x4> viewToClip;
-  viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
-  // Normalized view coordinates are view coordinates / viewScale. The projection of a
-  // normalized point is P diag(viewScale, viewScale, viewScale, 1), which is the same
-  // projective map as P with its translation column divided by viewScale: clip coordinates
-  // (and w) stay O(1) too.
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / viewScale);
-    }
-    viewToClip->SetElement(i, 3, viewToClip->GetElement(i, 3) / viewScale);
-  }
-  vtkNew<vtkMatrix4x4> clipToView;
-  vtkMatrix4x4::Invert(viewToClip, clipToView);
-  vtkSPTShaderUtilities::ToColumnMajor(modelToView, this->MCVC);
-  vtkSPTShaderUtilities::ToColumnMajor(viewToClip, this->VCDC);
-  vtkSPTShaderUtilities::ToColumnMajor(clipToView, this->DCVC);
-  double viewToModel[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      linear[i][j] = modelToView->GetElement(i, j);
-    }
-  }
-  vtkMath::Invert3x3(linear, viewToModel);
-  for (int column = 0; column < 3; ++column)
-  {
-    for (int row = 0; row < 3; ++row)
-    {
-      this->VCMCLinear[3 * column + row] = static_cast<float>(viewToModel[row][column]);
-    }
-  }
-}
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(
   vtkOpenGLRenderWindow* renWin, bool cellScalars)
@@ -205,7 +133,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
                     << " cells with coordinates or scalars that are not finite (NaN or Inf) "
                        "are not drawn.");
   }
-  internals.ComputeMatrices(ren, vol);
+  internals.Transforms.Compute(ren, vol, internals.Mesh);
   const double maxThickness = internals.Mesh->GetMaxEdgeLength();
   if (!internals.Table->Update(property, internals.Mesh->GetScalarRange(),
         maxThickness * internals.Mesh->GetScale(), this->PreIntegrationScalarResolution,
@@ -282,10 +210,10 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     renWin->GetShaderCache()->ReadyShaderProgram(program);
     if (repetition == 0)
     {
-      program->SetUniformMatrix4x4("MCVCMatrix", internals.MCVC);
-      program->SetUniformMatrix4x4("VCDCMatrix", internals.VCDC);
-      program->SetUniformMatrix4x4("DCVCMatrix", internals.DCVC);
-      program->SetUniformMatrix3x3("VCMCLinear", internals.VCMCLinear);
+      program->SetUniformMatrix4x4("MCVCMatrix", internals.Transforms.MCVC);
+      program->SetUniformMatrix4x4("VCDCMatrix", internals.Transforms.VCDC);
+      program->SetUniformMatrix4x4("DCVCMatrix", internals.Transforms.DCVC);
+      program->SetUniformMatrix3x3("VCMCLinear", internals.Transforms.VCMCLinear);
       program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
       program->SetUniform3f("tableTexelScale", texelScale);
       program->SetUniform3f("tableTexelOffset", texelOffset);

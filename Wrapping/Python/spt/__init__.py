@@ -3,7 +3,7 @@
 The compiled mappers are re-exported here, next to the pure-Python helpers:
 
     import vtk, spt
-    mapper = spt.vtkSPTVolumeMapper()
+    mapper = spt.vtkSPTVolumeMapper()    # or spt.vtkPBVRVolumeMapper(), the particle baseline
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.render``
 (rendering helpers and the reference), ``spt.metrics`` (image error), ``spt.accuracy``
@@ -14,7 +14,7 @@ Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.rende
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
 
-from .SPTRendering import vtkSPTVolumeMapper
+from .SPTRendering import vtkPBVRVolumeMapper, vtkSPTVolumeMapper
 
-__all__ = ["vtkSPTVolumeMapper"]
+__all__ = ["vtkPBVRVolumeMapper", "vtkSPTVolumeMapper"]
 __version__ = "0.1.0"

@@ -1,8 +1,8 @@
 """Rendering helpers: one scene, several volume mappers, float RGBA images back.
 
-Every renderer of the comparison (SPT, VTK's projected tetrahedra, the reference ray caster)
-is drawn through :func:`render`, with the same camera, transfer functions and window size,
-on a transparent black background, so that the image read back is the volume's own
+Every renderer of the comparison (SPT, PBVR, VTK's projected tetrahedra, the reference ray
+caster) is drawn through :func:`render`, with the same camera, transfer functions and window
+size, on a transparent black background, so that the image read back is the volume's own
 premultiplied RGBA.
 """
 
@@ -32,7 +32,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics
-from .SPTRendering import vtkSPTVolumeMapper
+from .SPTRendering import vtkPBVRVolumeMapper, vtkSPTVolumeMapper
 
 
 @dataclasses.dataclass(frozen=True)
@@ -52,6 +52,19 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
     mapper.SetSeed(seed)
+    return mapper
+
+
+def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
+                cell_average: bool = False) -> vtkPBVRVolumeMapper:
+    """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
+    selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
+    mapper = vtkPBVRVolumeMapper()
+    mapper.SetRepetitionLevel(repetitions)
+    mapper.SetSubpixelLevel(subpixels)
+    mapper.SetSeed(seed)
+    if cell_average:
+        mapper.SetSamplingModeToCellAverage()
     return mapper
 
 
@@ -116,6 +129,7 @@ REFERENCE_SUPERSAMPLING = 2
 
 MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
     "spt": spt_mapper,
+    "pbvr": pbvr_mapper,
     "pt": projected_tetrahedra_mapper,
     "reference": reference_mapper,
 }
@@ -175,8 +189,11 @@ def read_rgba(window: vtkRenderWindow) -> np.ndarray:
 
 def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
     """One untimed render that builds what later frames reuse (shaders, buffers, tables).
-    A stochastic mapper does it with one repetition: its caches do not depend on the count."""
-    repetitions = mapper.GetRepetitionLevel() if hasattr(mapper, "GetRepetitionLevel") else None
+    SPT does it with one repetition: its caches do not depend on the count. PBVR does it at
+    its full count: its particles (one set per repetition) are what it reuses."""
+    repetitions = None
+    if hasattr(mapper, "GetRepetitionLevel") and not isinstance(mapper, vtkPBVRVolumeMapper):
+        repetitions = mapper.GetRepetitionLevel()
     if repetitions is not None:
         mapper.SetRepetitionLevel(1)
     window.Render()

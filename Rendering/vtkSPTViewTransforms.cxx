@@ -1,0 +1,85 @@
+#include "vtkSPTViewTransforms.h"
+
+#include "vtkCamera.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkRenderer.h"
+#include "vtkVolume.h"
+
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTShaderUtilities.h"
+
+#include <algorithm>
+#include <cmath>
+
+void vtkSPTViewTransforms::Compute(
+  vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
+{
+  // Everything is composed in double and handed to the GPU in units of the mesh's own size
+  // (view coordinates divided by viewScale), so that float precision holds whatever the
+  // magnitude of the coordinates.
+  vtkNew<vtkMatrix4x4> normalization;
+  mesh->GetNormalizationMatrix(normalization);
+  vtkMatrix4x4* model = vol->GetMatrix();
+  double linear[3][3], u[3][3], w[3], vt[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      linear[i][j] = model->GetElement(i, j);
+    }
+  }
+  vtkMath::SingularValueDecomposition3x3(linear, u, w, vt);
+  const double modelScale = std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
+  this->ViewScale = mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
+
+  vtkCamera* camera = ren->GetActiveCamera();
+  this->ParallelProjection = camera->GetParallelProjection() != 0;
+  vtkNew<vtkMatrix4x4> modelToView;
+  vtkMatrix4x4::Multiply4x4(camera->GetModelViewTransformMatrix(), model, modelToView);
+  vtkMatrix4x4::Multiply4x4(modelToView, normalization, modelToView);
+  vtkNew<vtkMatrix4x4> viewToClip;
+  viewToClip->DeepCopy(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  // Normalized view coordinates are view coordinates / viewScale. The projection of a
+  // normalized point is P diag(viewScale, viewScale, viewScale, 1), which is the same
+  // projective map as P with its translation column divided by viewScale: clip coordinates
+  // (and w) stay O(1) too.
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / this->ViewScale);
+    }
+    viewToClip->SetElement(i, 3, viewToClip->GetElement(i, 3) / this->ViewScale);
+  }
+  vtkNew<vtkMatrix4x4> clipToView;
+  vtkMatrix4x4::Invert(viewToClip, clipToView);
+  vtkSPTShaderUtilities::ToColumnMajor(modelToView, this->MCVC);
+  vtkSPTShaderUtilities::ToColumnMajor(viewToClip, this->VCDC);
+  vtkSPTShaderUtilities::ToColumnMajor(clipToView, this->DCVC);
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      this->ModelToView[i][j] = modelToView->GetElement(i, j);
+      this->ViewToClip[i][j] = viewToClip->GetElement(i, j);
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      linear[i][j] = this->ModelToView[i][j];
+    }
+  }
+  vtkMath::Invert3x3(linear, this->ViewToModelLinear);
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      this->VCMCLinear[3 * column + row] =
+        static_cast<float>(this->ViewToModelLinear[row][column]);
+    }
+  }
+}
