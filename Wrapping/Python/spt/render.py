@@ -204,11 +204,28 @@ def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
 
 @dataclasses.dataclass
 class Rendering:
-    """An image and what it cost."""
+    """An image and what it cost. ``report`` holds what the mapper reported right after the
+    timed render, before the window released its resources: ``gpu_memory`` (bytes) for the
+    project's mappers, and ``particles``, ``particle_sets``, ``generation_seconds`` and
+    ``generation_count`` for PBVR."""
 
     image: np.ndarray
     seconds: float
     mapper: vtkAbstractVolumeMapper
+    report: Dict[str, float] = dataclasses.field(default_factory=dict)
+
+
+def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
+    """What a mapper of this project says about its last render (empty for VTK's own)."""
+    report: Dict[str, float] = {}
+    if hasattr(mapper, "GetGPUMemorySize"):
+        report["gpu_memory"] = float(mapper.GetGPUMemorySize())
+    if isinstance(mapper, vtkPBVRVolumeMapper):
+        report["particles"] = float(mapper.GetNumberOfParticles())
+        report["particle_sets"] = float(mapper.GetNumberOfParticleSets())
+        report["generation_seconds"] = mapper.GetGenerationTime()
+        report["generation_count"] = float(mapper.GetGenerationCount())
+    return report
 
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
@@ -238,6 +255,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     window.Render()
     window.WaitForCompletion()
     seconds = time.perf_counter() - start
+    report = mapper_report(mapper)
     image = read_rgba(window)
     if reference:
         image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
@@ -246,4 +264,4 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
         renderer.RemoveActor(actor)
     if own_window:
         window.Finalize()
-    return Rendering(image=image, seconds=seconds, mapper=mapper)
+    return Rendering(image=image, seconds=seconds, mapper=mapper, report=report)
