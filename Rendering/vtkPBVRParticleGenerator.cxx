@@ -183,9 +183,10 @@ unsigned short Quantize(float unit)
 {
   return static_cast<unsigned short>(std::min(std::max(unit, 0.0f), 1.0f) * 65535.0f + 0.5f);
 }
+}
 
 // The particles of one block of cells, with the set of each.
-struct Block
+struct vtkPBVRParticleGenerator::Block
 {
   std::vector<unsigned short> Particles;
   std::vector<unsigned short> Sets;
@@ -199,6 +200,10 @@ struct Block
     this->Sets.push_back(static_cast<unsigned short>(set));
   }
 };
+
+namespace
+{
+using Block = vtkPBVRParticleGenerator::Block;
 
 // One tetrahedron's corners and scalars.
 struct Cell
@@ -423,8 +428,16 @@ bool vtkPBVRParticleGenerator::Generate(
     return this->Fail(reason.str());
   }
 
-  // Order by set (a counting sort), keeping the cell order within each set.
-  this->SetOffsets.assign(settings.Sets + 1, 0);
+  this->OrderBySet(blocks, settings.Sets);
+  this->GenerationTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return true;
+}
+
+void vtkPBVRParticleGenerator::OrderBySet(std::vector<Block>& blocks, int sets)
+{
+  // A counting sort, which keeps the cell order within each set.
+  this->SetOffsets.assign(sets + 1, 0);
   for (const Block& block : blocks)
   {
     for (unsigned short set : block.Sets)
@@ -433,7 +446,7 @@ bool vtkPBVRParticleGenerator::Generate(
     }
     this->NumberOfCandidates += block.Candidates;
   }
-  for (int set = 0; set < settings.Sets; ++set)
+  for (int set = 0; set < sets; ++set)
   {
     this->SetOffsets[set + 1] += this->SetOffsets[set];
   }
@@ -448,11 +461,8 @@ bool vtkPBVRParticleGenerator::Generate(
       std::copy_n(&block.Particles[ComponentsPerParticle * i], ComponentsPerParticle,
         &this->Particles[target]);
     }
-    block = Block();
+    block = Block(); // frees the block's memory as the particles move
   }
-  this->GenerationTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return true;
 }
 
 void vtkPBVRParticleGenerator::PrintSelf(ostream& os, vtkIndent indent)

@@ -64,6 +64,7 @@ public:
   };
 
   static constexpr int ComponentsPerParticle = 4;
+  struct Block; // the particles of a block of cells, before they are ordered by set
   static constexpr size_t BytesPerParticle = ComponentsPerParticle * sizeof(unsigned short);
 
   struct Settings
@@ -114,6 +115,7 @@ private:
   void operator=(const vtkPBVRParticleGenerator&) = delete;
 
   bool Fail(const std::string& reason);
+  void OrderBySet(std::vector<Block>& blocks, int sets);
 
   std::string LastError;
   std::vector<unsigned short> Particles;

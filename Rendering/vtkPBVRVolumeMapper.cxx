@@ -114,8 +114,12 @@ public:
   vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
   void UpdateMeshRadius();
   double SmallestFootprint(int passWidth, int passHeight) const;
+  bool Generate(const ParticleKey& wanted);
   bool Upload();
   void ReleaseParticles();
+  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
+    vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel);
+  void DrawSet(vtkShaderProgram* program, int set);
 };
 
 bool vtkPBVRVolumeMapper::vtkInternals::SampleTransferFunctions(
@@ -238,6 +242,84 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int p
   return areaVC * volumeRatio / LargestSingularValue(t.ViewToModelLinear);
 }
 
+bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
+{
+  this->ReleaseParticles();
+  vtkPBVRParticleGenerator::Settings settings;
+  settings.Footprint = wanted.Footprint;
+  settings.Sets = wanted.Sets;
+  settings.Seed = wanted.Seed;
+  settings.SamplingMode = wanted.SamplingMode;
+  settings.MaximumParticles = wanted.MaximumParticles;
+  std::vector<double> attenuation(this->Attenuation);
+  for (double& tau : attenuation)
+  {
+    tau *= this->Mesh->GetScale(); // per normalized model unit
+  }
+  if (!this->Generator->Generate(this->Mesh, attenuation, settings))
+  {
+    this->Failed = wanted;
+    this->HaveFailed = true;
+    return false;
+  }
+  this->HaveFailed = false;
+  ++this->GenerationCount;
+  return true;
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
+  vtkTextureObject* colors, vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel)
+{
+  vtkSPTViewTransforms& transforms = this->Transforms;
+  const double(*p)[4] = transforms.ViewToClip;
+  const float pixelArea = static_cast<float>(4.0 /
+    (std::abs(p[0][0] * p[1][1]) * this->Ensemble->GetPassWidth() *
+      this->Ensemble->GetPassHeight()));
+  const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
+    0.5f / TransferFunctionSamples };
+  program->SetUniformMatrix4x4("MCVCMatrix", transforms.MCVC);
+  program->SetUniformMatrix4x4("VCDCMatrix", transforms.VCDC);
+  program->SetUniformMatrix3x3("VCMCLinear", transforms.VCMCLinear);
+  program->SetUniformf("viewToModelVolume",
+    static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
+  program->SetUniformf("pixelAreaFactor", pixelArea);
+  program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
+  program->SetUniformf("generatedFootprint", static_cast<float>(this->Generated.Footprint));
+  program->SetUniformi("seed", static_cast<int>(seed));
+  program->SetUniformi("colorTable", colors->GetTextureUnit());
+  program->SetUniform2f("colorTexelScaleOffset", colorTexel);
+  program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", subpixelLevel);
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::DrawSet(vtkShaderProgram* program, int set)
+{
+  const vtkIdType first = this->Generator->GetSetOffset(set);
+  const vtkIdType end = this->Generator->GetSetOffset(set + 1);
+  if (end <= first)
+  {
+    return;
+  }
+  const bool programChanged = program != this->BoundProgram;
+  if (programChanged)
+  {
+    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
+  }
+  this->VertexArray->Bind();
+  if (programChanged)
+  {
+    this->VertexArray->AddAttributeArray(program, this->ParticleBuffer, "particleMC", 0,
+      vtkPBVRParticleGenerator::BytesPerParticle, VTK_UNSIGNED_SHORT, 4, true);
+    this->BoundProgram = program;
+  }
+  for (vtkIdType begin = first; begin < end; begin += MaxParticlesPerDraw)
+  {
+    glDrawArrays(GL_POINTS, static_cast<GLint>(begin),
+      static_cast<GLsizei>(std::min(MaxParticlesPerDraw, end - begin)));
+  }
+  this->VertexArray->Release();
+}
+
 bool vtkPBVRVolumeMapper::vtkInternals::Upload()
 {
   this->UploadedBytes = 0;
@@ -358,30 +440,14 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
     return false; // reported when it failed
   }
 
-  internals.ReleaseParticles();
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = wanted.Footprint;
-  settings.Sets = wanted.Sets;
-  settings.Seed = wanted.Seed;
-  settings.SamplingMode = wanted.SamplingMode;
-  settings.MaximumParticles = wanted.MaximumParticles;
-  std::vector<double> attenuation(internals.Attenuation);
-  for (double& tau : attenuation)
+  if (!internals.Generate(wanted))
   {
-    tau *= internals.Mesh->GetScale(); // per normalized model unit
-  }
-  if (!internals.Generator->Generate(internals.Mesh, attenuation, settings))
-  {
-    internals.Failed = wanted;
-    internals.HaveFailed = true;
     vtkErrorMacro(<< internals.Generator->GetLastError() << " Raise MaximumParticleMemory ("
                   << this->MaximumParticleMemory << " MiB), or lower RepetitionLevel ("
                   << this->RepetitionLevel << "), SubpixelLevel (" << this->SubpixelLevel
                   << ") or the opacity.");
     return false;
   }
-  internals.HaveFailed = false;
-  ++internals.GenerationCount;
   if (!internals.Upload())
   {
     vtkErrorMacro("Could not upload " << internals.Generator->GetNumberOfParticles()
@@ -394,6 +460,45 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   }
   internals.Generated = wanted;
   internals.HaveParticles = true;
+  return true;
+}
+
+bool vtkPBVRVolumeMapper::UpdateMesh()
+{
+  vtkInternals& internals = *this->Internals;
+  if (this->GetInputAlgorithm())
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  selection.ScalarMode = this->ScalarMode;
+  selection.ArrayAccessMode = this->ArrayAccessMode;
+  selection.ArrayId = this->ArrayId;
+  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
+  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
+  if (!internals.Mesh->Update(this->GetDataSetInput(), selection))
+  {
+    if (internals.Mesh->GetBuildTime() != internals.ReportedMeshError)
+    {
+      internals.ReportedMeshError = internals.Mesh->GetBuildTime();
+      vtkErrorMacro(<< internals.Mesh->GetLastError());
+    }
+    internals.ReleaseParticles();
+    return false;
+  }
+  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
+    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
+  {
+    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
+    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
+                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
+                       "are not drawn.");
+  }
+  if (internals.Mesh->GetNumberOfTetrahedra() == 0)
+  {
+    internals.ReleaseParticles();
+    return false;
+  }
   return true;
 }
 
@@ -418,29 +523,8 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   internals.Context = renWin;
 
-  if (this->GetInputAlgorithm())
+  if (!this->UpdateMesh())
   {
-    this->GetInputAlgorithm()->Update();
-  }
-  vtkSPTMeshBuffers::ScalarSelection selection;
-  selection.ScalarMode = this->ScalarMode;
-  selection.ArrayAccessMode = this->ArrayAccessMode;
-  selection.ArrayId = this->ArrayId;
-  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
-  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
-  if (!internals.Mesh->Update(this->GetDataSetInput(), selection))
-  {
-    if (internals.Mesh->GetBuildTime() != internals.ReportedMeshError)
-    {
-      internals.ReportedMeshError = internals.Mesh->GetBuildTime();
-      vtkErrorMacro(<< internals.Mesh->GetLastError());
-    }
-    internals.ReleaseParticles();
-    return;
-  }
-  if (internals.Mesh->GetNumberOfTetrahedra() == 0)
-  {
-    internals.ReleaseParticles();
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
@@ -449,14 +533,6 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
                   "IndependentComponents on in the volume property.");
     return;
-  }
-  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
-    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
-  {
-    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
-    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
-                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
-                       "are not drawn.");
   }
   std::string error;
   if (!internals.SampleTransferFunctions(property, error))
@@ -508,20 +584,12 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
   vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
   sceneDepth->Activate();
 
-  vtkSPTViewTransforms& transforms = internals.Transforms;
-  const double(*p)[4] = transforms.ViewToClip;
-  const float pixelArea = static_cast<float>(4.0 /
-    (std::abs(p[0][0] * p[1][1]) * ensemble->GetPassWidth() * ensemble->GetPassHeight()));
-  const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
-    0.5f / TransferFunctionSamples };
-
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LESS);
   ostate->vtkglPointSize(1.0f);
-  vtkPBVRParticleGenerator* generator = internals.Generator;
   for (int repetition = 0; repetition < this->RepetitionLevel; ++repetition)
   {
     ensemble->BeginPass();
@@ -529,43 +597,9 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
     renWin->GetShaderCache()->ReadyShaderProgram(program);
     if (repetition == 0)
     {
-      program->SetUniformMatrix4x4("MCVCMatrix", transforms.MCVC);
-      program->SetUniformMatrix4x4("VCDCMatrix", transforms.VCDC);
-      program->SetUniformMatrix3x3("VCMCLinear", transforms.VCMCLinear);
-      program->SetUniformf("viewToModelVolume",
-        static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
-      program->SetUniformf("pixelAreaFactor", pixelArea);
-      program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
-      program->SetUniformf(
-        "generatedFootprint", static_cast<float>(internals.Generated.Footprint));
-      program->SetUniformi("seed", static_cast<int>(this->Seed));
-      program->SetUniformi("colorTable", colors->GetTextureUnit());
-      program->SetUniform2f("colorTexelScaleOffset", colorTexel);
-      program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
-      program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+      internals.SetUniforms(program, colors, sceneDepth, this->Seed, this->SubpixelLevel);
     }
-    const vtkIdType first = generator->GetSetOffset(repetition);
-    const vtkIdType end = generator->GetSetOffset(repetition + 1);
-    if (end > first)
-    {
-      if (program != internals.BoundProgram)
-      {
-        internals.VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
-      }
-      internals.VertexArray->Bind();
-      if (program != internals.BoundProgram)
-      {
-        internals.VertexArray->AddAttributeArray(program, internals.ParticleBuffer, "particleMC",
-          0, vtkPBVRParticleGenerator::BytesPerParticle, VTK_UNSIGNED_SHORT, 4, true);
-        internals.BoundProgram = program;
-      }
-      for (vtkIdType begin = first; begin < end; begin += MaxParticlesPerDraw)
-      {
-        glDrawArrays(GL_POINTS, static_cast<GLint>(begin),
-          static_cast<GLsizei>(std::min(MaxParticlesPerDraw, end - begin)));
-      }
-      internals.VertexArray->Release();
-    }
+    internals.DrawSet(program, repetition);
     ensemble->EndPass();
   }
   sceneDepth->Deactivate();

@@ -193,6 +193,7 @@ private:
   vtkPBVRVolumeMapper(const vtkPBVRVolumeMapper&) = delete;
   void operator=(const vtkPBVRVolumeMapper&) = delete;
 
+  bool UpdateMesh();
   bool PrepareParticles(vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight);
   void DrawSets(int x, int y);
 
