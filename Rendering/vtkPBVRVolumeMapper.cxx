@@ -60,7 +60,7 @@ struct ParticleKey
   bool SameModel(const ParticleKey& o) const
   {
     return MeshBuild == o.MeshBuild && OpacityChange == o.OpacityChange && Seed == o.Seed &&
-      SamplingMode == o.SamplingMode && MaximumParticles == o.MaximumParticles;
+      SamplingMode == o.SamplingMode;
   }
 };
 
@@ -427,15 +427,19 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
     size_t(std::numeric_limits<int>::max() - 1));
   const ParticleKey& have = internals.Generated;
   if (internals.HaveParticles && have.SameModel(wanted) && needed >= have.Footprint &&
-    needed <= LargestFootprintRatio * have.Footprint && have.Sets >= this->RepetitionLevel)
+    needed <= LargestFootprintRatio * have.Footprint && have.Sets >= this->RepetitionLevel &&
+    size_t(internals.Generator->GetNumberOfParticles()) <= wanted.MaximumParticles)
   {
     return true;
   }
   wanted.Footprint = needed;
   wanted.Sets = this->RepetitionLevel;
+  // A generation that failed fails again, unless the view needs larger particles, fewer sets
+  // or the memory holds more.
   const ParticleKey& failed = internals.Failed;
   if (internals.HaveFailed && failed.SameModel(wanted) && failed.Sets <= wanted.Sets &&
-    needed <= RetryFootprintRatio * failed.Footprint)
+    needed <= RetryFootprintRatio * failed.Footprint &&
+    failed.MaximumParticles >= wanted.MaximumParticles)
   {
     return false; // reported when it failed
   }

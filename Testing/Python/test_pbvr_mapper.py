@@ -133,8 +133,16 @@ def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
     mapper.SetMaximumParticleMemory(1024)
     window.Render()
     assert len(messages.errors) == 1
-    assert mapper.GetNumberOfParticles() > 131072
+    assert mapper.GetNumberOfParticles() > 131072 and mapper.GetGenerationCount() == 1
     assert render.read_rgba(window)[..., 3].max() > 0.2
+    # A larger cap keeps the particles; a cap below what they take is an error again.
+    mapper.SetMaximumParticleMemory(2048)
+    window.Render()
+    assert mapper.GetGenerationCount() == 1 and len(messages.errors) == 1
+    mapper.SetMaximumParticleMemory(1)
+    window.Render()
+    assert len(messages.errors) == 2 and "would not fit" in messages.errors[1]
+    assert mapper.GetNumberOfParticles() == 0 and render.read_rgba(window).max() == 0.0
 
 
 class Scene:
