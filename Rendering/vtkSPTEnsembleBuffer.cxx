@@ -179,6 +179,15 @@ void vtkSPTEnsembleBuffer::BeginPass()
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
+void vtkSPTEnsembleBuffer::BeginSumPass()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->SumFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+}
+
 void vtkSPTEnsembleBuffer::EndPass()
 {
   vtkOpenGLState* ostate = this->Context->GetState();

@@ -65,6 +65,13 @@ public:
   void EndPass();
 
   /**
+   * Bind the sum itself for drawing, with the viewport set to it and the scissor test off, for
+   * a caller that adds its fragments straight into the sum (additive blending, set by the
+   * caller). Bracketed like BeginPass().
+   */
+  void BeginSumPass();
+
+  /**
    * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
    * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2.
    */

@@ -95,7 +95,7 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
     return false;
   }
   const bool unchanged = property == this->LastProperty &&
-    this->BuildTime > property->GetMTime() && scalarRange[0] == this->ScalarRange[0] &&
+    this->CheckTime > property->GetMTime() && scalarRange[0] == this->ScalarRange[0] &&
     scalarRange[1] == this->ScalarRange[1] && maxLength == this->MaxLength &&
     scalarResolution == this->ScalarResolution && lengthResolution == this->LengthResolution;
   if (unchanged)
@@ -117,17 +117,25 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
 
   const int ns = this->ScalarResolution;
   const size_t slice = size_t(ns) * ns * 4;
-  this->Table.assign(slice * this->LengthResolution, 0.0f);
-  vtkSMPTools::For(0, ns * ns, [this](vtkIdType begin, vtkIdType end) {
+  std::vector<float> table(slice * this->LengthResolution, 0.0f);
+  vtkSMPTools::For(0, ns * ns, [this, &table](vtkIdType begin, vtkIdType end) {
     const int n = this->ScalarResolution;
     for (vtkIdType pair = begin; pair < end; ++pair)
     {
-      this->IntegrateScalarPair(int(pair % n), int(pair / n), this->Table.data() + 4 * pair);
+      this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
     }
   });
   this->LastProperty = property;
-  this->BuildTime.Modified();
-  this->Modified();
+  this->CheckTime.Modified();
+  // A property can be touched without a change of its functions (VTK creates default
+  // functions on first access): the build time, which callers cache by, moves only when the
+  // contents do.
+  if (table != this->Table)
+  {
+    this->Table.swap(table);
+    this->BuildTime.Modified();
+    this->Modified();
+  }
   return true;
 }
 

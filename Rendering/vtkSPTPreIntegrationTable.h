@@ -61,6 +61,11 @@ public:
     int samples, std::vector<double>& color, std::vector<double>& attenuation,
     std::string& error);
 
+  /**
+   * When the contents of the table last changed.
+   */
+  vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
+
   ///@{
   /**
    * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
@@ -115,7 +120,8 @@ private:
   std::vector<float> Table;
   std::string LastError;
   vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
-  vtkTimeStamp BuildTime;
+  vtkTimeStamp CheckTime; // the inputs were last compared
+  vtkTimeStamp BuildTime; // the contents last changed
   vtkTimeStamp UploadTime;
   vtkSmartPointer<vtkTextureObject> Texture;
 };

@@ -5,13 +5,16 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+#include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
@@ -21,7 +24,22 @@
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraVS.h"
 
-#include <string>
+#include <algorithm>
+#include <functional>
+#include <vector>
+
+namespace
+{
+// How one traversal of the tetrahedra writes (see vtkSPTTetrahedraFS.glsl).
+enum class PassKind
+{
+  Single, // one repetition, opaque with the depth test
+  Keys,   // several repetitions: nearest survivors by atomic minimum of depth keys
+  Colors  // several repetitions: the survivors' colors added to the sum
+};
+
+constexpr int DepthKeyImageUnit = 0;
+}
 
 class vtkSPTVolumeMapper::vtkInternals
 {
@@ -29,22 +47,74 @@ public:
   vtkNew<vtkSPTMeshBuffers> Mesh;
   vtkNew<vtkSPTPreIntegrationTable> Table;
   vtkNew<vtkSPTEnsembleBuffer> Ensemble;
+  vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkMTimeType ReportedMeshError = 0;
   vtkMTimeType ReportedSkippedCells = 0;
+
   vtkSPTViewTransforms Transforms;
 
-  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars);
+  // Progressive refinement: what the accumulated sum was drawn from, and how many repetitions
+  // it holds.
+  std::vector<double> SumSignature;
+  int AccumulatedRepetitions = 0;
+
+  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars, PassKind kind,
+    int repetitionsPerPass);
+  std::vector<double> Signature(vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y,
+    int width, int height) const;
+
+  // Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal.
+  bool DrawRepetitions(vtkSPTVolumeMapper* self, int first, int count, int perPass,
+    double maxThickness, vtkTextureObject* table);
+  void DrawRepetitionGroups(int first, int count, int perPass, vtkShaderProgram* keys,
+    vtkShaderProgram* colors, const std::function<void(vtkShaderProgram*, int, int)>& traverse);
+  void SetCommonUniforms(vtkSPTVolumeMapper* self, vtkShaderProgram* program,
+    double maxThickness, vtkTextureObject* table, int first, int count);
 };
 
-vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(
-  vtkOpenGLRenderWindow* renWin, bool cellScalars)
+vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRenderWindow* renWin,
+  bool cellScalars, PassKind kind, int repetitionsPerPass)
 {
   std::string geometry = vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(
     geometry, "//SPT::Defines::Dec", cellScalars ? "#define SPT_CELL_SCALARS" : "");
+  std::string fragment = vtkSPTTetrahedraFS;
+  std::string pass = "#define SPT_REPETITIONS_PER_PASS " + std::to_string(repetitionsPerPass);
+  // VTK declares GLSL 1.50; image load/store comes as the extension.
+  vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
+    kind == PassKind::Single ? "" : "#extension GL_ARB_shader_image_load_store : require");
+  pass += kind == PassKind::Single ? "\n#define SPT_PASS_SINGLE"
+                                   : (kind == PassKind::Keys ? "\n#define SPT_PASS_KEYS"
+                                                             : "\n#define SPT_PASS_COLORS");
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", pass);
   return renWin->GetShaderCache()->ReadyShaderProgram(
-    vtkSPTTetrahedraVS, vtkSPTTetrahedraFS, geometry.c_str());
+    vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
+}
+
+std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
+  vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y, int width, int height) const
+{
+  // Everything that changes the expected image: the matrices (camera, volume transform),
+  // the viewport, the input and the table as built, the mapper's settings, and whatever any
+  // prop of the renderer would draw differently (opaque geometry bounds the volume).
+  std::vector<double> signature(this->Transforms.MCVC, this->Transforms.MCVC + 16);
+  signature.insert(signature.end(), this->Transforms.VCDC, this->Transforms.VCDC + 16);
+  vtkMTimeType redraw = 0;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    redraw = std::max(redraw, prop->GetVisibility() ? prop->GetRedrawMTime() : 0);
+  }
+  for (double value : { double(x), double(y), double(width), double(height),
+         double(this->Mesh->GetBuildTime()), double(this->Table->GetBuildTime()),
+         double(self->GetMTime()), double(redraw) })
+  {
+    signature.push_back(value);
+  }
+  return signature;
 }
 
 vtkStandardNewMacro(vtkSPTVolumeMapper);
@@ -70,7 +140,8 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
 {
   const vtkInternals& internals = *this->Internals;
   return static_cast<vtkIdType>(internals.Mesh->GetGPUMemorySize() +
-    internals.Table->GetGPUMemorySize() + internals.Ensemble->GetGPUMemorySize());
+    internals.Table->GetGPUMemorySize() + internals.Ensemble->GetGPUMemorySize() +
+    internals.DepthKeys->GetGPUMemorySize());
 }
 
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
@@ -169,17 +240,83 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  ostate->PushFramebufferBindings();
-  ensemble->CaptureSceneDepth(x, y);
-  ensemble->ClearSum();
-
-  const bool cellScalars = internals.Mesh->GetCellScalars();
-  vtkShaderProgram* program = internals.ReadyProgram(renWin, cellScalars);
-  if (!program)
+  int perPass = this->RepetitionsPerPass;
+  if (perPass > 1 &&
+    (!vtkSPTDepthKeyBuffer::IsSupported(renWin) ||
+      !internals.DepthKeys->Prepare(
+        renWin, ensemble->GetPassWidth(), ensemble->GetPassHeight(), perPass)))
   {
-    ostate->PopFramebufferBindings();
-    vtkErrorMacro("Could not compile the SPT shaders.");
-    return;
+    perPass = 1;
+  }
+
+  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
+  // when refining progressively.
+  int count = this->RepetitionLevel;
+  const double allotted = vol->GetAllocatedRenderTime();
+  if (this->AutoAdjustRepetitions && this->TimePerRepetition > 0.0 &&
+    allotted < count * this->TimePerRepetition)
+  {
+    count = std::max(1, static_cast<int>(allotted / this->TimePerRepetition));
+  }
+  std::vector<double> signature = internals.Signature(ren, this, x, y, width, height);
+  int first = 0;
+  if (this->ProgressiveRefinement && signature == internals.SumSignature &&
+    internals.AccumulatedRepetitions > 0)
+  {
+    first = internals.AccumulatedRepetitions;
+    count = std::min(count, this->MaximumProgressiveRepetitions - first);
+  }
+  internals.SumSignature = signature;
+
+  ostate->PushFramebufferBindings();
+  if (first == 0)
+  {
+    ensemble->CaptureSceneDepth(x, y);
+    ensemble->ClearSum();
+    internals.AccumulatedRepetitions = 0;
+  }
+  if (count > 0)
+  {
+    vtkNew<vtkTimerLog> timer;
+    timer->StartTimer();
+    if (!internals.DrawRepetitions(this, first, count, perPass, maxThickness, table))
+    {
+      ostate->PopFramebufferBindings();
+      internals.SumSignature.clear();
+      return;
+    }
+    if (this->AutoAdjustRepetitions)
+    {
+      glFinish();
+      timer->StopTimer();
+      this->TimePerRepetition = timer->GetElapsedTime() / count;
+    }
+    internals.AccumulatedRepetitions += count;
+  }
+  ostate->PopFramebufferBindings();
+  this->LastRepetitionCount = internals.AccumulatedRepetitions;
+  ensemble->Resolve(x, y, internals.AccumulatedRepetitions);
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self, int first,
+  int count, int perPass, double maxThickness, vtkTextureObject* table)
+{
+  vtkInternals& internals = *this;
+  vtkOpenGLRenderWindow* renWin = internals.Context;
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  const bool cellScalars = internals.Mesh->GetCellScalars();
+  const PassKind kinds[3] = { PassKind::Single, PassKind::Keys, PassKind::Colors };
+  vtkShaderProgram* programs[3] = { nullptr, nullptr, nullptr };
+  for (int k = perPass > 1 ? 1 : 0; k < (perPass > 1 ? 3 : 1); ++k)
+  {
+    programs[k] = internals.ReadyProgram(renWin, cellScalars, kinds[k], perPass);
+    if (!programs[k])
+    {
+      vtkErrorWithObjectMacro(self, "Could not compile the SPT shaders.");
+      return false;
+    }
   }
   table->Activate();
   vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
@@ -189,50 +326,43 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     cellScalarTexture->Activate();
   }
-
-  const int scalarSamples = internals.Table->GetScalarResolution();
-  const int thicknessSamples = internals.Table->GetLengthResolution();
-  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
-    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
-  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
-    0.5f / thicknessSamples };
-  const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
+  for (vtkShaderProgram* program : programs)
+  {
+    if (program)
+    {
+      renWin->GetShaderCache()->ReadyShaderProgram(program);
+      this->SetCommonUniforms(self, program, maxThickness, table, first, count);
+    }
+  }
 
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_LESS);
-  for (int repetition = 0; repetition < this->RepetitionLevel; ++repetition)
-  {
-    ensemble->BeginPass();
-    // The ensemble's accumulation binds its own program between passes.
+  const vtkIdType tetrahedra = internals.Mesh->GetNumberOfTetrahedra();
+  auto traverse = [&](vtkShaderProgram* program, int repetition, int inGroup) {
+    // The ensemble's accumulation binds its own program between passes; uniforms go to the
+    // bound program.
     renWin->GetShaderCache()->ReadyShaderProgram(program);
-    if (repetition == 0)
-    {
-      program->SetUniformMatrix4x4("MCVCMatrix", internals.Transforms.MCVC);
-      program->SetUniformMatrix4x4("VCDCMatrix", internals.Transforms.VCDC);
-      program->SetUniformMatrix4x4("DCVCMatrix", internals.Transforms.DCVC);
-      program->SetUniformMatrix3x3("VCMCLinear", internals.Transforms.VCMCLinear);
-      program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
-      program->SetUniform3f("tableTexelScale", texelScale);
-      program->SetUniform3f("tableTexelOffset", texelOffset);
-      program->SetUniformf(
-        "thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
-      program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
-      program->SetUniformi("subpixelLevel", this->SubpixelLevel);
-      program->SetUniform2f("passSizeInPixels", passSize);
-      program->SetUniformi("seed", static_cast<int>(this->Seed));
-      if (cellScalars)
-      {
-        program->SetUniformi("cellScalars", cellScalarTexture->GetTextureUnit());
-      }
-    }
     program->SetUniformi("repetition", repetition);
+    program->SetUniformi("repetitionsInGroup", inGroup);
     internals.Mesh->Bind(program);
-    internals.Mesh->Draw(program, 0, internals.Mesh->GetNumberOfTetrahedra());
+    internals.Mesh->Draw(program, 0, tetrahedra);
     internals.Mesh->Unbind();
-    ensemble->EndPass();
+  };
+  if (perPass == 1)
+  {
+    ostate->vtkglEnable(GL_DEPTH_TEST);
+    ostate->vtkglDepthFunc(GL_LESS);
+    for (int r = first; r < first + count; ++r)
+    {
+      ensemble->BeginPass();
+      traverse(programs[0], r, 1);
+      ensemble->EndPass();
+    }
+  }
+  else
+  {
+    this->DrawRepetitionGroups(first, count, perPass, programs[1], programs[2], traverse);
   }
 
   if (cellScalars)
@@ -241,9 +371,81 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   sceneDepth->Deactivate();
   table->Deactivate();
-  ostate->PopFramebufferBindings();
-  ensemble->Resolve(x, y, this->RepetitionLevel);
-  vtkOpenGLCheckErrorMacro("failed after Render");
+  return true;
+}
+
+void vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count, int perPass,
+  vtkShaderProgram* keys, vtkShaderProgram* colors,
+  const std::function<void(vtkShaderProgram*, int, int)>& traverse)
+{
+  vtkInternals& internals = *this;
+  vtkOpenGLState* ostate = internals.Context->GetState();
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
+  // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDepthMask(GL_FALSE);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  internals.Ensemble->BeginSumPass();
+  internals.DepthKeys->BindImage(DepthKeyImageUnit);
+  for (int r = first; r < first + count; r += perPass)
+  {
+    const int inGroup = std::min(perPass, first + count - r);
+    internals.DepthKeys->Clear();
+    vtkSPTDepthKeyBuffer::Barrier();
+    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ostate->vtkglDisable(GL_BLEND);
+    traverse(keys, r, inGroup);
+    vtkSPTDepthKeyBuffer::Barrier();
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    ostate->vtkglEnable(GL_BLEND);
+    traverse(colors, r, inGroup);
+    vtkSPTDepthKeyBuffer::Barrier();
+  }
+}
+
+void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* self,
+  vtkShaderProgram* program, double maxThickness, vtkTextureObject* table, int first, int count)
+{
+  vtkInternals& internals = *this;
+  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  const int scalarSamples = internals.Table->GetScalarResolution();
+  const int thicknessSamples = internals.Table->GetLengthResolution();
+  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
+    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
+  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
+    0.5f / thicknessSamples };
+  const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
+  program->SetUniformMatrix4x4("MCVCMatrix", internals.Transforms.MCVC);
+  program->SetUniformMatrix4x4("VCDCMatrix", internals.Transforms.VCDC);
+  program->SetUniformMatrix4x4("DCVCMatrix", internals.Transforms.DCVC);
+  program->SetUniformMatrix3x3("VCMCLinear", internals.Transforms.VCMCLinear);
+  program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
+  program->SetUniform3f("tableTexelScale", texelScale);
+  program->SetUniform3f("tableTexelOffset", texelOffset);
+  program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
+  program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", self->SubpixelLevel);
+  program->SetUniform2f("passSizeInPixels", passSize);
+  program->SetUniformi("seed", static_cast<int>(self->Seed));
+  // Strata: the repetitions of this render form one block (progressive renders add blocks).
+  program->SetUniformi("stratumCount", self->StratifiedSampling ? count : 0);
+  program->SetUniformi("stratumOrigin", first);
+  int bits = 0;
+  while ((1 << bits) < count)
+  {
+    ++bits;
+  }
+  program->SetUniformi("stratumMask", (1 << bits) - 1);
+  program->SetUniformi("stratumShift", std::max((bits + 1) / 2, 1));
+  if (internals.Mesh->GetCellScalars())
+  {
+    program->SetUniformi("cellScalars", internals.Mesh->GetCellScalarTexture()->GetTextureUnit());
+  }
+  if (program->IsUniformUsed("depthKeys"))
+  {
+    program->SetUniformi("depthKeys", DepthKeyImageUnit);
+  }
 }
 
 void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
@@ -252,7 +454,10 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.Mesh->ReleaseGraphicsResources(window);
   internals.Table->ReleaseGraphicsResources(window);
   internals.Ensemble->ReleaseGraphicsResources(window);
+  internals.DepthKeys->ReleaseGraphicsResources(window);
   internals.Context = nullptr;
+  internals.SumSignature.clear();
+  internals.AccumulatedRepetitions = 0;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -269,6 +474,16 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
      << "\n";
   os << indent << "VectorComponent: " << this->VectorComponent << "\n";
+  os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
+  os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
+  os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off")
+     << "\n";
+  os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions
+     << "\n";
+  os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off")
+     << "\n";
+  os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
+  os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
   os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
   os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";

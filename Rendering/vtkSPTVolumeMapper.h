@@ -82,6 +82,70 @@ public:
 
   ///@{
   /**
+   * Repetitions drawn per traversal of the geometry. 1 draws each repetition as its own pass,
+   * as in the paper. N > 1 makes N keep-or-discard decisions per fragment and finds each
+   * repetition's nearest survivor with image atomics (two traversals for N repetitions), which
+   * gives the same image as N single passes with the same random numbers, for 4 x N bytes per
+   * sample of GPU memory. Needs OpenGL 4.4 (image load/store, clear texture); without it the
+   * mapper falls back to 1. Range 1 to 64, default 16.
+   */
+  vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
+  vtkGetMacro(RepetitionsPerPass, int);
+  ///@}
+
+  ///@{
+  /**
+   * Stratified keep-or-discard thresholds: within the RepetitionLevel repetitions of an image,
+   * each fragment's thresholds visit the RepetitionLevel strata of [0, 1) once each, in an
+   * order of its own, instead of being independent. The expectation is the same; a segment's
+   * kept count is exact to within one, so the error falls faster than 1 / sqrt(RepetitionLevel).
+   * Default on.
+   */
+  vtkSetMacro(StratifiedSampling, vtkTypeBool);
+  vtkGetMacro(StratifiedSampling, vtkTypeBool);
+  vtkBooleanMacro(StratifiedSampling, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Progressive refinement: while the camera, the viewport, the input, the transfer functions,
+   * the settings and the props of the renderer stay unchanged, each render adds
+   * RepetitionLevel repetitions to the image shown before, up to
+   * MaximumProgressiveRepetitions in all; any change starts again. Default off, maximum 4096
+   * (range 1 to 2^20).
+   */
+  vtkSetMacro(ProgressiveRefinement, vtkTypeBool);
+  vtkGetMacro(ProgressiveRefinement, vtkTypeBool);
+  vtkBooleanMacro(ProgressiveRefinement, vtkTypeBool);
+  vtkSetClampMacro(MaximumProgressiveRepetitions, int, 1, 1 << 20);
+  vtkGetMacro(MaximumProgressiveRepetitions, int);
+  ///@}
+
+  ///@{
+  /**
+   * Fit the render time: when the volume's allocated render time (from the render window's
+   * desired update rate, as during interaction in a vtkRenderWindowInteractor) is shorter
+   * than RepetitionLevel repetitions take, draw only as many as fit (at least one), measured
+   * from the previous renders. Still renders (the default, tiny desired update rate) draw the
+   * full RepetitionLevel. Default on.
+   */
+  vtkSetMacro(AutoAdjustRepetitions, vtkTypeBool);
+  vtkGetMacro(AutoAdjustRepetitions, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustRepetitions, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * The repetitions averaged into the image of the last render (fewer than RepetitionLevel
+   * when the time budget cut them, more with progressive refinement), and the measured time
+   * of one repetition in seconds (0 before the first measurement).
+   */
+  vtkGetMacro(LastRepetitionCount, int);
+  vtkGetMacro(TimePerRepetition, double);
+  ///@}
+
+  ///@{
+  /**
    * Samples of the pre-integration table along each scalar axis (front and back). Range 8 to
    * 1024, default 128.
    */
@@ -150,6 +214,13 @@ protected:
   int PreIntegrationThicknessResolution = 64;
   int VectorMode = MAGNITUDE;
   int VectorComponent = 0;
+  int RepetitionsPerPass = 16;
+  vtkTypeBool StratifiedSampling = 1;
+  vtkTypeBool ProgressiveRefinement = 0;
+  int MaximumProgressiveRepetitions = 4096;
+  vtkTypeBool AutoAdjustRepetitions = 1;
+  int LastRepetitionCount = 0;
+  double TimePerRepetition = 0.0;
 
 private:
   vtkSPTVolumeMapper(const vtkSPTVolumeMapper&) = delete;

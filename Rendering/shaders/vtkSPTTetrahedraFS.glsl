@@ -1,4 +1,5 @@
 //VTK::System::Dec
+//SPT::Extensions::Dec
 //VTK::Output::Dec
 
 // SPT fragment stage (Sakamoto, Kawamura, Kuwano and Koyamada 2009): look up the
@@ -24,8 +25,22 @@ uniform int subpixelLevel;
 uniform vec2 passSizeInPixels;
 uniform mat4 DCVCMatrix;               // clip -> view, for the scene depth
 
-uniform int repetition; // bit patterns of unsigned values: VTK sets int uniforms only
-uniform int seed;
+uniform int repetition; // first repetition of this pass; bit patterns of unsigned values:
+uniform int seed;       // VTK sets int uniforms only
+uniform int stratumCount;  // stratified sampling: the repetitions from stratumOrigin on form
+uniform int stratumOrigin; // blocks of stratumCount; 0 for independent sampling
+uniform int stratumMask;   // 2^k - 1 >= stratumCount - 1, and about k / 2, for permute()
+uniform int stratumShift;
+uniform int repetitionsInGroup; // of the SPT_REPETITIONS_PER_PASS, how many this pass draws
+
+// How this pass writes: SPT_PASS_SINGLE (one repetition, the fragment written opaque with the
+// depth test), or, for SPT_REPETITIONS_PER_PASS repetitions at once, SPT_PASS_KEYS (each kept
+// fragment takes the per-repetition minimum of its depth key) then SPT_PASS_COLORS (the
+// fragment adds its color once for each repetition whose minimum it holds).
+//SPT::Pass::Dec
+#ifndef SPT_PASS_SINGLE
+layout(r32ui) coherent uniform uimage3D depthKeys; // (pixel, repetition in the pass)
+#endif
 
 // PCG-based 4D hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
 uvec4 pcg4d(uvec4 v)
@@ -43,11 +58,51 @@ uvec4 pcg4d(uvec4 v)
   return v;
 }
 
-float uniformRandom()
+float unitFloat(uint bits)
 {
-  uvec4 key = uvec4(uvec2(gl_FragCoord.xy), uint(tetrahedronId), uint(repetition));
+  return float(bits >> 8u) * (1.0 / 16777216.0);
+}
+
+// A pseudo-random permutation of [0, n), keyed: a bijection of the enclosing power-of-two range
+// (xor, odd multiplication and xorshift are invertible modulo 2^k), walked until it lands in
+// range (the idea of Kensler's "Correlated Multi-Jittered Sampling", Pixar 2013).
+uint permute(uint index, uint n, uint key)
+{
+  uint mask = uint(stratumMask);
+  uint shift = uint(stratumShift);
+  do
+  {
+    index ^= key;
+    index *= 0xe170893du;
+    index ^= (index & mask) >> shift;
+    index ^= key >> 16u;
+    index *= 0x0929eb3fu;
+    index ^= (index & mask) >> shift;
+    index += key;
+    index &= mask;
+  } while (index >= n);
+  return index;
+}
+
+// The keep-or-discard threshold of this fragment for repetition r: uniform in [0, 1), from a
+// hash of the pixel, the tetrahedron, r and the seed. Stratified: within each block of
+// stratumCount repetitions, every (pixel, tetrahedron) visits each of the stratumCount strata
+// once, in its own random order, so its kept count is alpha * stratumCount to within one.
+float threshold(uint r)
+{
+  uvec4 key = uvec4(uvec2(gl_FragCoord.xy), uint(tetrahedronId), r);
   key.w ^= uint(seed) * 0x9E3779B9u;
-  return float(pcg4d(key).x >> 8u) * (1.0 / 16777216.0);
+  if (stratumCount <= 0)
+  {
+    return unitFloat(pcg4d(key).x);
+  }
+  uint n = uint(stratumCount);
+  uint local = r - uint(stratumOrigin);
+  uint block = local / n;
+  uvec4 jitter = pcg4d(key);
+  uvec4 order = pcg4d(uvec4(key.xyz, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu)));
+  uint stratum = permute(local - block * n, n, order.x);
+  return (float(stratum) + unitFloat(jitter.x)) / float(n);
 }
 
 void main()
@@ -81,10 +136,39 @@ void main()
     sqrt(min(thickness * thicknessToTable, 1.0)));
   vec4 segment = texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);
 
-  if (uniformRandom() >= segment.a)
+#ifdef SPT_PASS_SINGLE
+  if (threshold(uint(repetition)) >= segment.a)
   {
     discard;
   }
   // Kept with probability alpha, so the premultiplied color is divided by alpha.
   gl_FragData[0] = vec4(segment.rgb / segment.a, 1.0);
+#else
+  // The depth key: the depth in 24 bits (as a depth buffer holds it), then 8 bits of the
+  // tetrahedron's id, so that two fragments at one depth do not both win.
+  uint depthKey = (uint(clamp(gl_FragCoord.z, 0.0, 1.0) * 16777215.0) << 8u) |
+    (uint(tetrahedronId) & 0xFFu);
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  int wins = 0;
+  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
+  {
+    if (threshold(uint(repetition + r)) < segment.a)
+    {
+#ifdef SPT_PASS_KEYS
+      imageAtomicMin(depthKeys, ivec3(pixel, r), depthKey);
+#else
+      wins += imageLoad(depthKeys, ivec3(pixel, r)).r == depthKey ? 1 : 0;
+#endif
+    }
+  }
+  // The key pass writes no color (its color mask is off); the color pass adds the fragment
+  // into the ensemble's sum once per repetition won.
+#ifdef SPT_PASS_COLORS
+  if (wins == 0)
+  {
+    discard;
+  }
+#endif
+  gl_FragData[0] = float(wins) * vec4(segment.rgb / segment.a, 1.0);
+#endif
 }

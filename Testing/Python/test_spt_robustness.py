@@ -133,8 +133,7 @@ def test_constant_field_matches_the_reference(have_display):
     grid.GetPointData().SetScalars(array)
     prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
     image, _, messages = draw(grid, prop, repetitions=64)
-    reference = render.render(grid, prop, render.reference_mapper(), render.View(30, 30),
-                              SIZE).image
+    reference = render.reference(grid, prop, render.View(30, 30), SIZE).image
     assert not messages.errors
     assert metrics.rmse(image, reference) < 0.05
 

@@ -88,6 +88,13 @@ def _parser() -> argparse.ArgumentParser:
     pbvr.add_argument("--levels", type=_levels, default=[4, 16, 64, 144],
                       help="repetition levels of the convergence curves (default 4,16,64,144)")
     pbvr.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+    sampling = figure.add_parser(
+        "sampling", help="several repetitions per pass and stratified thresholds, measured")
+    sampling.add_argument("--output", type=pathlib.Path,
+                          default=pathlib.Path("out/figures/sampling"))
+    sampling.add_argument("--dataset", type=lambda t: _datasets(t)[0], default="default")
+    sampling.add_argument("--levels", type=_levels, default=[16, 32, 64, 128, 256])
+    sampling.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     accuracy = figure.add_parser(
         "accuracy", help="stochastic against exact brightness along random rays")
     accuracy.add_argument("--output", type=pathlib.Path,
@@ -131,6 +138,18 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print()
             print((arguments.output / "pbvr_convergence.md").read_text())
             print(f"Images, comparisons and pbvr_convergence.png written to {arguments.output}")
+        elif arguments.figure == "sampling":
+            from .sampling import sampling_figure
+
+            result = sampling_figure(arguments.dataset, arguments.levels, arguments.size,
+                                     arguments.output)
+            print((arguments.output / "sampling.md").read_text())
+            check = result["per_pass_check"]
+            print(f"16 per pass against 1 per pass at {check['repetitions']} repetitions: "
+                  f"{check['speedup']:.2f}x faster, largest pixel difference "
+                  f"{check['max_abs_difference']:.4f}")
+            print(f"stratified thresholds reach the error of {result['levels'][-1]} independent "
+                  f"repetitions with {result['stratified_repetitions_to_match']}")
         else:
             result = figures.accuracy_figure(arguments.output, arguments.rays)
             print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "

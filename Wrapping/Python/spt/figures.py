@@ -82,7 +82,7 @@ def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
     images, difference images, footprint RMSE and PSNR, and render times."""
     output.mkdir(parents=True, exist_ok=True)
     shape = (size, size)
-    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    reference = render.reference(s.grid, s.property, s.view, shape)
     pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
     metrics.write_png(output / f"{s.name}_vtk_pt.png", pt.image)
@@ -309,7 +309,7 @@ def demo(output: PathLike, size: int = 384, repetitions: int = 128,
     output.mkdir(parents=True, exist_ok=True)
     s = scene(dataset)
     shape = (size, size)
-    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    reference = render.reference(s.grid, s.property, s.view, shape)
     pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
     spt = render.render(s.grid, s.property, render.spt_mapper(repetitions, seed=seed), s.view, shape)
     names = {"spt": spt, "vtk_pt": pt, "reference": reference}
@@ -319,7 +319,8 @@ def demo(output: PathLike, size: int = 384, repetitions: int = 128,
         [spt.image, pt.image, reference.image,
          metrics.difference_image(spt.image, reference.image),
          metrics.difference_image(pt.image, reference.image)],
-        [f"SPT, {repetitions} repetitions", "VTK projected tetrahedra", "reference (ray caster)",
+        [f"SPT, {repetitions} repetitions", "VTK projected tetrahedra",
+         "reference (exact ray caster)",
          "|SPT - reference| x4", "|VTK PT - reference| x4"])
     metrics.write_png(output / "comparison.png", comparison)
     rows = []

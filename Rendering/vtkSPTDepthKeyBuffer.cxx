@@ -1,0 +1,94 @@
+#include "vtkSPTDepthKeyBuffer.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
+
+vtkSPTDepthKeyBuffer::vtkSPTDepthKeyBuffer() = default;
+
+vtkSPTDepthKeyBuffer::~vtkSPTDepthKeyBuffer() = default;
+
+bool vtkSPTDepthKeyBuffer::IsSupported(vtkOpenGLRenderWindow* renWin)
+{
+  if (!renWin)
+  {
+    return false;
+  }
+  renWin->MakeCurrent();
+  const bool imageLoadStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
+  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
+  return imageLoadStore && clearTexture;
+}
+
+bool vtkSPTDepthKeyBuffer::Prepare(
+  vtkOpenGLRenderWindow* renWin, int width, int height, int layers)
+{
+  if (renWin == this->Context && width == this->Width && height == this->Height &&
+    layers == this->Layers)
+  {
+    return true;
+  }
+  this->ReleaseGraphicsResources(this->Context);
+  this->Keys->SetContext(renWin);
+  this->Keys->SetInternalFormat(GL_R32UI);
+  this->Keys->SetFormat(GL_RED_INTEGER);
+  this->Keys->SetDataType(GL_UNSIGNED_INT);
+  this->Keys->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->Keys->SetMagnificationFilter(vtkTextureObject::Nearest);
+  if (!this->Keys->Create3DFromRaw(width, height, layers, 1, VTK_UNSIGNED_INT, nullptr))
+  {
+    vtkErrorMacro("Could not allocate the " << width << "x" << height << "x" << layers
+                                            << " depth keys of several repetitions per pass.");
+    this->ReleaseGraphicsResources(renWin);
+    return false;
+  }
+  this->Context = renWin;
+  this->Width = width;
+  this->Height = height;
+  this->Layers = layers;
+  return true;
+}
+
+void vtkSPTDepthKeyBuffer::Clear()
+{
+  const GLuint nothingKept = 0xFFFFFFFFu;
+  glClearTexImage(this->Keys->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nothingKept);
+}
+
+void vtkSPTDepthKeyBuffer::BindImage(int unit)
+{
+  glBindImageTexture(static_cast<GLuint>(unit), this->Keys->GetHandle(), 0, GL_TRUE, 0,
+    GL_READ_WRITE, GL_R32UI);
+}
+
+void vtkSPTDepthKeyBuffer::Barrier()
+{
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+    GL_FRAMEBUFFER_BARRIER_BIT);
+}
+
+size_t vtkSPTDepthKeyBuffer::GetGPUMemorySize() const
+{
+  return this->Context ? size_t(this->Width) * size_t(this->Height) * size_t(this->Layers) * 4
+                       : 0;
+}
+
+void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (window)
+  {
+    this->Keys->ReleaseGraphicsResources(window);
+  }
+  this->Context = nullptr;
+  this->Width = this->Height = this->Layers = 0;
+}
+
+void vtkSPTDepthKeyBuffer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Width << " x " << this->Height << " x " << this->Layers
+     << "\n";
+}

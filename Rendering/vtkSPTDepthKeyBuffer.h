@@ -1,0 +1,81 @@
+/**
+ * @class   vtkSPTDepthKeyBuffer
+ * @brief   per-repetition depth keys, for drawing several stochastic repetitions in one pass
+ *
+ * One pass of SPT keeps, per pixel, the nearest fragment that survived its random test. To
+ * draw N repetitions with one traversal of the geometry, each fragment makes N independent
+ * keep-or-discard decisions, and the nearest survivor of each repetition is found with an
+ * atomic minimum on a depth key in layer r of this buffer (an r32ui 3D image: pixel x pixel x
+ * repetition). A second traversal then adds each fragment's color once for every layer whose
+ * minimum it holds. Two traversals for N repetitions instead of N, and the result is the same
+ * image as N single passes with the same random numbers.
+ *
+ * Private helper of the SPT module; not wrapped.
+ */
+
+#ifndef vtkSPTDepthKeyBuffer_h
+#define vtkSPTDepthKeyBuffer_h
+
+#include "SPTRenderingModule.h" // For export macro
+#include "vtkNew.h"             // For the texture
+#include "vtkObject.h"
+
+class vtkOpenGLRenderWindow;
+class vtkTextureObject;
+class vtkWindow;
+
+class SPTRENDERING_EXPORT vtkSPTDepthKeyBuffer : public vtkObject
+{
+public:
+  static vtkSPTDepthKeyBuffer* New();
+  vtkTypeMacro(vtkSPTDepthKeyBuffer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Whether the context has what this takes: image load/store and clear-texture (OpenGL 4.4,
+   * or the ARB extensions).
+   */
+  static bool IsSupported(vtkOpenGLRenderWindow* renWin);
+
+  /**
+   * Size the buffer: width x height samples, one layer per repetition of a pass. Reallocates
+   * only when one of these or the context changes. Returns false (with an error) when the
+   * texture cannot be allocated.
+   */
+  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers);
+
+  /**
+   * Set every key to "nothing kept" (the largest key).
+   */
+  void Clear();
+
+  /**
+   * Bind the keys as image unit `unit` for the fragment shaders, and make the writes of the
+   * previous traversal visible to the next one.
+   */
+  void BindImage(int unit);
+  static void Barrier();
+
+  /**
+   * Bytes held on the GPU.
+   */
+  size_t GetGPUMemorySize() const;
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkSPTDepthKeyBuffer();
+  ~vtkSPTDepthKeyBuffer() override;
+
+private:
+  vtkSPTDepthKeyBuffer(const vtkSPTDepthKeyBuffer&) = delete;
+  void operator=(const vtkSPTDepthKeyBuffer&) = delete;
+
+  vtkOpenGLRenderWindow* Context = nullptr;
+  int Width = 0;
+  int Height = 0;
+  int Layers = 0;
+  vtkNew<vtkTextureObject> Keys;
+};
+
+#endif
