@@ -12,6 +12,8 @@ level give the noise and the bias against the reference (spt.statistics). The te
 - with a steep transfer function, exact in-cell density (rejection) keeps the thin features
   that the papers' cell-average density loses.
 Statistical tolerances are four standard errors of the estimates, estimated from the pixels.
+The reference is the project's exact ray caster (spt.raycast); where an opaque plane cuts the
+volume, VTK's ray caster.
 """
 
 import math
@@ -41,7 +43,7 @@ def _scene(name):
 @lru_cache(maxsize=None)
 def _reference(name):
     s = _scene(name)
-    return render.render(s.grid, s.property, render.reference_mapper(), s.view, (SIZE, SIZE)).image
+    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
 
 
 @lru_cache(maxsize=None)
@@ -139,7 +141,7 @@ def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display)
     level = 64
     for zoom in (1.0, 1.8):
         view = render.View(30, 30, zoom=zoom, parallel=parallel)
-        reference = render.render(grid, prop, render.reference_mapper(), view, (SIZE, SIZE)).image
+        reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
         images = [render.render(grid, prop, render.pbvr_mapper(level, seed=seed), view,
                                 (SIZE, SIZE)).image for seed in (1, 2)]
         interior = _erode(reference[..., 3] > 0.01, 2)
@@ -148,7 +150,8 @@ def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display)
         tolerance = Z * noise.std() / math.sqrt(difference.size) + 0.001
         assert interior.sum() > 1000
         assert abs(difference.mean()) <= tolerance, (
-            f"zoom {zoom}: mean alpha difference {difference.mean():+.5f} (tolerance {tolerance:.5f})")
+            f"zoom {zoom}: mean alpha difference {difference.mean():+.5f} "
+            f"(tolerance {tolerance:.5f})")
 
 
 def _block_mean(image, factor):
@@ -161,8 +164,7 @@ def test_subpixel_level_averages_subpixels(have_display):
     the resolution, and the alpha noise is the subpixels' a (1 - a) / (4 L)."""
     s = figures.scene("default")
     level, size = 16, SIZE // 2
-    fine = render.render(s.grid, s.property, render.reference_mapper(), s.view,
-                         (2 * size, 2 * size)).image
+    fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
     reference = _block_mean(fine, 2)
     first, second = (render.render(s.grid, s.property, render.pbvr_mapper(level, 2, seed),
                                    s.view, (size, size)).image for seed in (1, 2))
@@ -188,8 +190,8 @@ def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
     actor.SetMapper(plane_mapper)
     actor.GetProperty().SetColor(0.5, 0.5, 0.5)
     actor.GetProperty().LightingOff()
-    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view,
-                              (SIZE, SIZE), actors=[actor]).image
+    reference = render.reference(s.grid, s.property, s.view, (SIZE, SIZE), method="vtk",
+                                 actors=[actor]).image
     level = 64
     first, second = (render.render(s.grid, s.property, render.pbvr_mapper(level, seed=seed),
                                    s.view, (SIZE, SIZE), actors=[actor]).image
@@ -210,7 +212,7 @@ def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display)
     grid = load_or_skip("bluntfin")
     prop = data.transfer_function(grid, "steep", steep_center=0.3)
     view = figures.scene("bluntfin").view
-    reference = render.render(grid, prop, render.reference_mapper(), view, (SIZE, SIZE)).image
+    reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
     level = 64
     biases = {}
     for cell_average in (False, True):

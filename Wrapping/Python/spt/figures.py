@@ -197,7 +197,7 @@ def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
     output.mkdir(parents=True, exist_ok=True)
     shape = (size, size)
     levels = sorted(set(levels) | {repetitions})
-    reference = render.render(s.grid, s.property, render.reference_mapper(), s.view, shape)
+    reference = render.reference(s.grid, s.property, s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
     result: Dict[str, object] = {
         "dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
@@ -230,8 +230,8 @@ PBVR_TABLE_HEADER = ["data set", "method", "RMSE", "PSNR [dB]", "pixels off > 0.
 
 
 def _pbvr_rows(result: Dict[str, object]) -> List[List[object]]:
-    rows: List[List[object]] = [[result["dataset"], "reference (ray caster)", 0.0, math.inf, 0.0,
-                                 result["reference_seconds"], "-", "-", "-", "-"]]
+    rows: List[List[object]] = [[result["dataset"], "reference (exact ray caster)", 0.0,
+                                 math.inf, 0.0, result["reference_seconds"], "-", "-", "-", "-"]]
     for label, entries in result["methods"].items():
         entry = next(e for e in entries if e["repetitions"] == result["repetitions"])
         particles = entry.get("particles")
