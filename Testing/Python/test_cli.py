@@ -92,11 +92,12 @@ def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
     lines = result.stdout.splitlines()
     header = re.split(r"\s{2,}", lines[0].strip())
     rows = {cells[1]: dict(zip(header, cells))
-            for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[2:6])}
+            for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[2:7])}
     assert header[:3] == ["data set", "method", "RMSE"]
     pbvr = rows["PBVR, L=8"]
     assert int(pbvr["particles"]) > 0 and float(pbvr["GPU memory [MiB]"]) > 0.0
     assert float(pbvr["particles / s"]) > 0.0 and 0.0 < float(pbvr["RMSE"]) < 0.5
     assert rows["SPT, L=8"]["particles"] == "-"
+    assert rows["SPT, independent thresholds, L=8"]["particles"] == "-"
     convergence = (output / "pbvr_convergence.md").read_text()
     assert "| L=2 | L=8 |" in convergence and "PBVR, cell average" in convergence

@@ -167,8 +167,12 @@ STEEP_SCENES: Dict[str, Callable[[], Scene]] = {
 }
 
 #: The methods of the PBVR figure: (label, file stem, mapper for a repetition level and seed).
+#: SPT as users get it (stratified thresholds) and as the paper samples (independent ones, the
+#: Monte Carlo sampling that PBVR's independent particle sets also have).
 PBVR_METHODS = [
     ("SPT", "spt", lambda level, seed: render.spt_mapper(level, seed=seed)),
+    ("SPT, independent thresholds", "spt_independent",
+     lambda level, seed: render.spt_mapper(level, seed=seed, stratified=False)),
     ("PBVR", "pbvr", lambda level, seed: render.pbvr_mapper(level, seed=seed)),
     ("PBVR, cell average", "pbvr_cell_average",
      lambda level, seed: render.pbvr_mapper(level, seed=seed, cell_average=True)),
@@ -191,7 +195,7 @@ def _method_entry(rendering: render.Rendering, reference: np.ndarray, level: int
 
 def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
                  output: PathLike, seed: int = 0) -> Dict[str, object]:
-    """The reference, SPT, PBVR and PBVR with the papers' cell-average density on one scene:
+    """The reference and every method of PBVR_METHODS on one scene:
     images and difference images at `repetitions`, and the RMSE at every level of `levels`
     (which gets `repetitions` added) for the convergence curves."""
     output.mkdir(parents=True, exist_ok=True)
@@ -216,7 +220,8 @@ def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
                 images.append(rendering.image)
                 differences.append(difference)
         result["methods"][label] = entries
-    short = [label.replace(", cell average", " cell avg.") for label, _, _ in PBVR_METHODS]
+    short = [label.replace(", cell average", " cell avg.").replace(
+        ", independent thresholds", " indep.") for label, _, _ in PBVR_METHODS]
     labels = (["reference"] + [f"{label}, L={repetitions}" for label in short]
               + [f"|{label} - ref.| x4" for label in short])
     metrics.write_png(output / f"{s.name}_comparison.png",
@@ -268,7 +273,8 @@ def _plot_pbvr_convergence(results: List[Dict[str, object]], path: PathLike) -> 
 def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int], size: int,
                 output: PathLike, seed: int = 0) -> List[List[object]]:
     """The "PBVR vs. SPT" figure: for each data set with a steep transfer function, the
-    reference, SPT, PBVR and PBVR with cell-average density at `repetitions`: images,
+    reference, SPT (stratified and independent thresholds), PBVR and PBVR with cell-average
+    density at `repetitions`: images,
     difference images, RMSE, render times, particles, memory (pbvr.md); and the convergence
     of all three against the repetition level (pbvr_convergence.png / .md). Returns the rows of
     the main table."""
