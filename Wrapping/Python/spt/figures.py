@@ -259,12 +259,14 @@ def _plot_pbvr_convergence(results: List[Dict[str, object]], path: PathLike) -> 
         for number, (label, entries) in enumerate(result["methods"].items()):
             levels = np.asarray([e["repetitions"] for e in entries], dtype=float)
             errors = [e["rmse"] for e in entries]
-            axes.loglog(levels, errors, "o-", color=f"C{number}", label=label)
+            # Distinct markers and dashes: curves that coincide stay visible.
+            style = ["o-", "s--", "^:", "v-."][number % 4]
+            axes.loglog(levels, errors, style, color=f"C{number}", label=label, markersize=5)
             axes.loglog(levels, errors[0] * np.sqrt(levels[0] / levels), "--",
                         color=f"C{number}", alpha=0.3)
         axes.set_xlabel("RepetitionLevel")
         axes.set_ylabel("footprint RMSE against the reference")
-        axes.set_title(f"{result['dataset']}, steep transfer function")
+        axes.set_title(f"{result['dataset']}, steep transfer function (faint: 1/sqrt(L))")
         axes.legend(fontsize=7)
     figure.tight_layout()
     FigureCanvasAgg(figure).print_png(str(path))
