@@ -41,7 +41,9 @@ double vtkSPTPreIntegrationTable::GetLength(int k) const
   return this->MaxLength * t * t;
 }
 
-bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* property)
+bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* property,
+  const double scalarRange[2], int samples, std::vector<double>& color,
+  std::vector<double>& attenuation, std::string& error)
 {
   const double unitDistance = property->GetScalarOpacityUnitDistance(0);
   if (!(unitDistance > 0.0) || !std::isfinite(unitDistance))
@@ -49,35 +51,34 @@ bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* prope
     std::ostringstream reason;
     reason << "ScalarOpacityUnitDistance of the volume property is " << unitDistance
            << "; it must be a positive, finite distance.";
-    this->LastError = reason.str();
+    error = reason.str();
     return false;
   }
-  const int n = this->TransferFunctionSamples;
-  const double* range = this->ScalarRange;
+  const int n = samples;
   std::vector<double> opacity(n);
-  property->GetScalarOpacity(0)->GetTable(range[0], range[1], n, opacity.data());
-  this->Color.assign(3 * n, 0.0);
+  property->GetScalarOpacity(0)->GetTable(scalarRange[0], scalarRange[1], n, opacity.data());
+  color.assign(3 * n, 0.0);
   if (property->GetColorChannels(0) == 1)
   {
     std::vector<double> gray(n);
-    property->GetGrayTransferFunction(0)->GetTable(range[0], range[1], n, gray.data());
+    property->GetGrayTransferFunction(0)->GetTable(scalarRange[0], scalarRange[1], n, gray.data());
     for (int i = 0; i < n; ++i)
     {
-      std::fill_n(&this->Color[3 * i], 3, gray[i]);
+      std::fill_n(&color[3 * i], 3, gray[i]);
     }
   }
   else
   {
-    property->GetRGBTransferFunction(0)->GetTable(range[0], range[1], n, this->Color.data());
+    property->GetRGBTransferFunction(0)->GetTable(scalarRange[0], scalarRange[1], n, color.data());
   }
-  this->Attenuation.resize(n);
+  attenuation.resize(n);
   for (int i = 0; i < n; ++i)
   {
     const double o = std::isfinite(opacity[i]) ? std::max(opacity[i], 0.0) : 0.0;
-    this->Attenuation[i] = o / unitDistance;
+    attenuation[i] = o / unitDistance;
     for (int c = 0; c < 3; ++c)
     {
-      double& value = this->Color[3 * i + c];
+      double& value = color[3 * i + c];
       value = std::isfinite(value) ? std::min(std::max(value, 0.0), 1.0) : 0.0;
     }
   }
@@ -108,7 +109,8 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   this->LengthResolution = std::max(2, lengthResolution);
   this->TransferFunctionSamples = TransferFunctionSamplesPerCell * (this->ScalarResolution - 1) + 1;
   this->LastProperty = nullptr;
-  if (!this->SampleTransferFunctions(property))
+  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(property, this->ScalarRange,
+        this->TransferFunctionSamples, this->Color, this->Attenuation, this->LastError))
   {
     return false;
   }

@@ -51,6 +51,17 @@ public:
   const std::string& GetLastError() const { return this->LastError; }
 
   /**
+   * The optical model in samples: the first component's color (RGB, clamped to [0, 1]) and
+   * attenuation (opacity / unit distance, per data unit) at `samples` evenly spaced scalars
+   * from scalarRange[0] to scalarRange[1]. Every mapper of the module samples the transfer
+   * functions here, so that all of them render the same model. Returns false, with the reason
+   * in `error`, when the unit distance is not a positive, finite distance.
+   */
+  static bool SampleTransferFunctions(vtkVolumeProperty* property, const double scalarRange[2],
+    int samples, std::vector<double>& color, std::vector<double>& attenuation,
+    std::string& error);
+
+  /**
    * When the contents of the table last changed.
    */
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
@@ -94,7 +105,6 @@ private:
   vtkSPTPreIntegrationTable(const vtkSPTPreIntegrationTable&) = delete;
   void operator=(const vtkSPTPreIntegrationTable&) = delete;
 
-  bool SampleTransferFunctions(vtkVolumeProperty* property);
   void IntegrateScalarPair(int front, int back, float* out) const;
 
   int ScalarResolution = 0;

@@ -13,8 +13,12 @@
 #include <algorithm>
 #include <cmath>
 
-void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
+void vtkSPTViewMatrices::Compute(
+  vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
 {
+  // Everything is composed in double and handed to the GPU in units of the mesh's own size
+  // (view coordinates divided by viewScale), so that float precision holds whatever the
+  // magnitude of the coordinates.
   vtkNew<vtkMatrix4x4> normalization;
   mesh->GetNormalizationMatrix(normalization);
   vtkMatrix4x4* model = vol->GetMatrix();
@@ -28,7 +32,7 @@ void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTM
   }
   vtkMath::SingularValueDecomposition3x3(linear, u, w, vt);
   const double modelScale = std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
-  const double viewScale = mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
+  this->ViewScale = mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
 
   vtkCamera* camera = ren->GetActiveCamera();
   this->ParallelProjection = camera->GetParallelProjection() != 0;
@@ -45,30 +49,38 @@ void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTM
   {
     for (int j = 0; j < 3; ++j)
     {
-      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / viewScale);
+      modelToView->SetElement(j, i, modelToView->GetElement(j, i) / this->ViewScale);
     }
-    viewToClip->SetElement(i, 3, viewToClip->GetElement(i, 3) / viewScale);
+    viewToClip->SetElement(i, 3, viewToClip->GetElement(i, 3) / this->ViewScale);
   }
   vtkNew<vtkMatrix4x4> clipToView;
   vtkMatrix4x4::Invert(viewToClip, clipToView);
   vtkSPTShaderUtilities::ToColumnMajor(modelToView, this->MCVC);
   vtkSPTShaderUtilities::ToColumnMajor(viewToClip, this->VCDC);
   vtkSPTShaderUtilities::ToColumnMajor(clipToView, this->DCVC);
-  double viewToModel[3][3];
+  for (int i = 0; i < 4; ++i)
+  {
+    for (int j = 0; j < 4; ++j)
+    {
+      this->ModelToView[i][j] = modelToView->GetElement(i, j);
+      this->ViewToClip[i][j] = viewToClip->GetElement(i, j);
+    }
+  }
   for (int i = 0; i < 3; ++i)
   {
     for (int j = 0; j < 3; ++j)
     {
-      linear[i][j] = modelToView->GetElement(i, j);
+      linear[i][j] = this->ModelToView[i][j];
     }
   }
   this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
-  vtkMath::Invert3x3(linear, viewToModel);
+  vtkMath::Invert3x3(linear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)
   {
     for (int row = 0; row < 3; ++row)
     {
-      this->VCMCLinear[3 * column + row] = static_cast<float>(viewToModel[row][column]);
+      this->VCMCLinear[3 * column + row] =
+        static_cast<float>(this->ViewToModelLinear[row][column]);
     }
   }
 }

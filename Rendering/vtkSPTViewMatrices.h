@@ -26,6 +26,12 @@ struct SPTRENDERING_EXPORT vtkSPTViewMatrices
   /// The linear part of view -> model: turns view-space segments into lengths in the
   /// normalized model units of the mesh (column-major 3x3).
   float VCMCLinear[9];
+  /// The same transforms in double, row-major (element [row][column]), for CPU-side use.
+  double ModelToView[4][4];
+  double ViewToClip[4][4];
+  double ViewToModelLinear[3][3];
+  /// Normalized view coordinates are view (camera) coordinates divided by ViewScale.
+  double ViewScale = 1.0;
   /// Whether the camera projects in parallel.
   bool ParallelProjection = false;
   /// Whether model -> view mirrors space (negative determinant), which swaps the facing of

@@ -43,6 +43,8 @@ def test_help():
     (("figures", "nosuch"), "invalid choice"),
     (("figures", "sorting", "--datasets", "nosuch"), "unknown data set"),
     (("figures", "sorting", "--repetitions", "0"), "outside"),
+    (("figures", "pbvr", "--datasets", "nosuch"), "unknown data set"),
+    (("figures", "pbvr", "--repetitions", "0"), "outside"),
 ])
 def test_bad_arguments_are_refused(arguments, message):
     result = run(*arguments)
@@ -97,3 +99,24 @@ def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
     rows = [re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[2:7]]
     havs = next(row for row in rows if row[1] == "HAVS-like k=6")
     assert 0.0 < float(havs[2]) < 0.05 and float(havs[5]) > 0.0 and float(havs[6]) > 0.0
+def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
+    output = tmp_path / "pbvr"
+    result = run("figures", "pbvr", "--datasets", "default", "--size", "48", "--repetitions", "8",
+                 "--levels", "2", "--output", str(output))
+    assert result.returncode == 0, result.stderr
+    for name in ("default_reference.png", "default_spt_8.png", "default_pbvr_8.png",
+                 "default_pbvr_cell_average_8_difference.png", "default_comparison.png",
+                 "pbvr.md", "pbvr.json", "pbvr_convergence.md", "pbvr_convergence.png"):
+        assert (output / name).stat().st_size > 100, name
+    lines = result.stdout.splitlines()
+    header = re.split(r"\s{2,}", lines[0].strip())
+    rows = {cells[1]: dict(zip(header, cells))
+            for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[2:7])}
+    assert header[:3] == ["data set", "method", "RMSE"]
+    pbvr = rows["PBVR, L=8"]
+    assert int(pbvr["particles"]) > 0 and float(pbvr["GPU memory [MiB]"]) > 0.0
+    assert float(pbvr["particles / s"]) > 0.0 and 0.0 < float(pbvr["RMSE"]) < 0.5
+    assert rows["SPT, L=8"]["particles"] == "-"
+    assert rows["SPT, independent thresholds, L=8"]["particles"] == "-"
+    convergence = (output / "pbvr_convergence.md").read_text()
+    assert "| L=2 | L=8 |" in convergence and "PBVR, cell average" in convergence

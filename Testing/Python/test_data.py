@@ -124,6 +124,17 @@ def test_transfer_function_presets(mesh, preset):
         data.transfer_function(mesh, "no-such-preset")
 
 
+def test_steep_preset_moves_its_peak(mesh):
+    prop = data.transfer_function(mesh, "steep", steep_center=0.3)
+    low, high = mesh.GetPointData().GetScalars().GetRange()
+    opacity = prop.GetScalarOpacity()
+    assert opacity.GetValue(low + 0.3 * (high - low)) == pytest.approx(0.9)
+    for outside in (0.2, 0.4, 0.65):
+        assert opacity.GetValue(low + outside * (high - low)) == 0.0
+    with pytest.raises(ValueError):
+        data.transfer_function(mesh, "steep", steep_center=0.99)
+
+
 def _blanked_grid():
     """3x3x3-point structured grid (8 hexes) with one blanked corner."""
     z, y, x = np.meshgrid(*(np.arange(3.0),) * 3, indexing="ij")

@@ -5,6 +5,7 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     import vtk, spt
     mapper = spt.vtkSPTVolumeMapper()    # sorting-free (the paper's method)
     baseline = spt.vtkHAVSVolumeMapper() # sorted baseline: HAVS (Callahan et al. 2005)
+    particles = spt.vtkPBVRVolumeMapper() # sorting-free baseline: particles (PBVR)
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.render``
 (rendering helpers and the reference), ``spt.metrics`` (image error), ``spt.accuracy``
@@ -15,7 +16,7 @@ Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.rende
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
 
-from .SPTRendering import vtkHAVSVolumeMapper, vtkSPTVolumeMapper
+from .SPTRendering import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTVolumeMapper
 
-__all__ = ["vtkHAVSVolumeMapper", "vtkSPTVolumeMapper"]
+__all__ = ["vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTVolumeMapper"]
 __version__ = "0.1.0"

@@ -42,6 +42,18 @@ def _datasets(text: str) -> List[str]:
     return names
 
 
+def _steep_datasets(text: str) -> List[str]:
+    from .figures import STEEP_SCENES
+
+    names = [part.strip() for part in text.split(",") if part.strip()]
+    unknown = [name for name in names if name not in STEEP_SCENES]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(
+            f"unknown data set(s) {', '.join(unknown) or '(none)'}; choose from "
+            f"{', '.join(STEEP_SCENES)}")
+    return names
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python3 -m spt",
@@ -67,6 +79,15 @@ def _parser() -> argparse.ArgumentParser:
     convergence.add_argument("--datasets", type=_datasets, default=["spx", "bluntfin", "post"])
     convergence.add_argument("--levels", type=_levels, default=[4, 16, 64, 256, 1024])
     convergence.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+    pbvr = figure.add_parser(
+        "pbvr", help="PBVR against SPT and the reference with a steep transfer function")
+    pbvr.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/figures/pbvr"))
+    pbvr.add_argument("--datasets", type=_steep_datasets, default=["bluntfin", "post"])
+    pbvr.add_argument("--repetitions", type=_positive_int(65536), default=144,
+                      help="RepetitionLevel of the images and the table (default 144)")
+    pbvr.add_argument("--levels", type=_levels, default=[4, 16, 64, 144],
+                      help="repetition levels of the convergence curves (default 4,16,64,144)")
+    pbvr.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     sampling = figure.add_parser(
         "sampling", help="several repetitions per pass and stratified thresholds, measured")
     sampling.add_argument("--output", type=pathlib.Path,
@@ -119,6 +140,13 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                                           arguments.output)
             print((arguments.output / "convergence.md").read_text())
             print(f"{len(results)} data sets; figures written to {arguments.output}")
+        elif arguments.figure == "pbvr":
+            rows = figures.pbvr_figure(arguments.datasets, arguments.repetitions,
+                                       arguments.levels, arguments.size, arguments.output)
+            _print_table(figures.PBVR_TABLE_HEADER, rows)
+            print()
+            print((arguments.output / "pbvr_convergence.md").read_text())
+            print(f"Images, comparisons and pbvr_convergence.png written to {arguments.output}")
         elif arguments.figure == "sampling":
             from .sampling import sampling_figure
 

@@ -538,15 +538,17 @@ _COOL_TO_WARM = [(0.0, 0.230, 0.299, 0.754), (0.5, 0.865, 0.865, 0.865),
 
 
 def transfer_function(grid: vtkDataSet, preset: str = "default",
-                      opacity_scale: float = 1.0) -> vtkVolumeProperty:
+                      opacity_scale: float = 1.0,
+                      steep_center: float = 0.65) -> vtkVolumeProperty:
     """Generic volume property over the active scalar range.
 
     Presets:
         ``"default"``: cool-to-warm colours, opacity linear from 0 to
         0.8 * opacity_scale.
-        ``"steep"``: cool-to-warm colours, opacity 0 up to 60 % of the
-        range, rising to 0.9 * opacity_scale at 65 % and back to 0 at 70 %
-        (a thin, sharp feature that stresses pre-integration).
+        ``"steep"``: cool-to-warm colours, opacity 0 up to 5 % of the
+        range below ``steep_center`` (a fraction of the range, default
+        0.65), rising to 0.9 * opacity_scale at it and back to 0 at 5 %
+        above it (a thin, sharp feature that stresses pre-integration).
 
     The unit distance is the bounding diagonal / 40. Opacities are clamped
     to 1.
@@ -554,8 +556,12 @@ def transfer_function(grid: vtkDataSet, preset: str = "default",
     if preset == "default":
         opacities = [(0.0, 0.0), (1.0, 0.8 * opacity_scale)]
     elif preset == "steep":
+        if not 0.05 <= steep_center <= 0.95:
+            raise ValueError(
+                f"steep_center {steep_center} is outside 0.05..0.95")
         peak = 0.9 * opacity_scale
-        opacities = [(0.0, 0.0), (0.6, 0.0), (0.65, peak), (0.7, 0.0),
+        opacities = [(0.0, 0.0), (steep_center - 0.05, 0.0),
+                     (steep_center, peak), (steep_center + 0.05, 0.0),
                      (1.0, 0.0)]
     else:
         raise ValueError(f"unknown preset {preset!r} (default, steep)")

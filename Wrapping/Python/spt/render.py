@@ -1,6 +1,6 @@
 """Rendering helpers: one scene, several volume mappers, float RGBA images back.
 
-Every renderer of the comparison (SPT, the HAVS-like sorted baseline, VTK's projected
+Every renderer of the comparison (SPT, the HAVS-like sorted baseline, PBVR, VTK's projected
 tetrahedra, the reference ray caster) is drawn through :func:`render`, with the same camera,
 transfer functions and window size, on a transparent black background, so that the image read
 back is the volume's own premultiplied RGBA.
@@ -38,7 +38,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics, raycast
-from .SPTRendering import vtkHAVSVolumeMapper, vtkSPTVolumeMapper
+from .SPTRendering import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTVolumeMapper
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,6 +76,16 @@ def havs_mapper(kbuffer_size: int = 6) -> vtkHAVSVolumeMapper:
         raise ValueError(f"the k-buffer size must be 2..6, not {kbuffer_size}")
     mapper = vtkHAVSVolumeMapper()
     mapper.SetKBufferSize(kbuffer_size)
+def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
+                cell_average: bool = False) -> vtkPBVRVolumeMapper:
+    """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
+    selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
+    mapper = vtkPBVRVolumeMapper()
+    mapper.SetRepetitionLevel(repetitions)
+    mapper.SetSubpixelLevel(subpixels)
+    mapper.SetSeed(seed)
+    if cell_average:
+        mapper.SetSamplingModeToCellAverage()
     return mapper
 
 
@@ -187,6 +197,7 @@ REFERENCE_SUPERSAMPLING = 2
 MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
     "spt": spt_mapper,
     "havs": havs_mapper,
+    "pbvr": pbvr_mapper,
     "pt": projected_tetrahedra_mapper,
     "reference": reference_mapper,
 }
@@ -246,8 +257,11 @@ def read_rgba(window: vtkRenderWindow) -> np.ndarray:
 
 def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
     """One untimed render that builds what later frames reuse (shaders, buffers, tables).
-    A stochastic mapper does it with one repetition: its caches do not depend on the count."""
-    repetitions = mapper.GetRepetitionLevel() if hasattr(mapper, "GetRepetitionLevel") else None
+    SPT does it with one repetition: its caches do not depend on the count. PBVR does it at
+    its full count: its particles (one set per repetition) are what it reuses."""
+    repetitions = None
+    if hasattr(mapper, "GetRepetitionLevel") and not isinstance(mapper, vtkPBVRVolumeMapper):
+        repetitions = mapper.GetRepetitionLevel()
     if repetitions is not None:
         mapper.SetRepetitionLevel(1)
     window.Render()
@@ -258,11 +272,28 @@ def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
 
 @dataclasses.dataclass
 class Rendering:
-    """An image and what it cost."""
+    """An image and what it cost. ``report`` holds what the mapper reported right after the
+    timed render, before the window released its resources: ``gpu_memory`` (bytes) for the
+    project's mappers, and ``particles``, ``particle_sets``, ``generation_seconds`` and
+    ``generation_count`` for PBVR."""
 
     image: np.ndarray
     seconds: float
     mapper: Optional[vtkAbstractVolumeMapper]
+    report: Dict[str, float] = dataclasses.field(default_factory=dict)
+
+
+def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
+    """What a mapper of this project says about its last render (empty for VTK's own)."""
+    report: Dict[str, float] = {}
+    if hasattr(mapper, "GetGPUMemorySize"):
+        report["gpu_memory"] = float(mapper.GetGPUMemorySize())
+    if isinstance(mapper, vtkPBVRVolumeMapper):
+        report["particles"] = float(mapper.GetNumberOfParticles())
+        report["particle_sets"] = float(mapper.GetNumberOfParticleSets())
+        report["generation_seconds"] = mapper.GetGenerationTime()
+        report["generation_count"] = float(mapper.GetGenerationCount())
+    return report
 
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
@@ -295,6 +326,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     window.Render()
     window.WaitForCompletion()
     seconds = time.perf_counter() - start
+    report = mapper_report(mapper)
     image = read_rgba(window)
     if reference:
         image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
@@ -303,7 +335,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
         renderer.RemoveActor(actor)
     if own_window:
         window.Finalize()
-    return Rendering(image=image, seconds=seconds, mapper=mapper)
+    return Rendering(image=image, seconds=seconds, mapper=mapper, report=report)
 
 
 #: How :func:`reference` renders: the project's exact ray caster (:mod:`spt.raycast`), or

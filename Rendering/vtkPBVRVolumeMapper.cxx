@@ -1,0 +1,650 @@
+#include "vtkPBVRVolumeMapper.h"
+
+#include "vtkMath.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLBufferObject.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexArrayObject.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkSmartPointer.h"
+#include "vtkTextureObject.h"
+#include "vtkTimeStamp.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtk_glew.h"
+
+#include "vtkPBVRParticleGenerator.h"
+#include "vtkSPTEnsembleBuffer.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTViewMatrices.h"
+
+#include "vtkPBVRParticlesFS.h"
+#include "vtkPBVRParticlesVS.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+// Samples of the transfer functions over the scalar range: the opacity that sets the particle
+// density and the color table of the vertex shader.
+constexpr int TransferFunctionSamples = 4096;
+// Particles made for a cross-section S serve views that need S to 2 S (the surplus is thinned
+// when drawn); beyond that, or below S, they are made again.
+constexpr double LargestFootprintRatio = 2.0;
+// After a failed generation, a view must need particles this much larger to try again.
+constexpr double RetryFootprintRatio = 1.25;
+// Draw calls stay far below GLsizei's range.
+constexpr vtkIdType MaxParticlesPerDraw = vtkIdType(1) << 28;
+
+// What a particle set was generated for.
+struct ParticleKey
+{
+  vtkMTimeType MeshBuild = 0;
+  vtkMTimeType OpacityChange = 0;
+  unsigned int Seed = 0;
+  int SamplingMode = 0;
+  size_t MaximumParticles = 0;
+  double Footprint = 0.0;
+  int Sets = 0;
+
+  bool SameModel(const ParticleKey& o) const
+  {
+    return MeshBuild == o.MeshBuild && OpacityChange == o.OpacityChange && Seed == o.Seed &&
+      SamplingMode == o.SamplingMode;
+  }
+};
+
+double LargestSingularValue(const double matrix[3][3])
+{
+  double a[3][3], u[3][3], w[3], vt[3][3];
+  std::copy(&matrix[0][0], &matrix[0][0] + 9, &a[0][0]);
+  vtkMath::SingularValueDecomposition3x3(a, u, w, vt);
+  return std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
+}
+}
+
+class vtkPBVRVolumeMapper::vtkInternals
+{
+public:
+  vtkNew<vtkSPTMeshBuffers> Mesh;
+  vtkNew<vtkSPTEnsembleBuffer> Ensemble;
+  vtkNew<vtkPBVRParticleGenerator> Generator;
+  vtkSPTViewMatrices Transforms;
+  vtkOpenGLRenderWindow* Context = nullptr;
+  vtkMTimeType ReportedMeshError = 0;
+  vtkMTimeType ReportedSkippedCells = 0;
+
+  // The transfer functions, sampled over the mesh's scalar range.
+  std::vector<double> Color;       // RGB
+  std::vector<double> Attenuation; // per data unit
+  double SampledRange[2] = { 0.0, 0.0 };
+  vtkVolumeProperty* SampledProperty = nullptr; // identity only, never dereferenced
+  vtkTimeStamp SampleTime;
+  vtkTimeStamp OpacityChangeTime;
+  vtkTimeStamp ColorChangeTime;
+  vtkTimeStamp ColorUploadTime;
+  vtkSmartPointer<vtkTextureObject> ColorTexture;
+
+  // The mesh's bounding sphere about its normalized origin.
+  double MeshRadius = 0.0;
+  vtkMTimeType RadiusBuild = 0;
+
+  // The particles and what they were made for.
+  ParticleKey Generated;
+  bool HaveParticles = false;
+  ParticleKey Failed;
+  bool HaveFailed = false;
+  vtkIdType GenerationCount = 0;
+  vtkNew<vtkOpenGLBufferObject> ParticleBuffer;
+  vtkNew<vtkOpenGLVertexArrayObject> VertexArray;
+  vtkShaderProgram* BoundProgram = nullptr;
+  size_t UploadedBytes = 0;
+
+  bool SampleTransferFunctions(vtkVolumeProperty* property, std::string& error);
+  vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
+  void UpdateMeshRadius();
+  double SmallestFootprint(int passWidth, int passHeight) const;
+  bool Generate(const ParticleKey& wanted);
+  bool Upload();
+  void ReleaseParticles();
+  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
+    vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel);
+  void DrawSet(vtkShaderProgram* program, int set);
+};
+
+bool vtkPBVRVolumeMapper::vtkInternals::SampleTransferFunctions(
+  vtkVolumeProperty* property, std::string& error)
+{
+  const double* range = this->Mesh->GetScalarRange();
+  if (property == this->SampledProperty && this->SampleTime > property->GetMTime() &&
+    range[0] == this->SampledRange[0] && range[1] == this->SampledRange[1])
+  {
+    return true;
+  }
+  std::vector<double> color, attenuation;
+  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(
+        property, range, TransferFunctionSamples, color, attenuation, error))
+  {
+    this->SampledProperty = nullptr;
+    return false;
+  }
+  // Only a change of the opacity calls for new particles; colors are looked up when drawn.
+  if (attenuation != this->Attenuation)
+  {
+    this->Attenuation.swap(attenuation);
+    this->OpacityChangeTime.Modified();
+  }
+  if (color != this->Color)
+  {
+    this->Color.swap(color);
+    this->ColorChangeTime.Modified();
+  }
+  this->SampledProperty = property;
+  this->SampledRange[0] = range[0];
+  this->SampledRange[1] = range[1];
+  this->SampleTime.Modified();
+  return true;
+}
+
+vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRenderWindow* renWin)
+{
+  if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
+    this->ColorUploadTime > this->ColorChangeTime)
+  {
+    return this->ColorTexture;
+  }
+  if (!this->ColorTexture)
+  {
+    this->ColorTexture = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  std::vector<float> rgba(4 * TransferFunctionSamples, 1.0f);
+  for (int i = 0; i < TransferFunctionSamples; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[4 * i + c] = static_cast<float>(this->Color[3 * i + c]);
+    }
+  }
+  vtkTextureObject* texture = this->ColorTexture;
+  texture->SetContext(renWin);
+  texture->SetWrapS(vtkTextureObject::ClampToEdge);
+  texture->SetWrapT(vtkTextureObject::ClampToEdge);
+  texture->SetMinificationFilter(vtkTextureObject::Linear);
+  texture->SetMagnificationFilter(vtkTextureObject::Linear);
+  if (!texture->Create2DFromRaw(TransferFunctionSamples, 1, 4, VTK_FLOAT, rgba.data()))
+  {
+    this->ColorTexture = nullptr;
+    return nullptr;
+  }
+  this->ColorUploadTime.Modified();
+  return texture;
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::UpdateMeshRadius()
+{
+  if (this->RadiusBuild == this->Mesh->GetBuildTime())
+  {
+    return;
+  }
+  const std::vector<float>& points = this->Mesh->GetPoints();
+  double radius2 = 0.0;
+  for (unsigned int id : this->Mesh->GetTetrahedra())
+  {
+    const float* p = &points[3 * size_t(id)];
+    radius2 = std::max(radius2, double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2]);
+  }
+  this->MeshRadius = std::sqrt(radius2);
+  this->RadiusBuild = this->Mesh->GetBuildTime();
+}
+
+double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int passHeight) const
+{
+  // The cross-section of one pass pixel at clip w, in normalized view units, is
+  // 4 w^2 / (P00 P11 width height), perspective and parallel alike; per unit length of a
+  // perspective ray at angle phi to the axis, it is that times cos(phi). The smallest one over
+  // the data's bounding sphere is at its nearest w, at the corner of the frustum.
+  const vtkSPTViewMatrices& t = this->Transforms;
+  const double(*p)[4] = t.ViewToClip;
+  double modelToView[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    std::copy_n(t.ModelToView[i], 3, modelToView[i]);
+  }
+  const double radius = this->MeshRadius * LargestSingularValue(modelToView);
+  // The mesh's normalized origin in view coordinates, and its w.
+  const double centerW = p[3][0] * t.ModelToView[0][3] + p[3][1] * t.ModelToView[1][3] +
+    p[3][2] * t.ModelToView[2][3] + p[3][3];
+  const double wGradient = std::sqrt(p[3][0] * p[3][0] + p[3][1] * p[3][1] + p[3][2] * p[3][2]);
+  double nearestW = centerW - wGradient * radius;
+  double cosine = 1.0;
+  if (!t.ParallelProjection)
+  {
+    // Nothing nearer than the near plane, n = P23 / (P22 - 1), is drawn.
+    nearestW = std::max(nearestW, p[2][3] / (p[2][2] - 1.0));
+    const double tanX = (1.0 + std::abs(p[0][2])) / std::abs(p[0][0]);
+    const double tanY = (1.0 + std::abs(p[1][2])) / std::abs(p[1][1]);
+    cosine = 1.0 / std::sqrt(1.0 + tanX * tanX + tanY * tanY);
+  }
+  const double areaVC = 4.0 * nearestW * nearestW * cosine /
+    (std::abs(p[0][0] * p[1][1]) * double(passWidth) * double(passHeight));
+  // In model units: volumes scale by |det|, ray lengths by at most the largest singular value.
+  const double volumeRatio = std::abs(vtkMath::Determinant3x3(t.ViewToModelLinear));
+  return areaVC * volumeRatio / LargestSingularValue(t.ViewToModelLinear);
+}
+
+bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
+{
+  this->ReleaseParticles();
+  vtkPBVRParticleGenerator::Settings settings;
+  settings.Footprint = wanted.Footprint;
+  settings.Sets = wanted.Sets;
+  settings.Seed = wanted.Seed;
+  settings.SamplingMode = wanted.SamplingMode;
+  settings.MaximumParticles = wanted.MaximumParticles;
+  std::vector<double> attenuation(this->Attenuation);
+  for (double& tau : attenuation)
+  {
+    tau *= this->Mesh->GetScale(); // per normalized model unit
+  }
+  if (!this->Generator->Generate(this->Mesh, attenuation, settings))
+  {
+    this->Failed = wanted;
+    this->HaveFailed = true;
+    return false;
+  }
+  this->HaveFailed = false;
+  ++this->GenerationCount;
+  return true;
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
+  vtkTextureObject* colors, vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel)
+{
+  vtkSPTViewMatrices& transforms = this->Transforms;
+  const double(*p)[4] = transforms.ViewToClip;
+  const float pixelArea = static_cast<float>(4.0 /
+    (std::abs(p[0][0] * p[1][1]) * this->Ensemble->GetPassWidth() *
+      this->Ensemble->GetPassHeight()));
+  const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
+    0.5f / TransferFunctionSamples };
+  program->SetUniformMatrix4x4("MCVCMatrix", transforms.MCVC);
+  program->SetUniformMatrix4x4("VCDCMatrix", transforms.VCDC);
+  program->SetUniformMatrix3x3("VCMCLinear", transforms.VCMCLinear);
+  program->SetUniformf("viewToModelVolume",
+    static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
+  program->SetUniformf("pixelAreaFactor", pixelArea);
+  program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
+  program->SetUniformf("generatedFootprint", static_cast<float>(this->Generated.Footprint));
+  program->SetUniformi("seed", static_cast<int>(seed));
+  program->SetUniformi("colorTable", colors->GetTextureUnit());
+  program->SetUniform2f("colorTexelScaleOffset", colorTexel);
+  program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", subpixelLevel);
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::DrawSet(vtkShaderProgram* program, int set)
+{
+  const vtkIdType first = this->Generator->GetSetOffset(set);
+  const vtkIdType end = this->Generator->GetSetOffset(set + 1);
+  if (end <= first)
+  {
+    return;
+  }
+  const bool programChanged = program != this->BoundProgram;
+  if (programChanged)
+  {
+    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
+  }
+  this->VertexArray->Bind();
+  if (programChanged)
+  {
+    this->VertexArray->AddAttributeArray(program, this->ParticleBuffer, "particleMC", 0,
+      vtkPBVRParticleGenerator::BytesPerParticle, VTK_UNSIGNED_SHORT, 4, true);
+    this->BoundProgram = program;
+  }
+  for (vtkIdType begin = first; begin < end; begin += MaxParticlesPerDraw)
+  {
+    glDrawArrays(GL_POINTS, static_cast<GLint>(begin),
+      static_cast<GLsizei>(std::min(MaxParticlesPerDraw, end - begin)));
+  }
+  this->VertexArray->Release();
+}
+
+bool vtkPBVRVolumeMapper::vtkInternals::Upload()
+{
+  this->UploadedBytes = 0;
+  this->BoundProgram = nullptr;
+  const std::vector<unsigned short>& particles = this->Generator->GetParticles();
+  if (!particles.empty())
+  {
+    if (!this->ParticleBuffer->Upload(particles, vtkOpenGLBufferObject::ArrayBuffer))
+    {
+      return false;
+    }
+    this->UploadedBytes = particles.size() * sizeof(unsigned short);
+  }
+  this->Generator->ReleaseParticles();
+  return true;
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::ReleaseParticles()
+{
+  this->ParticleBuffer->ReleaseGraphicsResources();
+  this->VertexArray->ReleaseGraphicsResources();
+  this->BoundProgram = nullptr;
+  this->UploadedBytes = 0;
+  this->HaveParticles = false;
+}
+
+vtkStandardNewMacro(vtkPBVRVolumeMapper);
+
+vtkPBVRVolumeMapper::vtkPBVRVolumeMapper()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkPBVRVolumeMapper::~vtkPBVRVolumeMapper() = default;
+
+vtkIdType vtkPBVRVolumeMapper::GetNumberOfParticles()
+{
+  return this->Internals->HaveParticles ? this->Internals->Generator->GetNumberOfParticles() : 0;
+}
+
+int vtkPBVRVolumeMapper::GetNumberOfParticleSets()
+{
+  return this->Internals->HaveParticles ? this->Internals->Generated.Sets : 0;
+}
+
+double vtkPBVRVolumeMapper::GetParticleSize()
+{
+  const vtkInternals& internals = *this->Internals;
+  return internals.HaveParticles
+    ? std::sqrt(internals.Generated.Footprint) * internals.Mesh->GetScale()
+    : 0.0;
+}
+
+vtkIdType vtkPBVRVolumeMapper::GetNumberOfTetrahedra()
+{
+  return this->Internals->Mesh->GetNumberOfTetrahedra();
+}
+
+vtkIdType vtkPBVRVolumeMapper::GetNumberOfSkippedCells()
+{
+  return this->Internals->Mesh->GetNumberOfSkippedCells();
+}
+
+vtkIdType vtkPBVRVolumeMapper::GetGPUMemorySize()
+{
+  const vtkInternals& internals = *this->Internals;
+  const size_t colors = internals.ColorTexture && internals.ColorTexture->GetHandle()
+    ? size_t(4) * sizeof(float) * TransferFunctionSamples
+    : 0;
+  return static_cast<vtkIdType>(
+    internals.UploadedBytes + colors + internals.Ensemble->GetGPUMemorySize());
+}
+
+vtkIdType vtkPBVRVolumeMapper::GetGenerationCount()
+{
+  return this->Internals->GenerationCount;
+}
+
+double vtkPBVRVolumeMapper::GetGenerationTime()
+{
+  return this->Internals->Generator->GetGenerationTime();
+}
+
+bool vtkPBVRVolumeMapper::PrepareParticles(
+  vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight)
+{
+  vtkInternals& internals = *this->Internals;
+  internals.Transforms.Compute(ren, vol, internals.Mesh);
+  internals.UpdateMeshRadius();
+  const double needed = internals.SmallestFootprint(passWidth, passHeight);
+  if (!(needed > 0.0) || !std::isfinite(needed))
+  {
+    vtkErrorMacro("The camera is inside or too close to the volume: no particle size fits "
+                  "the nearest point of the data.");
+    return false;
+  }
+
+  ParticleKey wanted;
+  wanted.MeshBuild = internals.Mesh->GetBuildTime();
+  wanted.OpacityChange = internals.OpacityChangeTime.GetMTime();
+  wanted.Seed = this->Seed;
+  wanted.SamplingMode = this->SamplingMode;
+  wanted.MaximumParticles = std::min(
+    size_t(this->MaximumParticleMemory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
+    size_t(std::numeric_limits<int>::max() - 1));
+  const ParticleKey& have = internals.Generated;
+  if (internals.HaveParticles && have.SameModel(wanted) && needed >= have.Footprint &&
+    needed <= LargestFootprintRatio * have.Footprint && have.Sets >= this->RepetitionLevel &&
+    size_t(internals.Generator->GetNumberOfParticles()) <= wanted.MaximumParticles)
+  {
+    return true;
+  }
+  wanted.Footprint = needed;
+  wanted.Sets = this->RepetitionLevel;
+  // A generation that failed fails again, unless the view needs larger particles, fewer sets
+  // or the memory holds more.
+  const ParticleKey& failed = internals.Failed;
+  if (internals.HaveFailed && failed.SameModel(wanted) && failed.Sets <= wanted.Sets &&
+    needed <= RetryFootprintRatio * failed.Footprint &&
+    failed.MaximumParticles >= wanted.MaximumParticles)
+  {
+    return false; // reported when it failed
+  }
+
+  if (!internals.Generate(wanted))
+  {
+    vtkErrorMacro(<< internals.Generator->GetLastError() << " Raise MaximumParticleMemory ("
+                  << this->MaximumParticleMemory << " MiB), or lower RepetitionLevel ("
+                  << this->RepetitionLevel << "), SubpixelLevel (" << this->SubpixelLevel
+                  << ") or the opacity.");
+    return false;
+  }
+  if (!internals.Upload())
+  {
+    vtkErrorMacro("Could not upload " << internals.Generator->GetNumberOfParticles()
+                                      << " particles to the GPU (out of GPU memory?).");
+    internals.Generator->ReleaseParticles();
+    internals.ReleaseParticles();
+    internals.Failed = wanted;
+    internals.HaveFailed = true;
+    return false;
+  }
+  internals.Generated = wanted;
+  internals.HaveParticles = true;
+  return true;
+}
+
+bool vtkPBVRVolumeMapper::UpdateMesh()
+{
+  vtkInternals& internals = *this->Internals;
+  if (this->GetInputAlgorithm())
+  {
+    this->GetInputAlgorithm()->Update();
+  }
+  vtkSPTMeshBuffers::ScalarSelection selection;
+  selection.ScalarMode = this->ScalarMode;
+  selection.ArrayAccessMode = this->ArrayAccessMode;
+  selection.ArrayId = this->ArrayId;
+  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
+  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
+  if (!internals.Mesh->Update(this->GetDataSetInput(), selection))
+  {
+    if (internals.Mesh->GetBuildTime() != internals.ReportedMeshError)
+    {
+      internals.ReportedMeshError = internals.Mesh->GetBuildTime();
+      vtkErrorMacro(<< internals.Mesh->GetLastError());
+    }
+    internals.ReleaseParticles();
+    return false;
+  }
+  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
+    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
+  {
+    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
+    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
+                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
+                       "are not drawn.");
+  }
+  if (internals.Mesh->GetNumberOfTetrahedra() == 0)
+  {
+    internals.ReleaseParticles();
+    return false;
+  }
+  return true;
+}
+
+void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& internals = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin)
+  {
+    vtkErrorMacro("vtkPBVRVolumeMapper needs an OpenGL render window.");
+    return;
+  }
+  int width, height, x, y;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  if (internals.Context && internals.Context != renWin)
+  {
+    this->ReleaseGraphicsResources(internals.Context);
+  }
+  internals.Context = renWin;
+
+  if (!this->UpdateMesh())
+  {
+    return;
+  }
+  vtkVolumeProperty* property = vol->GetProperty();
+  if (!property->GetIndependentComponents())
+  {
+    vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
+                  "IndependentComponents on in the volume property.");
+    return;
+  }
+  std::string error;
+  if (!internals.SampleTransferFunctions(property, error))
+  {
+    vtkErrorMacro(<< error);
+    return;
+  }
+
+  vtkOpenGLClearErrorMacro();
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
+  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+
+  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  if (!ensemble->Prepare(renWin, width, height, this->SubpixelLevel) ||
+    !this->PrepareParticles(ren, vol, ensemble->GetPassWidth(), ensemble->GetPassHeight()))
+  {
+    return;
+  }
+  this->DrawSets(x, y);
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+void vtkPBVRVolumeMapper::DrawSets(int x, int y)
+{
+  vtkInternals& internals = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = internals.Context;
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  vtkTextureObject* colors = internals.GetColorTexture(renWin);
+  vtkShaderProgram* program =
+    renWin->GetShaderCache()->ReadyShaderProgram(vtkPBVRParticlesVS, vtkPBVRParticlesFS, "");
+  if (!colors || !program)
+  {
+    vtkErrorMacro("Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));
+    return;
+  }
+  ostate->PushFramebufferBindings();
+  ensemble->CaptureSceneDepth(x, y);
+  ensemble->ClearSum();
+  colors->Activate();
+  vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
+  sceneDepth->Activate();
+
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_CULL_FACE);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LESS);
+  ostate->vtkglPointSize(1.0f);
+  for (int repetition = 0; repetition < this->RepetitionLevel; ++repetition)
+  {
+    ensemble->BeginPass();
+    // The ensemble's accumulation binds its own program between passes.
+    renWin->GetShaderCache()->ReadyShaderProgram(program);
+    if (repetition == 0)
+    {
+      internals.SetUniforms(program, colors, sceneDepth, this->Seed, this->SubpixelLevel);
+    }
+    internals.DrawSet(program, repetition);
+    ensemble->EndPass();
+  }
+  sceneDepth->Deactivate();
+  colors->Deactivate();
+  ostate->PopFramebufferBindings();
+  ensemble->Resolve(x, y, this->RepetitionLevel);
+}
+
+void vtkPBVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  vtkInternals& internals = *this->Internals;
+  internals.ReleaseParticles();
+  internals.Mesh->ReleaseGraphicsResources(window);
+  internals.Ensemble->ReleaseGraphicsResources(window);
+  if (internals.ColorTexture)
+  {
+    internals.ColorTexture->ReleaseGraphicsResources(window);
+    internals.ColorTexture = nullptr;
+  }
+  internals.Context = nullptr;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkPBVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RepetitionLevel: " << this->RepetitionLevel << "\n";
+  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "SamplingMode: "
+     << (this->SamplingMode == REJECTION ? "Rejection" : "CellAverage") << "\n";
+  os << indent << "MaximumParticleMemory: " << this->MaximumParticleMemory << " MiB\n";
+  os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
+     << "\n";
+  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
+  os << indent << "NumberOfParticles: " << this->GetNumberOfParticles() << "\n";
+  os << indent << "NumberOfParticleSets: " << this->GetNumberOfParticleSets() << "\n";
+  os << indent << "ParticleSize: " << this->GetParticleSize() << "\n";
+  os << indent << "GenerationCount: " << this->GetGenerationCount() << "\n";
+  os << indent << "GenerationTime: " << this->GetGenerationTime() << " s\n";
+  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
+  os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+}

@@ -1,0 +1,204 @@
+/**
+ * @class   vtkPBVRVolumeMapper
+ * @brief   particle-based volume rendering (PBVR) of unstructured grids
+ *
+ * vtkPBVRVolumeMapper volume renders a vtkUnstructuredGrid (any linear or quadratic 3D cells,
+ * split into tetrahedra once per input change) with opaque particles and no sorting, as in
+ *
+ *   N. Sakamoto, J. Nonaka, K. Koyamada and S. Tanaka, "Particle-based volume rendering",
+ *   Asia-Pacific Symposium on Visualization (APVIS), 2007;
+ *   N. Sakamoto, T. Kawamura, K. Koyamada and K. Nozaki, "Improvement of particle-based volume
+ *   rendering for visualizing irregular volume data sets", Computers & Graphics 34(1), 2010.
+ *
+ * It is the particle-based counterpart of vtkSPTVolumeMapper and renders the same optical
+ * model (that of vtkUnstructuredGridLinearRayIntegrator: attenuation tau = opacity /
+ * ScalarOpacityUnitDistance, emission = color x tau, lengths in the data's own coordinates).
+ *
+ * Particles are generated cell by cell on the CPU: a particle covers one pixel (one subpixel
+ * at SubpixelLevel > 1), whose cross-section S at the particle's depth is measured in the
+ * data's coordinates, and particles scattered with density rho = tau(s) / S, i.e.
+ * -ln(1 - alpha) / (S x unit length) for the opacity alpha of a unit length, cover a ray of
+ * length d with probability 1 - exp(-tau d). Inside a tetrahedron the density follows the
+ * interpolated scalar (rejection sampling against the cell's largest density, Poisson counts),
+ * or, with SamplingMode CELL_AVERAGE, is the density of the cell's mean scalar, as in the
+ * papers (see vtkPBVRParticleGenerator). Each particle carries its scalar; its color is looked
+ * up in the color transfer function when it is drawn.
+ *
+ * Under perspective the pixel's cross-section grows with depth. The particles are generated
+ * for the smallest cross-section over the data's bounding sphere (its nearest point) and each
+ * is drawn with probability S_generated / S(its own depth), which thins the particles exactly
+ * to the density its depth needs. The particles are regenerated only when the data, the
+ * opacity transfer function, the seed or the sampling mode change, when a view needs smaller
+ * particles than they were made for, or when it needs particles more than twice as large
+ * (too many particles would be thrown away); also when RepetitionLevel grows beyond the sets
+ * that were generated (fewer repetitions draw fewer of the sets).
+ *
+ * RepetitionLevel independent particle sets are drawn, each opaque with the depth test into
+ * the same float ensemble buffer as SPT, and averaged; the noise falls as
+ * 1 / sqrt(RepetitionLevel x SubpixelLevel^2). Opaque geometry drawn before the volume hides
+ * it. The camera must be outside the volume.
+ *
+ * The particles need GPU memory in proportion to RepetitionLevel x SubpixelLevel^2 and to the
+ * opacity: 8 bytes each. Generation fails with an error, and nothing is drawn, when they would
+ * exceed MaximumParticleMemory.
+ *
+ * @sa
+ * vtkSPTVolumeMapper vtkUnstructuredGridVolumeRayCastMapper
+ */
+
+#ifndef vtkPBVRVolumeMapper_h
+#define vtkPBVRVolumeMapper_h
+
+#include "SPTRenderingModule.h" // For export macro
+#include "vtkUnstructuredGridVolumeMapper.h"
+
+#include <memory> // For the internals
+
+class vtkRenderer;
+class vtkVolume;
+class vtkWindow;
+
+class SPTRENDERING_EXPORT vtkPBVRVolumeMapper : public vtkUnstructuredGridVolumeMapper
+{
+public:
+  static vtkPBVRVolumeMapper* New();
+  vtkTypeMacro(vtkPBVRVolumeMapper, vtkUnstructuredGridVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * Number of independent particle sets drawn and averaged into one image (the paper's L_R).
+   * Memory and generation time grow with it; the noise falls as 1 / sqrt(RepetitionLevel).
+   * Range 1 to 65536, default 32.
+   */
+  vtkSetClampMacro(RepetitionLevel, int, 1, 65536);
+  vtkGetMacro(RepetitionLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Each set is drawn at SubpixelLevel times the width and the height with particles of one
+   * subpixel, and averaged down (the paper's L_S): SubpixelLevel^2 times the particles.
+   * Range 1 to 8, default 1.
+   */
+  vtkSetClampMacro(SubpixelLevel, int, 1, 8);
+  vtkGetMacro(SubpixelLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Seed of the random numbers. The same seed, input and view give the same image. Default 0.
+   */
+  vtkSetMacro(Seed, unsigned int);
+  vtkGetMacro(Seed, unsigned int);
+  ///@}
+
+  enum SamplingModeType
+  {
+    REJECTION = 0,
+    CELL_AVERAGE = 1
+  };
+
+  ///@{
+  /**
+   * How the particle density varies inside a tetrahedron. REJECTION (default): it follows the
+   * interpolated scalar exactly (rejection sampling, Poisson counts). CELL_AVERAGE: it is the
+   * density of the mean of the cell's vertex scalars, with the count rounded stochastically,
+   * as in the original papers; it misses features thinner than a cell.
+   */
+  vtkSetClampMacro(SamplingMode, int, REJECTION, CELL_AVERAGE);
+  vtkGetMacro(SamplingMode, int);
+  void SetSamplingModeToRejection() { this->SetSamplingMode(REJECTION); }
+  void SetSamplingModeToCellAverage() { this->SetSamplingMode(CELL_AVERAGE); }
+  ///@}
+
+  ///@{
+  /**
+   * The most memory, in MiB, that the particles may take (8 bytes each, on the GPU). If they
+   * would take more, nothing is drawn and an error says how many were needed.
+   * Range 1 to 65536, default 2048.
+   */
+  vtkSetClampMacro(MaximumParticleMemory, int, 1, 65536);
+  vtkGetMacro(MaximumParticleMemory, int);
+  ///@}
+
+  enum VectorModeType
+  {
+    MAGNITUDE = 0,
+    COMPONENT = 1
+  };
+
+  ///@{
+  /**
+   * How a multi-component scalar array becomes one scalar: its MAGNITUDE (default) or one
+   * COMPONENT, chosen by VectorComponent (default 0). Single-component arrays are used as is.
+   */
+  vtkSetClampMacro(VectorMode, int, MAGNITUDE, COMPONENT);
+  vtkGetMacro(VectorMode, int);
+  void SetVectorModeToMagnitude() { this->SetVectorMode(MAGNITUDE); }
+  void SetVectorModeToComponent() { this->SetVectorMode(COMPONENT); }
+  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
+  vtkGetMacro(VectorComponent, int);
+  ///@}
+
+  ///@{
+  /**
+   * What the mapper holds after the last render: the particles of all generated sets, the
+   * number of sets, the side of a particle's square cross-section (data units) at the nearest
+   * point of the data, tetrahedra, cells left out (non-finite coordinates or scalars), and the
+   * bytes held on the GPU (particles, color table and ensemble framebuffers).
+   */
+  vtkIdType GetNumberOfParticles();
+  int GetNumberOfParticleSets();
+  double GetParticleSize();
+  vtkIdType GetNumberOfTetrahedra();
+  vtkIdType GetNumberOfSkippedCells();
+  vtkIdType GetGPUMemorySize();
+  ///@}
+
+  ///@{
+  /**
+   * How often the particles were generated since the mapper was made, and the wall time of
+   * the last generation in seconds (GetNumberOfParticles() / GetGenerationTime() is the
+   * generation rate).
+   */
+  vtkIdType GetGenerationCount();
+  double GetGenerationTime();
+  ///@}
+
+  /**
+   * Render the volume. Called by vtkVolume; not meant to be called directly.
+   */
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+
+  /**
+   * Release every GPU resource this mapper holds for the window (the particles are generated
+   * again at the next render).
+   */
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkPBVRVolumeMapper();
+  ~vtkPBVRVolumeMapper() override;
+
+  int RepetitionLevel = 32;
+  int SubpixelLevel = 1;
+  unsigned int Seed = 0;
+  int SamplingMode = REJECTION;
+  int MaximumParticleMemory = 2048;
+  int VectorMode = MAGNITUDE;
+  int VectorComponent = 0;
+
+private:
+  vtkPBVRVolumeMapper(const vtkPBVRVolumeMapper&) = delete;
+  void operator=(const vtkPBVRVolumeMapper&) = delete;
+
+  bool UpdateMesh();
+  bool PrepareParticles(vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight);
+  void DrawSets(int x, int y);
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif

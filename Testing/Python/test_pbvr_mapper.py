@@ -1,0 +1,263 @@
+"""vtkPBVRVolumeMapper: the wrapped class and its settings, bad input (a clear error, never a
+crash, the input never modified), the memory cap, and particles made again only when they
+must be: when the data, the opacity, the seed or the sampling change, when the view needs
+smaller particles, or much larger ones, or more sets than were made."""
+
+import math
+
+import numpy as np
+import pytest
+import vtk
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+import spt
+from spt import data, render
+
+from test_spt_robustness import ONE, property_for, tetrahedra, watch
+
+SIZE = (96, 96)
+
+
+def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
+    """Render and return (image, mapper, messages); the input's MTime must not change."""
+    mapper = mapper or render.pbvr_mapper(repetitions, seed=1)
+    messages = watch(mapper)
+    prop = prop or property_for()
+    before = grid.GetMTime()
+    rendering = render.render(grid, prop, mapper, render.View(30, 30), size)
+    assert grid.GetMTime() == before, "the input was modified"
+    return rendering, mapper, messages
+
+
+def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
+    mapper = spt.vtkPBVRVolumeMapper()
+    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
+    assert mapper.GetClassName() == "vtkPBVRVolumeMapper"
+
+
+@pytest.mark.parametrize("name, default, low, high", [
+    ("RepetitionLevel", 32, 1, 65536),
+    ("SubpixelLevel", 1, 1, 8),
+    ("MaximumParticleMemory", 2048, 1, 65536),
+    ("SamplingMode", 0, 0, 1),
+])
+def test_settings_have_defaults_and_clamps(name, default, low, high):
+    mapper = spt.vtkPBVRVolumeMapper()
+    get, set_ = getattr(mapper, "Get" + name), getattr(mapper, "Set" + name)
+    assert get() == default
+    set_(low - 1)
+    assert get() == low
+    set_(high + 1)
+    assert get() == high
+
+
+def test_print_self_lists_every_setting_and_report():
+    mapper = spt.vtkPBVRVolumeMapper()
+    mapper.SetSamplingModeToCellAverage()
+    mapper.SetSeed(4000000000)
+    assert mapper.GetSeed() == 4000000000
+    text = str(mapper)
+    for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "SamplingMode: CellAverage",
+                    "MaximumParticleMemory", "VectorMode", "VectorComponent",
+                    "NumberOfParticles", "NumberOfParticleSets", "ParticleSize",
+                    "GenerationCount", "GenerationTime", "NumberOfTetrahedra", "GPUMemorySize",
+                    "ScalarMode"]:
+        assert setting in text
+
+
+def test_one_tetrahedron_renders_and_reports(have_display):
+    rendering, mapper, messages = draw(ONE)
+    report = rendering.report
+    assert not messages.errors
+    assert rendering.image[..., 3].max() > 0.2
+    assert report["particles"] > 100 and report["particle_sets"] == 8
+    assert report["gpu_memory"] >= 8 * report["particles"]
+    assert report["generation_count"] == 1 and report["generation_seconds"] > 0.0
+
+
+def test_empty_grid_draws_nothing_without_error(have_display):
+    rendering, mapper, messages = draw(vtk.vtkUnstructuredGrid())
+    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 0
+    assert rendering.image.max() == 0.0 and rendering.report["particles"] == 0
+
+
+def test_no_scalars_is_a_clear_error(have_display):
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
+    rendering, _, messages = draw(grid)
+    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
+    assert rendering.image.max() == 0.0
+
+
+def test_point_ids_out_of_range_are_a_clear_error(have_display):
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 7)],
+                      [0.0, 0.3, 0.6, 1.0])
+    rendering, _, messages = draw(grid)
+    assert messages.errors and "point id 7" in messages.errors[0]
+    assert rendering.image.max() == 0.0
+
+
+def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
+    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
+    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, math.nan])
+    rendering, mapper, messages = draw(grid)
+    assert not messages.errors
+    assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
+    assert messages.warnings and "not finite" in messages.warnings[0]
+    assert np.isfinite(rendering.image).all() and rendering.image[..., 3].max() > 0.1
+
+
+def test_unit_distance_zero_is_a_clear_error(have_display):
+    _, _, messages = draw(ONE, property_for(unit=0.0))
+    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
+
+
+def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
+    """1 MiB holds 131072 particles; 512 sets of the default mesh need millions. The error says
+    what to change, comes once however often the view is drawn, and nothing is drawn; a larger
+    cap then renders."""
+    grid = data.make_default_mesh()
+    prop = data.default_transfer_function(grid)
+    mapper = render.pbvr_mapper(512, seed=1)
+    mapper.SetMaximumParticleMemory(1)
+    messages = watch(mapper)
+    window, renderer = render.make_window(*SIZE)
+    render.add_volume(renderer, grid, prop, mapper)
+    renderer.ResetCamera()
+    before = grid.GetMTime()
+    for _ in range(3):
+        window.Render()
+    assert len(messages.errors) == 1, messages.errors
+    assert "would not fit" in messages.errors[0] and "MaximumParticleMemory" in messages.errors[0]
+    assert render.read_rgba(window).max() == 0.0
+    assert mapper.GetNumberOfParticles() == 0 and grid.GetMTime() == before
+    mapper.SetMaximumParticleMemory(1024)
+    window.Render()
+    assert len(messages.errors) == 1
+    assert mapper.GetNumberOfParticles() > 131072 and mapper.GetGenerationCount() == 1
+    assert render.read_rgba(window)[..., 3].max() > 0.2
+    # A larger cap keeps the particles; a cap below what they take is an error again.
+    mapper.SetMaximumParticleMemory(2048)
+    window.Render()
+    assert mapper.GetGenerationCount() == 1 and len(messages.errors) == 1
+    mapper.SetMaximumParticleMemory(1)
+    window.Render()
+    assert len(messages.errors) == 2 and "would not fit" in messages.errors[1]
+    assert mapper.GetNumberOfParticles() == 0 and render.read_rgba(window).max() == 0.0
+
+
+class Scene:
+    """The default mesh in one window, for counting generations."""
+
+    def __init__(self, repetitions=8):
+        self.grid = data.make_default_mesh()
+        self.prop = data.default_transfer_function(self.grid)
+        self.mapper = render.pbvr_mapper(repetitions, seed=1)
+        self.messages = watch(self.mapper)
+        self.window, self.renderer = render.make_window(*SIZE)
+        render.add_volume(self.renderer, self.grid, self.prop, self.mapper)
+        render.place_camera(self.renderer, self.grid.GetBounds(), render.View(30, 30))
+        self.camera = self.renderer.GetActiveCamera()
+
+    def draw(self):
+        self.window.Render()
+        assert not self.messages.errors
+        return render.read_rgba(self.window)
+
+    @property
+    def generations(self):
+        return self.mapper.GetGenerationCount()
+
+
+def test_particles_are_made_again_only_when_they_must(have_display):
+    scene = Scene()
+    first = scene.draw()
+    assert scene.generations == 1
+    assert np.array_equal(scene.draw(), first), "a second render differs"
+    # Colors are looked up when drawn: a new color function keeps the particles.
+    scene.prop.GetRGBTransferFunction().AddRGBPoint(0.5, 1.0, 0.0, 1.0)
+    recolored = scene.draw()
+    assert scene.generations == 1 and not np.array_equal(recolored, first)
+    # Rotation about the data keeps its nearest point as near.
+    scene.camera.Azimuth(50.0)
+    scene.camera.Elevation(20.0)
+    scene.camera.OrthogonalizeViewUp()
+    scene.draw()
+    assert scene.generations == 1
+    # Closer: smaller pixels need more particles. Slightly farther: the surplus is thinned.
+    # Much farther: too many would be thrown away.
+    scene.camera.Zoom(1.5)
+    scene.draw()
+    assert scene.generations == 2
+    scene.camera.Zoom(1.0 / 1.2)
+    scene.draw()
+    assert scene.generations == 2
+    scene.camera.Zoom(0.4)
+    scene.draw()
+    assert scene.generations == 3
+    # Fewer repetitions draw fewer of the sets; more need new ones.
+    sets = scene.mapper.GetNumberOfParticleSets()
+    scene.mapper.SetRepetitionLevel(4)
+    scene.draw()
+    assert scene.generations == 3 and scene.mapper.GetNumberOfParticleSets() == sets
+    scene.mapper.SetRepetitionLevel(16)
+    scene.draw()
+    assert scene.generations == 4 and scene.mapper.GetNumberOfParticleSets() == 16
+    for change in (lambda: scene.mapper.SetSeed(2),
+                   lambda: scene.mapper.SetSubpixelLevel(2),
+                   lambda: scene.mapper.SetSamplingModeToCellAverage(),
+                   lambda: scene.prop.GetScalarOpacity().AddPoint(0.5, 0.01),
+                   lambda: scene.prop.SetScalarOpacityUnitDistance(0.5),
+                   lambda: scene.grid.GetPoints().Modified()):
+        count = scene.generations
+        change()
+        scene.draw()
+        assert scene.generations == count + 1
+    # A modified property whose opacity samples are the same keeps the particles.
+    count = scene.generations
+    scene.prop.Modified()
+    scene.draw()
+    assert scene.generations == count
+
+
+def test_particle_count_follows_the_optical_model(have_display):
+    """Twice the attenuation, twice the particles; 2x2 subpixels, four times; each within
+    five standard deviations of the Poisson count."""
+    scene = Scene(16)
+    scene.draw()
+    base = scene.mapper.GetNumberOfParticles()
+    scene.prop.SetScalarOpacityUnitDistance(0.5 * scene.prop.GetScalarOpacityUnitDistance())
+    scene.draw()
+    # Var(N2 - 2 N1) = 2 m + 4 m for Poisson counts of means 2 m and m.
+    assert abs(scene.mapper.GetNumberOfParticles() - 2 * base) < 5 * math.sqrt(6 * base)
+    scene.mapper.SetSubpixelLevel(2)
+    scene.draw()
+    ratio = scene.mapper.GetNumberOfParticles() / (2 * base)
+    assert 3.8 < ratio < 4.2, ratio
+    assert scene.mapper.GetGPUMemorySize() >= 8 * scene.mapper.GetNumberOfParticles()
+
+
+def test_release_resize_and_a_second_window(have_display):
+    scene = Scene()
+    scene.draw()
+    scene.mapper.ReleaseGraphicsResources(scene.window)
+    assert scene.mapper.GetGPUMemorySize() == 0 and scene.mapper.GetNumberOfParticles() == 0
+    assert scene.draw()[..., 3].max() > 0.2
+    scene.window.SetSize(SIZE[0] + 17, SIZE[1] + 5)
+    assert scene.draw().shape[:2] == (SIZE[1] + 5, SIZE[0] + 17)
+    scene.renderer.SetViewport(0.2, 0.2, 0.2, 0.2)
+    scene.draw()
+    other, other_renderer = render.make_window(*SIZE)
+    other_renderer.AddVolume(scene.renderer.GetVolumes().GetLastProp())
+    other_renderer.ResetCamera()
+    other.Render()
+    assert render.read_rgba(other)[..., 3].max() > 0.1
+    assert not scene.messages.errors
+
+
+def test_moved_points_change_the_image(have_display):
+    scene = Scene()
+    first = scene.draw()
+    moved = vtk_to_numpy(scene.grid.GetPoints().GetData())
+    moved[:, 0] *= 0.5
+    scene.grid.GetPoints().Modified()
+    assert not np.array_equal(scene.draw(), first)
