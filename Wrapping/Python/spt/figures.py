@@ -229,6 +229,9 @@ def sorting(datasets: Sequence[str], size: int, output: PathLike, repetitions: i
         rows.append([result["dataset"], "reference", 0.0, math.inf,
                      result["reference_seconds"], "", ""])
     _write_table(output / "sorting.md", SORTING_HEADER, rows)
+    return rows
+
+
 def _steep_scene(name: str, center: float, view: render.View) -> Callable[[], Scene]:
     def make() -> Scene:
         grid = data.load(name)

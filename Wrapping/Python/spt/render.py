@@ -76,6 +76,9 @@ def havs_mapper(kbuffer_size: int = 6) -> vtkHAVSVolumeMapper:
         raise ValueError(f"the k-buffer size must be 2..6, not {kbuffer_size}")
     mapper = vtkHAVSVolumeMapper()
     mapper.SetKBufferSize(kbuffer_size)
+    return mapper
+
+
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                 cell_average: bool = False) -> vtkPBVRVolumeMapper:
     """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
