@@ -125,8 +125,8 @@ void TestVolumeAndOrientation(vtkPolyData* sphere)
   const TetStatistics tets = Measure(grid);
   std::cout << "default: " << grid->GetNumberOfCells() << " tets, volume " << tets.Total
             << " (polyhedron " << polyhedron << ", relative difference "
-            << (tets.Total - polyhedron) / polyhedron << "), smallest " << tets.Smallest << ", switches "
-            << mesher->GetTetGenSwitches() << "\n";
+            << (tets.Total - polyhedron) / polyhedron << "), smallest " << tets.Smallest
+            << ", switches " << mesher->GetTetGenSwitches() << "\n";
   Check(grid->GetNumberOfCells() > 0, "the sphere gives tetrahedra");
   Check(tets.NotTetra == 0, "every cell is a VTK_TETRA");
   Check(tets.Smallest > 0.0, "every tetrahedron is positively oriented and not flat");
