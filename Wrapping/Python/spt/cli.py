@@ -54,6 +54,28 @@ def _steep_datasets(text: str) -> List[str]:
     return names
 
 
+def _cell_count(text: str) -> int:
+    from .meshes import MAX_CELLS, MIN_CELLS
+
+    try:
+        value = int(text.replace("_", ""))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if not MIN_CELLS <= value <= MAX_CELLS:
+        raise argparse.ArgumentTypeError(f"{value} is outside {MIN_CELLS}..{MAX_CELLS}")
+    return value
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python3 -m spt",
@@ -127,6 +149,17 @@ def _parser() -> argparse.ArgumentParser:
                        help="timed frames per point, their median is reported (default 3)")
     bench.add_argument("--quick", action="store_true",
                        help="every section at small sizes, a smoke run of a few minutes")
+
+    mesh = commands.add_parser(
+        "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
+    mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
+    mesh.add_argument("--cells", type=_cell_count, default=1_000_000,
+                      help="number of tetrahedra, within 25 %% (default 1000000)")
+    mesh.add_argument("--seed", type=_seed, default=0, help="places the field's maxima")
+    mesh.add_argument("--output", type=pathlib.Path, required=True,
+                      help="the .vtk file to write (VTK legacy binary)")
+    mesh.add_argument("--no-cache", action="store_true",
+                      help="mesh again instead of reading SPT_CACHE_DIR (which is not written)")
     return parser
 
 
@@ -188,6 +221,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(f"Images and comparison.png written to {arguments.output}")
         elif arguments.command == "bench":
             _bench(arguments)
+        elif arguments.command == "mesh":
+            from .meshes import generate, write_legacy
+
+            grid = generate(arguments.shape, arguments.cells, arguments.seed,
+                            cache=not arguments.no_cache)
+            write_legacy(grid, arguments.output)
+            print(f"{grid.GetNumberOfCells()} tetrahedra, {grid.GetNumberOfPoints()} points "
+                  f"written to {arguments.output}")
         elif arguments.figure == "convergence":
             results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
                                           arguments.output)
@@ -221,7 +262,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             result = figures.accuracy_figure(arguments.output, arguments.rays)
             print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "
                   f"plot written to {arguments.output / 'accuracy.png'}")
-    except (FileNotFoundError, ValueError) as error:
+    except (OSError, ValueError) as error:
         print(f"python3 -m spt: error: {error}", file=sys.stderr)
         return 1
     return 0
