@@ -173,10 +173,15 @@ class Timing:
     seconds: List[float]
     report: Dict[str, float]
     image: Optional[np.ndarray] = None
+    cpu_seconds: List[float] = dataclasses.field(default_factory=list)
 
     @property
     def median(self) -> float:
         return float(np.median(self.seconds))
+
+    @property
+    def cpu_median(self) -> float:
+        return float(np.median(self.cpu_seconds)) if self.cpu_seconds else float("nan")
 
 
 def time_method(s: figures.Scene, method: Method, size: int, repetitions: int = 16,
@@ -205,12 +210,13 @@ def time_method(s: figures.Scene, method: Method, size: int, repetitions: int = 
         window.Render()
         window.WaitForCompletion()
     finish = on_frames() if on_frames is not None else None
-    seconds = []
+    seconds, cpu_seconds = [], []
     for _ in range(frames):
-        start = time.perf_counter()
+        start, cpu_start = time.perf_counter(), time.process_time()
         window.Render()
         window.WaitForCompletion()
         seconds.append(time.perf_counter() - start)
+        cpu_seconds.append(time.process_time() - cpu_start)
     if finish is not None:
         finish()
     report = render.mapper_report(volume_mapper) if volume_mapper is not None else {}
@@ -219,7 +225,7 @@ def time_method(s: figures.Scene, method: Method, size: int, repetitions: int = 
     image = render.read_rgba(window) if keep_image else None
     renderer.RemoveAllViewProps()
     window.Finalize()
-    return Timing(seconds, report, image)
+    return Timing(seconds, report, image, cpu_seconds)
 
 
 def _record(s: figures.Scene, method: Method, size: int, repetitions: int, subpixels: int,
@@ -229,7 +235,8 @@ def _record(s: figures.Scene, method: Method, size: int, repetitions: int, subpi
         "points": s.grid.GetNumberOfPoints(), "width": size, "height": size,
         "repetitions": repetitions if method.stochastic else 1,
         "subpixels": subpixels if method.name.startswith(("spt", "pbvr")) else 1,
-        "seconds": timing.median, "frames": timing.seconds}
+        "seconds": timing.median, "frames": timing.seconds,
+        "cpu_seconds": timing.cpu_median}
     entry.update(timing.report)
     entry.update(extra)
     return entry
@@ -531,22 +538,33 @@ def fit(name: str, terms: Sequence[str], rows: Sequence[Sequence[float]],
                predicted.tolist())
 
 
+def time_key(entries: Sequence[Dict[str, object]]) -> str:
+    """``cpu_seconds`` when every entry has it: on a machine that runs other jobs it measures
+    the work of the frame, where wall time also counts the waiting; else ``seconds``."""
+    have = [e for e in entries if np.isfinite(e.get("cpu_seconds", float("nan")))]
+    return "cpu_seconds" if entries and len(have) == len(entries) else "seconds"
+
+
 def _pixels(entry: Dict[str, object]) -> float:
     return float(entry["width"]) * float(entry["height"]) * float(entry["subpixels"]) ** 2
 
 
-def time_models(entries: Sequence[Dict[str, object]]) -> Dict[str, Fit]:
-    """Time in milliseconds, per method, in the paper's form where it has one."""
+def time_models(entries: Sequence[Dict[str, object]], key: str = "seconds"
+                ) -> Dict[str, Fit]:
+    """Time in milliseconds, per method, in the paper's form where it has one. ``key`` is
+    ``seconds`` (wall time of the frame) or ``cpu_seconds`` (CPU time of all the process's
+    threads, llvmpipe's included: the work done, whatever else the machine runs)."""
     models: Dict[str, Fit] = {}
 
     def select(name: str) -> List[Dict[str, object]]:
-        return [e for e in entries if e["method"] == name and e.get("sweep") != "quality"]
+        return [e for e in entries if e["method"] == name and e.get("sweep") != "quality"
+                and np.isfinite(e.get(key, float("nan")))]
 
     for name in ("spt-paper", "spt"):
         rows = [(e["repetitions"] * e["cells"], e["repetitions"] * _pixels(e))
                 for e in select(name)]
         model = fit(f"{name}: T = L_r (a n_c + b w h L_s^2)", ["a", "b"], rows,
-                    [1000.0 * e["seconds"] for e in select(name)])
+                    [1000.0 * e[key] for e in select(name)])
         if model:
             models[name] = model
     # SPT with N repetitions per pass: the mesh is traversed twice per pass (keys, colors)
@@ -556,20 +574,20 @@ def time_models(entries: Sequence[Dict[str, object]]) -> Dict[str, Fit]:
              math.ceil(e["repetitions"] / PER_PASS) * _pixels(e),
              e["repetitions"] * _pixels(e)) for e in spt]
     model = fit("spt: T = P a n_c + (P b + L_r c) w h L_s^2, P = ceil(L_r / 16)",
-                ["a", "b", "c"], rows, [1000.0 * e["seconds"] for e in spt])
+                ["a", "b", "c"], rows, [1000.0 * e[key] for e in spt])
     if model:
         models["spt-passes"] = model
     pbvr = [e for e in select("pbvr") if e.get("particles")]
     rows = [(e["particles"], e["repetitions"] * _pixels(e)) for e in pbvr]
     model = fit("pbvr: T = L_r (a n_p + b w h L_s^2), n_p particles per repetition",
-                ["a", "b"], rows, [1000.0 * e["seconds"] for e in pbvr])
+                ["a", "b"], rows, [1000.0 * e[key] for e in pbvr])
     if model:
         models["pbvr"] = model
     for name in ("havs2", "havs6", "pt", "floor"):
         chosen = select(name)
         rows = [(e["cells"], _pixels(e)) for e in chosen]
         model = fit(f"{name}: T = a n_c + b w h", ["a", "b"], rows,
-                    [1000.0 * e["seconds"] for e in chosen])
+                    [1000.0 * e[key] for e in chosen])
         if model:
             models[name] = model
     return models
@@ -624,9 +642,10 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
                      key=lambda e: e["repetitions"])
         if len(spt) < 2:
             continue
+        key = time_key(spt)
         levels = np.log([e["repetitions"] for e in spt])
         errors = np.log([e["rmse"] for e in spt])
-        seconds = np.log([e["seconds"] for e in spt])
+        seconds = np.log([e[key] for e in spt])
         slope, intercept = np.polyfit(levels, errors, 1)
         time_slope, time_intercept = np.polyfit(levels, seconds, 1)
         for havs in (e for e in quality_entries
@@ -635,8 +654,8 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
             spt_seconds = math.exp(time_intercept + time_slope * math.log(max(level, 1.0)))
             result["time_at_equal_error"].append({
                 "scene": scene, "havs": havs["method"], "havs_rmse": havs["rmse"],
-                "havs_seconds": havs["seconds"], "spt_repetitions": level,
-                "spt_seconds": spt_seconds, "spt_over_havs": spt_seconds / havs["seconds"]})
+                "havs_seconds": havs[key], "spt_repetitions": level, "time": key,
+                "spt_seconds": spt_seconds, "spt_over_havs": spt_seconds / havs[key]})
     return result
 
 
@@ -704,22 +723,24 @@ def _plot_quality(entries: Sequence[Dict[str, object]], path: pathlib.Path) -> N
     scenes = sorted({e["scene"] for e in chosen})
     if not scenes:
         return
+    key = time_key(chosen)
     figure = _figure(4.2 * len(scenes), 4.0)
     for index, scene in enumerate(scenes):
         axes = figure.add_subplot(1, len(scenes), index + 1)
         for name in ("spt", "spt-independent", "spt-paper", "pbvr"):
             points = sorted((e for e in chosen if e["scene"] == scene and e["method"] == name),
-                            key=lambda e: e["seconds"])
+                            key=lambda e: e[key])
             if points:
-                axes.loglog([e["seconds"] for e in points], [e["rmse"] for e in points], "o-",
+                axes.loglog([e[key] for e in points], [e["rmse"] for e in points], "o-",
                             label=METHODS[name].label, markersize=4)
         for e in chosen:
             if e["scene"] == scene and e["method"] in ("havs2", "havs4", "havs6", "pt"):
-                axes.loglog([e["seconds"]], [e["rmse"]], "s", markersize=6,
+                axes.loglog([e[key]], [e["rmse"]], "s", markersize=6,
                             label=METHODS[e["method"]].label if e["method"] in METHODS
                             else "HAVS-like k=4")
         axes.set_title(scene)
-        axes.set_xlabel("render time [s]")
+        axes.set_xlabel("CPU seconds per frame, all threads" if key == "cpu_seconds"
+                        else "render time [s]")
         axes.set_ylabel("RMSE against the exact reference")
         axes.grid(True, which="both", alpha=0.3)
         axes.legend(fontsize=6)
@@ -743,6 +764,9 @@ def floor_ratios(entries: Sequence[Dict[str, object]]) -> List[Dict[str, object]
             for e in cells:
                 if e["method"] == name and e["cells"] == floor["cells"]:
                     row[name] = e["seconds"] / e["repetitions"] / floor["seconds"]
+                    if np.isfinite(e.get("cpu_seconds", float("nan"))):
+                        row[name + " cpu"] = (e["cpu_seconds"] / e["repetitions"] /
+                                              floor["cpu_seconds"])
         rows.append(row)
     return rows
 
@@ -776,9 +800,11 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
         if ratios:
             lines += ["SPT's time per repetition as a multiple of the floor (all faces drawn "
                       "opaque by vtkPolyDataMapper, same image, same run):", "",
-                      _table(["cells", "floor [s]", "SPT", "SPT paper"],
+                      _table(["cells", "floor [s]", "SPT", "SPT paper", "SPT (CPU time)",
+                              "SPT paper (CPU time)"],
                              [[r["cells"], r["floor_seconds"], r.get("spt", "-"),
-                               r.get("spt-paper", "-")] for r in ratios])]
+                               r.get("spt-paper", "-"), r.get("spt cpu", "-"),
+                               r.get("spt-paper cpu", "-")] for r in ratios])]
     for sweep, title, picture in (("repetitions", "Repetition level", "repetitions.png"),
                                   ("subpixels", "Subpixel level", "subpixels.png"),
                                   ("image", "Image size", "image.png")):
@@ -786,23 +812,35 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
         if not chosen:
             continue
         lines += [f"## {title}", "", f"![{sweep}]({picture})", "",
-                  _table(["method", "L_r", "L_s", "size", "cells", "seconds", "GPU MiB"],
+                  _table(["method", "L_r", "L_s", "size", "cells", "seconds", "CPU seconds",
+                          "GPU MiB"],
                          [[e["method"], e["repetitions"], e["subpixels"], e["width"],
-                           e["cells"], e["seconds"],
+                           e["cells"], e["seconds"], e.get("cpu_seconds", "-"),
                            e.get("gpu_memory", 0.0) / 2 ** 20] for e in chosen])]
 
+    cpu_fits: Dict[str, Fit] = results.get("cpu_time_models", {})
+
+    def model_rows(models: Dict[str, Fit], label: str) -> List[List[object]]:
+        return [[f"{label}{m.name}",
+                 ", ".join(f"{t} = {c:.4g}" for t, c in zip(m.terms, m.coefficients)),
+                 m.r2, m.n] for m in models.values()]
+
     lines += ["## Fitted models", "",
-              "Time in milliseconds, memory in bytes; weighted least squares (relative "
-              "error), each with a fixed term that the paper's forms leave out. Residual plots: `time_residuals.png`, "
-              "`memory_residuals.png`.", ""]
+              "Time in milliseconds (wall time of the frame, and the CPU time of all the "
+              "process's threads, which on a machine shared with other jobs measures the "
+              "work without the waiting), memory in bytes. Weighted least squares (relative "
+              "error), each with a fixed term that the paper's forms leave out. Residual "
+              "plots: `time_residuals.png`, `cpu_time_residuals.png`, `memory_residuals.png`.",
+              ""]
     lines += [_table(["model", "coefficients", "R^2", "points"],
-                     [[m.name, ", ".join(f"{t} = {c:.4g}" for t, c in zip(m.terms, m.coefficients)),
-                       m.r2, m.n] for m in list(time_fits.values()) + list(memory_fits.values())])]
+                     model_rows(time_fits, "wall, ") + model_rows(cpu_fits, "CPU, ") +
+                     model_rows(memory_fits, "memory, "))]
     if "spt" in memory_fits:
         c = memory_fits["spt"].coefficients[0]
         lines += [f"SPT: {c:.1f} bytes per tetrahedron on the GPU plus the framebuffers "
                   f"(the paper: {PAPER['spt_bytes_per_cell']} bytes per tetrahedron).", ""]
     lines += ["![time residuals](time_residuals.png)", "",
+              "![CPU time residuals](cpu_time_residuals.png)", "",
               "![memory residuals](memory_residuals.png)", ""]
 
     cross = results["crossovers"]
@@ -824,9 +862,9 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     quality_entries = [e for e in entries if e.get("sweep") == "quality" and "rmse" in e]
     if quality_entries:
         lines += ["## Time to quality", "", "![quality](quality.png)", "",
-                  _table(["scene", "method", "L_r", "seconds", "RMSE"],
-                         [[e["scene"], e["method"], e["repetitions"], e["seconds"], e["rmse"]]
-                          for e in quality_entries])]
+                  _table(["scene", "method", "L_r", "seconds", "CPU seconds", "RMSE"],
+                         [[e["scene"], e["method"], e["repetitions"], e["seconds"],
+                           e.get("cpu_seconds", "-"), e["rmse"]] for e in quality_entries])]
     host = results.get("host", [])
     if host:
         lines += ["## Host time per frame", "",
@@ -909,6 +947,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
         elif section == "quality":
             entries += quality(settings, progress, output)
     time_fits = time_models(entries)
+    cpu_fits = time_models(entries, "cpu_seconds")
     memory_fits = memory_models(entries)
     results: Dict[str, object] = {
         "machine": _machine(), "shape": settings.shape, "frames": settings.frames,
@@ -919,6 +958,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
     if "large" in sections:
         results["large"] = large_case(settings, time_fits, memory_fits, progress)
     results["time_models"] = time_fits
+    results["cpu_time_models"] = cpu_fits
     results["memory_models"] = memory_fits
     results["crossovers"] = crossovers(entries, memory_fits)
     results["floor_ratios"] = floor_ratios(entries)
@@ -929,11 +969,13 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
     _plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
     _plot_sweep(entries, "image", "width", "pixels", output / "image.png")
     _plot_residuals(time_fits, output / "time_residuals.png", "ms")
+    _plot_residuals(cpu_fits, output / "cpu_time_residuals.png", "ms")
     _plot_residuals(memory_fits, output / "memory_residuals.png", "bytes")
     _plot_quality(entries, output / "quality.png")
 
     serializable = dict(results)
     serializable["time_models"] = {k: v.as_dict() for k, v in time_fits.items()}
+    serializable["cpu_time_models"] = {k: v.as_dict() for k, v in cpu_fits.items()}
     serializable["memory_models"] = {k: v.as_dict() for k, v in memory_fits.items()}
     (output / "bench.json").write_text(json.dumps(serializable, indent=1))
     write_report(results, output)
