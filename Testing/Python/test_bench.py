@@ -147,3 +147,20 @@ def test_bad_bench_arguments_are_refused(arguments, message):
                             text=True, env=environment(), check=False)
     assert result.returncode != 0
     assert message in result.stderr
+
+
+def test_sampling_gains_from_synthetic_curves():
+    entries = []
+    for level in (4, 16, 64):
+        entries.append(dict(entry("spt-independent", 1000, 64, level, 0.1 * level / 16,
+                                  rmse=0.2 / math.sqrt(level)), sweep="quality", scene="x"))
+        entries.append(dict(entry("spt", 1000, 64, level, 0.1 * level / 16,
+                                  rmse=0.2 / level), sweep="quality", scene="x"))
+    entries.append(dict(entry("spt-paper", 1000, 64, 4, 0.1, rmse=0.1), sweep="quality",
+                        scene="x"))
+    (gain,) = bench.sampling_gains(entries)
+    assert gain["per_pass_repetitions"] == 4
+    assert gain["per_pass_speedup"] == pytest.approx(4.0)
+    # stratified error 0.2 / L reaches independent's 0.2 / 8 at L = 8
+    assert gain["stratified_repetitions"] == pytest.approx(8.0, rel=1e-6)
+    assert gain["stratified_slope"] == pytest.approx(-1.0, rel=1e-6)

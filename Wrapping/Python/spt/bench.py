@@ -656,7 +656,45 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
                 "scene": scene, "havs": havs["method"], "havs_rmse": havs["rmse"],
                 "havs_seconds": havs[key], "spt_repetitions": level, "time": key,
                 "spt_seconds": spt_seconds, "spt_over_havs": spt_seconds / havs[key]})
+    result["sampling"] = sampling_gains(quality_entries)
     return result
+
+
+def _curve(entries: Sequence[Dict[str, object]], scene: str, method: str
+           ) -> List[Dict[str, object]]:
+    return sorted((e for e in entries if e["scene"] == scene and e["method"] == method),
+                  key=lambda e: e["repetitions"])
+
+
+def sampling_gains(entries: Sequence[Dict[str, object]]) -> List[Dict[str, object]]:
+    """Beyond the paper, per data set: how much faster 16 repetitions per pass are than the
+    paper's one per pass at equal error (they draw the same image, so at equal L_r), and how
+    many stratified repetitions reach the error of the most independent ones measured."""
+    rows = []
+    for scene in sorted({e["scene"] for e in entries}):
+        paper = _curve(entries, scene, "spt-paper")
+        independent = _curve(entries, scene, "spt-independent")
+        stratified = _curve(entries, scene, "spt")
+        if not independent or not stratified:
+            continue
+        key = time_key(paper + independent + stratified)
+        row: Dict[str, object] = {"scene": scene, "time": key}
+        pairs = [(p, i) for p in paper for i in independent if p["repetitions"] == i["repetitions"]]
+        if pairs:
+            p, i = pairs[-1]
+            row["per_pass_repetitions"] = p["repetitions"]
+            row["per_pass_speedup"] = p[key] / i[key]
+            row["per_pass_rmse"] = (p["rmse"], i["rmse"])
+        target = independent[-1]
+        levels = np.log([e["repetitions"] for e in stratified])
+        errors = np.log([e["rmse"] for e in stratified])
+        slope, intercept = np.polyfit(levels, errors, 1)
+        needed = math.exp((math.log(target["rmse"]) - intercept) / slope) if slope < 0 else math.inf
+        row.update({"independent_repetitions": target["repetitions"],
+                    "independent_rmse": target["rmse"], "stratified_repetitions": needed,
+                    "stratified_slope": slope})
+        rows.append(row)
+    return rows
 
 
 # --------------------------------------------------------------------------------------------
@@ -858,6 +896,21 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
                          [[t["scene"], t["havs"], t["havs_rmse"], t["havs_seconds"],
                            t["spt_repetitions"], t["spt_seconds"], t["spt_over_havs"]]
                           for t in cross["time_at_equal_error"]])]
+
+    if cross.get("sampling"):
+        lines += ["Beyond the paper (issue 7): 16 repetitions per pass against the paper's one "
+                  "per pass (the same image, so equal error), and the stratified repetitions "
+                  "that reach the error of the most independent repetitions measured:", "",
+                  _table(["scene", "L_r", "1 per pass / 16 per pass (time)",
+                          "RMSE (1 / 16 per pass)", "independent L_r", "its RMSE",
+                          "stratified L_r for it", "stratified slope"],
+                         [[g["scene"], g.get("per_pass_repetitions", "-"),
+                           g.get("per_pass_speedup", "-"),
+                           " / ".join(f"{v:.4f}" for v in g["per_pass_rmse"])
+                           if "per_pass_rmse" in g else "-",
+                           g["independent_repetitions"], g["independent_rmse"],
+                           g["stratified_repetitions"], g["stratified_slope"]]
+                          for g in cross["sampling"]])]
 
     quality_entries = [e for e in entries if e.get("sweep") == "quality" and "rmse" in e]
     if quality_entries:
