@@ -173,9 +173,9 @@ void main()
     if (threshold(uint(repetition + r)) < segment.a)
     {
 #ifdef SPT_PASS_KEYS
-      imageAtomicMin(depthKeys, ivec3(pixel, r), depthKey);
+      imageAtomicMin(depthKeys, ivec3(r, pixel), depthKey);
 #else
-      wins += imageLoad(depthKeys, ivec3(pixel, r)).r == depthKey ? 1 : 0;
+      wins += imageLoad(depthKeys, ivec3(r, pixel)).r == depthKey ? 1 : 0;
 #endif
     }
   }
