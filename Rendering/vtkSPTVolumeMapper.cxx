@@ -18,6 +18,7 @@
 #include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
 #include "vtkSPTTetrahedraFS.h"
@@ -49,8 +50,7 @@ public:
   vtkNew<vtkSPTEnsembleBuffer> Ensemble;
   vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
   vtkOpenGLRenderWindow* Context = nullptr;
-  vtkMTimeType ReportedMeshError = 0;
-  vtkMTimeType ReportedSkippedCells = 0;
+  vtkSPTRenderSetup Setup;
 
   vtkSPTViewMatrices Matrices;
 
@@ -147,63 +147,22 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    vtkErrorMacro("vtkSPTVolumeMapper needs an OpenGL render window.");
-    return;
-  }
-  int width, height, x, y;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  if (width <= 0 || height <= 0)
+  vtkSPTRenderSetup::Target target;
+  if (!vtkSPTRenderSetup::BeginFrame(this, ren, target, internals.Context))
   {
     return;
   }
-  if (internals.Context && internals.Context != renWin)
-  {
-    this->ReleaseGraphicsResources(internals.Context);
-  }
-  internals.Context = renWin;
+  vtkOpenGLRenderWindow* renWin = target.Window;
+  const int width = target.Width, height = target.Height, x = target.X, y = target.Y;
 
   // Input and transfer functions: rebuilt only when they changed.
-  if (this->GetInputAlgorithm())
-  {
-    this->GetInputAlgorithm()->Update();
-  }
-  vtkSPTMeshBuffers::ScalarSelection selection;
-  selection.ScalarMode = this->ScalarMode;
-  selection.ArrayAccessMode = this->ArrayAccessMode;
-  selection.ArrayId = this->ArrayId;
-  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
-  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
-  if (!internals.Mesh->Update(this->GetDataSetInput(), selection))
-  {
-    if (internals.Mesh->GetBuildTime() != internals.ReportedMeshError)
-    {
-      internals.ReportedMeshError = internals.Mesh->GetBuildTime();
-      vtkErrorMacro(<< internals.Mesh->GetLastError());
-    }
-    return;
-  }
-  if (internals.Mesh->GetNumberOfTetrahedra() == 0)
+  if (!internals.Setup.UpdateMesh(this, internals.Mesh,
+        this->VectorMode == COMPONENT ? this->VectorComponent : -1, true) ||
+    !vtkSPTRenderSetup::CheckProperty(this, vol))
   {
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
-  if (!property->GetIndependentComponents())
-  {
-    vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
-                  "IndependentComponents on in the volume property.");
-    return;
-  }
-  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
-    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
-  {
-    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
-    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
-                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
-                       "are not drawn.");
-  }
   internals.Matrices.Compute(ren, vol, internals.Mesh);
   const double maxThickness = internals.Mesh->GetMaxEdgeLength();
   if (!internals.Table->Update(property, internals.Mesh->GetScalarRange(),
@@ -225,15 +184,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkSPTRenderSetup::SavedState savedState(ostate);
 
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
   if (!ensemble->Prepare(renWin, width, height, this->SubpixelLevel))
@@ -409,21 +360,12 @@ void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* sel
 {
   vtkInternals& internals = *this;
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
-  const int scalarSamples = internals.Table->GetScalarResolution();
-  const int thicknessSamples = internals.Table->GetLengthResolution();
-  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
-    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
-  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
-    0.5f / thicknessSamples };
   const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
   program->SetUniformMatrix4x4("MCVCMatrix", internals.Matrices.MCVC);
   program->SetUniformMatrix4x4("VCDCMatrix", internals.Matrices.VCDC);
   program->SetUniformMatrix4x4("DCVCMatrix", internals.Matrices.DCVC);
   program->SetUniformMatrix3x3("VCMCLinear", internals.Matrices.VCMCLinear);
-  program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
-  program->SetUniform3f("tableTexelScale", texelScale);
-  program->SetUniform3f("tableTexelOffset", texelOffset);
-  program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
+  internals.Table->SetUniforms(program, table, maxThickness);
   program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
   program->SetUniformi("subpixelLevel", self->SubpixelLevel);
   program->SetUniform2f("passSizeInPixels", passSize);
