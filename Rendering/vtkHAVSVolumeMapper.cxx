@@ -235,7 +235,10 @@ bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
   }
   vtkVolumeProperty* property = vol->GetProperty();
   internals.Faces->Update(mesh);
-  internals.Matrices.Compute(ren, vol, mesh);
+  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, mesh, internals.Matrices))
+  {
+    return false;
+  }
   if (!internals.Table->Update(property, mesh->GetScalarRange(),
         mesh->GetMaxEdgeLength() * mesh->GetScale(), this->PreIntegrationScalarResolution,
         this->PreIntegrationThicknessResolution))

@@ -407,7 +407,10 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight)
 {
   vtkInternals& internals = *this->Internals;
-  internals.Transforms.Compute(ren, vol, internals.Mesh);
+  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, internals.Mesh, internals.Transforms))
+  {
+    return false;
+  }
   internals.UpdateMeshRadius();
   const double needed = internals.SmallestFootprint(passWidth, passHeight);
   if (!(needed > 0.0) || !std::isfinite(needed))

@@ -93,11 +93,12 @@ public:
 
   /**
    * Set the uniforms through which the shaders read the table: `preIntegrationTable` (the
-   * texture's unit: activate it first), `tableTexelScale` and `tableTexelOffset` (from [0, 1] to the centers
-   * of the first and last texels) and `thicknessToTable` (1 / the longest thickness, in the
-   * units of the shaders' lengths: `maxThickness`).
+   * texture's unit: activate it first), `tableTexelScale` and `tableTexelOffset` (from [0, 1]
+   * to the centers of the first and last texels) and `thicknessToTable` (1 / the longest
+   * thickness, in the units of the shaders' lengths: `maxThickness`).
    */
-  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
+  void SetUniforms(
+    vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
 
   /**
    * Bytes held on the GPU.

@@ -9,6 +9,10 @@
 #include "vtk_glew.h"
 
 #include "vtkSPTMeshBuffers.h"
+#include "vtkSPTViewMatrices.h"
+
+#include <algorithm>
+#include <cmath>
 
 bool vtkSPTRenderSetup::GetTarget(
   vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren, Target& target)
@@ -105,6 +109,23 @@ bool vtkSPTRenderSetup::CheckProperty(vtkUnstructuredGridVolumeMapper* mapper, v
     vtkErrorWithObjectMacro(mapper,
       "Dependent components (scalars that are colors) are not supported; turn "
       "IndependentComponents on in the volume property.");
+    return false;
+  }
+  return true;
+}
+
+bool vtkSPTRenderSetup::ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper,
+  vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh, vtkSPTViewMatrices& matrices)
+{
+  matrices.Compute(ren, vol, mesh);
+  const auto finite = [](const float* values, int count)
+  { return std::all_of(values, values + count, [](float v) { return std::isfinite(v); }); };
+  if (!finite(matrices.MCVC, 16) || !finite(matrices.VCDC, 16) || !finite(matrices.DCVC, 16) ||
+    !finite(matrices.VCMCLinear, 9))
+  {
+    vtkErrorWithObjectMacro(mapper,
+      "The camera or the volume's transform is not finite (NaN or Inf in its matrices); "
+      "nothing is drawn. Check the camera and the data's bounds.");
     return false;
   }
   return true;

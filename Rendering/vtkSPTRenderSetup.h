@@ -20,6 +20,7 @@
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkSPTMeshBuffers;
+struct vtkSPTViewMatrices;
 class vtkUnstructuredGridVolumeMapper;
 class vtkVolume;
 
@@ -83,6 +84,13 @@ public:
    * Whether the volume's property can be rendered (independent components); an error if not.
    */
   static bool CheckProperty(vtkUnstructuredGridVolumeMapper* mapper, vtkVolume* vol);
+
+  /**
+   * Compute the frame's matrices; false, with an error, when they are not finite (a camera
+   * or a volume transform with NaN or Inf in it, as ResetCamera() makes for such bounds).
+   */
+  static bool ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren,
+    vtkVolume* vol, const vtkSPTMeshBuffers* mesh, vtkSPTViewMatrices& matrices);
 
 private:
   vtkMTimeType ReportedMeshError = 0;

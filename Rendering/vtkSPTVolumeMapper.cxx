@@ -1,5 +1,7 @@
 #include "vtkSPTVolumeMapper.h"
 
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkDataSet.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -40,6 +42,32 @@ enum class PassKind
 };
 
 constexpr int DepthKeyImageUnit = 0;
+
+// When the prop last changed in a way that changes what it draws. vtkVolume::GetRedrawMTime()
+// of VTK 9.2 dereferences a null transfer function for point scalars of more than four
+// components (it asks the property for one per component), so volumes are handled here.
+vtkMTimeType RedrawTime(vtkProp* prop)
+{
+  vtkVolume* volume = vtkVolume::SafeDownCast(prop);
+  if (!volume)
+  {
+    return prop->GetRedrawMTime();
+  }
+  vtkMTimeType time = volume->GetMTime();
+  if (vtkVolumeProperty* property = volume->GetProperty())
+  {
+    time = std::max(time, property->GetMTime()); // includes its transfer functions
+  }
+  if (vtkAbstractVolumeMapper* mapper = volume->GetMapper())
+  {
+    time = std::max(time, mapper->GetMTime());
+    if (vtkDataSet* input = mapper->GetDataSetInput())
+    {
+      time = std::max(time, input->GetMTime());
+    }
+  }
+  return time;
+}
 }
 
 class vtkSPTVolumeMapper::vtkInternals
@@ -106,7 +134,7 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    redraw = std::max(redraw, prop->GetVisibility() ? prop->GetRedrawMTime() : 0);
+    redraw = std::max(redraw, prop->GetVisibility() ? RedrawTime(prop) : 0);
   }
   for (double value : { double(x), double(y), double(width), double(height),
          double(this->Mesh->GetBuildTime()), double(this->Table->GetBuildTime()),
@@ -163,7 +191,10 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
-  internals.Matrices.Compute(ren, vol, internals.Mesh);
+  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, internals.Mesh, internals.Matrices))
+  {
+    return;
+  }
   const double maxThickness = internals.Mesh->GetMaxEdgeLength();
   if (!internals.Table->Update(property, internals.Mesh->GetScalarRange(),
         maxThickness * internals.Mesh->GetScale(), this->PreIntegrationScalarResolution,
