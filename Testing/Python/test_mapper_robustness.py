@@ -25,11 +25,14 @@ from robustness_support import (ONE, UNIT_TETRAHEDRON, assert_unchanged, propert
 SIZE = (64, 64)
 VIEW = render.View(30, 30)
 KINDS = ["havs", "pbvr"]
+ALL_KINDS = ["spt"] + KINDS  # for the cases that the fuzz test found (fuzz_worker.py)
 PBVR_LEVEL = 64  # repetitions of the renders compared with the reference
 Z = 4.0  # standard errors
 
 
 def make_mapper(kind, seed=1, repetitions=PBVR_LEVEL):
+    if kind == "spt":
+        return render.spt_mapper(8, seed=seed)
     return render.havs_mapper(6) if kind == "havs" else render.pbvr_mapper(repetitions, seed=seed)
 
 
@@ -65,9 +68,10 @@ def assert_matches_reference(kind, grid, prop, havs_rmse, pbvr_bias):
 
 
 def assert_same_picture(kind, image, expected, havs_rmse=0.0):
-    """HAVS: the same image (or within havs_rmse). PBVR, whose particles may have been made for another view and
-    thinned: the same total coverage within Z standard errors of its noise (each pixel's alpha
-    is a mean of PBVR_LEVEL Bernoulli trials), and no pixel far off."""
+    """HAVS: the same image (or within havs_rmse). PBVR, whose particles may have been made
+    for another view and thinned, or for other tetrahedra: the same total coverage within Z
+    standard errors of its noise (each pixel's alpha is a mean of PBVR_LEVEL Bernoulli
+    trials), and no pixel far off."""
     if kind == "havs":
         assert metrics.rmse(image, expected) <= havs_rmse if havs_rmse else \
             np.array_equal(image, expected)
@@ -84,8 +88,8 @@ def field_grid(cells=(3, 3, 3), array_name="f"):
     image = vtk.vtkImageData()
     image.SetDimensions(*(n + 1 for n in cells))
     points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
-    field = numpy_to_vtk(0.5 + 0.5 * np.sin(points[:, 0] + 0.7 * points[:, 1] - 0.4 * points[:, 2]),
-                         deep=True)
+    values = 0.5 + 0.5 * np.sin(points[:, 0] + 0.7 * points[:, 1] - 0.4 * points[:, 2])
+    field = numpy_to_vtk(values, deep=True)
     field.SetName(array_name)
     image.GetPointData().SetScalars(field)
     split = vtk.vtkDataSetTriangleFilter()
@@ -128,7 +132,8 @@ def test_cells_without_points_are_a_clear_error(kind, have_display):
     values.SetName("c")
     grid.GetCellData().SetScalars(values)
     image, _, messages = draw(kind, grid)
-    assert messages.errors and "point id 0" in messages.errors[0] and "0 points" in messages.errors[0]
+    assert messages.errors and "point id 0" in messages.errors[0]
+    assert "0 points" in messages.errors[0]
     assert image.max() == 0.0
 
 
@@ -165,6 +170,68 @@ def test_dependent_components_are_a_clear_error(kind, have_display):
     prop.IndependentComponentsOff()
     _, _, messages = draw(kind, ONE, prop)
     assert messages.errors and "IndependentComponents" in messages.errors[0]
+
+
+@pytest.mark.parametrize("kind", ALL_KINDS)
+def test_cells_with_the_wrong_number_of_points_are_a_clear_error(kind, have_display):
+    """A pyramid given four points: the split into tetrahedra would read a fifth."""
+    grid = mixed_cells()
+    grid.InsertNextCell(vtk.VTK_PYRAMID, 4, [0, 1, 2, 3])
+    image, _, messages = draw(kind, grid)
+    assert messages.errors and "has 4 points; that type has 5" in messages.errors[0]
+    assert image.max() == 0.0
+
+
+@pytest.mark.parametrize("kind", ALL_KINDS)
+@pytest.mark.parametrize("where", ["point", "cell"])
+def test_arrays_shorter_than_the_grid_are_a_clear_error(kind, where, have_display):
+    """The selected array too short is named; another array too short (which VTK's own split
+    into tetrahedra would read out of bounds) does not matter."""
+    grid = mixed_cells()
+    attributes = grid.GetPointData() if where == "point" else grid.GetCellData()
+    short = numpy_to_vtk(np.zeros(2), deep=True)
+    short.SetName("short")
+    attributes.AddArray(short)
+    image, _, messages = draw(kind, grid)  # the point scalars "s" are fine
+    assert not messages.errors and image[..., 3].max() > 0.1
+    mapper = make_mapper(kind)
+    mapper.SetScalarModeToUsePointFieldData() if where == "point" else \
+        mapper.SetScalarModeToUseCellFieldData()
+    mapper.SelectScalarArray("short")
+    image, _, messages = draw(kind, grid, mapper=mapper)
+    count = grid.GetNumberOfPoints() if where == "point" else grid.GetNumberOfCells()
+    assert messages.errors
+    assert f"'short' has 2 values, but the grid has {count} {where}s" in messages.errors[0]
+    assert image.max() == 0.0
+
+
+@pytest.mark.parametrize("kind", ALL_KINDS)
+def test_arrays_of_many_components(kind, have_display):
+    """Nine components (a tensor): its magnitude, as a one-component array of it. (VTK 9.2's
+    vtkVolume::GetRedrawMTime() crashes on more than four; SPT used to call it.)"""
+    tensors = np.outer([0.2, 0.5, 0.8, 1.0], np.full(9, 1.0 / 3.0))
+    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)])
+    array = numpy_to_vtk(tensors, deep=True)
+    array.SetName("t")
+    grid.GetPointData().SetScalars(array)
+    image, _, messages = draw(kind, grid)
+    expected, _, _ = draw(kind, tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)],
+                                           [0.2, 0.5, 0.8, 1.0]))
+    assert not messages.errors and image[..., 3].max() > 0.1
+    assert np.array_equal(image, expected)
+
+
+@pytest.mark.parametrize("kind", ALL_KINDS)
+def test_a_camera_that_is_not_finite_is_a_clear_error(kind, have_display):
+    window, renderer = render.make_window(*SIZE)
+    mapper = make_mapper(kind)
+    messages = watch(mapper)
+    render.add_volume(renderer, ONE, property_for(), mapper)
+    renderer.ResetCamera()
+    renderer.GetActiveCamera().SetPosition(math.nan, 0.0, 0.0)
+    window.Render()
+    assert messages.errors and "not finite" in messages.errors[0]
+    window.Finalize()
 
 
 # --- Values -----------------------------------------------------------------------------------
