@@ -26,6 +26,7 @@
 
 #include "vtkPBVRParticlesFS.h"
 #include "vtkPBVRParticlesVS.h"
+#include "vtkSPTRandom.h"
 
 #include <algorithm>
 #include <cmath>
@@ -519,8 +520,10 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
   vtkTextureObject* colors = internals.GetColorTexture(renWin);
+  std::string vertex = vtkPBVRParticlesVS;
+  vtkShaderProgram::Substitute(vertex, "//SPT::Random::Impl", vtkSPTRandom);
   vtkShaderProgram* program =
-    renWin->GetShaderCache()->ReadyShaderProgram(vtkPBVRParticlesVS, vtkPBVRParticlesFS, "");
+    renWin->GetShaderCache()->ReadyShaderProgram(vertex.c_str(), vtkPBVRParticlesFS, "");
   if (!colors || !program)
   {
     vtkErrorMacro("Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));

@@ -23,6 +23,7 @@
 #include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
+#include "vtkSPTRandom.h"
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraVS.h"
@@ -116,6 +117,7 @@ vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRender
                                    : (kind == PassKind::Keys ? "\n#define SPT_PASS_KEYS"
                                                              : "\n#define SPT_PASS_COLORS");
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", pass);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkSPTRandom);
   return renWin->GetShaderCache()->ReadyShaderProgram(
     vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
 }
