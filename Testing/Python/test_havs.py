@@ -18,7 +18,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import ONE, property_for, watch
+from robustness_support import ONE, opaque_plane, property_for, watch
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -141,16 +141,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     The segment that reaches into the plane ends at the last face in front of it. Measured
     RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
     grid = data.make_default_mesh()
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(-50.0, -50.0, 0.2)
-    plane.SetPoint1(50.0, -50.0, 0.2)
-    plane.SetPoint2(-50.0, 50.0, 0.2)
-    plane_mapper = vtk.vtkPolyDataMapper()
-    plane_mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(plane_mapper)
-    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
-    actor.GetProperty().LightingOff()
+    actor = opaque_plane()
     prop = data.default_transfer_function(grid)
     view = render.View(30, 30)
     reference = render.render(grid, prop, render.reference_mapper(), view, SIZE,

@@ -17,7 +17,7 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-from spt import data, metrics, render, statistics
+from spt import metrics, render, statistics
 
 from robustness_support import (ONE, UNIT_TETRAHEDRON, assert_unchanged, property_for,
                                 render_scaled, scaled_copy, snapshot, tetrahedra, watch)

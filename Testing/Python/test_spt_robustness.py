@@ -8,7 +8,6 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-import spt
 from spt import data, metrics, render
 
 from robustness_support import (ONE, assert_unchanged, property_for, render_scaled,
