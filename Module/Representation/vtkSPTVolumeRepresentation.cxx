@@ -2,7 +2,9 @@
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkHAVSVolumeMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPBVRVolumeMapper.h"
 #include "vtkSPTVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -44,6 +46,30 @@ vtkAbstractVolumeMapper* vtkSPTVolumeRepresentation::GetVolumeMapper()
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
 
+namespace
+{
+// The project's mappers have the same vector-mode settings but no common base class for them.
+template <typename Mapper>
+bool SetVectorMode(vtkAbstractVolumeMapper* volumeMapper, vtkColorTransferFunction* colors)
+{
+  auto* mapper = Mapper::SafeDownCast(volumeMapper);
+  if (!mapper)
+  {
+    return false;
+  }
+  if (colors && colors->GetVectorMode() == vtkScalarsToColors::COMPONENT)
+  {
+    mapper->SetVectorModeToComponent();
+    mapper->SetVectorComponent(colors->GetVectorComponent());
+  }
+  else
+  {
+    mapper->SetVectorModeToMagnitude();
+  }
+  return true;
+}
+}
+
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::UpdateMapperParameters()
 {
@@ -52,18 +78,9 @@ void vtkSPTVolumeRepresentation::UpdateMapperParameters()
   // As ParaView does for its image volume mappers: the color map's vector mode chooses the
   // magnitude or one component of a multi-component array.
   vtkColorTransferFunction* colors = this->Property->GetRGBTransferFunction(0);
-  if (auto* spt = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
-  {
-    if (colors && colors->GetVectorMode() == vtkScalarsToColors::COMPONENT)
-    {
-      spt->SetVectorModeToComponent();
-      spt->SetVectorComponent(colors->GetVectorComponent());
-    }
-    else
-    {
-      spt->SetVectorModeToMagnitude();
-    }
-  }
+  SetVectorMode<vtkSPTVolumeMapper>(this->VolumeMapper, colors) ||
+    SetVectorMode<vtkHAVSVolumeMapper>(this->VolumeMapper, colors) ||
+    SetVectorMode<vtkPBVRVolumeMapper>(this->VolumeMapper, colors);
 }
 
 //------------------------------------------------------------------------------

@@ -68,6 +68,11 @@ BAD_ARGUMENTS = [
     (("figures", "accuracy", "--rays", "0"), "outside 1..1000000"),
     (("figures", "accuracy", "--rays", "many"), "not a whole number"),
     (("figures", "accuracy", "--nosuch"), "unrecognized arguments"),
+    (("mesh",), "required: --output"),
+    (("mesh", "--output", "m.vtk", "--shape", "cube"), "invalid choice"),
+    (("mesh", "--output", "m.vtk", "--cells", "0"), "outside"),
+    (("mesh", "--output", "m.vtk", "--cells", "lots"), "not a whole number"),
+    (("mesh", "--output", "m.vtk", "--seed", "-1"), "negative"),
 ]
 
 

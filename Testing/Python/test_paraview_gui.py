@@ -1,8 +1,11 @@
 """The plugin in the real ParaView client: `paraview` under an Xvfb of its own loads the plugin
 and the mesh (--script), then plays a test script (--test-script) that picks "Volume (SPT)" in
-the representation toolbar, sets Repetition Level and Seed in the Properties panel, and keeps
-the whole window and the view. The view must show a volume, the settings must have reached the
-representation, and paraview must exit cleanly (--exit).
+the representation toolbar and sets Repetition Level and Seed in the Properties panel, then
+"Volume (HAVS-like)" and its K-buffer Size, then "Volume (PBVR)" and its Repetition Level and
+Seed, keeping the whole window and the view after each. Each view must show a volume, the
+settings must have reached the representation's mapper, and paraview must exit cleanly (--exit).
+
+The screenshots are kept for a person to look at; test_screenshots_for_a_person prints where.
 """
 
 import json
@@ -34,7 +37,7 @@ def session(tmp_path_factory):
          f"-screen 0 {SCREEN}x24 -noreset -fbdir {framebuffer}",
          pvs.executable("paraview"), "-geometry", f"{SCREEN}+0+0", "--dr",
          f"--script={pvs.SCRIPTS / 'gui_setup.py'}",
-         f"--test-script={pvs.SCRIPTS / 'gui_pick_spt.xml'}", "--exit"],
+         f"--test-script={pvs.SCRIPTS / 'gui_pick_methods.xml'}", "--exit"],
         env=env)
     (directory / "paraview.log").write_text(result.stdout + result.stderr)
     return directory
@@ -43,18 +46,31 @@ def session(tmp_path_factory):
 def test_paraview_played_the_test_script_and_exited(session):
     log = (session / "paraview.log").read_text()
     assert "Success =  true" in log, log[-3000:]
+    errors = sorted(session.glob("error_*.txt"))
+    assert not errors, "\n".join(path.read_text() for path in errors)
 
 
-def test_spt_was_picked_and_set_in_the_gui(session):
-    state = json.loads((session / "state.json").read_text())
-    assert state["representation"] == "Volume (SPT)"
-    assert (state["RepetitionLevel"], state["Seed"]) == (6, 7)
-    assert state["mapper_class"] == "vtkSPTVolumeMapper"
+METHODS = {"spt": ("Volume (SPT)", "vtkSPTVolumeMapper", {"RepetitionLevel": 6, "Seed": 7}),
+           "havs": ("Volume (HAVS-like)", "vtkHAVSVolumeMapper", {"KBufferSize": 4}),
+           "pbvr": ("Volume (PBVR)", "vtkPBVRVolumeMapper",
+                    {"PBVRRepetitionLevel": 5, "PBVRSeed": 2})}
 
 
-def test_view_shows_a_volume(session):
-    image = pvs.read_png(session / "view.png")
-    pvs.keep(session / "view.png", "gui_view.png")
+@pytest.mark.parametrize("step", METHODS)
+def test_method_was_picked_and_set_in_the_gui(session, step):
+    representation, mapper_class, settings = METHODS[step]
+    state = json.loads((session / f"state_{step}.json").read_text())
+    assert state["representation"] == representation
+    # The combo box lists all three.
+    assert {method for method, _, _ in METHODS.values()} <= set(state["representation_types"])
+    assert state["settings"] == state["mapper_settings"] == settings
+    assert state["mapper_class"] == mapper_class
+
+
+@pytest.mark.parametrize("step", METHODS)
+def test_view_shows_a_volume(session, step):
+    image = pvs.read_png(session / f"view_{step}.png")
+    pvs.keep(session / f"view_{step}.png", f"gui_view_{step}.png")
     # The background of the color palette, as drawn: the color of the view's corners.
     corners = np.array([image[0, 0], image[0, -1], image[-1, 0], image[-1, -1]])[:, :3]
     assert np.ptp(corners, axis=0).max() < 2.0 / 255.0, corners
@@ -63,14 +79,41 @@ def test_view_shows_a_volume(session):
     assert image[covered][:, :3].std(axis=0).max() > 0.05, "a flat color, not a volume"
 
 
-def test_window_screenshot(session):
-    """The whole window (toolbar, Properties panel with the SPT settings, view), kept as
-    gui_window.png for a person to look at; here only checked to be a drawn window."""
-    window = pvs.read_xwd(session / "window.xwd")
-    assert window.shape == (1024, 1280, 3)
-    if pvs.artifacts():
-        from spt import metrics
+def window_png(session, step):
+    """The whole window after ``step`` (toolbar, Properties panel with the method's settings,
+    view) as PNG next to its dump, and in the artifacts as gui_window_STEP.png."""
+    from spt import metrics
 
-        metrics.write_png(pvs.artifacts() / "gui_window.png", window)
+    window = pvs.read_xwd(session / f"window_{step}.xwd")
+    path = session / f"window_{step}.png"
+    metrics.write_png(path, window)
+    pvs.keep(path, f"gui_window_{step}.png")
+    return window
+
+
+@pytest.mark.parametrize("step", METHODS)
+def test_window_screenshot(session, step):
+    """Only checked to be a drawn window here; a person looks at it (the Representation combo
+    box and the method's group in the Properties panel)."""
+    window = window_png(session, step)
+    assert window.shape == (1024, 1280, 3)
     colors = np.unique(window.reshape(-1, 3)[::7], axis=0)
     assert len(colors) > 500, "an empty screen, not ParaView's window"
+
+
+def test_panels_differ_between_methods(session):
+    """Switching the method changes the Properties panel (each method shows its own group)."""
+    windows = {step: window_png(session, step) for step in METHODS}
+    panel = slice(0, 1024), slice(0, 400)  # the left-hand dock, where the Properties panel is
+    assert not np.array_equal(windows["spt"][panel], windows["havs"][panel])
+    assert not np.array_equal(windows["havs"][panel], windows["pbvr"][panel])
+
+
+def test_screenshots_for_a_person(session, capsys):
+    """Say where the screenshots are, past pytest's capture."""
+    for step in METHODS:
+        window_png(session, step)
+    directory = pvs.artifacts() or session
+    with capsys.disabled():
+        print(f"\nGUI screenshots: {directory}/gui_window_{{spt,havs,pbvr}}.png (whole window) "
+              f"and gui_view_{{spt,havs,pbvr}}.png (view); also in {session}")

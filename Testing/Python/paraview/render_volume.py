@@ -1,9 +1,12 @@
-"""Render a data set as "Volume (SPT)" with ParaView's own Python, for the plugin's tests.
+"""Render a data set as "Volume (SPT)", "Volume (HAVS-like)" or "Volume (PBVR)" with ParaView's own
+Python, for the plugin's tests.
 
 Run by pvpython (on its own or connected to a pvserver) and by pvbatch (one rank, or several
 under mpirun). Writes the view as a PNG over a black background, so that its RGB is the
 volume's premultiplied color (or, with --transparent, as RGBA over a transparent background),
-and a JSON report of what was rendered.
+and a JSON report of what was rendered. With --plain, the same data, camera, transfer functions
+and settings rendered once more by a new mapper of the same class in a plain VTK window, for
+comparison.
 
     pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
 """
@@ -14,10 +17,41 @@ import sys
 
 from paraview import servermanager, simple
 
-# The SPT mapper's settings; a mapper with others names its own with --set.
-SETTINGS = ("RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+# Each representation type of the plugin: its mapper class, and its settings as the
+# representation exposes them (exposed name: the mapper's own name). Names that two mappers
+# share are exposed with a prefix.
+METHODS = {
+    "Volume (SPT)": {
+        "mapper": "vtkSPTVolumeMapper",
+        "settings": {name: name for name in (
+            "RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
             "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
-            "ProgressiveRefinement")
+            "ProgressiveRefinement", "AutoAdjustRepetitions")},
+        "repetitions": "RepetitionLevel",
+        "seed": "Seed",
+    },
+    "Volume (HAVS-like)": {
+        "mapper": "vtkHAVSVolumeMapper",
+        "settings": {
+            "KBufferSize": "KBufferSize",
+            "KBufferSynchronization": "KBufferSynchronization",
+            "HAVSPreIntegrationScalarResolution": "PreIntegrationScalarResolution",
+            "HAVSPreIntegrationThicknessResolution": "PreIntegrationThicknessResolution",
+        },
+    },
+    "Volume (PBVR)": {
+        "mapper": "vtkPBVRVolumeMapper",
+        "settings": {
+            "PBVRRepetitionLevel": "RepetitionLevel",
+            "PBVRSubpixelLevel": "SubpixelLevel",
+            "PBVRSeed": "Seed",
+            "SamplingMode": "SamplingMode",
+            "MaximumParticleMemory": "MaximumParticleMemory",
+        },
+        "repetitions": "PBVRRepetitionLevel",
+        "seed": "PBVRSeed",
+    },
+}
 
 
 def parse_arguments(argv):
@@ -41,6 +75,8 @@ def parse_arguments(argv):
                         "unit distance to use, for a part of that data set")
     parser.add_argument("--transparent", action="store_true",
                         help="RGBA over a transparent background instead of RGB over black")
+    parser.add_argument("--plain", help="also write this PNG: the same scene rendered by a "
+                        "plain VTK pipeline (pvpython on its own only)")
     return parser.parse_args(argv)
 
 
@@ -96,9 +132,26 @@ def settings_to_set(args):
     return {name: int(value) for name, value in (item.split("=", 1) for item in args.set)}
 
 
+def method(args):
+    return METHODS.get(args.representation, {"settings": {}})
+
+
 def setting_names(args):
-    names = list(SETTINGS) if args.representation == "Volume (SPT)" else []
-    return names + [name for name in settings_to_set(args) if name not in names]
+    """Exposed name: the mapper's name, of every setting to report."""
+    names = dict(method(args)["settings"])
+    for name in settings_to_set(args):
+        names.setdefault(name, name)
+    return names
+
+
+def get_setting(display, name):
+    """An integer setting as its number (an enumeration's value, not its text)."""
+    return int(display.SMProxy.GetProperty(name).GetElement(0))
+
+
+def set_setting(display, name, value):
+    display.SMProxy.GetProperty(name).SetElement(0, int(value))
+    display.SMProxy.UpdateVTKObjects()
 
 
 def show_volume(reader, view, args, like):
@@ -112,11 +165,12 @@ def show_volume(reader, view, args, like):
     else:
         display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(args.representation)
-    if args.representation == "Volume (SPT)":
-        display.RepetitionLevel = args.repetitions
-        display.Seed = args.seed
+    chosen = method(args)
+    if "repetitions" in chosen:
+        set_setting(display, chosen["repetitions"], args.repetitions)
+        set_setting(display, chosen["seed"], args.seed)
     for name, value in settings_to_set(args).items():
-        display.SetPropertyWithName(name, value)
+        set_setting(display, name, value)
     display.UseDataPartitions = int(args.use_data_partitions)
     return display
 
@@ -161,23 +215,65 @@ def set_camera(view, camera):
 
 def local_mapper_report(display, names):
     """What this process's mapper drew. Importing spt inside ParaView's Python wraps the
-    plugin's vtkSPTVolumeMapper as spt.vtkSPTVolumeMapper."""
+    plugin's mappers as spt.vtkSPTVolumeMapper, spt.vtkHAVSVolumeMapper, ..."""
     import spt
 
     info = {"spt_file": spt.__file__, "spt_libraries": loaded_libraries("SPT")}
     mapper = mapper_object(display)
     if mapper is not None:
-        # Wrapped as its own class once spt (which re-exports the project's mappers) is
-        # imported; the plugin's other mappers report what they have of the same.
         info["mapper_class"] = mapper.GetClassName()
         info["mapper_is_spt"] = isinstance(mapper, spt.vtkSPTVolumeMapper)
+        info["mapper_is_wrapped"] = isinstance(mapper, getattr(spt, mapper.GetClassName(), ()))
         if hasattr(mapper, "GetNumberOfTetrahedra"):
             info["tetrahedra"] = int(mapper.GetNumberOfTetrahedra())
         if hasattr(mapper, "GetInput") and mapper.GetInput() is not None:
             info["mapper_input_bounds"] = list(mapper.GetInput().GetBounds())
-        info["mapper_settings"] = {name: int(getattr(mapper, "Get" + name)())
-                                   for name in names if hasattr(mapper, "Get" + name)}
+        info["mapper_settings"] = {
+            exposed: int(getattr(mapper, "Get" + own)())
+            for exposed, own in names.items() if hasattr(mapper, "Get" + own)}
     return info
+
+
+def render_plain(display, view, args):
+    """The scene as this process drew it (the mapper's input, the volume property, the camera
+    and the settings), drawn again by a new mapper of the same class in a plain VTK render
+    window over black: what a VTK user of the spt package gets."""
+    import spt
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkRenderingCore import (vtkRenderWindow, vtkRenderer, vtkVolume,
+                                             vtkWindowToImageFilter)
+
+    representation = display.GetClientSideObject().GetActiveRepresentation()
+    drawn = representation.GetActiveVolumeMapper()
+    mapper = getattr(spt, drawn.GetClassName())()
+    for own in method(args)["settings"].values():
+        getattr(mapper, "Set" + own)(getattr(drawn, "Get" + own)())
+    mapper.SetInputData(drawn.GetInput())
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(representation.GetActor().GetProperty())
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(args.size, args.size)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.0, 0.0, 0.0)
+    renderer.GetActiveCamera().DeepCopy(view.GetRenderer().GetActiveCamera())
+    window.AddRenderer(renderer)
+    renderer.AddVolume(volume)
+    renderer.ResetCameraClippingRange()
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    grab.ShouldRerenderOff()
+    grab.Update()
+    writer = vtkPNGWriter()
+    writer.SetFileName(args.plain)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+    renderer.RemoveVolume(volume)
+    window.Finalize()
 
 
 def report(display, reader, view, args):
@@ -188,7 +284,7 @@ def report(display, reader, view, args):
     info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
     info["representation_types"] = list(display.GetProperty("Representation").Available)
     names = setting_names(args)
-    info["settings"] = {name: int(display.GetPropertyValue(name)) for name in names}
+    info["settings"] = {name: get_setting(display, name) for name in names}
     info["documentation"] = {name: documentation(display, name) for name in names}
     info["property_groups"] = property_groups(display)
     info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
@@ -228,6 +324,8 @@ def main(argv):
     simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
                           TransparentBackground=int(args.transparent))
     report(display, reader, view, args)
+    if args.plain:
+        render_plain(display, view.GetClientSideObject(), args)
 
     # Leave nothing behind for the exit: the view goes before the data.
     simple.Hide(reader, view)

@@ -6,17 +6,22 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     mapper = spt.vtkSPTVolumeMapper()    # sorting-free (the paper's method)
     baseline = spt.vtkHAVSVolumeMapper() # sorted baseline: HAVS (Callahan et al. 2005)
     particles = spt.vtkPBVRVolumeMapper() # sorting-free baseline: particles (PBVR)
+    mesher = spt.vtkTetGenMesher()        # closed triangulated surface -> tetrahedra (TetGen)
 
-Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.render``
+Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
+generated drill and torus meshes at any size, cached on disk), ``spt.render``
 (rendering helpers and the reference), ``spt.metrics`` (image error), ``spt.accuracy``
 (the paper's accuracy experiment) and ``spt.figures``; ``python3 -m spt`` is the command line.
 """
 
 # The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.
+from vtkmodules import vtkCommonExecutionModel as _vtkCommonExecutionModel  # noqa: F401
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
 
+from .SPTMeshing import vtkTetGenMesher
 from .SPTRendering import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTVolumeMapper
 
-__all__ = ["vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTVolumeMapper"]
+__all__ = [
+    "vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTVolumeMapper", "vtkTetGenMesher"]
 __version__ = "0.1.0"

@@ -68,6 +68,28 @@ def _steep_datasets(text: str) -> List[str]:
     return names
 
 
+def _cell_count(text: str) -> int:
+    from .meshes import MAX_CELLS, MIN_CELLS
+
+    try:
+        value = int(text.replace("_", ""))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if not MIN_CELLS <= value <= MAX_CELLS:
+        raise argparse.ArgumentTypeError(f"{value} is outside {MIN_CELLS}..{MAX_CELLS}")
+    return value
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{value} is negative")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python3 -m spt",
@@ -124,6 +146,17 @@ def _parser() -> argparse.ArgumentParser:
     accuracy.add_argument("--output", type=_output_directory,
                           default=pathlib.Path("out/figures/accuracy"))
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
+
+    mesh = commands.add_parser(
+        "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
+    mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
+    mesh.add_argument("--cells", type=_cell_count, default=1_000_000,
+                      help="number of tetrahedra, within 25 %% (default 1000000)")
+    mesh.add_argument("--seed", type=_seed, default=0, help="places the field's maxima")
+    mesh.add_argument("--output", type=pathlib.Path, required=True,
+                      help="the .vtk file to write (VTK legacy binary)")
+    mesh.add_argument("--no-cache", action="store_true",
+                      help="mesh again instead of reading SPT_CACHE_DIR (which is not written)")
     return parser
 
 
@@ -150,6 +183,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             _print_table(["method", "RMSE", "PSNR [dB]", "pixels off > 0.05", "time [s]",
                           "time / VTK PT"], rows)
             print(f"Images and comparison.png written to {arguments.output}")
+        elif arguments.command == "mesh":
+            from .meshes import generate, write_legacy
+
+            grid = generate(arguments.shape, arguments.cells, arguments.seed,
+                            cache=not arguments.no_cache)
+            write_legacy(grid, arguments.output)
+            print(f"{grid.GetNumberOfCells()} tetrahedra, {grid.GetNumberOfPoints()} points "
+                  f"written to {arguments.output}")
         elif arguments.figure == "convergence":
             results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
                                           arguments.output)
