@@ -10,6 +10,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkSPTSceneDepth.h"
+
 #include "vtkSPTAccumulateFS.h"
 
 #include <cstring>
@@ -81,43 +83,14 @@ std::string vtkHAVSKBuffer::GetShaderDefinitions() const
   return defines.str();
 }
 
-int vtkHAVSKBuffer::SceneDepthFormat(int* hasDepth) const
-{
-  // glBlitFramebuffer copies depth only between identical formats, so the scene depth texture
-  // takes the format of the depth buffer it copies.
-  GLint readFramebuffer = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
-  const GLenum attachment = readFramebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
-  GLint objectType = GL_NONE;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &objectType);
-  *hasDepth = objectType != GL_NONE;
-  if (!*hasDepth)
-  {
-    return vtkTextureObject::Float32;
-  }
-  GLint componentType = GL_FLOAT;
-  GLint bits = 32;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &componentType);
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
-  if (componentType == GL_FLOAT)
-  {
-    return vtkTextureObject::Float32;
-  }
-  return bits <= 16 ? vtkTextureObject::Fixed16
-                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
-}
-
 bool vtkHAVSKBuffer::Prepare(
   vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize, int access)
 {
   int hasDepth = 0;
-  const int depthFormat = this->SceneDepthFormat(&hasDepth);
+  const int depthFormat = vtkSPTSceneDepth::QueryFormat(&hasDepth);
   if (renWin != this->Context || width != this->Width || height != this->Height ||
     kbufferSize != this->KBufferSize || access != this->AccessMode ||
-    depthFormat != this->SceneDepthTextureFormat)
+    depthFormat != this->SceneDepth->GetFormat())
   {
     if (this->Context && this->Context != renWin)
     {
@@ -127,13 +100,12 @@ bool vtkHAVSKBuffer::Prepare(
     this->Height = height;
     this->KBufferSize = kbufferSize;
     this->AccessMode = access;
-    this->SceneDepthTextureFormat = depthFormat;
-    this->Allocate(renWin);
+    this->Allocate(renWin, depthFormat);
   }
   return this->Context != nullptr;
 }
 
-void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
+void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 {
   const int targets = this->GetNumberOfTargets();
   bool ok = true;
@@ -141,19 +113,12 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
   {
     this->Targets[t]->ReleaseGraphicsResources(renWin);
   }
-  for (int t = 0; t < targets + 1; ++t)
+  for (int t = 0; t < targets; ++t)
   {
-    vtkTextureObject* texture = t < targets ? this->Targets[t].Get() : this->SceneDepth.Get();
-    texture->SetContext(renWin);
-    texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    texture->SetWrapT(vtkTextureObject::ClampToEdge);
-    const int w = this->Width, h = this->Height;
-    ok = ok &&
-      (t < targets ? texture->Allocate2D(w, h, 4, VTK_FLOAT)
-                   : texture->AllocateDepth(w, h, this->SceneDepthTextureFormat));
+    vtkSPTSceneDepth::UseNearestTexels(this->Targets[t], renWin);
+    ok = ok && this->Targets[t]->Allocate2D(this->Width, this->Height, 4, VTK_FLOAT);
   }
+  ok = ok && this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
 
   vtkOpenGLState* ostate = renWin->GetState();
   ostate->PushFramebufferBindings();
@@ -169,10 +134,6 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
   }
   this->Framebuffer->ActivateDrawBuffers(targets);
   ok = ok && this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  this->SceneDepthFramebuffer->SetContext(renWin);
-  this->SceneDepthFramebuffer->Bind();
-  this->SceneDepthFramebuffer->AddDepthAttachment(this->SceneDepth);
-  ok = ok && this->SceneDepthFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   ostate->PopFramebufferBindings();
 
   if (!this->Copy)
@@ -188,30 +149,6 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
     return;
   }
   this->Context = renWin;
-}
-
-void vtkHAVSKBuffer::CaptureSceneDepth(int x, int y)
-{
-  vtkOpenGLState* ostate = this->Context->GetState();
-  int hasDepth = 0;
-  this->SceneDepthFormat(&hasDepth);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->PushDrawFramebufferBinding();
-  this->SceneDepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  if (hasDepth)
-  {
-    ostate->vtkglBlitFramebuffer(x, y, x + this->Width, y + this->Height, 0, 0, this->Width,
-      this->Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-  }
-  if (!hasDepth || glGetError() != GL_NO_ERROR)
-  {
-    ostate->vtkglDepthMask(GL_TRUE);
-    ostate->vtkglClearDepth(1.0);
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-  }
-  ostate->PopDrawFramebufferBinding();
 }
 
 void vtkHAVSKBuffer::Clear()
@@ -261,8 +198,8 @@ void vtkHAVSKBuffer::BeginPass(vtkShaderProgram* program)
   this->SceneDepthActive = program->IsUniformUsed("sceneDepthTexture");
   if (this->SceneDepthActive)
   {
-    this->SceneDepth->Activate();
-    program->SetUniformi("sceneDepthTexture", this->SceneDepth->GetTextureUnit());
+    this->SceneDepth->GetTexture()->Activate();
+    program->SetUniformi("sceneDepthTexture", this->SceneDepth->GetTexture()->GetTextureUnit());
   }
 }
 
@@ -270,7 +207,7 @@ void vtkHAVSKBuffer::EndPass()
 {
   if (this->SceneDepthActive)
   {
-    this->SceneDepth->Deactivate();
+    this->SceneDepth->GetTexture()->Deactivate();
     this->SceneDepthActive = false;
   }
   if (this->AccessMode != FRAMEBUFFER_FETCH)
@@ -321,7 +258,6 @@ void vtkHAVSKBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Copy.reset();
   this->Framebuffer->ReleaseGraphicsResources(window);
-  this->SceneDepthFramebuffer->ReleaseGraphicsResources(window);
   for (int t = 0; t < MaximumTargets; ++t)
   {
     this->Targets[t]->ReleaseGraphicsResources(window);
@@ -329,7 +265,6 @@ void vtkHAVSKBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->SceneDepth->ReleaseGraphicsResources(window);
   this->Context = nullptr;
   this->Width = this->Height = this->KBufferSize = this->AccessMode = 0;
-  this->SceneDepthTextureFormat = -1;
 }
 
 void vtkHAVSKBuffer::PrintSelf(ostream& os, vtkIndent indent)

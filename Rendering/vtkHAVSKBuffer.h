@@ -29,6 +29,7 @@
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the framebuffers
 #include "vtkObject.h"
+#include "vtkSPTSceneDepth.h" // For the scene depth
 
 #include <memory> // For the quad helpers
 #include <string> // For the shader definitions
@@ -75,7 +76,7 @@ public:
    * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
    * corner is (x, y), into the scene depth texture (the far plane without a depth buffer).
    */
-  void CaptureSceneDepth(int x, int y);
+  void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**
    * Bind the targets for a pass of the k-buffer shaders: as draw buffers of the framebuffer,
@@ -114,7 +115,7 @@ public:
   /**
    * The scene depth texture.
    */
-  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth; }
+  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
 
   /**
    * Bytes held on the GPU.
@@ -131,8 +132,7 @@ private:
   vtkHAVSKBuffer(const vtkHAVSKBuffer&) = delete;
   void operator=(const vtkHAVSKBuffer&) = delete;
 
-  void Allocate(vtkOpenGLRenderWindow* renWin);
-  int SceneDepthFormat(int* hasDepth) const;
+  void Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat);
 
   static constexpr int MaximumTargets = 4;
 
@@ -141,13 +141,11 @@ private:
   int Height = 0;
   int KBufferSize = 0;
   int AccessMode = 0;
-  int SceneDepthTextureFormat = -1;
   bool SceneDepthActive = false;
 
   vtkNew<vtkTextureObject> Targets[MaximumTargets];
-  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkSPTSceneDepth> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
-  vtkNew<vtkOpenGLFramebufferObject> SceneDepthFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Copy;
 };
 

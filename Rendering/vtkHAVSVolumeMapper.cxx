@@ -17,6 +17,7 @@
 #include "vtkHAVSKBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
 #include "vtkHAVSFacesFS.h"
@@ -41,8 +42,7 @@ public:
   unsigned int TimerQuery = 0;
   int AccessInUse = -1;
   bool InterlockFailed = false;
-  vtkMTimeType ReportedMeshError = 0;
-  vtkMTimeType ReportedSkippedCells = 0;
+  vtkSPTRenderSetup Setup;
   int ReportedAccessError = -1;
 
   std::string Source(const char* shader) const;
@@ -86,17 +86,7 @@ int vtkHAVSVolumeMapper::vtkInternals::ChooseAccess(int requested)
 void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
   vtkShaderProgram* program, vtkTextureObject* table)
 {
-  const int scalarSamples = this->Table->GetScalarResolution();
-  const int thicknessSamples = this->Table->GetLengthResolution();
-  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
-    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
-  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
-    0.5f / thicknessSamples };
-  const double maxThickness = this->Mesh->GetMaxEdgeLength();
-  program->SetUniformi("preIntegrationTable", table->GetTextureUnit());
-  program->SetUniform3f("tableTexelScale", texelScale);
-  program->SetUniform3f("tableTexelOffset", texelOffset);
-  program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
+  this->Table->SetUniforms(program, table, this->Mesh->GetMaxEdgeLength());
   program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
   program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
   program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
@@ -236,56 +226,19 @@ vtkIdType vtkHAVSVolumeMapper::GetGPUMemorySize()
 bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  if (this->GetInputAlgorithm())
-  {
-    this->GetInputAlgorithm()->Update();
-  }
-  vtkSPTMeshBuffers::ScalarSelection selection;
-  selection.ScalarMode = this->ScalarMode;
-  selection.ArrayAccessMode = this->ArrayAccessMode;
-  selection.ArrayId = this->ArrayId;
-  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
-  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
   vtkSPTMeshBuffers* mesh = internals.Mesh;
-  const bool built = mesh->Update(this->GetDataSetInput(), selection);
-  if (!built || mesh->GetCellScalars())
-  {
-    if (mesh->GetBuildTime() != internals.ReportedMeshError)
-    {
-      internals.ReportedMeshError = mesh->GetBuildTime();
-      if (!built)
-      {
-        vtkErrorMacro(<< mesh->GetLastError());
-      }
-      else
-      {
-        vtkErrorMacro("vtkHAVSVolumeMapper renders point scalars only (its faces interpolate "
-                      "them); the selected array is cell data. Convert it with "
-                      "vtkCellDataToPointData, or render it with vtkSPTVolumeMapper.");
-      }
-    }
-    return false;
-  }
-  if (mesh->GetNumberOfTetrahedra() == 0)
+  if (!internals.Setup.UpdateMesh(
+        this, mesh, this->VectorMode == COMPONENT ? this->VectorComponent : -1, false) ||
+    !vtkSPTRenderSetup::CheckProperty(this, vol))
   {
     return false;
   }
   vtkVolumeProperty* property = vol->GetProperty();
-  if (!property->GetIndependentComponents())
+  internals.Faces->Update(mesh);
+  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, mesh, internals.Matrices))
   {
-    vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
-                  "IndependentComponents on in the volume property.");
     return false;
   }
-  if (mesh->GetNumberOfSkippedCells() > 0 && mesh->GetBuildTime() != internals.ReportedSkippedCells)
-  {
-    internals.ReportedSkippedCells = mesh->GetBuildTime();
-    vtkWarningMacro(<< mesh->GetNumberOfSkippedCells()
-                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
-                       "are not drawn.");
-  }
-  internals.Faces->Update(mesh);
-  internals.Matrices.Compute(ren, vol, mesh);
   if (!internals.Table->Update(property, mesh->GetScalarRange(),
         mesh->GetMaxEdgeLength() * mesh->GetScale(), this->PreIntegrationScalarResolution,
         this->PreIntegrationThicknessResolution))
@@ -299,23 +252,12 @@ bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
 void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    vtkErrorMacro("vtkHAVSVolumeMapper needs an OpenGL render window.");
-    return;
-  }
-  int width, height, x, y;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  if (width <= 0 || height <= 0)
+  vtkSPTRenderSetup::Target target;
+  if (!vtkSPTRenderSetup::BeginFrame(this, ren, target, internals.Context))
   {
     return;
   }
-  if (internals.Context && internals.Context != renWin)
-  {
-    this->ReleaseGraphicsResources(internals.Context);
-  }
-  internals.Context = renWin;
+  vtkOpenGLRenderWindow* renWin = target.Window;
   internals.AccessInUse = -1;
   if (!this->PrepareInput(ren, vol))
   {
@@ -342,7 +284,7 @@ void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->LastSortTime = internals.Faces->GetLastSortTime();
   vtkTextureObject* table = internals.Table->GetTexture(renWin);
   if (!table || !internals.Faces->Upload(renWin) ||
-    !internals.KBuffer->Prepare(renWin, width, height, this->KBufferSize, access))
+    !internals.KBuffer->Prepare(renWin, target.Width, target.Height, this->KBufferSize, access))
   {
     return;
   }
@@ -357,13 +299,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkSPTRenderSetup::SavedState savedState(ostate);
   const bool timed = internals.StartTimer();
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;

@@ -21,10 +21,12 @@
 #include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
 #include "vtkPBVRParticlesFS.h"
 #include "vtkPBVRParticlesVS.h"
+#include "vtkSPTRandom.h"
 
 #include <algorithm>
 #include <cmath>
@@ -81,8 +83,7 @@ public:
   vtkNew<vtkPBVRParticleGenerator> Generator;
   vtkSPTViewMatrices Transforms;
   vtkOpenGLRenderWindow* Context = nullptr;
-  vtkMTimeType ReportedMeshError = 0;
-  vtkMTimeType ReportedSkippedCells = 0;
+  vtkSPTRenderSetup Setup;
 
   // The transfer functions, sampled over the mesh's scalar range.
   std::vector<double> Color;       // RGB
@@ -407,7 +408,10 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight)
 {
   vtkInternals& internals = *this->Internals;
-  internals.Transforms.Compute(ren, vol, internals.Mesh);
+  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, internals.Mesh, internals.Transforms))
+  {
+    return false;
+  }
   internals.UpdateMeshRadius();
   const double needed = internals.SmallestFootprint(passWidth, passHeight);
   if (!(needed > 0.0) || !std::isfinite(needed))
@@ -467,77 +471,27 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   return true;
 }
 
-bool vtkPBVRVolumeMapper::UpdateMesh()
-{
-  vtkInternals& internals = *this->Internals;
-  if (this->GetInputAlgorithm())
-  {
-    this->GetInputAlgorithm()->Update();
-  }
-  vtkSPTMeshBuffers::ScalarSelection selection;
-  selection.ScalarMode = this->ScalarMode;
-  selection.ArrayAccessMode = this->ArrayAccessMode;
-  selection.ArrayId = this->ArrayId;
-  selection.ArrayName = this->ArrayName ? this->ArrayName : "";
-  selection.Component = this->VectorMode == COMPONENT ? this->VectorComponent : -1;
-  if (!internals.Mesh->Update(this->GetDataSetInput(), selection))
-  {
-    if (internals.Mesh->GetBuildTime() != internals.ReportedMeshError)
-    {
-      internals.ReportedMeshError = internals.Mesh->GetBuildTime();
-      vtkErrorMacro(<< internals.Mesh->GetLastError());
-    }
-    internals.ReleaseParticles();
-    return false;
-  }
-  if (internals.Mesh->GetNumberOfSkippedCells() > 0 &&
-    internals.Mesh->GetBuildTime() != internals.ReportedSkippedCells)
-  {
-    internals.ReportedSkippedCells = internals.Mesh->GetBuildTime();
-    vtkWarningMacro(<< internals.Mesh->GetNumberOfSkippedCells()
-                    << " cells with coordinates or scalars that are not finite (NaN or Inf) "
-                       "are not drawn.");
-  }
-  if (internals.Mesh->GetNumberOfTetrahedra() == 0)
-  {
-    internals.ReleaseParticles();
-    return false;
-  }
-  return true;
-}
-
 void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin)
-  {
-    vtkErrorMacro("vtkPBVRVolumeMapper needs an OpenGL render window.");
-    return;
-  }
-  int width, height, x, y;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
-  if (width <= 0 || height <= 0)
+  vtkSPTRenderSetup::Target target;
+  if (!vtkSPTRenderSetup::BeginFrame(this, ren, target, internals.Context))
   {
     return;
   }
-  if (internals.Context && internals.Context != renWin)
-  {
-    this->ReleaseGraphicsResources(internals.Context);
-  }
-  internals.Context = renWin;
+  vtkOpenGLRenderWindow* renWin = target.Window;
 
-  if (!this->UpdateMesh())
+  if (!internals.Setup.UpdateMesh(this, internals.Mesh,
+        this->VectorMode == COMPONENT ? this->VectorComponent : -1, true))
+  {
+    internals.ReleaseParticles();
+    return;
+  }
+  if (!vtkSPTRenderSetup::CheckProperty(this, vol))
   {
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
-  if (!property->GetIndependentComponents())
-  {
-    vtkErrorMacro("Dependent components (scalars that are colors) are not supported; turn "
-                  "IndependentComponents on in the volume property.");
-    return;
-  }
   std::string error;
   if (!internals.SampleTransferFunctions(property, error))
   {
@@ -547,23 +501,15 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
-  vtkOpenGLState::ScopedglEnableDisable scissorTest(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkSPTRenderSetup::SavedState savedState(ostate);
 
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
-  if (!ensemble->Prepare(renWin, width, height, this->SubpixelLevel) ||
+  if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel) ||
     !this->PrepareParticles(ren, vol, ensemble->GetPassWidth(), ensemble->GetPassHeight()))
   {
     return;
   }
-  this->DrawSets(x, y);
+  this->DrawSets(target.X, target.Y);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
@@ -574,8 +520,10 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
   vtkTextureObject* colors = internals.GetColorTexture(renWin);
+  std::string vertex = vtkPBVRParticlesVS;
+  vtkShaderProgram::Substitute(vertex, "//SPT::Random::Impl", vtkSPTRandom);
   vtkShaderProgram* program =
-    renWin->GetShaderCache()->ReadyShaderProgram(vtkPBVRParticlesVS, vtkPBVRParticlesFS, "");
+    renWin->GetShaderCache()->ReadyShaderProgram(vertex.c_str(), vtkPBVRParticlesFS, "");
   if (!colors || !program)
   {
     vtkErrorMacro("Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));

@@ -193,7 +193,6 @@ private:
   vtkPBVRVolumeMapper(const vtkPBVRVolumeMapper&) = delete;
   void operator=(const vtkPBVRVolumeMapper&) = delete;
 
-  bool UpdateMesh();
   bool PrepareParticles(vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight);
   void DrawSets(int x, int y);
 

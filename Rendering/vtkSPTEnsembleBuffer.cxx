@@ -10,6 +10,8 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkSPTSceneDepth.h"
+
 #include "vtkSPTAccumulateFS.h"
 #include "vtkSPTResolveFS.h"
 
@@ -19,42 +21,13 @@ vtkSPTEnsembleBuffer::vtkSPTEnsembleBuffer() = default;
 
 vtkSPTEnsembleBuffer::~vtkSPTEnsembleBuffer() = default;
 
-int vtkSPTEnsembleBuffer::SceneDepthFormat(int* hasDepth) const
-{
-  // glBlitFramebuffer copies depth only between identical formats, so the scene depth texture
-  // takes the format of the depth buffer it copies.
-  GLint readFramebuffer = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
-  const GLenum attachment = readFramebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
-  GLint objectType = GL_NONE;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &objectType);
-  *hasDepth = objectType != GL_NONE;
-  if (!*hasDepth)
-  {
-    return vtkTextureObject::Float32;
-  }
-  GLint componentType = GL_FLOAT;
-  GLint bits = 32;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &componentType);
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
-  if (componentType == GL_FLOAT)
-  {
-    return vtkTextureObject::Float32;
-  }
-  return bits <= 16 ? vtkTextureObject::Fixed16
-                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
-}
-
 bool vtkSPTEnsembleBuffer::Prepare(
   vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel)
 {
   int hasDepth = 0;
-  const int depthFormat = this->SceneDepthFormat(&hasDepth);
+  const int depthFormat = vtkSPTSceneDepth::QueryFormat(&hasDepth);
   if (renWin != this->Context || width != this->Width || height != this->Height ||
-    subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepthTextureFormat)
+    subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepth->GetFormat())
   {
     if (this->Context && this->Context != renWin)
     {
@@ -63,34 +36,28 @@ bool vtkSPTEnsembleBuffer::Prepare(
     this->Width = width;
     this->Height = height;
     this->SubpixelLevel = subpixelLevel;
-    this->SceneDepthTextureFormat = depthFormat;
-    this->Allocate(renWin);
+    this->Allocate(renWin, depthFormat);
   }
   return this->Context != nullptr;
 }
 
-void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
+void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 {
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
-         this->SceneDepth.Get() })
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
   {
-    texture->SetContext(renWin);
-    texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    vtkSPTSceneDepth::UseNearestTexels(texture, renWin);
   }
   bool ok = this->PassColor->Allocate2D(w, h, 4, VTK_FLOAT) &&
     this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
     this->Sum->Allocate2D(w, h, 4, VTK_FLOAT) &&
-    this->SceneDepth->AllocateDepth(this->Width, this->Height, this->SceneDepthTextureFormat);
+    this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
 
   vtkOpenGLState* ostate = renWin->GetState();
   ostate->PushFramebufferBindings();
-  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
-         this->SumFramebuffer.Get(), this->SceneDepthFramebuffer.Get() })
+  for (vtkOpenGLFramebufferObject* framebuffer :
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get() })
   {
     framebuffer->SetContext(renWin);
   }
@@ -103,9 +70,6 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
   this->SumFramebuffer->AddColorAttachment(0, this->Sum);
   this->SumFramebuffer->ActivateDrawBuffers(1);
   ok = ok && this->SumFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  this->SceneDepthFramebuffer->Bind();
-  this->SceneDepthFramebuffer->AddDepthAttachment(this->SceneDepth);
-  ok = ok && this->SceneDepthFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   ostate->PopFramebufferBindings();
 
   if (!this->Accumulate)
@@ -122,30 +86,6 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin)
     return;
   }
   this->Context = renWin;
-}
-
-void vtkSPTEnsembleBuffer::CaptureSceneDepth(int x, int y)
-{
-  vtkOpenGLState* ostate = this->Context->GetState();
-  int hasDepth = 0;
-  this->SceneDepthFormat(&hasDepth);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->PushDrawFramebufferBinding();
-  this->SceneDepthFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  if (hasDepth)
-  {
-    ostate->vtkglBlitFramebuffer(x, y, x + this->Width, y + this->Height, 0, 0, this->Width,
-      this->Height, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-  }
-  if (!hasDepth || glGetError() != GL_NO_ERROR)
-  {
-    ostate->vtkglDepthMask(GL_TRUE);
-    ostate->vtkglClearDepth(1.0);
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-  }
-  ostate->PopDrawFramebufferBinding();
 }
 
 void vtkSPTEnsembleBuffer::ClearSum()
@@ -247,19 +187,18 @@ void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
   this->Mean.reset();
-  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
-         this->SumFramebuffer.Get(), this->SceneDepthFramebuffer.Get() })
+  for (vtkOpenGLFramebufferObject* framebuffer :
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get() })
   {
     framebuffer->ReleaseGraphicsResources(window);
   }
-  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
-         this->SceneDepth.Get() })
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }
+  this->SceneDepth->ReleaseGraphicsResources(window);
   this->Context = nullptr;
   this->Width = this->Height = this->SubpixelLevel = 0;
-  this->SceneDepthTextureFormat = -1;
 }
 
 void vtkSPTEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)

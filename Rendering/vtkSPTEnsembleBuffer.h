@@ -21,6 +21,7 @@
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the framebuffers
 #include "vtkObject.h"
+#include "vtkSPTSceneDepth.h" // For the scene depth
 
 #include <memory> // For the quad helpers
 
@@ -48,7 +49,7 @@ public:
    * corner is (x, y), into the scene depth texture. Without a readable depth buffer, the scene
    * depth is the far plane.
    */
-  void CaptureSceneDepth(int x, int y);
+  void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**
    * Start a new ensemble: the sum is cleared.
@@ -81,7 +82,7 @@ public:
   /**
    * The scene depth texture, the size of one pass in samples, and the subpixel level.
    */
-  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth; }
+  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
   int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   int GetSubpixelLevel() const { return this->SubpixelLevel; }
@@ -102,22 +103,19 @@ private:
   vtkSPTEnsembleBuffer(const vtkSPTEnsembleBuffer&) = delete;
   void operator=(const vtkSPTEnsembleBuffer&) = delete;
 
-  void Allocate(vtkOpenGLRenderWindow* renWin);
-  int SceneDepthFormat(int* hasDepth) const;
+  void Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat);
 
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;
   int Height = 0;
   int SubpixelLevel = 0;
-  int SceneDepthTextureFormat = -1;
 
   vtkNew<vtkTextureObject> PassColor;
   vtkNew<vtkTextureObject> PassDepth;
   vtkNew<vtkTextureObject> Sum;
-  vtkNew<vtkTextureObject> SceneDepth;
+  vtkNew<vtkSPTSceneDepth> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
-  vtkNew<vtkOpenGLFramebufferObject> SceneDepthFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
 };

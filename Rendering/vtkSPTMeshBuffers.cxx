@@ -3,15 +3,19 @@
 #include "vtkAbstractMapper.h"
 #include "vtkCellArray.h"
 #include "vtkCellArrayIterator.h"
+#include "vtkCellData.h"
 #include "vtkCellType.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetTriangleFilter.h"
+#include "vtkFieldData.h"
+#include "vtkGenericCell.h"
 #include "vtkIdList.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLVertexArrayObject.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -22,12 +26,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace
 {
 // Draw calls are split so that their index counts stay far below GLsizei's range.
 constexpr vtkIdType MaxTetrahedraPerDraw = vtkIdType(1) << 22;
+// The name of the scalars handed to the split into tetrahedra.
+constexpr const char* SplitScalarsName = "vtkSPTMeshBuffers scalars";
 
 double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
 {
@@ -121,46 +128,68 @@ bool vtkSPTMeshBuffers::Update(vtkDataSet* input, const ScalarSelection& selecti
            << scalars->GetNumberOfComponents() << " component(s).";
     return this->Fail(reason.str());
   }
+  const vtkIdType needed = cellFlag == 1 ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (scalars->GetNumberOfTuples() < needed)
+  {
+    std::ostringstream reason;
+    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
+           << "' has " << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
+           << (cellFlag == 1 ? " cells." : " points.");
+    return this->Fail(reason.str());
+  }
   if (!this->CheckConnectivity(input))
   {
     return false;
   }
-  vtkSmartPointer<vtkDataSet> tetrahedra = this->Tetrahedralize(input);
-  vtkDataArray* tetrahedraScalars = scalars;
-  if (tetrahedra != input)
+  vtkSmartPointer<vtkDataArray> tetrahedraScalars = scalars;
+  vtkSmartPointer<vtkDataSet> tetrahedra =
+    this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1);
+  if (!tetrahedraScalars)
   {
-    int flag = -1;
-    tetrahedraScalars = vtkAbstractMapper::GetScalars(tetrahedra, selection.ScalarMode,
-      selection.ArrayAccessMode, selection.ArrayId, selection.ArrayName.c_str(), flag);
-    if (!tetrahedraScalars)
-    {
-      return this->Fail("The scalars did not survive the split into tetrahedra.");
-    }
+    return this->Fail("The scalars did not survive the split into tetrahedra.");
   }
   return this->Extract(tetrahedra, tetrahedraScalars, cellFlag == 1, selection.Component);
 }
 
 bool vtkSPTMeshBuffers::CheckConnectivity(vtkDataSet* input)
 {
-  // Point ids out of range would crash the triangulation and the GPU draw alike.
+  // Point ids out of range would crash the triangulation and the GPU draw alike, and so would
+  // a cell with fewer points than its type has (the triangulation reads them all).
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
   if (!grid || !grid->GetCells())
   {
     return true;
   }
   const vtkIdType numberOfPoints = grid->GetNumberOfPoints();
+  std::map<int, vtkIdType> pointsOfType; // 0: any number (polygons, polyhedra, ...)
+  vtkNew<vtkGenericCell> prototype;
   auto cells = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
   for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
   {
     vtkIdType count;
     const vtkIdType* ids;
     cells->GetCurrentCell(count, ids);
+    const vtkIdType cellId = cells->GetCurrentCellId();
+    const int type = grid->GetCellType(cellId);
+    auto expected = pointsOfType.find(type);
+    if (expected == pointsOfType.end())
+    {
+      prototype->SetCellType(type);
+      expected = pointsOfType.emplace(type, prototype->GetNumberOfPoints()).first;
+    }
+    if (expected->second > 0 && count != expected->second)
+    {
+      std::ostringstream reason;
+      reason << "Cell " << cellId << " (VTK cell type " << type << ") has " << count
+             << " points; that type has " << expected->second << ".";
+      return this->Fail(reason.str());
+    }
     for (vtkIdType i = 0; i < count; ++i)
     {
       if (ids[i] < 0 || ids[i] >= numberOfPoints)
       {
         std::ostringstream reason;
-        reason << "Cell " << cells->GetCurrentCellId() << " refers to point id " << ids[i]
+        reason << "Cell " << cellId << " refers to point id " << ids[i]
                << ", but the grid has " << numberOfPoints << " points.";
         return this->Fail(reason.str());
       }
@@ -169,7 +198,8 @@ bool vtkSPTMeshBuffers::CheckConnectivity(vtkDataSet* input)
   return true;
 }
 
-vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(vtkDataSet* input)
+vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(
+  vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars)
 {
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
   if (grid)
@@ -181,13 +211,26 @@ vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(vtkDataSet* input)
       return input;
     }
   }
+  // The split sees the structure and the selected scalars only (under a name of its own, the
+  // values shared with the input's array): the input's other arrays, which the filter would
+  // copy, may not even match the grid.
+  auto bare = vtk::TakeSmartPointer(input->NewInstance());
+  bare->CopyStructure(input);
+  auto shared = vtk::TakeSmartPointer(scalars->NewInstance());
+  shared->ShallowCopy(scalars);
+  shared->SetName(SplitScalarsName);
+  (cellScalars ? static_cast<vtkFieldData*>(bare->GetCellData()) : bare->GetPointData())
+    ->AddArray(shared);
   vtkNew<vtkDataSetTriangleFilter> triangulate;
-  triangulate->SetInputData(input);
+  triangulate->SetInputData(bare);
   triangulate->TetrahedraOnlyOn();
   triangulate->Update();
   // A copy, so that the filter (and through it the input) is not kept alive.
   auto output = vtkSmartPointer<vtkUnstructuredGrid>::New();
   output->ShallowCopy(triangulate->GetOutput());
+  vtkFieldData* attributes = cellScalars ? static_cast<vtkFieldData*>(output->GetCellData())
+                                          : static_cast<vtkFieldData*>(output->GetPointData());
+  scalars = attributes->GetArray(SplitScalarsName);
   return output;
 }
 
@@ -283,6 +326,12 @@ bool vtkSPTMeshBuffers::Extract(
       continue;
     }
     tetrahedra->GetCellPoints(cell, ids);
+    const auto outOfRange = [&](vtkIdType id) { return id < 0 || id >= numberOfPoints; };
+    if (ids->GetNumberOfIds() != 4 || std::any_of(ids->begin(), ids->end(), outOfRange))
+    {
+      return this->Fail("The split into tetrahedra made a tetrahedron that is not one (point "
+                        "ids missing or out of range); the input's cells are not valid.");
+    }
     bool valid = !cellScalars || (cell < numberOfValues && std::isfinite(values[cell]));
     for (int v = 0; v < 4 && valid; ++v)
     {

@@ -125,7 +125,10 @@ private:
 
   bool Fail(const std::string& reason);
   bool CheckConnectivity(vtkDataSet* input);
-  vtkSmartPointer<vtkDataSet> Tetrahedralize(vtkDataSet* input);
+  // The input split into tetrahedra (or the input itself, if it holds nothing else), and in
+  // `scalars` the selected array of that output.
+  vtkSmartPointer<vtkDataSet> Tetrahedralize(
+    vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars);
   bool Extract(vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component);
 
   std::string LastError;

@@ -5,6 +5,7 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
+#include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkVolumeProperty.h"
 
@@ -231,6 +232,21 @@ vtkTextureObject* vtkSPTPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* r
     this->UploadTime.Modified();
   }
   return this->Texture;
+}
+
+void vtkSPTPreIntegrationTable::SetUniforms(
+  vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const
+{
+  const int scalarSamples = this->ScalarResolution;
+  const int thicknessSamples = this->LengthResolution;
+  const float texelScale[3] = { float(scalarSamples - 1) / scalarSamples,
+    float(scalarSamples - 1) / scalarSamples, float(thicknessSamples - 1) / thicknessSamples };
+  const float texelOffset[3] = { 0.5f / scalarSamples, 0.5f / scalarSamples,
+    0.5f / thicknessSamples };
+  program->SetUniformi("preIntegrationTable", texture->GetTextureUnit());
+  program->SetUniform3f("tableTexelScale", texelScale);
+  program->SetUniform3f("tableTexelOffset", texelOffset);
+  program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
 }
 
 size_t vtkSPTPreIntegrationTable::GetGPUMemorySize() const

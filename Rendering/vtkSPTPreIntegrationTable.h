@@ -28,6 +28,7 @@
 #include <vector> // For the table
 
 class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
@@ -94,6 +95,15 @@ public:
    * table changed since the last upload.
    */
   vtkTextureObject* GetTexture(vtkOpenGLRenderWindow* renWin);
+
+  /**
+   * Set the uniforms through which the shaders read the table: `preIntegrationTable` (the
+   * texture's unit: activate it first), `tableTexelScale` and `tableTexelOffset` (from [0, 1]
+   * to the centers of the first and last texels) and `thicknessToTable` (1 / the longest
+   * thickness, in the units of the shaders' lengths: `maxThickness`).
+   */
+  void SetUniforms(
+    vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
 
   /**
    * Bytes held on the GPU.

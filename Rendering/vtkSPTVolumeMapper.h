@@ -124,10 +124,12 @@ public:
   ///@{
   /**
    * Fit the render time: when the volume's allocated render time (from the render window's
-   * desired update rate, as during interaction in a vtkRenderWindowInteractor) is shorter
-   * than RepetitionLevel repetitions take, draw only as many as fit (at least one), measured
-   * from the previous renders. Still renders (the default, tiny desired update rate) draw the
-   * full RepetitionLevel. Default on.
+   * desired update rate, as during interaction in a vtkRenderWindowInteractor or ParaView's
+   * interactive renders) is shorter than RepetitionLevel repetitions take, draw only as many
+   * as fit, timed from the previous renders: whole traversals of RepetitionsPerPass
+   * repetitions while one fits, else repetitions drawn one per traversal (the cheapest
+   * frame), at least one. Still renders (the default, tiny desired update rate) draw the full
+   * RepetitionLevel. Default on.
    */
   vtkSetMacro(AutoAdjustRepetitions, vtkTypeBool);
   vtkGetMacro(AutoAdjustRepetitions, vtkTypeBool);

@@ -115,9 +115,12 @@ vec3 rayDirectionVC(vec2 ndc)
   {
     return vec3(0.0, 0.0, -1.0);
   }
+  // The eye is the origin of view coordinates: the pixel's point on the near plane gives the
+  // direction. (The far plane's point is not used: when the far plane is many times farther
+  // than the near one, as VTK's minimum clipping thickness makes it for tiny data, its w
+  // cancels out in float.)
   vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
-  vec4 farVC = DCVCMatrix * vec4(ndc, 1.0, 1.0);
-  return normalize(farVC.xyz / farVC.w - nearVC.xyz / nearVC.w);
+  return normalize(nearVC.xyz / nearVC.w);
 }
 
 // Model length of a unit of distance along the ray through ndc.

@@ -42,21 +42,7 @@ uniform int repetitionsInGroup; // of the SPT_REPETITIONS_PER_PASS, how many thi
 layout(r32ui) coherent uniform uimage3D depthKeys; // (pixel, repetition in the pass)
 #endif
 
-// PCG-based 4D hash (Jarzynski and Olano, "Hash Functions for GPU Rendering", JCGT 2020).
-uvec4 pcg4d(uvec4 v)
-{
-  v = v * 1664525u + 1013904223u;
-  v.x += v.y * v.w;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  v.w += v.y * v.z;
-  v ^= v >> 16u;
-  v.x += v.y * v.w;
-  v.y += v.z * v.x;
-  v.z += v.x * v.y;
-  v.w += v.y * v.z;
-  return v;
-}
+//SPT::Random::Impl
 
 float unitFloat(uint bits)
 {

@@ -223,6 +223,16 @@ def footprint(image: np.ndarray, background=(0.0, 0.0, 0.0), threshold: float = 
     return np.abs(image[..., :3] - np.asarray(background)).max(axis=-1) > threshold
 
 
+def check_volume_image(image: np.ndarray) -> None:
+    """A volume over black, not an empty view: part of the view is covered, with varied
+    colors."""
+    covered = footprint(image)
+    assert 0.05 < covered.mean() < 0.8, f"{covered.mean():.3f} of the view is covered"
+    colors = image[covered][:, :3]
+    assert colors.mean() > 0.1
+    assert colors.std(axis=0).max() > 0.05, "a flat color, not a volume"
+
+
 def box_filter(image: np.ndarray, radius: int) -> np.ndarray:
     """Mean over (2 radius + 1)^2 pixels (wrapping at the border, which is background)."""
     total = np.zeros_like(image)

@@ -32,24 +32,73 @@ def test_help():
     assert "demo" in result.stdout and "figures" in result.stdout
 
 
-@pytest.mark.parametrize("arguments, message", [
+# Every subcommand and every argument: a bad value is refused with a message that names it,
+# and exit status 2 (argparse's), before anything is rendered.
+BAD_ARGUMENTS = [
     ((), "required"),
+    (("nosuch",), "invalid choice"),
+    (("demo", "--nosuch"), "unrecognized arguments"),
     (("demo", "--size", "0"), "outside 1..4096"),
+    (("demo", "--size", "4097"), "outside 1..4096"),
     (("demo", "--size", "big"), "not a whole number"),
     (("demo", "--repetitions", "-3"), "outside"),
+    (("demo", "--repetitions", "65537"), "outside"),
     (("demo", "--dataset", "nosuch"), "unknown data set"),
-    (("figures", "convergence", "--levels", "4,x"), "not a whole number"),
-    (("figures", "convergence", "--datasets", "spx,nosuch"), "nosuch"),
+    (("demo", "--dataset", "spx,post"), "give one data set"),
+    (("demo", "--output"), "expected one argument"),
+    (("figures",), "required"),
     (("figures", "nosuch"), "invalid choice"),
+    (("figures", "convergence", "--levels", "4,x"), "not a whole number"),
+    (("figures", "convergence", "--levels", ","), "at least one repetition level"),
+    (("figures", "convergence", "--levels", "0"), "outside"),
+    (("figures", "convergence", "--datasets", "spx,nosuch"), "nosuch"),
+    (("figures", "convergence", "--datasets", ","), "unknown data set"),
+    (("figures", "convergence", "--size", "5000"), "outside 1..4096"),
+    (("figures", "pbvr", "--datasets", "nosuch"), "unknown data set"),
+    (("figures", "pbvr", "--datasets", "torus"), "unknown data set"),
+    (("figures", "pbvr", "--repetitions", "0"), "outside"),
+    (("figures", "pbvr", "--levels", "4,,-1"), "outside"),
+    (("figures", "pbvr", "--size", "0"), "outside"),
+    (("figures", "sampling", "--dataset", "nosuch"), "unknown data set"),
+    (("figures", "sampling", "--levels", "0"), "outside"),
+    (("figures", "sampling", "--size", "1.5"), "not a whole number"),
     (("figures", "sorting", "--datasets", "nosuch"), "unknown data set"),
     (("figures", "sorting", "--repetitions", "0"), "outside"),
-    (("figures", "pbvr", "--datasets", "nosuch"), "unknown data set"),
-    (("figures", "pbvr", "--repetitions", "0"), "outside"),
-])
+    (("figures", "sorting", "--size", "-1"), "outside"),
+    (("figures", "accuracy", "--rays", "0"), "outside 1..1000000"),
+    (("figures", "accuracy", "--rays", "many"), "not a whole number"),
+    (("figures", "accuracy", "--nosuch"), "unrecognized arguments"),
+    (("mesh",), "required: --output"),
+    (("mesh", "--output", "m.vtk", "--shape", "cube"), "invalid choice"),
+    (("mesh", "--output", "m.vtk", "--cells", "0"), "outside"),
+    (("mesh", "--output", "m.vtk", "--cells", "lots"), "not a whole number"),
+    (("mesh", "--output", "m.vtk", "--seed", "-1"), "negative"),
+]
+
+
+@pytest.mark.parametrize("arguments, message", BAD_ARGUMENTS)
 def test_bad_arguments_are_refused(arguments, message):
     result = run(*arguments)
     assert result.returncode == 2
-    assert message in result.stderr
+    assert message in result.stderr and "Traceback" not in result.stderr
+
+
+@pytest.mark.parametrize("command", [("demo",), ("figures", "convergence"), ("figures", "pbvr"),
+                                     ("figures", "sampling"), ("figures", "sorting"),
+                                     ("figures", "accuracy")])
+def test_an_output_that_is_a_file_is_refused(command, tmp_path):
+    existing = tmp_path / "a_file"
+    existing.write_text("")
+    result = run(*command, "--output", str(existing))
+    assert result.returncode == 2
+    assert "exists and is not a directory" in result.stderr
+
+
+def test_an_output_that_cannot_be_made_is_a_clear_error():
+    """/proc takes no new folders, even for root."""
+    result = run("figures", "accuracy", "--rays", "10", "--output", "/proc/spt-output")
+    assert result.returncode == 1
+    assert "/proc/spt-output" in result.stderr and "Traceback" not in result.stderr
 
 
 def test_accuracy_figure(tmp_path):

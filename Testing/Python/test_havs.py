@@ -1,8 +1,8 @@
 """vtkHAVSVolumeMapper, the HAVS-like sorted baseline, against the reference ray caster: convex
 and non-convex meshes (gaps between disjoint blocks contribute nothing, whatever their width),
 mirrored and parallel views, opaque geometry; every synchronization of the k-buffer gives the
-same image; bad input gives a clear error and leaves the input as it was; settings, PrintSelf,
-the time split, re-rendering and released resources.
+same image; settings, PrintSelf, the time split, re-rendering and released resources. Bad and
+unusual input: test_mapper_robustness.py.
 
 Tolerances are the RMSE measured on llvmpipe at 128 x 128 with a margin of about 1.5x; VTK's
 projected tetrahedra, rendered next to it, is the yardstick on the same scene.
@@ -18,7 +18,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 import spt
 from spt import data, metrics, render
 
-from test_spt_robustness import ONE, property_for, tetrahedra, watch
+from robustness_support import ONE, opaque_plane, property_for, watch
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -141,16 +141,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     The segment that reaches into the plane ends at the last face in front of it. Measured
     RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
     grid = data.make_default_mesh()
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(-50.0, -50.0, 0.2)
-    plane.SetPoint1(50.0, -50.0, 0.2)
-    plane.SetPoint2(-50.0, 50.0, 0.2)
-    plane_mapper = vtk.vtkPolyDataMapper()
-    plane_mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(plane_mapper)
-    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
-    actor.GetProperty().LightingOff()
+    actor = opaque_plane()
     prop = data.default_transfer_function(grid)
     view = render.View(30, 30)
     reference = render.render(grid, prop, render.reference_mapper(), view, SIZE,
@@ -215,60 +206,6 @@ def test_one_tetrahedron_renders(have_display):
     assert not messages.errors
     assert (mapper.GetNumberOfFaces(), mapper.GetNumberOfBoundaryFaces()) == (4, 4)
     assert image[..., 3].max() > 0.2
-
-
-def test_empty_grid_draws_nothing_without_error(have_display):
-    image, mapper, messages = draw(vtk.vtkUnstructuredGrid())
-    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 0
-    assert image.max() == 0.0
-
-
-def test_no_scalars_is_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
-    image, _, messages = draw(grid)
-    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-def test_cell_scalars_are_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
-    array = numpy_to_vtk(np.array([0.5]), deep=True)
-    array.SetName("c")
-    grid.GetCellData().SetScalars(array)
-    image, _, messages = draw(grid)
-    assert len(messages.errors) == 1 and "point scalars" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-def test_point_ids_out_of_range_are_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 7)],
-                      [0.0, 0.3, 0.6, 1.0])
-    image, _, messages = draw(grid)
-    assert messages.errors and "point id 7" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-def test_unit_distance_zero_is_a_clear_error(have_display):
-    _, _, messages = draw(ONE, property_for(unit=0.0))
-    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
-
-
-def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
-    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
-    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, np.nan])
-    image, mapper, messages = draw(grid)
-    assert not messages.errors
-    assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-    assert messages.warnings and "not finite" in messages.warnings[0]
-    assert np.isfinite(image).all() and image[..., 3].max() > 0.1
-
-
-def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
-    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0.5, 0)]
-    cells = [(0, 1, 2, 3), (0, 2, 1, 3), (0, 1, 2, 4), (3, 3, 3, 3), (0, 1, 2, 3)]
-    image, mapper, messages = draw(tetrahedra(points, cells, [0.0, 0.3, 0.6, 1.0, 0.5]))
-    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 5
-    assert np.isfinite(image).all() and image[..., 3].max() > 0.2
 
 
 def test_settings_have_defaults_and_clamps():

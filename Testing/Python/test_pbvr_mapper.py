@@ -1,19 +1,18 @@
-"""vtkPBVRVolumeMapper: the wrapped class and its settings, bad input (a clear error, never a
-crash, the input never modified), the memory cap, and particles made again only when they
-must be: when the data, the opacity, the seed or the sampling change, when the view needs
-smaller particles, or much larger ones, or more sets than were made."""
+"""vtkPBVRVolumeMapper: the wrapped class and its settings, the memory cap (a mesh too big for
+it is a clear error), and particles made again only when they must be: when the data, the
+opacity, the seed or the sampling change, when the view needs smaller particles, or much larger
+ones, or more sets than were made. Bad and unusual input: test_mapper_robustness.py."""
 
 import math
 
 import numpy as np
 import pytest
 import vtk
-from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import spt
 from spt import data, render
 
-from test_spt_robustness import ONE, property_for, tetrahedra, watch
+from robustness_support import ONE, property_for, watch
 
 SIZE = (96, 96)
 
@@ -73,42 +72,6 @@ def test_one_tetrahedron_renders_and_reports(have_display):
     assert report["particles"] > 100 and report["particle_sets"] == 8
     assert report["gpu_memory"] >= 8 * report["particles"]
     assert report["generation_count"] == 1 and report["generation_seconds"] > 0.0
-
-
-def test_empty_grid_draws_nothing_without_error(have_display):
-    rendering, mapper, messages = draw(vtk.vtkUnstructuredGrid())
-    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 0
-    assert rendering.image.max() == 0.0 and rendering.report["particles"] == 0
-
-
-def test_no_scalars_is_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
-    rendering, _, messages = draw(grid)
-    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
-    assert rendering.image.max() == 0.0
-
-
-def test_point_ids_out_of_range_are_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 7)],
-                      [0.0, 0.3, 0.6, 1.0])
-    rendering, _, messages = draw(grid)
-    assert messages.errors and "point id 7" in messages.errors[0]
-    assert rendering.image.max() == 0.0
-
-
-def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
-    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
-    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, math.nan])
-    rendering, mapper, messages = draw(grid)
-    assert not messages.errors
-    assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-    assert messages.warnings and "not finite" in messages.warnings[0]
-    assert np.isfinite(rendering.image).all() and rendering.image[..., 3].max() > 0.1
-
-
-def test_unit_distance_zero_is_a_clear_error(have_display):
-    _, _, messages = draw(ONE, property_for(unit=0.0))
-    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
 
 
 def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
@@ -252,12 +215,3 @@ def test_release_resize_and_a_second_window(have_display):
     other.Render()
     assert render.read_rgba(other)[..., 3].max() > 0.1
     assert not scene.messages.errors
-
-
-def test_moved_points_change_the_image(have_display):
-    scene = Scene()
-    first = scene.draw()
-    moved = vtk_to_numpy(scene.grid.GetPoints().GetData())
-    moved[:, 0] *= 0.5
-    scene.grid.GetPoints().Modified()
-    assert not np.array_equal(scene.draw(), first)

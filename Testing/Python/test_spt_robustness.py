@@ -8,63 +8,12 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-import spt
 from spt import data, metrics, render
 
+from robustness_support import (ONE, assert_unchanged, property_for, render_scaled,
+                                scaled_copy, snapshot, tetrahedra, watch)
+
 SIZE = (96, 96)
-
-
-def _with_call_data(observer):
-    observer.CallDataType = vtk.VTK_STRING
-    return observer
-
-
-class Messages:
-    """The errors and warnings an object reported, with their text."""
-
-    def __init__(self):
-        self.errors, self.warnings = [], []
-
-
-def watch(obj) -> Messages:
-    """Collect the errors and warnings of obj."""
-    messages = Messages()
-    obj.AddObserver("ErrorEvent", _with_call_data(lambda o, e, text: messages.errors.append(text)))
-    obj.AddObserver("WarningEvent",
-                    _with_call_data(lambda o, e, text: messages.warnings.append(text)))
-    return messages
-
-
-def tetrahedra(points, cells, scalars=None, name="s"):
-    """An unstructured grid of tetrahedra from point and cell lists."""
-    grid = vtk.vtkUnstructuredGrid()
-    vtk_points = vtk.vtkPoints()
-    vtk_points.SetData(numpy_to_vtk(np.asarray(points, dtype=np.float64), deep=True))
-    grid.SetPoints(vtk_points)
-    for cell in cells:
-        grid.InsertNextCell(vtk.VTK_TETRA, len(cell), list(cell))
-    if scalars is not None:
-        array = numpy_to_vtk(np.asarray(scalars, dtype=np.float64), deep=True)
-        array.SetName(name)
-        grid.GetPointData().SetScalars(array)
-    return grid
-
-
-def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
-    color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(low, 0.2, 0.4, 1.0)
-    color.AddRGBPoint(high, 1.0, 0.6, 0.2)
-    alpha = vtk.vtkPiecewiseFunction()
-    alpha.AddPoint(low, opacity)
-    alpha.AddPoint(high, opacity)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(alpha)
-    prop.SetScalarOpacityUnitDistance(unit)
-    return prop
-
-
-ONE = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
 def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
@@ -72,9 +21,9 @@ def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
     mapper = mapper or render.spt_mapper(repetitions, seed=1)
     messages = watch(mapper)
     prop = prop or property_for()
-    before = grid.GetMTime()
+    before = snapshot(grid)
     image = render.render(grid, prop, mapper, render.View(30, 30), size).image
-    assert grid.GetMTime() == before, "the input was modified"
+    assert_unchanged(grid, before)
     return image, mapper, messages
 
 
@@ -196,38 +145,14 @@ def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
     assert np.isfinite(image).all() and image[..., 3].max() > 0.2
 
 
-def _render_scaled(grid, prop, scale):
-    """Render with the camera of the unscaled data scaled by `scale`. VTK's own
-    ResetCameraClippingRange fails at 1e30 and 1e-30 (it returns 1.8e-21..1.8e-18), so the
-    camera is set by hand."""
-    window, renderer = render.make_window(*SIZE)
-    mapper = render.spt_mapper(8, seed=1)
-    messages = watch(mapper)
-    volume = render.add_volume(renderer, grid, prop, mapper)
-    bounds = [b / scale for b in grid.GetBounds()]
-    render.place_camera(renderer, bounds, render.View(30, 30))
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition([x * scale for x in camera.GetPosition()])
-    camera.SetFocalPoint([x * scale for x in camera.GetFocalPoint()])
-    camera.SetClippingRange([x * scale for x in camera.GetClippingRange()])
-    window.Render()
-    return render.read_rgba(window), messages
-
-
 @pytest.mark.parametrize("scale", [1e30, 1e-30])
 def test_extreme_coordinates_give_the_same_image(scale, have_display):
     """Coordinates and unit distance scaled together: the same picture."""
     grid = data.make_default_mesh()
     prop = data.default_transfer_function(grid)
-    expected, _ = _render_scaled(grid, prop, 1.0)
-    scaled = vtk.vtkUnstructuredGrid()
-    scaled.DeepCopy(grid)
-    coordinates = vtk_to_numpy(scaled.GetPoints().GetData()).astype(np.float64) * scale
-    scaled.GetPoints().SetData(numpy_to_vtk(coordinates, deep=True))
-    scaled_prop = vtk.vtkVolumeProperty()
-    scaled_prop.DeepCopy(prop)
-    scaled_prop.SetScalarOpacityUnitDistance(prop.GetScalarOpacityUnitDistance() * scale)
-    image, messages = _render_scaled(scaled, scaled_prop, scale)
+    expected, _ = render_scaled(grid, prop, render.spt_mapper(8, seed=1), 1.0, SIZE)
+    scaled, scaled_prop = scaled_copy(grid, prop, scale)
+    image, messages = render_scaled(scaled, scaled_prop, render.spt_mapper(8, seed=1), scale, SIZE)
     assert not messages.errors
     assert expected[..., 3].max() > 0.2
     assert metrics.rmse(image, expected) < 0.01

@@ -163,3 +163,22 @@ def test_time_budget_cuts_repetitions_during_interaction(have_display):
     window.Render()
     assert mapper.GetLastRepetitionCount() == 64, "without the budget, all repetitions"
     window.Finalize()
+
+
+def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
+    """A traversal of 16 repetitions costs little more than one of fewer, so a budget of 2.5
+    traversals gets two whole ones (32 repetitions). The budget is set from the mapper's own
+    measure of the still render (64 repetitions, 4 traversals), so the count is exact."""
+    mapper = render.spt_mapper(64, seed=1, per_pass=16)
+    mapper.AutoAdjustRepetitionsOn()
+    window, renderer = _window_with(mapper)
+    window.SetDesiredUpdateRate(0.0001)
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 64
+    traversal = 16 * mapper.GetTimePerRepetition()
+    window.SetDesiredUpdateRate(1.0 / (2.5 * traversal))
+    window.Render()
+    volume = renderer.GetVolumes().GetItemAsObject(0)
+    assert volume.GetAllocatedRenderTime() == pytest.approx(2.5 * traversal)
+    assert mapper.GetLastRepetitionCount() == 32
+    window.Finalize()

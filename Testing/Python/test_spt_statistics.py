@@ -12,21 +12,22 @@ The reference is the project's exact ray caster (spt.raycast); where an opaque p
 volume, VTK's ray caster.
 """
 
-import math
 from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
 from spt import figures, metrics, render, statistics
 
 from conftest import load_or_skip
+from robustness_support import opaque_plane
+from statistics_checks import (Z, check_alpha_noise_is_bernoulli,
+                               check_noise_falls_as_one_over_repetitions,
+                               check_rmse_falls_to_a_small_bias_floor)
 
 SIZE = 128
 LEVELS = {"default": (4, 16, 64), "spx": (4, 16, 64, 256), "bluntfin": (4, 16), "post": (4, 16)}
 SCENES = list(LEVELS)
-Z = 4.0  # standard errors
 
 
 @lru_cache(maxsize=None)
@@ -75,43 +76,23 @@ def test_images_are_volumes(name, have_display):
     assert image[..., 3].max() > 0.2 and reference[..., 3].max() > 0.2
 
 
+def _estimates(name):
+    return [_estimate(name, level) for level in LEVELS[name]]
+
+
 @pytest.mark.parametrize("name", SCENES)
 def test_noise_falls_as_one_over_repetitions(name, have_display):
-    first = _estimate(name, LEVELS[name][0])
-    for level in LEVELS[name][1:]:
-        e = _estimate(name, level)
-        difference = level * e.noise - first.level * first.noise
-        tolerance = Z * math.hypot(level * e.noise_error, first.level * first.noise_error)
-        assert abs(difference) <= tolerance, (
-            f"L x noise: {first.level * first.noise:.4g} at L={first.level}, "
-            f"{level * e.noise:.4g} at L={level} (tolerance {tolerance:.3g})")
+    check_noise_falls_as_one_over_repetitions(_estimates(name))
 
 
 @pytest.mark.parametrize("name", SCENES)
 def test_alpha_noise_is_bernoulli(name, have_display):
-    for level in LEVELS[name]:
-        e = _estimate(name, level)
-        # The reference's coverage stands in for SPT's expected coverage: allow for the bias.
-        tolerance = Z * e.alpha_noise_error + 2.0 * e.bias * math.sqrt(e.bernoulli_alpha_noise)
-        assert abs(e.alpha_noise - e.bernoulli_alpha_noise) <= tolerance, (
-            f"L={level}: alpha noise {e.alpha_noise:.4g}, a(1-a)/L {e.bernoulli_alpha_noise:.4g}")
+    check_alpha_noise_is_bernoulli(_estimates(name))
 
 
 @pytest.mark.parametrize("name", SCENES)
 def test_rmse_falls_to_a_small_bias_floor(name, have_display):
-    estimates = [_estimate(name, level) for level in LEVELS[name]]
-    last = estimates[-1]
-    assert last.bias <= 0.012, f"bias floor {last.bias:.4f}"
-    for low, high in zip(estimates, estimates[1:]):
-        expected = high.predicted_rmse(low.level) / high.predicted_rmse(high.level)
-        measured = low.rmse / high.rmse
-        # Relative standard error of one RMSE over n pixels is about 1 / sqrt(2 n).
-        tolerance = Z * expected * math.sqrt(2.0 / (2.0 * min(low.pixels, high.pixels)))
-        assert abs(measured - expected) <= tolerance + 0.05 * expected, (
-            f"RMSE {low.rmse:.4f} at L={low.level}, {high.rmse:.4f} at L={high.level}: "
-            f"ratio {measured:.3f}, expected {expected:.3f}")
-    # Noise-dominated levels: about halving for each 4x.
-    assert estimates[0].rmse / estimates[1].rmse > 1.6
+    check_rmse_falls_to_a_small_bias_floor(_estimates(name))
 
 
 # On the Oxygen Post (513K cells, most smaller than a pixel, a smooth field) VTK's projected
@@ -168,16 +149,7 @@ def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
     plane fills the view, so that no edge of it (rasterized at the reference's double
     resolution) is in the picture."""
     s = _scene("default")
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(-50.0, -50.0, 0.2)
-    plane.SetPoint1(50.0, -50.0, 0.2)
-    plane.SetPoint2(-50.0, 50.0, 0.2)
-    plane_mapper = vtk.vtkPolyDataMapper()
-    plane_mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(plane_mapper)
-    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
-    actor.GetProperty().LightingOff()
+    actor = opaque_plane()
     reference = render.reference(s.grid, s.property, s.view, (SIZE, SIZE), method="vtk",
                                  actors=[actor]).image
     level = 64

@@ -42,6 +42,20 @@ def _datasets(text: str) -> List[str]:
     return names
 
 
+def _dataset(text: str) -> str:
+    names = _datasets(text)
+    if len(names) != 1:
+        raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
+    return names[0]
+
+
+def _output_directory(text: str) -> pathlib.Path:
+    path = pathlib.Path(text)
+    if path.exists() and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"'{text}' exists and is not a directory")
+    return path
+
+
 def _steep_datasets(text: str) -> List[str]:
     from .figures import STEEP_SCENES
 
@@ -84,12 +98,12 @@ def _parser() -> argparse.ArgumentParser:
 
     demo = commands.add_parser(
         "demo", help="render a data set with SPT, VTK's projected tetrahedra and the reference")
-    demo.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/demo"))
+    demo.add_argument("--output", type=_output_directory, default=pathlib.Path("out/demo"))
     demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=384,
                       help="image width and height in pixels (default 384)")
     demo.add_argument("--repetitions", type=_positive_int(65536), default=128,
                       help="SPT RepetitionLevel (default 128)")
-    demo.add_argument("--dataset", type=lambda t: _datasets(t)[0], default="drill",
+    demo.add_argument("--dataset", type=_dataset, default="drill",
                       help="data set (default: drill, the generated drill of 200,000 "
                            "tetrahedra; 'default' is the embedded helix mesh of the tests)")
 
@@ -97,14 +111,15 @@ def _parser() -> argparse.ArgumentParser:
     figure = figures.add_subparsers(dest="figure", required=True)
     convergence = figure.add_parser(
         "convergence", help="RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
-    convergence.add_argument("--output", type=pathlib.Path,
+    convergence.add_argument("--output", type=_output_directory,
                              default=pathlib.Path("out/figures/convergence"))
     convergence.add_argument("--datasets", type=_datasets, default=["spx", "bluntfin", "post"])
     convergence.add_argument("--levels", type=_levels, default=[4, 16, 64, 256, 1024])
     convergence.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     pbvr = figure.add_parser(
         "pbvr", help="PBVR against SPT and the reference with a steep transfer function")
-    pbvr.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/figures/pbvr"))
+    pbvr.add_argument("--output", type=_output_directory,
+                      default=pathlib.Path("out/figures/pbvr"))
     pbvr.add_argument("--datasets", type=_steep_datasets, default=["bluntfin", "post"])
     pbvr.add_argument("--repetitions", type=_positive_int(65536), default=144,
                       help="RepetitionLevel of the images and the table (default 144)")
@@ -113,14 +128,14 @@ def _parser() -> argparse.ArgumentParser:
     pbvr.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     sampling = figure.add_parser(
         "sampling", help="several repetitions per pass and stratified thresholds, measured")
-    sampling.add_argument("--output", type=pathlib.Path,
+    sampling.add_argument("--output", type=_output_directory,
                           default=pathlib.Path("out/figures/sampling"))
-    sampling.add_argument("--dataset", type=lambda t: _datasets(t)[0], default="default")
+    sampling.add_argument("--dataset", type=_dataset, default="default")
     sampling.add_argument("--levels", type=_levels, default=[16, 32, 64, 128, 256])
     sampling.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     sorting = figure.add_parser(
         "sorting", help="SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)")
-    sorting.add_argument("--output", type=pathlib.Path,
+    sorting.add_argument("--output", type=_output_directory,
                          default=pathlib.Path("out/figures/sorting"))
     sorting.add_argument("--datasets", type=_datasets,
                          default=["spx", "bluntfin", "post", "torus", "default"])
@@ -129,7 +144,7 @@ def _parser() -> argparse.ArgumentParser:
     sorting.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
     accuracy = figure.add_parser(
         "accuracy", help="stochastic against exact brightness along random rays")
-    accuracy.add_argument("--output", type=pathlib.Path,
+    accuracy.add_argument("--output", type=_output_directory,
                           default=pathlib.Path("out/figures/accuracy"))
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
 
@@ -264,6 +279,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "
                   f"plot written to {arguments.output / 'accuracy.png'}")
     except (OSError, ValueError) as error:
+        # Missing data sets, unwritable output folders, data the figures cannot use.
         print(f"python3 -m spt: error: {error}", file=sys.stderr)
         return 1
     return 0

@@ -1,0 +1,230 @@
+// The scene of the mappers' image tests (TestSPTVolumeMapper, TestHAVSVolumeMapper,
+// TestPBVRVolumeMapper): a hexahedral cylindrical shell, 3/4 of a turn (non-convex; the
+// mappers split the hexahedra themselves), with a point and a cell scalar, in two viewports:
+// - left: perspective, with an opaque sphere inside the shell that hides part of it;
+// - right: parallel projection, the volume rotated and scaled as the test chooses.
+// Also the checks the three tests share: OpenGL errors, covered pixels per viewport, and the
+// baseline comparison.
+
+#ifndef SPTTestScene_h
+#define SPTTestScene_h
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyDataMapper.h"
+#include "vtkProperty.h"
+#include "vtkRegressionTestImage.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkSphereSource.h"
+#include "vtkStructuredGrid.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+#include "vtk_glew.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <vector>
+
+namespace SPTTestScene
+{
+// A thick cylindrical shell, 3/4 of a turn, as hexahedra with a point and a cell scalar.
+inline vtkSmartPointer<vtkUnstructuredGrid> MakeShell()
+{
+  const int nr = 4, nt = 24, nz = 8;
+  vtkNew<vtkStructuredGrid> grid;
+  grid->SetDimensions(nr, nt, nz);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> field;
+  field->SetName("pointField");
+  for (int k = 0; k < nz; ++k)
+  {
+    for (int j = 0; j < nt; ++j)
+    {
+      for (int i = 0; i < nr; ++i)
+      {
+        const double radius = 1.0 + 0.6 * i / (nr - 1.0);
+        const double angle = 1.5 * 3.14159265358979 * j / (nt - 1.0);
+        const double z = 2.0 * k / (nz - 1.0) - 1.0;
+        points->InsertNextPoint(radius * std::cos(angle), radius * std::sin(angle), z);
+        field->InsertNextValue(static_cast<float>(0.5 + 0.5 * std::sin(3.0 * angle + 2.0 * z)));
+      }
+    }
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(field);
+  vtkNew<vtkFloatArray> cellField;
+  cellField->SetName("cellField");
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    cellField->InsertNextValue(static_cast<float>((c * 7) % 11) / 10.0f);
+  }
+  grid->GetCellData()->AddArray(cellField);
+
+  auto shell = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  shell->SetPoints(points);
+  shell->Allocate(grid->GetNumberOfCells());
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    grid->GetCellPoints(c, ids);
+    // Structured hexahedra in VTK_HEXAHEDRON order.
+    const vtkIdType hex[8] = { ids->GetId(0), ids->GetId(1), ids->GetId(3), ids->GetId(2),
+      ids->GetId(4), ids->GetId(5), ids->GetId(7), ids->GetId(6) };
+    shell->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+  }
+  shell->GetPointData()->ShallowCopy(grid->GetPointData());
+  shell->GetCellData()->ShallowCopy(grid->GetCellData());
+  return shell;
+}
+
+inline vtkSmartPointer<vtkVolumeProperty> MakeProperty()
+{
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, 0.2, 0.3, 1.0);
+  color->AddRGBPoint(0.5, 0.2, 1.0, 0.4);
+  color->AddRGBPoint(1.0, 1.0, 0.4, 0.1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 0.05);
+  opacity->AddPoint(1.0, 0.9);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(0.5);
+  return property;
+}
+
+// Pixels of a viewport that differ from the black background.
+
+// The window's back buffer as RGB bytes, rows from the bottom.
+inline std::vector<unsigned char> Capture(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  vtkUnsignedCharArray* rgb =
+    vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+  return std::vector<unsigned char>(
+    rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
+}
+
+// Pixels of columns [x0, x1) of a capture that differ from the black background.
+inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0, int x1)
+{
+  const int height = static_cast<int>(rgb.size() / (3 * size_t(width)));
+  int covered = 0;
+  for (int y = 0; y < height; ++y)
+  {
+    for (int x = x0; x < x1; ++x)
+    {
+      const size_t p = size_t(y) * width + x;
+      covered += rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2] > 24;
+    }
+  }
+  return covered;
+}
+
+// The two viewports of the test, each with its volume; the left one with the sphere.
+class TwoViewports
+{
+public:
+  TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume)
+  {
+    this->Window->SetSize(width, height);
+    this->Window->SetMultiSamples(0);
+    this->Sphere->SetCenter(1.3, 0.0, 0.0);
+    this->Sphere->SetRadius(0.45);
+    this->Sphere->SetThetaResolution(32);
+    this->Sphere->SetPhiResolution(32);
+    this->SphereMapper->SetInputConnection(this->Sphere->GetOutputPort());
+    this->SphereActor->SetMapper(this->SphereMapper);
+    this->SphereActor->GetProperty()->SetColor(0.8, 0.8, 0.8);
+    this->Left->SetViewport(0.0, 0.0, 0.5, 1.0);
+    this->Left->AddVolume(leftVolume);
+    this->Left->AddActor(this->SphereActor);
+    this->Left->GetActiveCamera()->SetPosition(4.0, -5.0, 3.0);
+    this->Left->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+    this->Left->ResetCamera();
+    this->Window->AddRenderer(this->Left);
+    this->Right->SetViewport(0.5, 0.0, 1.0, 1.0);
+    this->Right->AddVolume(rightVolume);
+    this->Right->GetActiveCamera()->ParallelProjectionOn();
+    this->Right->GetActiveCamera()->SetPosition(0.0, -5.0, 4.0);
+    this->Right->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+    this->Right->ResetCamera();
+    this->Window->AddRenderer(this->Right);
+    this->Interactor->SetRenderWindow(this->Window);
+  }
+
+  // Render; a failure for an OpenGL error.
+  int Render()
+  {
+    this->Window->Render();
+    const GLenum error = glGetError();
+    if (error != GL_NO_ERROR)
+    {
+      std::cerr << "OpenGL error " << error << " after rendering.\n";
+      return 1;
+    }
+    return 0;
+  }
+
+  // A failure unless each viewport of `rgb` shows at least `minimum` covered pixels.
+  int CheckCovered(const std::vector<unsigned char>& rgb, int minimum)
+  {
+    const int width = this->Window->GetSize()[0];
+    const int leftCovered = CountCovered(rgb, width, 0, width / 2);
+    const int rightCovered = CountCovered(rgb, width, width / 2, width);
+    std::cout << "Covered pixels: " << leftCovered << " left, " << rightCovered << " right\n";
+    if (leftCovered < minimum || rightCovered < minimum)
+    {
+      std::cerr << "A viewport shows (almost) only the background.\n";
+      return 1;
+    }
+    return 0;
+  }
+
+  // The baseline comparison (or the interactor, with -I): vtkRegressionTester's result.
+  int CompareWithBaseline(int argc, char* argv[])
+  {
+    const int result = vtkRegressionTestImage(this->Window);
+    if (result == vtkRegressionTester::DO_INTERACTOR)
+    {
+      this->Interactor->Start();
+    }
+    return result;
+  }
+
+  static int ExitStatus(int result, int failures)
+  {
+    return (result != vtkRegressionTester::FAILED && failures == 0) ? EXIT_SUCCESS : EXIT_FAILURE;
+  }
+
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Left;
+  vtkNew<vtkRenderer> Right;
+
+private:
+  vtkNew<vtkSphereSource> Sphere;
+  vtkNew<vtkPolyDataMapper> SphereMapper;
+  vtkNew<vtkActor> SphereActor;
+  vtkNew<vtkRenderWindowInteractor> Interactor;
+};
+}
+
+#endif

@@ -1,0 +1,149 @@
+"""Helpers of the robustness tests of every mapper: small grids built from lists, transfer
+functions, the errors and warnings a VTK object reports, and a check that a render left its
+input exactly as it was."""
+
+from __future__ import annotations
+
+from typing import Dict, List, Optional, Sequence
+
+import numpy as np
+import vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+
+from spt import render
+
+
+def _with_call_data(observer):
+    observer.CallDataType = vtk.VTK_STRING
+    return observer
+
+
+class Messages:
+    """The errors and warnings an object reported, with their text."""
+
+    def __init__(self):
+        self.errors: List[str] = []
+        self.warnings: List[str] = []
+
+
+def watch(obj) -> Messages:
+    """Collect the errors and warnings of obj."""
+    messages = Messages()
+    obj.AddObserver("ErrorEvent", _with_call_data(lambda o, e, text: messages.errors.append(text)))
+    obj.AddObserver("WarningEvent",
+                    _with_call_data(lambda o, e, text: messages.warnings.append(text)))
+    return messages
+
+
+def tetrahedra(points, cells, scalars=None, name="s", cell_type=vtk.VTK_TETRA):
+    """An unstructured grid of tetrahedra (or of `cell_type`) from point and cell lists."""
+    grid = vtk.vtkUnstructuredGrid()
+    vtk_points = vtk.vtkPoints()
+    vtk_points.SetData(numpy_to_vtk(np.asarray(points, dtype=np.float64).reshape(-1, 3),
+                                    deep=True))
+    grid.SetPoints(vtk_points)
+    for cell in cells:
+        grid.InsertNextCell(cell_type, len(cell), list(cell))
+    if scalars is not None:
+        array = numpy_to_vtk(np.asarray(scalars, dtype=np.float64), deep=True)
+        array.SetName(name)
+        grid.GetPointData().SetScalars(array)
+    return grid
+
+
+def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
+    """Blue to orange over [low, high], constant opacity, the given unit distance."""
+    color = vtk.vtkColorTransferFunction()
+    color.AddRGBPoint(low, 0.2, 0.4, 1.0)
+    color.AddRGBPoint(high, 1.0, 0.6, 0.2)
+    alpha = vtk.vtkPiecewiseFunction()
+    alpha.AddPoint(low, opacity)
+    alpha.AddPoint(high, opacity)
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(alpha)
+    prop.SetScalarOpacityUnitDistance(unit)
+    return prop
+
+
+UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
+
+
+def snapshot(grid: vtk.vtkDataSet) -> Dict[str, object]:
+    """Everything a mapper could change in a grid, copied: MTime, points, cells, arrays."""
+    state: Dict[str, object] = {"mtime": grid.GetMTime(),
+                                "points": grid.GetNumberOfPoints(),
+                                "cells": grid.GetNumberOfCells()}
+    if grid.GetNumberOfPoints() and grid.GetPoints() is not None:
+        state["coordinates"] = vtk_to_numpy(grid.GetPoints().GetData()).copy()
+    if isinstance(grid, vtk.vtkUnstructuredGrid) and grid.GetCells() is not None:
+        state["connectivity"] = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).copy()
+        state["offsets"] = vtk_to_numpy(grid.GetCells().GetOffsetsArray()).copy()
+    for where, attributes in (("point", grid.GetPointData()), ("cell", grid.GetCellData())):
+        scalars = attributes.GetScalars()
+        state[where + " scalars"] = scalars.GetName() if scalars is not None else None
+        for index in range(attributes.GetNumberOfArrays()):
+            array = attributes.GetArray(index)
+            state[f"{where} {array.GetName()}"] = vtk_to_numpy(array).copy()
+    return state
+
+
+def assert_unchanged(grid: vtk.vtkDataSet, before: Dict[str, object]) -> None:
+    """The grid is as `snapshot` saw it (NaN compares equal to NaN)."""
+    after = snapshot(grid)
+    assert after.keys() == before.keys(), "the input's arrays changed"
+    for key, value in before.items():
+        if isinstance(value, np.ndarray):
+            assert np.array_equal(value, after[key], equal_nan=value.dtype.kind == "f"), (
+                f"the input's {key} changed")
+        else:
+            assert value == after[key], f"the input's {key} changed: {value} -> {after[key]}"
+
+
+def render_scaled(grid, prop, mapper, scale: float, size: Sequence[int],
+                  view: Optional[render.View] = None):
+    """Render with the camera of the unscaled data scaled by `scale`; returns (image,
+    messages). VTK's own ResetCameraClippingRange fails at 1e30 and 1e-30 (it returns
+    1.8e-21..1.8e-18), so the camera is set by hand."""
+    window, renderer = render.make_window(*size)
+    messages = watch(mapper)
+    render.add_volume(renderer, grid, prop, mapper)
+    bounds = [b / scale for b in grid.GetBounds()]
+    render.place_camera(renderer, bounds, view or render.View(30, 30))
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition([x * scale for x in camera.GetPosition()])
+    camera.SetFocalPoint([x * scale for x in camera.GetFocalPoint()])
+    camera.SetClippingRange([x * scale for x in camera.GetClippingRange()])
+    window.Render()
+    image = render.read_rgba(window)
+    window.Finalize()
+    return image, messages
+
+
+def scaled_copy(grid, prop, scale: float):
+    """A deep copy of the grid with its coordinates, and of the property with its unit
+    distance, multiplied by `scale`: the same picture, seen from a scaled camera."""
+    scaled = vtk.vtkUnstructuredGrid()
+    scaled.DeepCopy(grid)
+    coordinates = vtk_to_numpy(scaled.GetPoints().GetData()).astype(np.float64) * scale
+    scaled.GetPoints().SetData(numpy_to_vtk(coordinates, deep=True))
+    scaled_prop = vtk.vtkVolumeProperty()
+    scaled_prop.DeepCopy(prop)
+    scaled_prop.SetScalarOpacityUnitDistance(prop.GetScalarOpacityUnitDistance() * scale)
+    return scaled, scaled_prop
+
+
+def opaque_plane(z: float = 0.2, gray: float = 0.5) -> vtk.vtkActor:
+    """An unlit gray plane at height z, large enough to fill the view of the default mesh."""
+    plane = vtk.vtkPlaneSource()
+    plane.SetOrigin(-50.0, -50.0, z)
+    plane.SetPoint1(50.0, -50.0, z)
+    plane.SetPoint2(-50.0, 50.0, z)
+    plane_mapper = vtk.vtkPolyDataMapper()
+    plane_mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtk.vtkActor()
+    actor.SetMapper(plane_mapper)
+    actor.GetProperty().SetColor(gray, gray, gray)
+    actor.GetProperty().LightingOff()
+    return actor
