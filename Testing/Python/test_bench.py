@@ -62,9 +62,10 @@ def test_models_and_memory_crossover_from_synthetic_runs():
                 entries.append(entry("spt-paper", cells, size, level,
                                      level * (1e-7 * cells + 2e-8 * pixels),
                                      memory=20.0 * cells + 40.0 * pixels + 1e6))
+                # PBVR reports the particles of all its sets, 0.5 n_c per repetition here
                 entries.append(entry("pbvr", cells, size, level, level * 3e-9 * cells,
                                      memory=16.0 * 0.5 * cells * level + 20.0 * pixels,
-                                     particles=0.5 * cells))
+                                     particles=0.5 * cells * level, particle_sets=level))
     for size in (256, 512, 1024):
         for cells in (1e4, 1e5, 1e6):
             entries.append(entry("spt", cells, size, 16, 1e-7 * cells,

@@ -414,6 +414,9 @@ def quality(settings: Settings, progress: Progress, output: pathlib.Path
 
 #: Where the emulated GPU runs: llvmpipe's JIT-compiled shaders and Mesa's driver.
 _GPU_OBJECTS = ("[JIT]", "swrast_dri.so", "libgallium", "[unknown]")
+#: The kernel and the C library: on the application thread, mostly the memory that llvmpipe's
+#: vertex stage maps and fills for every draw.
+_SYSTEM_OBJECTS = ("[kernel", "libc.so")
 
 
 def _perf_available() -> bool:
@@ -458,9 +461,10 @@ def _perf_seconds_by_object(path: str, frequency: int) -> Dict[Tuple[str, str], 
 
 
 def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]:
-    """Per frame, the CPU seconds of the application thread outside the emulated GPU (this
-    project's library, VTK, Python, the C library, the kernel), as the cell count grows. On a
-    real GPU this is the CPU part of the frame; a per-cell loop per frame would grow it."""
+    """Per frame, the CPU seconds of the application thread by where they are spent, as the
+    cell count grows: this project's library, VTK and Python (the host part a real GPU would
+    leave on the CPU; a per-cell loop per frame would grow it), the kernel and the C library
+    (on this thread mostly llvmpipe's vertex-stage memory), and the emulated GPU itself."""
     if not _perf_available():
         progress.step("perf not available")
         return []
@@ -475,13 +479,16 @@ def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]
                                  on_frames=_perf_attach(path, frequency))
             by_object = _perf_seconds_by_object(path, frequency)
         main = {dso: t for (comm, dso), t in by_object.items() if not comm.startswith("llvmpipe")}
-        host = sum(t for dso, t in main.items() if not dso.startswith(_GPU_OBJECTS))
         project = sum(t for dso, t in main.items() if "SPTRendering" in dso)
+        system = sum(t for dso, t in main.items() if dso.startswith(_SYSTEM_OBJECTS))
+        host = sum(t for dso, t in main.items()
+                   if not dso.startswith(_GPU_OBJECTS + _SYSTEM_OBJECTS))
         results.append({
             "scene": s.name, "cells": s.grid.GetNumberOfCells(), "frames": frames,
             "frame_seconds": timing.median,
             "host_seconds_per_frame": host / frames,
             "project_seconds_per_frame": project / frames,
+            "system_seconds_per_frame": system / frames,
             "application_thread_seconds_per_frame": sum(main.values()) / frames,
             "worker_seconds_per_frame": sum(
                 t for (comm, _), t in by_object.items() if comm.startswith("llvmpipe")) / frames,
@@ -578,7 +585,7 @@ def time_models(entries: Sequence[Dict[str, object]], key: str = "seconds"
     if model:
         models["spt-passes"] = model
     pbvr = [e for e in select("pbvr") if e.get("particles")]
-    rows = [(e["particles"], e["repetitions"] * _pixels(e)) for e in pbvr]
+    rows = [(e["particles"], e["repetitions"] * _pixels(e)) for e in pbvr]  # particles: n_p L_r
     model = fit("pbvr: T = L_r (a n_p + b w h L_s^2), n_p particles per repetition",
                 ["a", "b"], rows, [1000.0 * e[key] for e in pbvr])
     if model:
@@ -605,7 +612,8 @@ def memory_models(entries: Sequence[Dict[str, object]]) -> Dict[str, Fit]:
         if model:
             models[name] = model
     chosen = [e for e in with_memory if e["method"] == "pbvr" and e.get("particles")]
-    rows = [(e["particles"] * e["repetitions"], _pixels(e)) for e in chosen]
+    # PBVR reports the particles of all its sets: n_p L_r.
+    rows = [(e["particles"], _pixels(e)) for e in chosen]
     model = fit("pbvr: M = c n_p L_r + d w h L_s^2", ["c", "d"], rows,
                 [e["gpu_memory"] for e in chosen])
     if model:
@@ -632,9 +640,11 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
             if e["scene"] in seen:
                 continue
             seen.add(e["scene"])
-            level = c_spt * e["cells"] / (c_pbvr * e["particles"]) if c_pbvr > 0 else math.inf
+            per_repetition = e["particles"] / max(e.get("particle_sets", 1.0), 1.0)
+            level = (c_spt * e["cells"] / (c_pbvr * per_repetition) if c_pbvr > 0
+                     else math.inf)
             result["memory"].append({"scene": e["scene"], "cells": e["cells"],
-                                     "particles_per_repetition": e["particles"],
+                                     "particles_per_repetition": per_repetition,
                                      "repetitions_at_equal_memory": level})
     quality_entries = [e for e in entries if e.get("sweep") == "quality" and "rmse" in e]
     for scene in sorted({e["scene"] for e in quality_entries}):
@@ -714,6 +724,7 @@ def _plot_sweep(entries: Sequence[Dict[str, object]], sweep: str, x_key: str, xl
     chosen = [e for e in entries if e.get("sweep") == sweep]
     if not chosen:
         return
+    key = time_key(chosen)
     figure = _figure(10, 4.2)
     axes_time, axes_memory = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2)
     for name in METHODS:
@@ -721,13 +732,14 @@ def _plot_sweep(entries: Sequence[Dict[str, object]], sweep: str, x_key: str, xl
         if not points:
             continue
         x = [e[x_key] if x_key != "width" else e["width"] * e["height"] for e in points]
-        y = [e["seconds"] / (e["repetitions"] if per_repetition else 1) for e in points]
+        y = [e[key] / (e["repetitions"] if per_repetition else 1) for e in points]
         axes_time.loglog(x, y, "o-", label=METHODS[name].label)
         memory = [(xx, e["gpu_memory"]) for xx, e in zip(x, points) if e.get("gpu_memory")]
         if memory:
             axes_memory.loglog(*zip(*memory), "o-", label=METHODS[name].label)
     axes_time.set_xlabel(xlabel)
-    axes_time.set_ylabel("seconds per repetition" if per_repetition else "seconds per frame")
+    unit = "CPU seconds (all threads)" if key == "cpu_seconds" else "seconds"
+    axes_time.set_ylabel(f"{unit} per repetition" if per_repetition else f"{unit} per frame")
     axes_memory.set_xlabel(xlabel)
     axes_memory.set_ylabel("GPU bytes the mapper reports")
     for axes in (axes_time, axes_memory):
@@ -921,13 +933,19 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     host = results.get("host", [])
     if host:
         lines += ["## Host time per frame", "",
-                  "CPU seconds per SPT frame (16 repetitions) by thread, from `perf` samples "
-                  "of the timed frames: the application thread outside llvmpipe's shaders and "
-                  "Mesa's driver is the host part a real GPU would leave on the CPU.", "",
+                  "CPU seconds per SPT frame (16 repetitions), from `perf` samples of the "
+                  "timed frames, by thread and shared object. Host: this project's library, "
+                  "VTK and Python on the application thread, the part a real GPU leaves on "
+                  "the CPU. Kernel and C library: on that thread, mostly the memory that "
+                  "llvmpipe's vertex stage maps for every draw. The rest is the emulated GPU "
+                  "(llvmpipe's shaders and Mesa's driver on the application thread, the "
+                  "rasterizer threads).", "",
                   _table(["cells", "frame [s]", "host [s]", "SPT library [s]",
-                          "application thread [s]", "llvmpipe workers [s]"],
+                          "kernel + libc [s]", "application thread [s]",
+                          "llvmpipe workers [s]"],
                          [[h["cells"], h["frame_seconds"], h["host_seconds_per_frame"],
                            h["project_seconds_per_frame"],
+                           h.get("system_seconds_per_frame", "-"),
                            h["application_thread_seconds_per_frame"],
                            h["worker_seconds_per_frame"]] for h in host])]
     large = results.get("large")
