@@ -38,7 +38,7 @@ bool vtkSPTDepthKeyBuffer::Prepare(
   this->Keys->SetDataType(GL_UNSIGNED_INT);
   this->Keys->SetMinificationFilter(vtkTextureObject::Nearest);
   this->Keys->SetMagnificationFilter(vtkTextureObject::Nearest);
-  if (!this->Keys->Create3DFromRaw(width, height, layers, 1, VTK_UNSIGNED_INT, nullptr))
+  if (!this->Keys->Create3DFromRaw(layers, width, height, 1, VTK_UNSIGNED_INT, nullptr))
   {
     vtkErrorMacro("Could not allocate the " << width << "x" << height << "x" << layers
                                             << " depth keys of several repetitions per pass.");

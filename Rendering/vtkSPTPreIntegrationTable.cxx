@@ -103,19 +103,39 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   {
     return true;
   }
-  this->ScalarRange[0] = scalarRange[0];
-  this->ScalarRange[1] = scalarRange[1];
-  this->MaxLength = maxLength;
-  this->ScalarResolution = std::max(2, scalarResolution);
-  this->LengthResolution = std::max(2, lengthResolution);
-  this->TransferFunctionSamples = TransferFunctionSamplesPerCell * (this->ScalarResolution - 1) + 1;
+  // Sampling the functions is cheap; integrating the table is not. A property can be touched
+  // without a change of its functions (VTK creates default functions on first access), so
+  // the table is integrated again only when the samples or the axes differ.
+  const int resolution = std::max(2, scalarResolution);
+  const int samples = TransferFunctionSamplesPerCell * (resolution - 1) + 1;
+  std::vector<double> color;
+  std::vector<double> attenuation;
   this->LastProperty = nullptr;
-  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(property, this->ScalarRange,
-        this->TransferFunctionSamples, this->Color, this->Attenuation, this->LastError))
+  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(
+        property, scalarRange, samples, color, attenuation, this->LastError))
   {
     return false;
   }
+  const bool sameAxes = scalarRange[0] == this->ScalarRange[0] &&
+    scalarRange[1] == this->ScalarRange[1] && maxLength == this->MaxLength &&
+    resolution == this->ScalarResolution && std::max(2, lengthResolution) == this->LengthResolution;
+  if (sameAxes && !this->Table.empty() && color == this->Color &&
+    attenuation == this->Attenuation)
+  {
+    this->LastProperty = property;
+    this->CheckTime.Modified();
+    return true;
+  }
+  this->ScalarRange[0] = scalarRange[0];
+  this->ScalarRange[1] = scalarRange[1];
+  this->MaxLength = maxLength;
+  this->ScalarResolution = resolution;
+  this->LengthResolution = std::max(2, lengthResolution);
+  this->TransferFunctionSamples = samples;
+  this->Color.swap(color);
+  this->Attenuation.swap(attenuation);
 
+  ++this->IntegrationCount;
   const int ns = this->ScalarResolution;
   const size_t slice = size_t(ns) * ns * 4;
   std::vector<float> table(slice * this->LengthResolution, 0.0f);

@@ -67,6 +67,11 @@ public:
    */
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
 
+  /**
+   * How many times the table was integrated (the costly part of Update()); for tests.
+   */
+  int GetIntegrationCount() const { return this->IntegrationCount; }
+
   ///@{
   /**
    * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
@@ -131,6 +136,7 @@ private:
   std::string LastError;
   vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
   vtkTimeStamp CheckTime; // the inputs were last compared
+  int IntegrationCount = 0;
   vtkTimeStamp BuildTime; // the contents last changed
   vtkTimeStamp UploadTime;
   vtkSmartPointer<vtkTextureObject> Texture;

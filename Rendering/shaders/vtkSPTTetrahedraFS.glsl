@@ -74,21 +74,39 @@ uint permute(uint index, uint n, uint key)
 // hash of the pixel, the tetrahedron, r and the seed. Stratified: within each block of
 // stratumCount repetitions, every (pixel, tetrahedron) visits each of the stratumCount strata
 // once, in its own random order, so its kept count is alpha * stratumCount to within one.
+//
+// A fragment asks for its repetitions in increasing order, so the hashes are reused: one 4D
+// hash gives the random bits of four consecutive repetitions, and the order of the strata
+// is hashed once per block. threshold(r) stays a function of r alone, so one repetition per
+// pass and many per pass draw the same image.
+uint hashGroup = 0xFFFFFFFFu;
+uvec4 hashBits;
+uint orderBlock = 0xFFFFFFFFu;
+uint orderKey;
+
 float threshold(uint r)
 {
-  uvec4 key = uvec4(uvec2(gl_FragCoord.xy), uint(tetrahedronId), r);
-  key.w ^= uint(seed) * 0x9E3779B9u;
+  uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), uint(tetrahedronId));
+  if ((r >> 2u) != hashGroup)
+  {
+    hashGroup = r >> 2u;
+    hashBits = pcg4d(uvec4(cell, hashGroup ^ (uint(seed) * 0x9E3779B9u)));
+  }
+  uint bits = hashBits[r & 3u];
   if (stratumCount <= 0)
   {
-    return unitFloat(pcg4d(key).x);
+    return unitFloat(bits);
   }
   uint n = uint(stratumCount);
   uint local = r - uint(stratumOrigin);
   uint block = local / n;
-  uvec4 jitter = pcg4d(key);
-  uvec4 order = pcg4d(uvec4(key.xyz, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu)));
-  uint stratum = permute(local - block * n, n, order.x);
-  return (float(stratum) + unitFloat(jitter.x)) / float(n);
+  if (block != orderBlock)
+  {
+    orderBlock = block;
+    orderKey = pcg4d(uvec4(cell, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu))).x;
+  }
+  uint stratum = permute(local - block * n, n, orderKey);
+  return (float(stratum) + unitFloat(bits)) / float(n);
 }
 
 void main()
@@ -141,9 +159,9 @@ void main()
     if (threshold(uint(repetition + r)) < segment.a)
     {
 #ifdef SPT_PASS_KEYS
-      imageAtomicMin(depthKeys, ivec3(pixel, r), depthKey);
+      imageAtomicMin(depthKeys, ivec3(r, pixel), depthKey);
 #else
-      wins += imageLoad(depthKeys, ivec3(pixel, r)).r == depthKey ? 1 : 0;
+      wins += imageLoad(depthKeys, ivec3(r, pixel)).r == depthKey ? 1 : 0;
 #endif
     }
   }

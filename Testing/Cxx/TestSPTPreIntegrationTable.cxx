@@ -195,6 +195,27 @@ int TestSPTPreIntegrationTable(int, char*[])
     }
   }
 
+  // A property touched without a change (VTK creates default functions on first access) is
+  // sampled again but not integrated again; a changed function is.
+  const int integrations = table->GetIntegrationCount();
+  const vtkMTimeType built = table->GetBuildTime();
+  property->Modified();
+  color->Modified();
+  if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||
+    table->GetIntegrationCount() != integrations || table->GetBuildTime() != built)
+  {
+    ++failures;
+    std::cerr << "An unchanged property was integrated again.\n";
+  }
+  opacity->AddPoint(8.0, 0.3);
+  if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||
+    table->GetIntegrationCount() != integrations + 1 || table->GetBuildTime() == built)
+  {
+    ++failures;
+    std::cerr << "A changed opacity function did not rebuild the table.\n";
+  }
+  opacity->RemovePoint(8.0);
+
   // A unit distance that is not positive is refused with a reason that names it.
   property->SetScalarOpacityUnitDistance(0.0);
   if (table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||

@@ -1,11 +1,11 @@
-"""``python3 -m spt``: the demo and the paper's figures from the command line."""
+"""``python3 -m spt``: the demo, the paper's figures and the benchmark from the command line."""
 
 from __future__ import annotations
 
 import argparse
 import pathlib
 import sys
-from typing import List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
 MAX_IMAGE_SIZE = 4096
 
@@ -103,8 +103,9 @@ def _parser() -> argparse.ArgumentParser:
                       help="image width and height in pixels (default 384)")
     demo.add_argument("--repetitions", type=_positive_int(65536), default=128,
                       help="SPT RepetitionLevel (default 128)")
-    demo.add_argument("--dataset", type=_dataset, default="default",
-                      help="data set (default: the generated helix mesh)")
+    demo.add_argument("--dataset", type=_dataset, default="drill",
+                      help="data set (default: drill, the generated drill of 200,000 "
+                           "tetrahedra; 'default' is the embedded helix mesh of the tests)")
 
     figures = commands.add_parser("figures", help="reproduce the paper's figures")
     figure = figures.add_subparsers(dest="figure", required=True)
@@ -147,6 +148,24 @@ def _parser() -> argparse.ArgumentParser:
                           default=pathlib.Path("out/figures/accuracy"))
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
 
+    bench = commands.add_parser(
+        "bench", help="time and GPU memory of every method, fitted models and a report "
+                      "(long: about an hour; --quick takes minutes)")
+    bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
+    bench.add_argument("--sections", type=_sections, default=None,
+                       help="comma-separated sections to run (default: all): "
+                            "cells,repetitions,subpixels,image,quality,host,large")
+    bench.add_argument("--shape", choices=("drill", "torus", "helix"), default="drill",
+                       help="generated mesh of the sweeps (default drill)")
+    bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,
+                       help="largest mesh of the cell sweep (default 10,000,000)")
+    bench.add_argument("--large-cells", type=_positive_int(10 ** 9), default=None,
+                       help="cells of the paper's large case (default 13,000,000)")
+    bench.add_argument("--frames", type=_positive_int(100), default=None,
+                       help="timed frames per point, their median is reported (default 3)")
+    bench.add_argument("--quick", action="store_true",
+                       help="every section at small sizes, a smoke run of a few minutes")
+
     mesh = commands.add_parser(
         "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
     mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
@@ -160,6 +179,18 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _sections(text: str) -> List[str]:
+    from .bench import SECTIONS
+
+    names = [name.strip() for name in text.split(",") if name.strip()]
+    unknown = [name for name in names if name not in SECTIONS]
+    if not names or unknown:
+        raise argparse.ArgumentTypeError(
+            f"unknown section(s) {', '.join(unknown) or '(none)'}; choose from "
+            f"{', '.join(SECTIONS)}")
+    return names
+
+
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
     from .figures import _format
 
@@ -169,6 +200,27 @@ def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> Non
         print("  ".join(value.ljust(width) for value, width in zip(row, widths)))
         if index == 0:
             print("  ".join("-" * width for width in widths))
+
+
+def _bench(arguments: argparse.Namespace) -> None:
+    import dataclasses
+
+    from . import bench
+
+    settings = bench.Settings.quick() if arguments.quick else bench.Settings()
+    changes: Dict[str, object] = {"shape": arguments.shape}
+    if arguments.max_cells is not None:
+        changes["cells"] = tuple(c for c in settings.cells if c < arguments.max_cells) + (
+            arguments.max_cells,)
+    if arguments.large_cells is not None:
+        changes["large_cells"] = arguments.large_cells
+    if arguments.frames is not None:
+        changes["frames"] = arguments.frames
+    settings = dataclasses.replace(settings, **changes)
+    sections = arguments.sections or list(bench.SECTIONS)
+    bench.run(arguments.output, sections, settings)
+    print((arguments.output / "bench.md").read_text())
+    print(f"Results, plots and bench.md written to {arguments.output}")
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
@@ -183,6 +235,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             _print_table(["method", "RMSE", "PSNR [dB]", "pixels off > 0.05", "time [s]",
                           "time / VTK PT"], rows)
             print(f"Images and comparison.png written to {arguments.output}")
+        elif arguments.command == "bench":
+            _bench(arguments)
         elif arguments.command == "mesh":
             from .meshes import generate, write_legacy
 
