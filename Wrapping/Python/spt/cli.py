@@ -30,16 +30,21 @@ def _levels(text: str) -> List[int]:
     return levels
 
 
+def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
+    """A comma-separated list of names, each one of ``choices``."""
+    names = [part.strip() for part in text.split(",") if part.strip()]
+    unknown = [name for name in names if name not in choices]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(
+            f"unknown {what}(s) {', '.join(unknown) or '(none)'}; choose from "
+            f"{', '.join(choices)}")
+    return names
+
+
 def _datasets(text: str) -> List[str]:
     from .figures import SCENES
 
-    names = [part.strip() for part in text.split(",") if part.strip()]
-    unknown = [name for name in names if name not in SCENES]
-    if unknown or not names:
-        raise argparse.ArgumentTypeError(
-            f"unknown data set(s) {', '.join(unknown) or '(none)'}; choose from "
-            f"{', '.join(SCENES)}")
-    return names
+    return _names(text, list(SCENES), "data set")
 
 
 def _dataset(text: str) -> str:
@@ -59,13 +64,7 @@ def _output_directory(text: str) -> pathlib.Path:
 def _steep_datasets(text: str) -> List[str]:
     from .figures import STEEP_SCENES
 
-    names = [part.strip() for part in text.split(",") if part.strip()]
-    unknown = [name for name in names if name not in STEEP_SCENES]
-    if unknown or not names:
-        raise argparse.ArgumentTypeError(
-            f"unknown data set(s) {', '.join(unknown) or '(none)'}; choose from "
-            f"{', '.join(STEEP_SCENES)}")
-    return names
+    return _names(text, list(STEEP_SCENES), "data set")
 
 
 def _cell_count(text: str) -> int:
@@ -182,13 +181,7 @@ def _parser() -> argparse.ArgumentParser:
 def _sections(text: str) -> List[str]:
     from .bench import SECTIONS
 
-    names = [name.strip() for name in text.split(",") if name.strip()]
-    unknown = [name for name in names if name not in SECTIONS]
-    if not names or unknown:
-        raise argparse.ArgumentTypeError(
-            f"unknown section(s) {', '.join(unknown) or '(none)'}; choose from "
-            f"{', '.join(SECTIONS)}")
-    return names
+    return _names(text, SECTIONS, "section")
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
