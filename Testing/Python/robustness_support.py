@@ -70,6 +70,20 @@ UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
+def property_with_points(points: int) -> vtk.vtkVolumeProperty:
+    """A volume property whose color and opacity functions have no point (``points`` 0) or
+    one point (``points`` 1)."""
+    prop = vtk.vtkVolumeProperty()
+    color = vtk.vtkColorTransferFunction()
+    opacity = vtk.vtkPiecewiseFunction()
+    if points:
+        color.AddRGBPoint(0.5, 1.0, 0.5, 0.0)
+        opacity.AddPoint(0.5, 0.7)
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    return prop
+
+
 def snapshot(grid: vtk.vtkDataSet) -> Dict[str, object]:
     """Everything a mapper could change in a grid, copied: MTime, points, cells, arrays."""
     state: Dict[str, object] = {"mtime": grid.GetMTime(),

@@ -10,8 +10,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (ONE, assert_unchanged, property_for, render_scaled,
-                                scaled_copy, snapshot, tetrahedra, watch)
+from robustness_support import (ONE, assert_unchanged, property_for, property_with_points,
+                                render_scaled, scaled_copy, snapshot, tetrahedra, watch)
 
 SIZE = (96, 96)
 
@@ -160,14 +160,7 @@ def test_extreme_coordinates_give_the_same_image(scale, have_display):
 
 @pytest.mark.parametrize("points", [0, 1])
 def test_transfer_functions_with_no_or_one_point(points, have_display):
-    prop = vtk.vtkVolumeProperty()
-    color = vtk.vtkColorTransferFunction()
-    opacity = vtk.vtkPiecewiseFunction()
-    if points:
-        color.AddRGBPoint(0.5, 1.0, 0.5, 0.0)
-        opacity.AddPoint(0.5, 0.7)
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
+    prop = property_with_points(points)
     image, _, messages = draw(ONE, prop)
     assert not messages.errors and np.isfinite(image).all()
     if points:  # one point: constant over the range, as VTK's transfer functions clamp
