@@ -584,6 +584,18 @@ def time_models(entries: Sequence[Dict[str, object]], key: str = "seconds"
                 ["a", "b", "c"], rows, [1000.0 * e[key] for e in spt])
     if model:
         models["spt-passes"] = model
+    # On a software rasterizer the cost is the fragments': a traversal covers the footprint
+    # about as many times as a ray crosses cells, which grows as n_c^(1/3), not as n_c.
+    for name, per_pass in (("spt-paper", 1), ("spt", PER_PASS)):
+        chosen = select(name)
+        rows = [(math.ceil(e["repetitions"] / per_pass) * e["cells"],
+                 math.ceil(e["repetitions"] / per_pass) * _pixels(e) * e["cells"] ** (1 / 3),
+                 e["repetitions"] * _pixels(e)) for e in chosen]
+        model = fit(f"{name}: T = P (a n_c + b w h L_s^2 n_c^(1/3)) + L_r c w h L_s^2, "
+                    f"P = ceil(L_r / {per_pass})", ["a", "b", "c"], rows,
+                    [1000.0 * e[key] for e in chosen])
+        if model:
+            models[f"{name}-fragments"] = model
     pbvr = [e for e in select("pbvr") if e.get("particles")]
     rows = [(e["particles"], e["repetitions"] * _pixels(e)) for e in pbvr]  # particles: n_p L_r
     model = fit("pbvr: T = L_r (a n_p + b w h L_s^2), n_p particles per repetition",
@@ -955,9 +967,14 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
                   f"{large['repetitions']} repetitions: {large['seconds']:.1f} s per frame "
                   f"({large.get('cpu_seconds', float('nan')):.1f} CPU seconds), "
                   f"{large.get('gpu_memory', 0) / 2 ** 20:.0f} MiB on the GPU. The models "
-                  f"fitted above predict {large.get('predicted_seconds', float('nan')):.1f} s "
-                  f"({large.get('predicted_cpu_seconds', float('nan')):.1f} CPU seconds) and "
-                  f"{large.get('predicted_memory', float('nan')) / 2 ** 20:.0f} MiB.", ""]
+                  "fitted above predict: the paper's form (per pass) "
+                  f"{large.get('predicted_seconds', float('nan')):.1f} s "
+                  f"({large.get('predicted_cpu_seconds', float('nan')):.1f} CPU seconds); the "
+                  "fragment form "
+                  f"{large.get('predicted_seconds_fragments', float('nan')):.1f} s "
+                  f"({large.get('predicted_cpu_seconds_fragments', float('nan')):.1f} CPU "
+                  f"seconds); memory {large.get('predicted_memory', float('nan')) / 2 ** 20:.0f}"
+                  " MiB.", ""]
     text = "\n".join(lines)
     (output / "bench.md").write_text(text)
     return text
@@ -979,10 +996,14 @@ def predict_large(entry: Dict[str, object], time_fits: Dict[str, Fit],
     pixels = float(entry["width"]) * float(entry["height"]) * float(entry["subpixels"]) ** 2
     passes = math.ceil(entry["repetitions"] / PER_PASS)
     columns = [passes * entry["cells"], passes * pixels, entry["repetitions"] * pixels]
-    if "spt-passes" in time_fits:
-        entry["predicted_seconds"] = time_fits["spt-passes"].predict(columns) / 1000.0
-    if "spt-passes" in cpu_fits:
-        entry["predicted_cpu_seconds"] = cpu_fits["spt-passes"].predict(columns) / 1000.0
+    fragments = [passes * entry["cells"], passes * pixels * entry["cells"] ** (1 / 3),
+                 entry["repetitions"] * pixels]
+    for models, suffix in ((time_fits, "seconds"), (cpu_fits, "cpu_seconds")):
+        if "spt-passes" in models:
+            entry[f"predicted_{suffix}"] = models["spt-passes"].predict(columns) / 1000.0
+        if "spt-fragments" in models:
+            entry[f"predicted_{suffix}_fragments"] = (
+                models["spt-fragments"].predict(fragments) / 1000.0)
     if "spt" in memory_fits:
         entry["predicted_memory"] = memory_fits["spt"].predict([entry["cells"], pixels])
 
