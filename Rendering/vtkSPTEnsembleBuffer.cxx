@@ -146,8 +146,44 @@ void vtkSPTEnsembleBuffer::EndPass()
   this->PassColor->Deactivate();
 }
 
-void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses)
+bool vtkSPTEnsembleBuffer::BeginCoveragePass()
 {
+  vtkOpenGLState* ostate = this->Context->GetState();
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
+    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  {
+    vtkSPTSceneDepth::UseNearestTexels(this->Coverage, this->Context);
+    ostate->PushFramebufferBindings();
+    this->CoverageFramebuffer->SetContext(this->Context);
+    this->CoverageFramebuffer->Bind();
+    const bool ok = this->Coverage->Allocate2D(w, h, 4, VTK_FLOAT) &&
+      (this->CoverageFramebuffer->AddColorAttachment(0, this->Coverage),
+        this->CoverageFramebuffer->ActivateDrawBuffers(1),
+        this->CoverageFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER));
+    ostate->PopFramebufferBindings();
+    if (!ok)
+    {
+      vtkErrorMacro("Could not allocate the " << w << "x" << h << " coverage buffer.");
+      this->Coverage->ReleaseGraphicsResources(this->Context);
+      return false;
+    }
+  }
+  this->CoverageFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->CoverageFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it
+  ostate->vtkglViewport(0, 0, w, h);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  return true;
+}
+
+void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
+{
+  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
@@ -165,9 +201,20 @@ void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses)
   this->Sum->Activate();
   program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
   program->SetUniformi("subpixelLevel", this->SubpixelLevel);
-  program->SetUniformf("inverseSampleCount",
-    1.0f / (float(numberOfPasses) * float(this->SubpixelLevel * this->SubpixelLevel)));
+  program->SetUniformf("inversePassCount", 1.0f / float(numberOfPasses));
+  program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
+  if (exactCoverage)
+  {
+    this->Coverage->Activate();
+  }
+  // The sampler must name a unit even when it is not read.
+  program->SetUniformi("coverageTexture",
+    exactCoverage ? this->Coverage->GetTextureUnit() : this->Sum->GetTextureUnit());
   this->Mean->Render();
+  if (exactCoverage)
+  {
+    this->Coverage->Deactivate();
+  }
   this->Sum->Deactivate();
 }
 
@@ -179,8 +226,10 @@ size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
   }
   const size_t samples = size_t(this->GetPassWidth()) * size_t(this->GetPassHeight());
   const size_t pixels = size_t(this->Width) * size_t(this->Height);
-  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel.
-  return samples * (16 + 16 + 4) + pixels * 4;
+  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel,
+  // and the RGBA32F coverage when it is used.
+  const size_t coverage = this->Coverage->GetHandle() ? 16 : 0;
+  return samples * (16 + 16 + 4 + coverage) + pixels * 4;
 }
 
 void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
@@ -188,11 +237,12 @@ void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->Accumulate.reset();
   this->Mean.reset();
   for (vtkOpenGLFramebufferObject* framebuffer :
-    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get() })
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get() })
   {
     framebuffer->ReleaseGraphicsResources(window);
   }
-  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
+  for (vtkTextureObject* texture :
+    { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(), this->Coverage.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }

@@ -10,7 +10,12 @@
  *   lose the result);
  * - the scene depth: the depth of the opaque geometry drawn before the volume, one texel per
  *   pixel, for the fragment shaders to test against;
- * and resolves the sum into the mean, blended premultiplied "over" the render window.
+ * - optionally the coverage: per sample, the optical depth sum(tau_i) of every segment and
+ *   the tau-weighted sum of their colors, from one additive traversal (exact, no sampling);
+ * and resolves the sum into the mean, blended premultiplied "over" the render window. With
+ * the coverage, the mean's alpha is replaced by the exact 1 - exp(-sum(tau_i)), and its color
+ * is corrected by the same difference times the segments' mean color (a control variate with
+ * a deterministic coefficient: the expectation is unchanged, the alpha noise is gone).
  *
  * Private helper of the SPT module, shared by its mappers; not wrapped.
  */
@@ -73,10 +78,18 @@ public:
   void BeginSumPass();
 
   /**
-   * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
-   * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2.
+   * Allocate the coverage buffer (if needed), bind it for drawing with the viewport set to it
+   * and the scissor test off, and clear it. The caller draws every segment once with additive
+   * blending, writing (tau * color, tau). Bracketed like BeginPass().
    */
-  void Resolve(int x, int y, int numberOfPasses);
+  bool BeginCoveragePass();
+
+  /**
+   * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
+   * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2; with exactCoverage,
+   * corrected by the coverage buffer drawn since the sum was cleared.
+   */
+  void Resolve(int x, int y, int numberOfPasses, bool exactCoverage = false);
 
   ///@{
   /**
@@ -113,9 +126,11 @@ private:
   vtkNew<vtkTextureObject> PassColor;
   vtkNew<vtkTextureObject> PassDepth;
   vtkNew<vtkTextureObject> Sum;
+  vtkNew<vtkTextureObject> Coverage;
   vtkNew<vtkSPTSceneDepth> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> CoverageFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
 };

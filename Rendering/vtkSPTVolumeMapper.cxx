@@ -39,7 +39,8 @@ enum class PassKind
 {
   Single, // one repetition, opaque with the depth test
   Keys,   // several repetitions: nearest survivors by atomic minimum of depth keys
-  Colors  // several repetitions: the survivors' colors added to the sum
+  Colors,  // several repetitions: the survivors' (or visible segments') colors added to the sum
+  Coverage // once per image: every segment's optical depth and color, for the exact coverage
 };
 
 constexpr int DepthKeyImageUnit = 0;
@@ -141,15 +142,18 @@ public:
   int AccumulatedRepetitions = 0;
 
   RepetitionBudget Budget;
+  bool WarnedNoImageAtomics = false;
+  bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
 
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars, PassKind kind,
-    int repetitionsPerPass);
+    int repetitionsPerPass, int estimator);
   std::vector<double> Signature(vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y,
     int width, int height) const;
 
   // Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal.
+  // With coverage, the exact coverage is drawn first (see vtkSPTEnsembleBuffer).
   bool DrawRepetitions(vtkSPTVolumeMapper* self, int first, int count, int perPass,
-    double maxThickness, vtkTextureObject* table);
+    int estimator, bool coverage, double maxThickness, vtkTextureObject* table);
   void DrawRepetitionGroups(int first, int count, int perPass, vtkShaderProgram* keys,
     vtkShaderProgram* colors, const std::function<void(vtkShaderProgram*, int, int)>& traverse);
   void SetCommonUniforms(vtkSPTVolumeMapper* self, vtkShaderProgram* program,
@@ -157,7 +161,7 @@ public:
 };
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRenderWindow* renWin,
-  bool cellScalars, PassKind kind, int repetitionsPerPass)
+  bool cellScalars, PassKind kind, int repetitionsPerPass, int estimator)
 {
   std::string geometry = vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(
@@ -165,11 +169,16 @@ vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRender
   std::string fragment = vtkSPTTetrahedraFS;
   std::string pass = "#define SPT_REPETITIONS_PER_PASS " + std::to_string(repetitionsPerPass);
   // VTK declares GLSL 1.50; image load/store comes as the extension.
+  const bool atomics = kind == PassKind::Keys || kind == PassKind::Colors;
   vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
-    kind == PassKind::Single ? "" : "#extension GL_ARB_shader_image_load_store : require");
-  pass += kind == PassKind::Single ? "\n#define SPT_PASS_SINGLE"
-                                   : (kind == PassKind::Keys ? "\n#define SPT_PASS_KEYS"
-                                                             : "\n#define SPT_PASS_COLORS");
+    atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  const char* const defines[] = { "\n#define SPT_PASS_SINGLE", "\n#define SPT_PASS_KEYS",
+    "\n#define SPT_PASS_COLORS", "\n#define SPT_PASS_COVERAGE" };
+  pass += defines[static_cast<int>(kind)];
+  if (kind == PassKind::Colors && estimator == VISIBILITY_ESTIMATOR)
+  {
+    pass += "\n#define SPT_VISIBILITY_WEIGHTED";
+  }
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", pass);
   vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkSPTRandom);
   return renWin->GetShaderCache()->ReadyShaderProgram(
@@ -278,13 +287,23 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
+  // The survivors of several repetitions per traversal, and every repetition of the visibility
+  // estimator, are found with image atomics; without them, one survivor per traversal.
   int perPass = this->RepetitionsPerPass;
-  if (perPass > 1 &&
+  int estimator = this->Estimator;
+  if ((perPass > 1 || estimator != SURVIVOR_ESTIMATOR) &&
     (!vtkSPTDepthKeyBuffer::IsSupported(renWin) ||
       !internals.DepthKeys->Prepare(
         renWin, ensemble->GetPassWidth(), ensemble->GetPassHeight(), perPass)))
   {
+    if (estimator != SURVIVOR_ESTIMATOR && !internals.WarnedNoImageAtomics)
+    {
+      vtkWarningMacro("The visibility estimator needs image load/store (OpenGL 4.4); "
+                      "drawing with the survivor estimator.");
+      internals.WarnedNoImageAtomics = true;
+    }
     perPass = 1;
+    estimator = SURVIVOR_ESTIMATOR;
   }
 
   // What to draw: the repetitions that fit the time allotted, added to what is accumulated
@@ -305,17 +324,21 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   internals.SumSignature = signature;
 
   ostate->PushFramebufferBindings();
+  bool coverage = false;
   if (first == 0)
   {
     ensemble->CaptureSceneDepth(x, y);
     ensemble->ClearSum();
     internals.AccumulatedRepetitions = 0;
+    coverage = this->ExactCoverage;
+    internals.CoverageDrawn = false;
   }
   if (count > 0)
   {
     vtkNew<vtkTimerLog> timer;
     timer->StartTimer();
-    if (!internals.DrawRepetitions(this, first, count, perPass, maxThickness, table))
+    if (!internals.DrawRepetitions(
+          this, first, count, perPass, estimator, coverage, maxThickness, table))
     {
       ostate->PopFramebufferBindings();
       internals.SumSignature.clear();
@@ -329,15 +352,18 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       internals.Budget.Measure(timer->GetElapsedTime(), count, perPass);
     }
     internals.AccumulatedRepetitions += count;
+    internals.CoverageDrawn = internals.CoverageDrawn || coverage;
   }
   ostate->PopFramebufferBindings();
   this->LastRepetitionCount = internals.AccumulatedRepetitions;
-  ensemble->Resolve(x, y, internals.AccumulatedRepetitions);
+  ensemble->Resolve(
+    x, y, internals.AccumulatedRepetitions, this->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self, int first,
-  int count, int perPass, double maxThickness, vtkTextureObject* table)
+  int count, int perPass, int estimator, bool coverage, double maxThickness,
+  vtkTextureObject* table)
 {
   vtkInternals& internals = *this;
   vtkOpenGLRenderWindow* renWin = internals.Context;
@@ -345,11 +371,20 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
   const bool cellScalars = internals.Mesh->GetCellScalars();
   const PassKind kinds[3] = { PassKind::Single, PassKind::Keys, PassKind::Colors };
-  vtkShaderProgram* programs[3] = { nullptr, nullptr, nullptr };
-  for (int k = perPass > 1 ? 1 : 0; k < (perPass > 1 ? 3 : 1); ++k)
+  vtkShaderProgram* programs[4] = { nullptr, nullptr, nullptr, nullptr };
+  const bool single = perPass == 1 && estimator == SURVIVOR_ESTIMATOR;
+  for (int k = single ? 0 : 1; k < (single ? 1 : 3); ++k)
   {
-    programs[k] = internals.ReadyProgram(renWin, cellScalars, kinds[k], perPass);
-    if (!programs[k])
+    programs[k] = internals.ReadyProgram(renWin, cellScalars, kinds[k], perPass, estimator);
+  }
+  if (coverage)
+  {
+    programs[3] =
+      internals.ReadyProgram(renWin, cellScalars, PassKind::Coverage, perPass, estimator);
+  }
+  for (int k = 0; k < 4; ++k)
+  {
+    if (!programs[k] && (k == 3 ? coverage : (k == 0) == single))
     {
       vtkErrorWithObjectMacro(self, "Could not compile the SPT shaders.");
       return false;
@@ -386,7 +421,23 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
     internals.Mesh->Draw(program, 0, tetrahedra);
     internals.Mesh->Unbind();
   };
-  if (perPass == 1)
+  if (coverage)
+  {
+    // Every segment once, added: no depth test, nothing random.
+    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+    if (!ensemble->BeginCoveragePass())
+    {
+      return false;
+    }
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDepthMask(GL_FALSE);
+    ostate->vtkglEnable(GL_BLEND);
+    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    traverse(programs[3], first, 1);
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglDepthMask(GL_TRUE);
+  }
+  if (single)
   {
     ostate->vtkglEnable(GL_DEPTH_TEST);
     ostate->vtkglDepthFunc(GL_LESS);
@@ -505,6 +556,9 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VectorComponent: " << this->VectorComponent << "\n";
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
+  os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
+  os << indent << "Estimator: "
+     << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility") << "\n";
   os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off")
      << "\n";
   os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions

@@ -106,6 +106,48 @@ public:
   vtkBooleanMacro(StratifiedSampling, vtkTypeBool);
   ///@}
 
+  enum EstimatorType
+  {
+    SURVIVOR_ESTIMATOR = 0,
+    VISIBILITY_ESTIMATOR = 1
+  };
+
+  ///@{
+  /**
+   * What a repetition adds to the image. Both find each repetition's nearest kept segment per
+   * sample, with nothing sorted, and both have exact front-to-back compositing as their
+   * expected value:
+   * - SURVIVOR_ESTIMATOR (the paper's): the survivor's color, written opaque; every other
+   *   segment adds nothing. One traversal per repetition when RepetitionsPerPass is 1.
+   * - VISIBILITY_ESTIMATOR (default): every segment not behind the survivor adds its
+   *   pre-integrated premultiplied color and opacity (the depth-based accumulation of
+   *   Enderton et al., "Stochastic transparency", I3D 2010, without its alpha correction, so
+   *   the mean stays unbiased). Its noise is lower wherever many thin, faint segments share a
+   *   pixel. It always finds the survivors with image atomics (OpenGL 4.4); without them the
+   *   mapper falls back to the survivor estimator.
+   */
+  vtkSetClampMacro(Estimator, int, SURVIVOR_ESTIMATOR, VISIBILITY_ESTIMATOR);
+  vtkGetMacro(Estimator, int);
+  void SetEstimatorToSurvivor() { this->SetEstimator(SURVIVOR_ESTIMATOR); }
+  void SetEstimatorToVisibility() { this->SetEstimator(VISIBILITY_ESTIMATOR); }
+  ///@}
+
+  ///@{
+  /**
+   * Exact coverage: one more traversal per image (not per repetition) adds up every
+   * segment's optical depth tau = -ln(1 - alpha) and its tau-weighted color, per sample, with
+   * nothing random and nothing sorted. The image's alpha is then the exact coverage
+   * 1 - exp(-sum(tau)) instead of its estimate, and the color is corrected by the difference
+   * times the segments' tau-weighted mean color: a control variate whose coefficient does not
+   * depend on the random numbers, so the expectation stays exact front-to-back compositing.
+   * What noise is left comes from the color differences between a pixel's segments. Costs
+   * 16 bytes per sample. Default on.
+   */
+  vtkSetMacro(ExactCoverage, vtkTypeBool);
+  vtkGetMacro(ExactCoverage, vtkTypeBool);
+  vtkBooleanMacro(ExactCoverage, vtkTypeBool);
+  ///@}
+
   ///@{
   /**
    * Progressive refinement: while the camera, the viewport, the input, the transfer functions,
@@ -218,6 +260,8 @@ protected:
   int VectorComponent = 0;
   int RepetitionsPerPass = 16;
   vtkTypeBool StratifiedSampling = 1;
+  int Estimator = VISIBILITY_ESTIMATOR;
+  vtkTypeBool ExactCoverage = 1;
   vtkTypeBool ProgressiveRefinement = 0;
   int MaximumProgressiveRepetitions = 4096;
   vtkTypeBool AutoAdjustRepetitions = 1;

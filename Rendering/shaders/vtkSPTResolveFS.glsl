@@ -3,10 +3,18 @@
 
 // Turns the ensemble sum into the mean over repetitions and subpixels: premultiplied RGBA,
 // whose alpha is the coverage 1 - prod(1 - alpha_i). The caller blends it "over" the scene.
+//
+// With exactCoverage, each sample's alpha is the exact coverage 1 - exp(-sum(tau_i)) from the
+// coverage buffer, and its color is corrected by the control variate meanColor * (A - a):
+// the coefficient (the tau-weighted mean color of the sample's segments) does not depend on
+// the random numbers and E[a] = A, so the expectation stays exact; what is left of the noise
+// is the segments' color differences.
 in vec2 texCoord;
 uniform sampler2D sumTexture;
+uniform sampler2D coverageTexture;   // per sample: (sum(tau_i * color_i), sum(tau_i))
+uniform int exactCoverage;
 uniform int subpixelLevel;
-uniform float inverseSampleCount; // 1 / (repetitions * subpixelLevel^2)
+uniform float inversePassCount;      // 1 / repetitions
 
 void main()
 {
@@ -17,8 +25,16 @@ void main()
   {
     for (int i = 0; i < subpixelLevel; ++i)
     {
-      sum += texelFetch(sumTexture, first + ivec2(i, j), 0);
+      vec4 mean = texelFetch(sumTexture, first + ivec2(i, j), 0) * inversePassCount;
+      if (exactCoverage != 0)
+      {
+        vec4 coverage = texelFetch(coverageTexture, first + ivec2(i, j), 0);
+        float exact = 1.0 - exp(-coverage.a);
+        vec3 meanColor = coverage.a > 0.0 ? coverage.rgb / coverage.a : vec3(0.0);
+        mean = vec4(mean.rgb + meanColor * (exact - mean.a), exact);
+      }
+      sum += mean;
     }
   }
-  gl_FragData[0] = sum * inverseSampleCount;
+  gl_FragData[0] = sum / float(subpixelLevel * subpixelLevel);
 }

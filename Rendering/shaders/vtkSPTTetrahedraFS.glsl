@@ -36,9 +36,11 @@ uniform int repetitionsInGroup; // of the SPT_REPETITIONS_PER_PASS, how many thi
 // How this pass writes: SPT_PASS_SINGLE (one repetition, the fragment written opaque with the
 // depth test), or, for SPT_REPETITIONS_PER_PASS repetitions at once, SPT_PASS_KEYS (each kept
 // fragment takes the per-repetition minimum of its depth key) then SPT_PASS_COLORS (the
-// fragment adds its color once for each repetition whose minimum it holds).
+// fragment adds its color once for each repetition whose minimum it holds, or, with
+// SPT_VISIBILITY_WEIGHTED, for each repetition whose minimum is not in front of it). Apart
+// from these, SPT_PASS_COVERAGE adds every fragment's optical depth and color, once.
 //SPT::Pass::Dec
-#ifndef SPT_PASS_SINGLE
+#if !defined(SPT_PASS_SINGLE) && !defined(SPT_PASS_COVERAGE)
 layout(r32ui) coherent uniform uimage3D depthKeys; // (pixel, repetition in the pass)
 #endif
 
@@ -140,7 +142,16 @@ void main()
     sqrt(min(thickness * thicknessToTable, 1.0)));
   vec4 segment = texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);
 
-#ifdef SPT_PASS_SINGLE
+#if defined(SPT_PASS_COVERAGE)
+  // The exact coverage of the sample is 1 - exp(-sum(tau)); the tau-weighted mean of the
+  // segments' colors is the coefficient of the resolve's control variate.
+  if (segment.a <= 0.0)
+  {
+    discard;
+  }
+  float tau = -log(1.0 - min(segment.a, 0.99999994));
+  gl_FragData[0] = vec4(segment.rgb * (tau / segment.a), tau);
+#elif defined(SPT_PASS_SINGLE)
   if (threshold(uint(repetition)) >= segment.a)
   {
     discard;
@@ -153,6 +164,23 @@ void main()
   uint depthKey = (uint(clamp(gl_FragCoord.z, 0.0, 1.0) * 16777215.0) << 8u) |
     (uint(tetrahedronId) & 0xFFu);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
+#if defined(SPT_PASS_COLORS) && defined(SPT_VISIBILITY_WEIGHTED)
+  // The visibility estimator: the fragment adds its premultiplied color and opacity once for
+  // each repetition whose nearest survivor is not in front of it. It is visible in a
+  // repetition with the probability prod(1 - alpha_j) over the segments j in front of it, so
+  // the mean is front-to-back compositing in expectation, as with the survivor alone, but
+  // every segment in front of the survivor contributes what it would composite.
+  int visible = 0;
+  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
+  {
+    visible += depthKey <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
+  }
+  if (visible == 0)
+  {
+    discard;
+  }
+  gl_FragData[0] = float(visible) * segment;
+#else
   int wins = 0;
   for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
   {
@@ -174,5 +202,6 @@ void main()
   }
 #endif
   gl_FragData[0] = float(wins) * vec4(segment.rgb / segment.a, 1.0);
+#endif // SPT_VISIBILITY_WEIGHTED
 #endif
 }

@@ -28,7 +28,8 @@ SEED = 3
 SETTINGS = {
     SPT: {"RepetitionLevel": REPETITIONS, "SubpixelLevel": 1, "Seed": SEED,
           "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64,
-          "RepetitionsPerPass": 16, "StratifiedSampling": 1, "ProgressiveRefinement": 0,
+          "RepetitionsPerPass": 16, "StratifiedSampling": 1, "Estimator": 1,
+          "ExactCoverage": 1, "ProgressiveRefinement": 0,
           "AutoAdjustRepetitions": 1},
     HAVS: {"KBufferSize": 4, "KBufferSynchronization": 0,
            "HAVSPreIntegrationScalarResolution": 96, "HAVSPreIntegrationThicknessResolution": 64},

@@ -10,12 +10,11 @@ repetitions measured 2 % (torus) and 12 % (default mesh) below the prediction.
   reference than SPT at the figure's 144 repetitions.
 - The issue's claim, that on the torus and on the default (non-convex) mesh SPT at 1024
   repetitions is closer to the reference than HAVS-like with k = 2 and than VTK's projected
-  tetrahedra, measured against the exact reference with the mapper as users get it
-  (stratified, 16 repetitions per pass), holds against HAVS-like k = 2 on the torus and ties
-  with VTK PT there. On the default mesh the sorted methods are closer: its centroid order is
-  nearly exact, and SPT's remaining error is its noise at 1024 repetitions. Those cases are
-  expected failures with the measured numbers (strict where the gap is clear), so that a
-  change that makes the claim hold is noticed.
+  tetrahedra, measured against the exact reference with the mapper as users get it (the
+  visibility estimator with exact coverage, stratified, 16 repetitions per pass). With the
+  paper's survivor estimator (stratified) it held only against HAVS-like k = 2 on the torus:
+  its noise at 1024 repetitions (0.0053 on the default mesh) was above the sorted methods'
+  error there (HAVS-like k = 2 0.0042, VTK PT 0.0036).
 """
 
 from functools import lru_cache
@@ -55,7 +54,7 @@ def _rmse(name, method):
 def _spt_estimate(name, level):
     s = _scene(name)
     first, second = (render.render(s.grid, s.property,
-                                   render.spt_mapper(level, seed=seed, stratified=False),
+                                   render.spt_mapper(level, seed=seed, **render.PAPER_SAMPLING),
                                    s.view, SIZE).image for seed in (1, 2))
     return statistics.estimate(first, second, _reference(name), level)
 
@@ -68,21 +67,19 @@ def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
     assert _rmse("bluntfin", "havs2") > havs, "k = 2 repairs less of the order than k = 6"
 
 
-CLAIMS = [
-    ("torus", "havs2", None, True),
-    ("torus", "pt", "a tie: SPT at 1024 0.0068, VTK PT 0.0067", False),
-    ("default", "havs2", "measured: SPT at 1024 0.0053, HAVS-like k=2 0.0042", True),
-    ("default", "pt", "measured: SPT at 1024 0.0053, VTK PT 0.0036", True),
-]
+CLAIMS = [("torus", "havs2"), ("torus", "pt"), ("default", "havs2"), ("default", "pt")]
 
 
-@pytest.mark.parametrize("name, method", [
-    pytest.param(name, method, marks=pytest.mark.xfail(strict=strict, reason=reason)
-                 if reason else ()) for name, method, reason, strict in CLAIMS])
-def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method, have_display):
+@lru_cache(maxsize=None)
+def _spt_1024_rmse(name):
     s = _scene(name)
     spt = render.render(s.grid, s.property, render.spt_mapper(1024, seed=3), s.view,
                         SIZE).image
-    measured = metrics.rmse(spt, _reference(name))
+    return metrics.rmse(spt, _reference(name))
+
+
+@pytest.mark.parametrize("name, method", CLAIMS)
+def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method, have_display):
+    measured = _spt_1024_rmse(name)
     other = _rmse(name, method)
     assert measured < other, f"SPT at 1024 {measured:.4f}, {method} {other:.4f}"

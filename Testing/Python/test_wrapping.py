@@ -43,11 +43,26 @@ def test_vector_mode_and_seed():
     assert mapper.GetSeed() == 4000000000
 
 
+def test_estimator_and_exact_coverage():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR
+    assert mapper.GetExactCoverage() == 1
+    mapper.SetEstimatorToSurvivor()
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR
+    mapper.SetEstimator(7)
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR
+    mapper.ExactCoverageOff()
+    assert "ExactCoverage: Off" in str(mapper)
+
+
 def test_print_self_lists_every_setting():
     text = str(spt.vtkSPTVolumeMapper())
     for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
                     "PreIntegrationThicknessResolution", "VectorMode", "VectorComponent",
-                    "NumberOfTetrahedra", "GPUMemorySize", "ScalarMode"]:
+                    "RepetitionsPerPass", "StratifiedSampling", "Estimator", "ExactCoverage",
+                    "ProgressiveRefinement", "MaximumProgressiveRepetitions",
+                    "AutoAdjustRepetitions", "NumberOfTetrahedra", "GPUMemorySize",
+                    "ScalarMode"]:
         assert setting + ":" in text
 
 

@@ -26,7 +26,7 @@ METHODS = {
         "settings": {name: name for name in (
             "RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
             "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
-            "ProgressiveRefinement", "AutoAdjustRepetitions")},
+            "Estimator", "ExactCoverage", "ProgressiveRefinement", "AutoAdjustRepetitions")},
         "repetitions": "RepetitionLevel",
         "seed": "Seed",
     },

@@ -75,15 +75,25 @@ class Method:
     stochastic: bool
 
 
-def _spt(stratified: bool, per_pass: int) -> Callable[[int, int], object]:
+def _spt(stratified: bool, per_pass: int, survivor: bool = True
+         ) -> Callable[[int, int], object]:
+    sampling = ({"estimator": "survivor", "exact_coverage": False} if survivor else
+                {"estimator": "visibility", "exact_coverage": True})
     return lambda repetitions, subpixels: render.spt_mapper(
-        repetitions, subpixels, stratified=stratified, per_pass=per_pass)
+        repetitions, subpixels, stratified=stratified, per_pass=per_pass, **sampling)
 
 
+#: "spt" is the survivor estimator (the paper's estimator, drawn 16 repetitions per pass with
+#: stratified thresholds), which the time and memory models describe; "spt-visibility" is the
+#: mapper's default since session 4 (visibility estimator with exact coverage: one more
+#: traversal per image, no hashing in the colour traversals).
 METHODS: Dict[str, Method] = {m.name: m for m in (
-    Method("spt", "SPT (16 per pass, stratified)", _spt(True, PER_PASS), True),
+    Method("spt", "SPT survivor (16 per pass, stratified)", _spt(True, PER_PASS), True),
+    Method("spt-visibility", "SPT default (visibility, exact coverage)",
+           _spt(True, PER_PASS, survivor=False), True),
     Method("spt-paper", "SPT, paper (1 per pass, independent)", _spt(False, 1), True),
-    Method("spt-independent", "SPT (16 per pass, independent)", _spt(False, PER_PASS), True),
+    Method("spt-independent", "SPT survivor (16 per pass, independent)",
+           _spt(False, PER_PASS), True),
     Method("havs2", "HAVS-like k=2", lambda r, s: render.havs_mapper(2), False),
     Method("havs6", "HAVS-like k=6", lambda r, s: render.havs_mapper(6), False),
     Method("pbvr", "PBVR", lambda r, s: render.pbvr_mapper(r, s), True),
@@ -263,7 +273,8 @@ class Settings:
     subpixels: Tuple[int, ...] = (1, 2, 3, 4)
     sizes: Tuple[int, ...] = (256, 512, 768, 1024)
     frames: int = 3
-    methods: Tuple[str, ...] = ("spt", "spt-paper", "havs2", "havs6", "pbvr", "pt", "floor")
+    methods: Tuple[str, ...] = ("spt", "spt-visibility", "spt-paper", "havs2", "havs6", "pbvr",
+                                "pt", "floor")
     # the slow methods stop growing the cell sweep here (seconds of one frame)
     frame_limit: float = 120.0
     quality_datasets: Tuple[str, ...] = ("spx", "bluntfin", "post")
@@ -273,6 +284,11 @@ class Settings:
     large_cells: int = 13_000_000
     large_size: int = 1024
     large_repetitions: int = 144
+    # run the sections for these methods only, keeping the other methods' earlier results
+    only_methods: Optional[Tuple[str, ...]] = None
+
+    def wants(self, name: str) -> bool:
+        return self.only_methods is None or name in self.only_methods
 
     @staticmethod
     def quick() -> "Settings":
@@ -293,6 +309,8 @@ def sweep_cells(settings: Settings, progress: Progress) -> List[Dict[str, object
         s = generated_scene(settings.shape, cells)
         for name in settings.methods:
             method = METHODS[name]
+            if not settings.wants(name):
+                continue
             if name in stopped:
                 progress.step(f"{name} skipped")
                 continue
@@ -306,6 +324,14 @@ def sweep_cells(settings: Settings, progress: Progress) -> List[Dict[str, object
     return results
 
 
+#: The methods of the repetition and subpixel sweeps.
+REPETITION_METHODS = ("spt", "spt-visibility", "spt-paper", "pbvr")
+
+
+def _wanted(settings: Settings, names: Sequence[str]) -> List[str]:
+    return [name for name in names if settings.wants(name)]
+
+
 def _sweep_level(settings: Settings, name: str) -> int:
     return settings.paper_sweep_repetitions if name == "spt-paper" else settings.sweep_repetitions
 
@@ -313,7 +339,7 @@ def _sweep_level(settings: Settings, name: str) -> int:
 def sweep_repetitions(settings: Settings, progress: Progress) -> List[Dict[str, object]]:
     s = generated_scene(settings.shape, settings.sweep_cells)
     results = []
-    for name in ("spt", "spt-paper", "pbvr"):
+    for name in _wanted(settings, REPETITION_METHODS):
         for level in settings.repetitions:
             if name == "spt-paper" and level > settings.paper_repetitions:
                 progress.step(f"{name} L={level} skipped")
@@ -329,7 +355,7 @@ def sweep_subpixels(settings: Settings, progress: Progress) -> List[Dict[str, ob
     s = generated_scene(settings.shape, settings.sweep_cells)
     size = min(settings.sizes)
     results = []
-    for name in ("spt", "spt-paper", "pbvr"):
+    for name in _wanted(settings, REPETITION_METHODS):
         level = _sweep_level(settings, name)
         for subpixels in settings.subpixels:
             timing = time_method(s, METHODS[name], size, level, subpixels, settings.frames)
@@ -343,7 +369,7 @@ def sweep_image(settings: Settings, progress: Progress) -> List[Dict[str, object
     s = generated_scene(settings.shape, settings.sweep_cells)
     results = []
     for size in settings.sizes:
-        for name in settings.methods:
+        for name in _wanted(settings, settings.methods):
             level = _sweep_level(settings, name)
             timing = time_method(s, METHODS[name], size, level, 1, settings.frames)
             results.append(_record(s, METHODS[name], size, level, 1, timing, sweep="image"))
@@ -352,13 +378,18 @@ def sweep_image(settings: Settings, progress: Progress) -> List[Dict[str, object
 
 
 def _steps(settings: Settings, section: str) -> int:
-    methods = len(settings.methods)
+    methods = len(_wanted(settings, settings.methods))
+    swept = len(_wanted(settings, REPETITION_METHODS))
+    stochastic = len(_wanted(settings, ("spt", "spt-visibility", "spt-independent", "pbvr",
+                                        "spt-paper")))
+    exact = len(_wanted(settings, ("havs2", "havs4", "havs6", "pt")))
     return {
         "cells": len(settings.cells) * methods,
-        "repetitions": 3 * len(settings.repetitions),
-        "subpixels": 3 * len(settings.subpixels),
+        "repetitions": swept * len(settings.repetitions),
+        "subpixels": swept * len(settings.subpixels),
         "image": len(settings.sizes) * methods,
-        "quality": len(settings.quality_datasets) * (1 + 4 * len(settings.quality_levels) + 4),
+        "quality": len(settings.quality_datasets) * (
+            1 + stochastic * len(settings.quality_levels) + exact),
         "host": len(settings.host_cells),
         "large": 1,
     }[section]
@@ -393,18 +424,23 @@ def quality(settings: Settings, progress: Progress, output: pathlib.Path
             return entry
 
         for level in settings.quality_levels:
-            for method_name in ("spt", "spt-independent", "pbvr"):
-                results.append(measure(METHODS[method_name], level))
+            for method_name in ("spt", "spt-visibility", "spt-independent", "pbvr"):
+                if settings.wants(method_name):
+                    results.append(measure(METHODS[method_name], level))
+            if not settings.wants("spt-paper"):
+                continue
             if level <= settings.paper_repetitions:
                 paper = measure(METHODS["spt-paper"], level)
                 results.append(paper)
             else:
                 progress.step(f"{name} spt-paper L={level} skipped")
         for method_name in ("havs2", "havs6", "pt"):
-            results.append(measure(METHODS[method_name], 1))
+            if settings.wants(method_name):
+                results.append(measure(METHODS[method_name], 1))
         # HAVS-like k=4, the middle of its range
-        havs4 = Method("havs4", "HAVS-like k=4", lambda r, sp: render.havs_mapper(4), False)
-        results.append(measure(havs4, 1))
+        if settings.wants("havs4"):
+            havs4 = Method("havs4", "HAVS-like k=4", lambda r, sp: render.havs_mapper(4), False)
+            results.append(measure(havs4, 1))
     return results
 
 
@@ -659,8 +695,9 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
                                      "particles_per_repetition": per_repetition,
                                      "repetitions_at_equal_memory": level})
     quality_entries = [e for e in entries if e.get("sweep") == "quality" and "rmse" in e]
-    for scene in sorted({e["scene"] for e in quality_entries}):
-        spt = sorted((e for e in quality_entries if e["scene"] == scene and e["method"] == "spt"),
+    for scene, name in sorted({(e["scene"], e["method"]) for e in quality_entries
+                               if e["method"] in ("spt", "spt-visibility")}):
+        spt = sorted((e for e in quality_entries if e["scene"] == scene and e["method"] == name),
                      key=lambda e: e["repetitions"])
         if len(spt) < 2:
             continue
@@ -675,7 +712,7 @@ def crossovers(entries: Sequence[Dict[str, object]], memory: Dict[str, Fit]
             level = math.exp((math.log(havs["rmse"]) - intercept) / slope) if slope < 0 else math.inf
             spt_seconds = math.exp(time_intercept + time_slope * math.log(max(level, 1.0)))
             result["time_at_equal_error"].append({
-                "scene": scene, "havs": havs["method"], "havs_rmse": havs["rmse"],
+                "scene": scene, "spt": name, "havs": havs["method"], "havs_rmse": havs["rmse"],
                 "havs_seconds": havs[key], "spt_repetitions": level, "time": key,
                 "spt_seconds": spt_seconds, "spt_over_havs": spt_seconds / havs[key]})
     result["sampling"] = sampling_gains(quality_entries)
@@ -789,7 +826,7 @@ def _plot_quality(entries: Sequence[Dict[str, object]], path: pathlib.Path) -> N
     figure = _figure(4.2 * len(scenes), 4.0)
     for index, scene in enumerate(scenes):
         axes = figure.add_subplot(1, len(scenes), index + 1)
-        for name in ("spt", "spt-independent", "spt-paper", "pbvr"):
+        for name in ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"):
             points = sorted((e for e in chosen if e["scene"] == scene and e["method"] == name),
                             key=lambda e: e[key])
             if points:
@@ -914,10 +951,12 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
                            m["repetitions_at_equal_memory"]] for m in cross["memory"]])]
     if cross["time_at_equal_error"]:
         lines += ["Time at equal error: the repetitions SPT needs to reach HAVS-like's error "
-                  "on each data set, and its time there:", "",
-                  _table(["scene", "HAVS-like", "its RMSE", "its time [s]", "SPT L_r",
+                  "on each data set, and its time there (SPT's error interpolated on its "
+                  "log-log curve):", "",
+                  _table(["scene", "SPT", "HAVS-like", "its RMSE", "its time [s]", "SPT L_r",
                           "SPT time [s]", "SPT / HAVS"],
-                         [[t["scene"], t["havs"], t["havs_rmse"], t["havs_seconds"],
+                         [[t["scene"], t.get("spt", "spt"), t["havs"], t["havs_rmse"],
+                           t["havs_seconds"],
                            t["spt_repetitions"], t["spt_seconds"], t["spt_over_havs"]]
                           for t in cross["time_at_equal_error"]])]
 
@@ -1033,7 +1072,8 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
     previous: Dict[str, object] = {}
     if (output / "bench.json").exists():
         previous = json.loads((output / "bench.json").read_text())
-    entries = [e for e in previous.get("entries", []) if e.get("sweep") not in sections]
+    entries = [e for e in previous.get("entries", [])
+               if e.get("sweep") not in sections or not settings.wants(e.get("method", ""))]
     progress = Progress(sum(_steps(settings, s) for s in sections), "bench")
     for section in sections:
         if section == "cells":

@@ -160,6 +160,9 @@ def _parser() -> argparse.ArgumentParser:
                        help="largest mesh of the cell sweep (default 10,000,000)")
     bench.add_argument("--large-cells", type=_positive_int(10 ** 9), default=None,
                        help="cells of the paper's large case (default 13,000,000)")
+    bench.add_argument("--methods", type=_methods, default=None,
+                       help="comma-separated methods to run (default: all); the other "
+                            "methods' results in OUTPUT/bench.json are kept")
     bench.add_argument("--frames", type=_positive_int(100), default=None,
                        help="timed frames per point, their median is reported (default 3)")
     bench.add_argument("--quick", action="store_true",
@@ -182,6 +185,12 @@ def _sections(text: str) -> List[str]:
     from .bench import SECTIONS
 
     return _names(text, SECTIONS, "section")
+
+
+def _methods(text: str) -> List[str]:
+    from .bench import METHODS
+
+    return _names(text, tuple(METHODS) + ("havs4",), "method")
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
@@ -209,6 +218,8 @@ def _bench(arguments: argparse.Namespace) -> None:
         changes["large_cells"] = arguments.large_cells
     if arguments.frames is not None:
         changes["frames"] = arguments.frames
+    if arguments.methods is not None:
+        changes["only_methods"] = tuple(arguments.methods)
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)
@@ -262,6 +273,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                   f"{check['max_abs_difference']:.4f}")
             print(f"stratified thresholds reach the error of {result['levels'][-1]} independent "
                   f"repetitions with {result['stratified_repetitions_to_match']}")
+            print(f"the default estimator reaches it with "
+                  f"{result['default_repetitions_to_match']}")
         elif arguments.figure == "sorting":
             rows = figures.sorting(arguments.datasets, arguments.size, arguments.output,
                                    arguments.repetitions)

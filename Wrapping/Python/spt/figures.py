@@ -109,11 +109,14 @@ def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
               "pt_psnr": metrics.psnr(pt.image, reference.image), "levels": []}
     for level in levels:
         entry = {"repetitions": level}
-        # The paper's sampling (independent thresholds), then the mapper's default
-        # (stratified); both drawn 16 repetitions per pass, which gives the same images as
-        # one per pass.
-        for mode, stratified in (("", False), ("stratified_", True)):
-            mapper = render.spt_mapper(level, seed=seed, stratified=stratified)
+        # The paper's sampling (the survivor estimator, independent thresholds), the survivor
+        # estimator with stratified thresholds, and the mapper's default (the visibility
+        # estimator with exact coverage, stratified); all drawn 16 repetitions per pass,
+        # which gives the same images as one per pass.
+        for mode, sampling in (("", render.PAPER_SAMPLING),
+                               ("stratified_", render.STRATIFIED_SURVIVOR_SAMPLING),
+                               ("default_", {})):
+            mapper = render.spt_mapper(level, seed=seed, **sampling)
             spt = render.render(s.grid, s.property, mapper, s.view, shape)
             metrics.write_png(output / f"{s.name}_spt_{mode}{level}.png", spt.image)
             metrics.write_png(output / f"{s.name}_spt_{mode}{level}_difference.png",
@@ -135,10 +138,14 @@ def _plot_convergence(results: List[Dict[str, object]], path: PathLike) -> None:
         color = f"C{index}"
         levels = [entry["repetitions"] for entry in result["levels"]]
         errors = [entry["rmse"] for entry in result["levels"]]
-        axes.loglog(levels, errors, "o-", color=color, label=f"{result['dataset']} SPT")
+        axes.loglog(levels, errors, "o-", color=color,
+                    label=f"{result['dataset']} SPT, paper's sampling")
         stratified = [entry["stratified_rmse"] for entry in result["levels"]]
         axes.loglog(levels, stratified, "s-.", color=color,
-                    label=f"{result['dataset']} SPT, stratified")
+                    label=f"{result['dataset']} SPT, survivor stratified")
+        default = [entry["default_rmse"] for entry in result["levels"]]
+        axes.loglog(levels, default, "^-", color=color, linewidth=2.0,
+                    label=f"{result['dataset']} SPT default (visibility, exact coverage)")
         axes.axhline(result["pt_rmse"], color=color, linestyle=":",
                      label=f"{result['dataset']} VTK PT")
         guide = errors[0] * np.sqrt(levels[0] / np.asarray(levels, dtype=float))
@@ -162,7 +169,8 @@ def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
     rows = []
     for result in results:
         for entry in result["levels"]:
-            for mode, label in (("", "SPT"), ("stratified_", "SPT stratified")):
+            for mode, label in (("", "SPT paper"), ("stratified_", "SPT survivor stratified"),
+                                ("default_", "SPT default")):
                 rows.append([result["dataset"], f"{label} L={entry['repetitions']}",
                              entry[f"{mode}rmse"], entry[f"{mode}psnr"], entry[f"{mode}seconds"],
                              entry[f"{mode}seconds"] / result["pt_seconds"]])
@@ -269,12 +277,13 @@ STEEP_SCENES: Dict[str, Callable[[], Scene]] = {
 }
 
 #: The methods of the PBVR figure: (label, file stem, mapper for a repetition level and seed).
-#: SPT as users get it (stratified thresholds) and as the paper samples (independent ones, the
-#: Monte Carlo sampling that PBVR's independent particle sets also have).
+#: SPT as users get it (the defaults) and as the paper samples (the survivor estimator with
+#: independent thresholds, the Monte Carlo sampling that PBVR's independent particle sets also
+#: have).
 PBVR_METHODS = [
     ("SPT", "spt", lambda level, seed: render.spt_mapper(level, seed=seed)),
-    ("SPT, independent thresholds", "spt_independent",
-     lambda level, seed: render.spt_mapper(level, seed=seed, stratified=False)),
+    ("SPT, paper's sampling", "spt_independent",
+     lambda level, seed: render.spt_mapper(level, seed=seed, **render.PAPER_SAMPLING)),
     ("PBVR", "pbvr", lambda level, seed: render.pbvr_mapper(level, seed=seed)),
     ("PBVR, cell average", "pbvr_cell_average",
      lambda level, seed: render.pbvr_mapper(level, seed=seed, cell_average=True)),

@@ -51,12 +51,27 @@ class View:
     parallel: bool = False
 
 
+#: SPT as the paper draws it: the survivor estimator, independent thresholds, no exact
+#: coverage (``render.spt_mapper(level, **PAPER_SAMPLING)``). RepetitionsPerPass is left at
+#: the default, which draws the same images as one repetition per pass.
+PAPER_SAMPLING = {"stratified": False, "estimator": "survivor", "exact_coverage": False}
+#: The survivor estimator with stratified thresholds, without exact coverage.
+STRATIFIED_SURVIVOR_SAMPLING = {"stratified": True, "estimator": "survivor",
+                                "exact_coverage": False}
+
+_ESTIMATORS = {"survivor": vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
+               "visibility": vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR}
+
+
 def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
-               stratified: Optional[bool] = None, per_pass: Optional[int] = None
+               stratified: Optional[bool] = None, per_pass: Optional[int] = None,
+               estimator: Optional[str] = None, exact_coverage: Optional[bool] = None
                ) -> vtkSPTVolumeMapper:
-    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``
-    and ``per_pass`` set StratifiedSampling and RepetitionsPerPass (None keeps the defaults).
-    The time budget is off, so that the image has exactly ``repetitions`` repetitions."""
+    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``,
+    ``per_pass``, ``estimator`` ("survivor" or "visibility") and ``exact_coverage`` set
+    StratifiedSampling, RepetitionsPerPass, Estimator and ExactCoverage (None keeps the
+    mapper's defaults). The time budget is off, so that the image has exactly
+    ``repetitions`` repetitions."""
     mapper = vtkSPTVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
@@ -66,6 +81,13 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
         mapper.SetStratifiedSampling(stratified)
     if per_pass is not None:
         mapper.SetRepetitionsPerPass(per_pass)
+    if estimator is not None:
+        if estimator not in _ESTIMATORS:
+            raise ValueError(f"unknown estimator {estimator!r}; choose from "
+                             f"{', '.join(_ESTIMATORS)}")
+        mapper.SetEstimator(_ESTIMATORS[estimator])
+    if exact_coverage is not None:
+        mapper.SetExactCoverage(exact_coverage)
     return mapper
 
 

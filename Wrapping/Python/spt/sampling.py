@@ -17,25 +17,30 @@ import numpy as np
 
 from . import figures, metrics, render
 
-#: The sampling modes compared: (label, stratified, repetitions per pass).
-MODES = [("paper: independent, 1 per pass", False, 1),
-         ("independent, 16 per pass", False, 16),
-         ("stratified, 16 per pass", True, 16)]
+_SURVIVOR = {"estimator": "survivor", "exact_coverage": False}
+
+#: The sampling modes compared: (label, stratified, repetitions per pass, estimator settings).
+#: The first three are the paper's survivor estimator; the last is the mapper's default.
+MODES = [("paper: independent, 1 per pass", False, 1, _SURVIVOR),
+         ("independent, 16 per pass", False, 16, _SURVIVOR),
+         ("stratified, 16 per pass", True, 16, _SURVIVOR),
+         ("default: visibility, exact coverage, stratified, 16 per pass", True, 16, {})]
 
 
 def _render(s: figures.Scene, level: int, stratified: bool, per_pass: int, size: int,
-            seed: int) -> render.Rendering:
-    mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass)
+            seed: int, estimator: Dict[str, object] = _SURVIVOR) -> render.Rendering:
+    mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
+                               **estimator)
     return render.render(s.grid, s.property, mapper, s.view, (size, size))
 
 
 def _curves(s: figures.Scene, reference: np.ndarray, levels: Sequence[int], size: int,
             seed: int) -> List[Dict[str, object]]:
     curves = []
-    for label, stratified, per_pass in MODES:
+    for label, stratified, per_pass, estimator in MODES:
         points = []
         for level in levels:
-            rendering = _render(s, level, stratified, per_pass, size, seed)
+            rendering = _render(s, level, stratified, per_pass, size, seed, estimator)
             points.append({"repetitions": level, "seconds": rendering.seconds,
                            "rmse": metrics.rmse(rendering.image, reference)})
         curves.append({"mode": label, "stratified": stratified, "per_pass": per_pass,
@@ -83,7 +88,7 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
     single = _render(s, check_level, False, 1, size, seed)
     several = _render(s, check_level, False, 16, size, seed)
     curves = _curves(s, reference, levels, size, seed)
-    paper, independent, stratified = curves
+    paper, independent, stratified, default = curves
     target = independent["points"][-1]["rmse"]
     result = {
         "dataset": dataset, "size": size, "levels": list(levels), "curves": curves,
@@ -94,6 +99,7 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
             "max_abs_difference": float(np.abs(single.image - several.image).max())},
         "independent_rmse_at_max": target,
         "stratified_repetitions_to_match": _repetitions_to_match(stratified, target),
+        "default_repetitions_to_match": _repetitions_to_match(default, target),
     }
     rows = []
     for curve in curves:
