@@ -16,6 +16,14 @@
  * is exact front-to-back compositing, and its noise falls as 1 / sqrt(RepetitionLevel *
  * SubpixelLevel^2).
  *
+ * Beyond the paper, and on by default: several repetitions per traversal (image atomics),
+ * stratified thresholds, and two changes to what a repetition adds that keep the expectation
+ * exact and remove most of the noise. Every segment not behind the repetition's nearest kept
+ * one adds its own pre-integrated color and opacity (VISIBILITY_ESTIMATOR), and one extra
+ * traversal per image makes the alpha exact and corrects the color by a control variate
+ * (ExactCoverage). SetEstimatorToSurvivor(), ExactCoverageOff(), StratifiedSamplingOff() and
+ * SetRepetitionsPerPass(1) give the paper's method.
+ *
  * The optical model is the one of vtkUnstructuredGridLinearRayIntegrator: the scalar opacity
  * transfer function divided by ScalarOpacityUnitDistance is the attenuation coefficient, and
  * the color transfer function is the emitted color per unit of attenuation. Only the first

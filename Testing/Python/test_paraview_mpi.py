@@ -190,12 +190,20 @@ def compare(reference, image, other_seed):
     }
 
 
+#: One 8-bit level. Images read back at 8 bits and composited afterwards carry rounding errors
+#: that are smooth where the image is, so box filtering does not remove them; with SPT's
+#: default estimator the noise of another seed is already near that level.
+QUANTIZATION = 1.0 / 255.0
+
+
 def within_noise(measures):
     return (measures["footprint_iou"] > measures["footprint_iou_other_seed"] - 0.02
-            and all(r <= 1.25 * n for r, n in zip(measures["rmse"], measures["rmse_other_seed"]))
+            and all(r <= 1.25 * n + QUANTIZATION
+                    for r, n in zip(measures["rmse"], measures["rmse_other_seed"]))
             and all(r <= b for r, b in zip(measures["rmse"], measures["rmse_bound"]))
-            and all(s <= 1.5 * n for s, n in zip(measures["smoothed_rms"],
-                                                 measures["smoothed_rms_other_seed"])))
+            and all(s <= 1.5 * n + QUANTIZATION
+                    for s, n in zip(measures["smoothed_rms"],
+                                    measures["smoothed_rms_other_seed"])))
 
 
 @pytest.mark.parametrize("method", [SPT, HAVS, PBVR])
