@@ -165,3 +165,17 @@ def test_sampling_gains_from_synthetic_curves():
     # stratified error 0.2 / L reaches independent's 0.2 / 8 at L = 8
     assert gain["stratified_repetitions"] == pytest.approx(8.0, rel=1e-6)
     assert gain["stratified_slope"] == pytest.approx(-1.0, rel=1e-6)
+
+
+def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
+    """An SPT curve already below HAVS-like's error at its lowest level: that level and its
+    measured time, marked as an upper bound."""
+    entries = [dict(entry("spt-visibility", 1000, 64, level, 0.01 * level,
+                          rmse=0.002 / math.sqrt(level)), sweep="quality", scene="x")
+               for level in (4, 16, 64)]
+    entries.append(dict(entry("havs6", 1000, 64, 1, 0.5, rmse=0.025), sweep="quality",
+                        scene="x"))
+    [result] = bench.crossovers(entries, {})["time_at_equal_error"]
+    assert result["at_most"] and result["spt"] == "spt-visibility"
+    assert result["spt_repetitions"] == 4
+    assert result["spt_seconds"] == pytest.approx(0.04)
