@@ -91,11 +91,13 @@ public:
   ///@{
   /**
    * Repetitions drawn per traversal of the geometry. 1 draws each repetition as its own pass,
-   * as in the paper. N > 1 makes N keep-or-discard decisions per fragment and finds each
-   * repetition's nearest survivor with image atomics (two traversals for N repetitions), which
-   * gives the same image as N single passes with the same random numbers, for 4 x N bytes per
-   * sample of GPU memory. Needs OpenGL 4.4 (image load/store, clear texture); without it the
-   * mapper falls back to 1. Range 1 to 64, default 16.
+   * as in the paper (with the survivor estimator; the visibility estimator always takes a key
+   * traversal and a color traversal). N > 1 makes N keep-or-discard decisions per fragment and
+   * finds each repetition's nearest survivor with image atomics (two traversals for N
+   * repetitions), which gives the same image as N single passes with the same random numbers,
+   * for 4 x N bytes per sample of GPU memory. Needs OpenGL 4.4 (image load/store, clear
+   * texture); without it the mapper falls back to 1 and to the survivor estimator. Range 1 to
+   * 64, default 16.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
   vtkGetMacro(RepetitionsPerPass, int);
