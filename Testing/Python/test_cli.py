@@ -166,6 +166,6 @@ def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
     assert int(pbvr["particles"]) > 0 and float(pbvr["GPU memory [MiB]"]) > 0.0
     assert float(pbvr["particles / s"]) > 0.0 and 0.0 < float(pbvr["RMSE"]) < 0.5
     assert rows["SPT, L=8"]["particles"] == "-"
-    assert rows["SPT, independent thresholds, L=8"]["particles"] == "-"
+    assert rows["SPT, paper's sampling, L=8"]["particles"] == "-"
     convergence = (output / "pbvr_convergence.md").read_text()
     assert "| L=2 | L=8 |" in convergence and "PBVR, cell average" in convergence

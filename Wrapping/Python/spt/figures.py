@@ -332,7 +332,7 @@ def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
                 differences.append(difference)
         result["methods"][label] = entries
     short = [label.replace(", cell average", " cell avg.").replace(
-        ", independent thresholds", " indep.") for label, _, _ in PBVR_METHODS]
+        ", paper's sampling", " paper") for label, _, _ in PBVR_METHODS]
     labels = (["reference"] + [f"{label}, L={repetitions}" for label in short]
               + [f"|{label} - ref.| x4" for label in short])
     metrics.write_png(output / f"{s.name}_comparison.png",
@@ -386,7 +386,7 @@ def _plot_pbvr_convergence(results: List[Dict[str, object]], path: PathLike) -> 
 def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int], size: int,
                 output: PathLike, seed: int = 0) -> List[List[object]]:
     """The "PBVR vs. SPT" figure: for each data set with a steep transfer function, the
-    reference, SPT (stratified and independent thresholds), PBVR and PBVR with cell-average
+    reference, SPT (the defaults and the paper's sampling), PBVR and PBVR with cell-average
     density at `repetitions`: images,
     difference images, RMSE, render times, particles, memory (pbvr.md); and the convergence
     of all three against the repetition level (pbvr_convergence.png / .md). Returns the rows of
