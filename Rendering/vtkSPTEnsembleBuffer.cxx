@@ -158,10 +158,13 @@ bool vtkSPTEnsembleBuffer::BeginCoveragePass()
     ostate->PushFramebufferBindings();
     this->CoverageFramebuffer->SetContext(this->Context);
     this->CoverageFramebuffer->Bind();
-    const bool ok = this->Coverage->Allocate2D(w, h, 4, VTK_FLOAT) &&
-      (this->CoverageFramebuffer->AddColorAttachment(0, this->Coverage),
-        this->CoverageFramebuffer->ActivateDrawBuffers(1),
-        this->CoverageFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER));
+    bool ok = this->Coverage->Allocate2D(w, h, 4, VTK_FLOAT);
+    if (ok)
+    {
+      this->CoverageFramebuffer->AddColorAttachment(0, this->Coverage);
+      this->CoverageFramebuffer->ActivateDrawBuffers(1);
+      ok = this->CoverageFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+    }
     ostate->PopFramebufferBindings();
     if (!ok)
     {

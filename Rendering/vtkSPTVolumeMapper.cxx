@@ -370,21 +370,19 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
   const bool cellScalars = internals.Mesh->GetCellScalars();
-  const PassKind kinds[3] = { PassKind::Single, PassKind::Keys, PassKind::Colors };
-  vtkShaderProgram* programs[4] = { nullptr, nullptr, nullptr, nullptr };
+  // The programs this render needs, indexed by PassKind; the others stay null.
   const bool single = perPass == 1 && estimator == SURVIVOR_ESTIMATOR;
-  for (int k = single ? 0 : 1; k < (single ? 1 : 3); ++k)
-  {
-    programs[k] = internals.ReadyProgram(renWin, cellScalars, kinds[k], perPass, estimator);
-  }
-  if (coverage)
-  {
-    programs[3] =
-      internals.ReadyProgram(renWin, cellScalars, PassKind::Coverage, perPass, estimator);
-  }
+  const bool needed[4] = { single, !single, !single, coverage };
+  vtkShaderProgram* programs[4] = { nullptr, nullptr, nullptr, nullptr };
   for (int k = 0; k < 4; ++k)
   {
-    if (!programs[k] && (k == 3 ? coverage : (k == 0) == single))
+    if (!needed[k])
+    {
+      continue;
+    }
+    programs[k] = internals.ReadyProgram(
+      renWin, cellScalars, static_cast<PassKind>(k), perPass, estimator);
+    if (!programs[k])
     {
       vtkErrorWithObjectMacro(self, "Could not compile the SPT shaders.");
       return false;
