@@ -64,6 +64,11 @@ void vtkSPTDepthKeyBuffer::BindImage(int unit)
     GL_READ_WRITE, GL_R32UI);
 }
 
+void vtkSPTDepthKeyBuffer::UnbindImage(int unit)
+{
+  glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+}
+
 void vtkSPTDepthKeyBuffer::Barrier()
 {
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

@@ -54,6 +54,7 @@ public:
    * previous traversal visible to the next one.
    */
   void BindImage(int unit);
+  static void UnbindImage(int unit);
   static void Barrier();
 
   /**

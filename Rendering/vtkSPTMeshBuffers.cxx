@@ -36,6 +36,21 @@ constexpr vtkIdType MaxTetrahedraPerDraw = vtkIdType(1) << 22;
 // The name of the scalars handed to the split into tetrahedra.
 constexpr const char* SplitScalarsName = "vtkSPTMeshBuffers scalars";
 
+// A buffer texture of `texels` texels of `components` values over `buffer`.
+bool MakeBufferTexture(vtkSmartPointer<vtkTextureObject>& texture, vtkOpenGLRenderWindow* renWin,
+  vtkOpenGLBufferObject* buffer, size_t texels, int components, int dataType,
+  unsigned int internalFormat)
+{
+  if (!texture)
+  {
+    texture = vtkSmartPointer<vtkTextureObject>::New();
+  }
+  texture->SetContext(renWin);
+  texture->SetInternalFormat(internalFormat);
+  return texture->CreateTextureBuffer(
+    static_cast<unsigned int>(texels), components, dataType, buffer);
+}
+
 double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
 {
   if (component >= 0)
@@ -293,6 +308,13 @@ bool vtkSPTMeshBuffers::Extract(
     diagonal = std::max(diagonal, extent);
   }
   this->Scale = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const bool empty = bounds[2 * a] > bounds[2 * a + 1];
+    this->NormalizedBounds[2 * a] = empty ? 0.0 : (bounds[2 * a] - this->Center[a]) / this->Scale;
+    this->NormalizedBounds[2 * a + 1] =
+      empty ? 0.0 : (bounds[2 * a + 1] - this->Center[a]) / this->Scale;
+  }
 
   this->Points.resize(3 * numberOfPoints);
   for (vtkIdType i = 0; i < 3 * numberOfPoints; ++i)
@@ -390,37 +412,30 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
     this->UploadTime.Modified();
     return true;
   }
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const size_t texels = std::max(this->Scalars.size(), this->Tetrahedra.size() / 4);
+  if (texels > static_cast<size_t>(maxTexels))
+  {
+    vtkErrorMacro("The mesh has " << texels
+                                  << " tetrahedra or points; this OpenGL context holds at most "
+                                  << maxTexels << " in a buffer texture.");
+    this->ReleaseGraphicsResources(renWin);
+    return false;
+  }
+  // The scalars are a vertex attribute for point scalars; every buffer is also a buffer
+  // texture, for the cells that the fragment stage reads whole.
   bool ok = this->PointBuffer->Upload(this->Points, vtkOpenGLBufferObject::ArrayBuffer) &&
-    this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer);
-  if (this->CellScalars)
-  {
-    GLint maxTexels = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-    if (this->Scalars.size() > static_cast<size_t>(maxTexels))
-    {
-      vtkErrorMacro("The mesh has " << this->Scalars.size()
-                                    << " tetrahedra with cell scalars; this OpenGL context "
-                                       "holds at most "
-                                    << maxTexels << " in a buffer texture.");
-      this->ReleaseGraphicsResources(renWin);
-      return false;
-    }
-    ok = ok && this->ScalarBuffer->Upload(this->Scalars, vtkOpenGLBufferObject::TextureBuffer);
-    if (ok)
-    {
-      if (!this->CellScalarTexture)
-      {
-        this->CellScalarTexture = vtkSmartPointer<vtkTextureObject>::New();
-      }
-      this->CellScalarTexture->SetContext(renWin);
-      ok = this->CellScalarTexture->CreateTextureBuffer(
-        static_cast<unsigned int>(this->Scalars.size()), 1, VTK_FLOAT, this->ScalarBuffer);
-    }
-  }
-  else
-  {
-    ok = ok && this->ScalarBuffer->Upload(this->Scalars, vtkOpenGLBufferObject::ArrayBuffer);
-  }
+    this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer) &&
+    this->ScalarBuffer->Upload(this->Scalars,
+      this->CellScalars ? vtkOpenGLBufferObject::TextureBuffer : vtkOpenGLBufferObject::ArrayBuffer);
+  ok = ok &&
+    MakeBufferTexture(this->ScalarTexture, renWin, this->ScalarBuffer, this->Scalars.size(), 1,
+      VTK_FLOAT, GL_R32F) &&
+    MakeBufferTexture(this->PointTexture, renWin, this->PointBuffer, this->Points.size() / 3, 3,
+      VTK_FLOAT, GL_RGB32F) &&
+    MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer,
+      this->Tetrahedra.size() / 4, 4, VTK_UNSIGNED_INT, GL_RGBA32UI);
   if (!ok)
   {
     vtkErrorMacro("Could not upload " << this->GetNumberOfTetrahedra()
@@ -485,10 +500,14 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
   this->VertexArray->ReleaseGraphicsResources();
-  if (this->CellScalarTexture)
+  for (vtkSmartPointer<vtkTextureObject>* texture :
+    { &this->ScalarTexture, &this->PointTexture, &this->TetrahedronTexture })
   {
-    this->CellScalarTexture->ReleaseGraphicsResources(window);
-    this->CellScalarTexture = nullptr;
+    if (*texture)
+    {
+      (*texture)->ReleaseGraphicsResources(window);
+      *texture = nullptr;
+    }
   }
   this->Context = nullptr;
   this->BoundProgram = nullptr;

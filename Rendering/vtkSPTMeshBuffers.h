@@ -19,7 +19,7 @@
 #include "vtkNew.h"             // For the buffers
 #include "vtkObject.h"
 #include "vtkSmartPointer.h" // For the buffers
-#include "vtkTextureObject.h" // For GetCellScalarTexture()
+#include "vtkTextureObject.h" // For GetScalarTexture()
 #include "vtkTimeStamp.h"    // For the caches
 
 #include <string> // For the array name
@@ -78,6 +78,8 @@ public:
   /// Point coordinates are (x - Center) / Scale.
   const double* GetCenter() const { return this->Center; }
   double GetScale() const { return this->Scale; }
+  /// The bounds of the points, in the normalized units of the coordinates.
+  const double* GetNormalizedBounds() const { return this->NormalizedBounds; }
   /// Longest tetrahedron edge, in the normalized units of the coordinates.
   double GetMaxEdgeLength() const { return this->MaxEdgeLength; }
   vtkIdType GetNumberOfSkippedCells() const { return this->SkippedCells; }
@@ -103,7 +105,15 @@ public:
    */
   void Bind(vtkShaderProgram* program);
   void Unbind();
-  vtkTextureObject* GetCellScalarTexture() { return this->CellScalarTexture; }
+
+  /**
+   * The same buffers as buffer textures, for shaders that read a whole cell: the four point
+   * ids of each tetrahedron (RGBA32UI), the points (RGB32F) and the scalars (R32F, per point
+   * or, with cell scalars, per tetrahedron). Null before a successful Upload().
+   */
+  vtkTextureObject* GetTetrahedronTexture() { return this->TetrahedronTexture; }
+  vtkTextureObject* GetPointTexture() { return this->PointTexture; }
+  vtkTextureObject* GetScalarTexture() { return this->ScalarTexture; }
 
   /**
    * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
@@ -139,6 +149,7 @@ private:
   double ScalarRange[2] = { 0.0, 1.0 };
   double Center[3] = { 0.0, 0.0, 0.0 };
   double Scale = 1.0;
+  double NormalizedBounds[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
   double MaxEdgeLength = 0.0;
   vtkIdType SkippedCells = 0;
 
@@ -153,7 +164,9 @@ private:
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
   vtkNew<vtkOpenGLVertexArrayObject> VertexArray;
-  vtkSmartPointer<vtkTextureObject> CellScalarTexture;
+  vtkSmartPointer<vtkTextureObject> ScalarTexture;
+  vtkSmartPointer<vtkTextureObject> TetrahedronTexture;
+  vtkSmartPointer<vtkTextureObject> PointTexture;
   vtkShaderProgram* BoundProgram = nullptr;
   size_t UploadedBytes = 0;
 };

@@ -74,6 +74,28 @@ void vtkSPTViewMatrices::Compute(
     }
   }
   this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
+
+  // A corner of the bounding box in front of the near plane (or behind the eye) has clip
+  // z < -w; the box is convex, so without such a corner no cell reaches there.
+  const double* bounds = mesh->GetNormalizedBounds();
+  this->NearPlaneCutsBounds = false;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double point[4] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
+      bounds[4 + ((corner >> 2) & 1)], 1.0 };
+    double view[4], clip[4];
+    for (int i = 0; i < 4; ++i)
+    {
+      view[i] = this->ModelToView[i][0] * point[0] + this->ModelToView[i][1] * point[1] +
+        this->ModelToView[i][2] * point[2] + this->ModelToView[i][3];
+    }
+    for (int i = 0; i < 4; ++i)
+    {
+      clip[i] = this->ViewToClip[i][0] * view[0] + this->ViewToClip[i][1] * view[1] +
+        this->ViewToClip[i][2] * view[2] + this->ViewToClip[i][3] * view[3];
+    }
+    this->NearPlaneCutsBounds = this->NearPlaneCutsBounds || !(clip[2] >= -clip[3]);
+  }
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)
   {

@@ -34,6 +34,9 @@ struct SPTRENDERING_EXPORT vtkSPTViewMatrices
   double ViewScale = 1.0;
   /// Whether the camera projects in parallel.
   bool ParallelProjection = false;
+  /// Whether the near plane cuts the mesh's bounding box (the camera is inside or close to
+  /// it): then some tetrahedra may reach in front of the near plane or behind the eye.
+  bool NearPlaneCutsBounds = false;
   /// Whether model -> view mirrors space (negative determinant), which swaps the facing of
   /// triangles on the screen.
   bool Mirrored = false;

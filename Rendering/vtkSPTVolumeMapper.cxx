@@ -23,6 +23,10 @@
 #include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
+#include "vtkSPTPassColorsFS.h"
+#include "vtkSPTPassCoverageFS.h"
+#include "vtkSPTPassKeysFS.h"
+#include "vtkSPTPassSingleFS.h"
 #include "vtkSPTRandom.h"
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
@@ -34,13 +38,43 @@
 
 namespace
 {
-// How one traversal of the tetrahedra writes (see vtkSPTTetrahedraFS.glsl).
+// How one traversal of the tetrahedra writes (see the vtkSPTPass*FS.glsl shaders).
 enum class PassKind
 {
-  Single, // one repetition, opaque with the depth test
-  Keys,   // several repetitions: nearest survivors by atomic minimum of depth keys
-  Colors,  // several repetitions: the survivors' (or visible segments') colors added to the sum
-  Coverage // once per image: every segment's optical depth and color, for the exact coverage
+  Single,           // one repetition, opaque with the depth test
+  Keys,             // several repetitions: nearest survivors by atomic minimum of depth keys
+  KeysAndCoverage,  // the same, and every segment's optical depth terms (first group)
+  Colors,           // several repetitions: the survivors' (or visible segments') colors added
+  Coverage,         // every segment's optical depth terms, for the single passes
+  NumberOfKinds
+};
+
+constexpr int NumberOfPassKinds = static_cast<int>(PassKind::NumberOfKinds);
+
+// Texture objects active for a scope, deactivated in reverse order on every way out.
+class ScopedTextures
+{
+public:
+  explicit ScopedTextures(std::initializer_list<vtkTextureObject*> textures)
+    : Textures(textures)
+  {
+    for (vtkTextureObject* texture : this->Textures)
+    {
+      texture->Activate();
+    }
+  }
+  ~ScopedTextures()
+  {
+    for (auto it = this->Textures.rbegin(); it != this->Textures.rend(); ++it)
+    {
+      (*it)->Deactivate();
+    }
+  }
+  ScopedTextures(const ScopedTextures&) = delete;
+  ScopedTextures& operator=(const ScopedTextures&) = delete;
+
+private:
+  std::vector<vtkTextureObject*> Textures;
 };
 
 constexpr int DepthKeyImageUnit = 0;
@@ -145,8 +179,8 @@ public:
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
 
-  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars, PassKind kind,
-    int repetitionsPerPass, int estimator);
+  vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars,
+    bool nearPlaneCuts, PassKind kind, int repetitionsPerPass, int estimator);
   std::vector<double> Signature(vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y,
     int width, int height) const;
 
@@ -154,33 +188,45 @@ public:
   // With coverage, the exact coverage is drawn first (see vtkSPTEnsembleBuffer).
   bool DrawRepetitions(vtkSPTVolumeMapper* self, int first, int count, int perPass,
     int estimator, bool coverage, double maxThickness, vtkTextureObject* table);
-  void DrawRepetitionGroups(int first, int count, int perPass, vtkShaderProgram* keys,
-    vtkShaderProgram* colors, const std::function<void(vtkShaderProgram*, int, int)>& traverse);
+  // Keys then colors for each group of perPass repetitions; with coverage, the first key
+  // traversal also draws the exact coverage.
+  bool DrawRepetitionGroups(int first, int count, int perPass, bool coverage,
+    const std::function<void(PassKind, int, int)>& traverse);
   void SetCommonUniforms(vtkSPTVolumeMapper* self, vtkShaderProgram* program,
     double maxThickness, vtkTextureObject* table, int first, int count);
 };
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRenderWindow* renWin,
-  bool cellScalars, PassKind kind, int repetitionsPerPass, int estimator)
+  bool cellScalars, bool nearPlaneCuts, PassKind kind, int repetitionsPerPass, int estimator)
 {
+  const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
+    vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
+  // Both stages: scalars per cell, and the path for cells cut by the near plane, compiled in
+  // only while the near plane cuts the mesh's bounds (a fragment stage pays for its branches).
+  std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  common += nearPlaneCuts ? "#define SPT_NEAR_PLANE_CUTS\n" : "";
   std::string geometry = vtkSPTTetrahedraGS;
-  vtkShaderProgram::Substitute(
-    geometry, "//SPT::Defines::Dec", cellScalars ? "#define SPT_CELL_SCALARS" : "");
-  std::string fragment = vtkSPTTetrahedraFS;
-  std::string pass = "#define SPT_REPETITIONS_PER_PASS " + std::to_string(repetitionsPerPass);
-  // VTK declares GLSL 1.50; image load/store comes as the extension.
-  const bool atomics = kind == PassKind::Keys || kind == PassKind::Colors;
-  vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
-    atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
-  const char* const defines[] = { "\n#define SPT_PASS_SINGLE", "\n#define SPT_PASS_KEYS",
-    "\n#define SPT_PASS_COLORS", "\n#define SPT_PASS_COVERAGE" };
-  pass += defines[static_cast<int>(kind)];
+  vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
+
+  std::string defines =
+    common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(repetitionsPerPass);
+  if (kind == PassKind::KeysAndCoverage)
+  {
+    defines += "\n#define SPT_WRITE_COVERAGE";
+  }
   if (kind == PassKind::Colors && estimator == VISIBILITY_ESTIMATOR)
   {
-    pass += "\n#define SPT_VISIBILITY_WEIGHTED";
+    defines += "\n#define SPT_VISIBILITY_WEIGHTED";
   }
-  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", pass);
+  // VTK declares GLSL 1.50; image load/store comes as the extension.
+  const bool atomics =
+    kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
+  std::string fragment = vtkSPTTetrahedraFS;
+  vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
+    atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
   vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkSPTRandom);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
   return renWin->GetShaderCache()->ReadyShaderProgram(
     vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
 }
@@ -292,9 +338,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   int perPass = this->RepetitionsPerPass;
   int estimator = this->Estimator;
   if ((perPass > 1 || estimator != SURVIVOR_ESTIMATOR) &&
-    (!vtkSPTDepthKeyBuffer::IsSupported(renWin) ||
-      !internals.DepthKeys->Prepare(
-        renWin, ensemble->GetPassWidth(), ensemble->GetPassHeight(), perPass)))
+    !vtkSPTDepthKeyBuffer::IsSupported(renWin))
   {
     if (estimator != SURVIVOR_ESTIMATOR && !internals.WarnedNoImageAtomics)
     {
@@ -365,37 +409,40 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
   int count, int perPass, int estimator, bool coverage, double maxThickness,
   vtkTextureObject* table)
 {
-  vtkInternals& internals = *this;
-  vtkOpenGLRenderWindow* renWin = internals.Context;
+  vtkOpenGLRenderWindow* renWin = this->Context;
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
-  const bool cellScalars = internals.Mesh->GetCellScalars();
-  // The programs this render needs, indexed by PassKind; the others stay null.
+  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
+  // The programs this render needs, indexed by PassKind; the others stay null. Groups draw
+  // the coverage with their first key traversal; single passes need a traversal of its own.
   const bool single = perPass == 1 && estimator == SURVIVOR_ESTIMATOR;
-  const bool needed[4] = { single, !single, !single, coverage };
-  vtkShaderProgram* programs[4] = { nullptr, nullptr, nullptr, nullptr };
-  for (int k = 0; k < 4; ++k)
+  const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
+    !single && coverage, !single, single && coverage };
+  // A render of fewer repetitions than a group draws only those: the fragment loops are sized
+  // by the compiled count.
+  const int lanes = std::min(perPass, count);
+  vtkShaderProgram* programs[NumberOfPassKinds] = {};
+  for (int k = 0; k < NumberOfPassKinds; ++k)
   {
     if (!needed[k])
     {
       continue;
     }
-    programs[k] = internals.ReadyProgram(
-      renWin, cellScalars, static_cast<PassKind>(k), perPass, estimator);
+    programs[k] = this->ReadyProgram(renWin, this->Mesh->GetCellScalars(),
+      this->Matrices.NearPlaneCutsBounds, static_cast<PassKind>(k), lanes, estimator);
     if (!programs[k])
     {
       vtkErrorWithObjectMacro(self, "Could not compile the SPT shaders.");
       return false;
     }
   }
-  table->Activate();
-  vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
-  sceneDepth->Activate();
-  vtkTextureObject* cellScalarTexture = internals.Mesh->GetCellScalarTexture();
-  if (cellScalars)
+  if (!single && !this->DepthKeys->Prepare(
+                   renWin, ensemble->GetPassWidth(), ensemble->GetPassHeight(), lanes))
   {
-    cellScalarTexture->Activate();
+    return false;
   }
+  ScopedTextures textures({ table, ensemble->GetSceneDepthTexture(),
+    this->Mesh->GetScalarTexture(), this->Mesh->GetPointTexture(),
+    this->Mesh->GetTetrahedronTexture() });
   for (vtkShaderProgram* program : programs)
   {
     if (program)
@@ -405,24 +452,29 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
     }
   }
 
-  ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
-  const vtkIdType tetrahedra = internals.Mesh->GetNumberOfTetrahedra();
-  auto traverse = [&](vtkShaderProgram* program, int repetition, int inGroup) {
+  const vtkIdType tetrahedra = this->Mesh->GetNumberOfTetrahedra();
+  auto traverse = [&](PassKind kind, int repetition, int inGroup) {
     // The ensemble's accumulation binds its own program between passes; uniforms go to the
     // bound program.
+    vtkShaderProgram* program = programs[static_cast<int>(kind)];
     renWin->GetShaderCache()->ReadyShaderProgram(program);
     program->SetUniformi("repetition", repetition);
     program->SetUniformi("repetitionsInGroup", inGroup);
-    internals.Mesh->Bind(program);
-    internals.Mesh->Draw(program, 0, tetrahedra);
-    internals.Mesh->Unbind();
+    this->Mesh->Bind(program);
+    this->Mesh->Draw(program, 0, tetrahedra);
+    this->Mesh->Unbind();
   };
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  if (!single)
+  {
+    return this->DrawRepetitionGroups(first, count, lanes, coverage, traverse);
+  }
   if (coverage)
   {
     // Every segment once, added: no depth test, nothing random.
-    vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
     if (!ensemble->BeginCoveragePass())
     {
       return false;
@@ -430,64 +482,67 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
     ostate->vtkglDisable(GL_DEPTH_TEST);
     ostate->vtkglDepthMask(GL_FALSE);
     ostate->vtkglEnable(GL_BLEND);
-    ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-    traverse(programs[3], first, 1);
-    ostate->vtkglDisable(GL_BLEND);
-    ostate->vtkglDepthMask(GL_TRUE);
+    traverse(PassKind::Coverage, first, 1);
   }
-  if (single)
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LESS);
+  for (int r = first; r < first + count; ++r)
   {
-    ostate->vtkglEnable(GL_DEPTH_TEST);
-    ostate->vtkglDepthFunc(GL_LESS);
-    for (int r = first; r < first + count; ++r)
-    {
-      ensemble->BeginPass();
-      traverse(programs[0], r, 1);
-      ensemble->EndPass();
-    }
+    ensemble->BeginPass();
+    traverse(PassKind::Single, r, 1);
+    ensemble->EndPass();
   }
-  else
-  {
-    this->DrawRepetitionGroups(first, count, perPass, programs[1], programs[2], traverse);
-  }
-
-  if (cellScalars)
-  {
-    cellScalarTexture->Deactivate();
-  }
-  sceneDepth->Deactivate();
-  table->Deactivate();
   return true;
 }
 
-void vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count, int perPass,
-  vtkShaderProgram* keys, vtkShaderProgram* colors,
-  const std::function<void(vtkShaderProgram*, int, int)>& traverse)
+bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count, int perPass,
+  bool coverage, const std::function<void(PassKind, int, int)>& traverse)
 {
-  vtkInternals& internals = *this;
-  vtkOpenGLState* ostate = internals.Context->GetState();
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
   // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
   // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglDepthMask(GL_FALSE);
-  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-  internals.Ensemble->BeginSumPass();
-  internals.DepthKeys->BindImage(DepthKeyImageUnit);
-  for (int r = first; r < first + count; r += perPass)
+  this->DepthKeys->BindImage(DepthKeyImageUnit);
+  bool ok = true;
+  for (int r = first; ok && r < first + count; r += perPass)
   {
     const int inGroup = std::min(perPass, first + count - r);
-    internals.DepthKeys->Clear();
+    this->DepthKeys->Clear();
     vtkSPTDepthKeyBuffer::Barrier();
-    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    ostate->vtkglDisable(GL_BLEND);
-    traverse(keys, r, inGroup);
-    vtkSPTDepthKeyBuffer::Barrier();
-    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    ostate->vtkglEnable(GL_BLEND);
-    traverse(colors, r, inGroup);
-    vtkSPTDepthKeyBuffer::Barrier();
+    // The first key traversal also adds up the coverage: it visits every segment anyway.
+    const bool withCoverage = coverage && r == first;
+    if (withCoverage)
+    {
+      ok = ensemble->BeginCoveragePass();
+      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      ostate->vtkglEnable(GL_BLEND);
+    }
+    else
+    {
+      ensemble->BeginSumPass();
+      ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      ostate->vtkglDisable(GL_BLEND);
+    }
+    if (ok)
+    {
+      traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
+      vtkSPTDepthKeyBuffer::Barrier();
+      ensemble->BeginSumPass();
+      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      ostate->vtkglEnable(GL_BLEND);
+      traverse(PassKind::Colors, r, inGroup);
+      vtkSPTDepthKeyBuffer::Barrier();
+    }
   }
+  this->DepthKeys->UnbindImage(DepthKeyImageUnit);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDepthMask(GL_TRUE);
+  return ok;
 }
 
 void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* self,
@@ -515,10 +570,14 @@ void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* sel
   }
   program->SetUniformi("stratumMask", (1 << bits) - 1);
   program->SetUniformi("stratumShift", std::max((bits + 1) / 2, 1));
-  if (internals.Mesh->GetCellScalars())
-  {
-    program->SetUniformi("cellScalars", internals.Mesh->GetCellScalarTexture()->GetTextureUnit());
-  }
+  const int scalarUnit = internals.Mesh->GetScalarTexture()->GetTextureUnit();
+  program->SetUniformi("scalars", scalarUnit);
+  program->SetUniformi("cellScalars", scalarUnit);
+  program->SetUniformi("points", internals.Mesh->GetPointTexture()->GetTextureUnit());
+  program->SetUniformi("tetrahedra", internals.Mesh->GetTetrahedronTexture()->GetTextureUnit());
+  const bool parallel = internals.Matrices.ParallelProjection;
+  const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };
+  program->SetUniform4f("eyeVC", eyeVC);
   if (program->IsUniformUsed("depthKeys"))
   {
     program->SetUniformi("depthKeys", DepthKeyImageUnit);

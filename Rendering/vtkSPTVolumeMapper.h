@@ -35,7 +35,8 @@
  * vtkUnstructuredGridVolumeRayCastMapper).
  *
  * Opaque geometry drawn before the volume hides it and cuts the segments it passes through.
- * The camera must be outside the volume: tetrahedra reaching behind the eye are not drawn.
+ * The camera may be anywhere, inside the mesh too: a tetrahedron cut by the near plane
+ * contributes its segments from the near plane to their exits, exactly.
  *
  * @sa
  * vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper
@@ -95,7 +96,7 @@ public:
    * traversal and a color traversal). N > 1 makes N keep-or-discard decisions per fragment and
    * finds each repetition's nearest survivor with image atomics (two traversals for N
    * repetitions), which gives the same image as N single passes with the same random numbers,
-   * for 4 x N bytes per sample of GPU memory. Needs OpenGL 4.4 (image load/store, clear
+   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Needs OpenGL 4.4 (image load/store, clear
    * texture); without it the mapper falls back to 1 and to the survivor estimator. Range 1 to
    * 64, default 16.
    */
@@ -144,9 +145,10 @@ public:
 
   ///@{
   /**
-   * Exact coverage: one more traversal per image (not per repetition) adds up every
-   * segment's optical depth tau = -ln(1 - alpha) and its tau-weighted color, per sample, with
-   * nothing random and nothing sorted. The image's alpha is then the exact coverage
+   * Exact coverage: once per image (not per repetition), the first key traversal also adds
+   * up every segment's optical depth tau = -ln(1 - alpha) and its tau-weighted color, per
+   * sample, with nothing random and nothing sorted (the paper's single passes take one more
+   * traversal for it). The image's alpha is then the exact coverage
    * 1 - exp(-sum(tau)) instead of its estimate, and the color is corrected by the difference
    * times the segments' tau-weighted mean color: a control variate whose coefficient does not
    * depend on the random numbers, so the expectation stays exact front-to-back compositing.

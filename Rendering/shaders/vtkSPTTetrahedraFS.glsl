@@ -1,17 +1,20 @@
 //VTK::System::Dec
 //SPT::Extensions::Dec
 //VTK::Output::Dec
+//SPT::Pass::Dec
 
-// SPT fragment stage (Sakamoto, Kawamura, Kuwano and Koyamada 2009): look up the
-// pre-integrated color and opacity of this pixel's ray segment through the tetrahedron, keep
-// the fragment with probability alpha and write it opaque. With the depth test, each pass
-// keeps the nearest surviving segment per pixel; the mean over passes is front-to-back
-// compositing in expectation, with nothing sorted.
+// SPT fragment stage (Sakamoto, Kawamura, Kuwano and Koyamada 2009): each fragment is one ray
+// segment through one tetrahedron. This file finds the segment and its pre-integrated color
+// and opacity, and draws the keep-or-discard thresholds; the main() of the pass, appended at
+// the end, decides what the fragment writes (vtkSPTPass*FS.glsl).
 
 noperspective in vec4 frontVCOverW;
 noperspective in vec4 backVCOverW;
 noperspective in vec2 scalarsOverW;
 flat in int tetrahedronId;
+#ifdef SPT_NEAR_PLANE_CUTS
+flat in int cutByNearPlane;
+#endif
 
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
 uniform vec3 tableTexelScale;          // maps [0, 1] onto the centers of the first and last texels
@@ -23,7 +26,15 @@ uniform mat3 VCMCLinear;               // view -> model, for lengths: the unit d
 uniform sampler2D sceneDepthTexture;   // depth of the opaque scene, one texel per pixel
 uniform int subpixelLevel;
 uniform vec2 passSizeInPixels;
-uniform mat4 DCVCMatrix;               // clip -> view, for the scene depth
+uniform mat4 DCVCMatrix;               // clip -> view
+uniform mat4 VCDCMatrix;               // view -> clip
+uniform mat4 MCVCMatrix;               // model -> view
+
+// The mesh, for the cells cut by the near plane: four point ids per tetrahedron, the points
+// (model coordinates) and their scalars (or one scalar per tetrahedron).
+uniform usamplerBuffer tetrahedra;
+uniform samplerBuffer points;
+uniform samplerBuffer scalars;
 
 uniform int repetition; // first repetition of this pass; bit patterns of unsigned values:
 uniform int seed;       // VTK sets int uniforms only
@@ -33,18 +44,163 @@ uniform int stratumMask;   // 2^k - 1 >= stratumCount - 1, and about k / 2, for 
 uniform int stratumShift;
 uniform int repetitionsInGroup; // of the SPT_REPETITIONS_PER_PASS, how many this pass draws
 
-// How this pass writes: SPT_PASS_SINGLE (one repetition, the fragment written opaque with the
-// depth test), or, for SPT_REPETITIONS_PER_PASS repetitions at once, SPT_PASS_KEYS (each kept
-// fragment takes the per-repetition minimum of its depth key) then SPT_PASS_COLORS (the
-// fragment adds its color once for each repetition whose minimum it holds, or, with
-// SPT_VISIBILITY_WEIGHTED, for each repetition whose minimum is not in front of it). Apart
-// from these, SPT_PASS_COVERAGE adds every fragment's optical depth and color, once.
-//SPT::Pass::Dec
-#if !defined(SPT_PASS_SINGLE) && !defined(SPT_PASS_COVERAGE)
-layout(r32ui) coherent uniform uimage3D depthKeys; // (pixel, repetition in the pass)
+//SPT::Random::Impl
+
+// One ray segment through one tetrahedron, in view coordinates, with the scalars at its ends
+// and the window depth of its front, which orders the segments of a sample.
+struct Segment
+{
+  vec3 frontVC;
+  vec3 backVC;
+  float frontScalar;
+  float backScalar;
+  float frontDepth;
+};
+
+float scalarAt(uint pointId)
+{
+#ifdef SPT_CELL_SCALARS
+  return texelFetch(scalars, tetrahedronId).r;
+#else
+  return texelFetch(scalars, int(pointId)).r;
+#endif
+}
+
+#ifdef SPT_NEAR_PLANE_CUTS
+// The segment of a cell cut by the near plane: the sample's ray runs from the near plane
+// (t = 0) to the far plane (t = 1), enters the cell at the last of the entry faces' planes
+// and leaves it at the first of the exit faces'. The scalars at both ends are interpolated
+// with the barycentric weights of the cell. False when the ray misses the cell.
+bool nearPlaneSegment(out Segment segment)
+{
+  vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
+  vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
+  vec4 farVC = DCVCMatrix * vec4(ndc, 1.0, 1.0);
+  vec3 origin = nearVC.xyz / nearVC.w;
+  vec3 direction = farVC.xyz / farVC.w - origin;
+
+  uvec4 ids = texelFetch(tetrahedra, tetrahedronId);
+  vec3 vertexVC[4];
+  float vertexScalar[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    vertexVC[i] = (MCVCMatrix * vec4(texelFetch(points, int(ids[i])).xyz, 1.0)).xyz;
+    vertexScalar[i] = scalarAt(ids[i]);
+  }
+  float enter = 0.0;
+  float leave = 1.0;
+  vec4 facePlane[4]; // outward normal and offset, scaled so that the opposite vertex is at -1
+  for (int k = 0; k < 4; ++k)
+  {
+    vec3 a = vertexVC[(k + 1) % 4];
+    vec3 normal = cross(vertexVC[(k + 2) % 4] - a, vertexVC[(k + 3) % 4] - a);
+    float towardsOpposite = dot(normal, vertexVC[k] - a);
+    if (towardsOpposite == 0.0)
+    {
+      return false; // a flat tetrahedron holds no volume
+    }
+    normal /= -towardsOpposite;
+    facePlane[k] = vec4(normal, -dot(normal, a));
+    float approach = dot(normal, direction);
+    float t = -dot(facePlane[k], vec4(origin, 1.0)) / approach;
+    if (approach < 0.0)
+    {
+      enter = max(enter, t);
+    }
+    else if (approach > 0.0)
+    {
+      leave = min(leave, t);
+    }
+  }
+  if (enter >= leave)
+  {
+    return false;
+  }
+  segment.frontVC = origin + enter * direction;
+  segment.backVC = origin + leave * direction;
+  // The barycentric weight of vertex k is -(its face's plane at the point).
+  vec4 front = vec4(segment.frontVC, 1.0);
+  vec4 back = vec4(segment.backVC, 1.0);
+  segment.frontScalar = 0.0;
+  segment.backScalar = 0.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    segment.frontScalar -= vertexScalar[k] * dot(facePlane[k], front);
+    segment.backScalar -= vertexScalar[k] * dot(facePlane[k], back);
+  }
+  vec4 frontDC = VCDCMatrix * front;
+  segment.frontDepth = clamp(0.5 * frontDC.z / frontDC.w + 0.5, 0.0, 1.0);
+  return true;
+}
 #endif
 
-//SPT::Random::Impl
+// This fragment's segment, cut where opaque geometry hides the rest of it. False when
+// nothing of it is visible.
+bool visibleSegment(out Segment segment)
+{
+#ifdef SPT_NEAR_PLANE_CUTS
+  if (cutByNearPlane != 0)
+  {
+    if (!nearPlaneSegment(segment))
+    {
+      return false;
+    }
+  }
+  else
+#endif
+  {
+    segment.frontVC = frontVCOverW.xyz / frontVCOverW.w;
+    segment.backVC = backVCOverW.xyz / backVCOverW.w;
+    segment.frontScalar = scalarsOverW.x / frontVCOverW.w;
+    segment.backScalar = scalarsOverW.y / backVCOverW.w;
+    segment.frontDepth = gl_FragCoord.z;
+  }
+
+  // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
+  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(gl_FragCoord.xy) / subpixelLevel, 0).r;
+  if (segment.frontDepth >= sceneDepth)
+  {
+    return false;
+  }
+  if (sceneDepth < 1.0 && segment.frontVC.z > segment.backVC.z)
+  {
+    vec4 sceneDC = vec4(gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0, sceneDepth * 2.0 - 1.0, 1.0);
+    vec4 sceneVC = DCVCMatrix * sceneDC;
+    float sceneZ = sceneVC.z / sceneVC.w;
+    if (sceneZ > segment.backVC.z)
+    {
+      float t = clamp((segment.frontVC.z - sceneZ) / (segment.frontVC.z - segment.backVC.z), 0.0, 1.0);
+      segment.backVC = mix(segment.frontVC, segment.backVC, t);
+      segment.backScalar = mix(segment.frontScalar, segment.backScalar, t);
+    }
+  }
+  return true;
+}
+
+// The segment's pre-integrated color and opacity: premultiplied RGBA.
+vec4 preIntegrated(Segment segment)
+{
+  float thickness = length(VCMCLinear * (segment.backVC - segment.frontVC));
+  vec3 coordinate = vec3(clamp(segment.frontScalar, 0.0, 1.0), clamp(segment.backScalar, 0.0, 1.0),
+    sqrt(min(thickness * thicknessToTable, 1.0)));
+  return texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);
+}
+
+// The segment's optical depth tau = -ln(1 - alpha) and its tau-weighted color, the terms of
+// the exact coverage (see vtkSPTResolveFS.glsl).
+vec4 opticalDepthTerms(vec4 color)
+{
+  float tau = -log(1.0 - min(color.a, 0.99999994));
+  return color.a > 0.0 ? vec4(color.rgb * (tau / color.a), tau) : vec4(0.0);
+}
+
+// The depth key of a segment for the atomic minimum: the depth in 24 bits (as a depth buffer
+// holds it), then 8 bits of the tetrahedron's id, so that two fragments at one depth do not
+// both win.
+uint depthKey(Segment segment)
+{
+  return (uint(segment.frontDepth * 16777215.0) << 8u) | (uint(tetrahedronId) & 0xFFu);
+}
 
 float unitFloat(uint bits)
 {
@@ -111,97 +267,4 @@ float threshold(uint r)
   return (float(stratum) + unitFloat(bits)) / float(n);
 }
 
-void main()
-{
-  vec3 frontVC = frontVCOverW.xyz / frontVCOverW.w;
-  vec3 backVC = backVCOverW.xyz / backVCOverW.w;
-  float frontScalar = scalarsOverW.x / frontVCOverW.w;
-  float backScalar = scalarsOverW.y / backVCOverW.w;
-
-  // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
-  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(gl_FragCoord.xy) / subpixelLevel, 0).r;
-  if (gl_FragCoord.z >= sceneDepth)
-  {
-    discard;
-  }
-  if (sceneDepth < 1.0 && frontVC.z > backVC.z)
-  {
-    vec4 sceneDC = vec4(gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0, sceneDepth * 2.0 - 1.0, 1.0);
-    vec4 sceneVC = DCVCMatrix * sceneDC;
-    float sceneZ = sceneVC.z / sceneVC.w;
-    if (sceneZ > backVC.z)
-    {
-      float t = clamp((frontVC.z - sceneZ) / (frontVC.z - backVC.z), 0.0, 1.0);
-      backVC = mix(frontVC, backVC, t);
-      backScalar = mix(frontScalar, backScalar, t);
-    }
-  }
-
-  float thickness = length(VCMCLinear * (backVC - frontVC));
-  vec3 coordinate = vec3(clamp(frontScalar, 0.0, 1.0), clamp(backScalar, 0.0, 1.0),
-    sqrt(min(thickness * thicknessToTable, 1.0)));
-  vec4 segment = texture(preIntegrationTable, coordinate * tableTexelScale + tableTexelOffset);
-
-#if defined(SPT_PASS_COVERAGE)
-  // The exact coverage of the sample is 1 - exp(-sum(tau)); the tau-weighted mean of the
-  // segments' colors is the coefficient of the resolve's control variate.
-  if (segment.a <= 0.0)
-  {
-    discard;
-  }
-  float tau = -log(1.0 - min(segment.a, 0.99999994));
-  gl_FragData[0] = vec4(segment.rgb * (tau / segment.a), tau);
-#elif defined(SPT_PASS_SINGLE)
-  if (threshold(uint(repetition)) >= segment.a)
-  {
-    discard;
-  }
-  // Kept with probability alpha, so the premultiplied color is divided by alpha.
-  gl_FragData[0] = vec4(segment.rgb / segment.a, 1.0);
-#else
-  // The depth key: the depth in 24 bits (as a depth buffer holds it), then 8 bits of the
-  // tetrahedron's id, so that two fragments at one depth do not both win.
-  uint depthKey = (uint(clamp(gl_FragCoord.z, 0.0, 1.0) * 16777215.0) << 8u) |
-    (uint(tetrahedronId) & 0xFFu);
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
-#if defined(SPT_PASS_COLORS) && defined(SPT_VISIBILITY_WEIGHTED)
-  // The visibility estimator: the fragment adds its premultiplied color and opacity once for
-  // each repetition whose nearest survivor is not in front of it. It is visible in a
-  // repetition with the probability prod(1 - alpha_j) over the segments j in front of it, so
-  // the mean is front-to-back compositing in expectation, as with the survivor alone, but
-  // every segment in front of the survivor contributes what it would composite.
-  int visible = 0;
-  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
-  {
-    visible += depthKey <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
-  }
-  if (visible == 0)
-  {
-    discard;
-  }
-  gl_FragData[0] = float(visible) * segment;
-#else
-  int wins = 0;
-  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
-  {
-    if (threshold(uint(repetition + r)) < segment.a)
-    {
-#ifdef SPT_PASS_KEYS
-      imageAtomicMin(depthKeys, ivec3(r, pixel), depthKey);
-#else
-      wins += imageLoad(depthKeys, ivec3(r, pixel)).r == depthKey ? 1 : 0;
-#endif
-    }
-  }
-  // The key pass writes no color (its color mask is off); the color pass adds the fragment
-  // into the ensemble's sum once per repetition won.
-#ifdef SPT_PASS_COLORS
-  if (wins == 0)
-  {
-    discard;
-  }
-#endif
-  gl_FragData[0] = float(wins) * vec4(segment.rgb / segment.a, 1.0);
-#endif // SPT_VISIBILITY_WEIGHTED
-#endif
-}
+//SPT::Pass::Impl

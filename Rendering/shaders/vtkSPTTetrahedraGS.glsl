@@ -12,15 +12,26 @@
 // in view coordinates) and the scalars there. They are passed divided by their own clip w and
 // interpolated without perspective, so that the fragment stage recovers the exact front and
 // back points of its own ray under perspective and parallel projection alike.
+//
+// That needs every vertex in front of the near plane. A tetrahedron that the near plane cuts
+// (the camera inside or close to the mesh, possibly with vertices behind the eye) is drawn as
+// its exit faces instead, which the hardware clips at the near plane; each of their fragments
+// finds its own entry, the near plane or the nearest entry face (vtkSPTSegmentFS.glsl).
 
 layout(lines_adjacency) in;
+#ifdef SPT_NEAR_PLANE_CUTS
+layout(triangle_strip, max_vertices = 9) out; // up to three exit faces
+#else
 layout(triangle_strip, max_vertices = 7) out;
+#endif
 
 in vec3 positionVCVSOutput[];
 in vec4 positionDCVSOutput[];
 in float scalarVSOutput[];
 
 uniform int primitiveOffset; // index of the first tetrahedron of this draw call
+uniform vec4 eyeVC;          // the eye in homogeneous view coordinates: (0, 0, 0, 1) in
+                             // perspective, the point at infinity (0, 0, 1, 0) in parallel
 #ifdef SPT_CELL_SCALARS
 uniform samplerBuffer cellScalars;
 #endif
@@ -29,6 +40,9 @@ noperspective out vec4 frontVCOverW; // (front point, 1) / w_front
 noperspective out vec4 backVCOverW;  // (back point, 1) / w_back
 noperspective out vec2 scalarsOverW; // (front scalar / w_front, back scalar / w_back)
 flat out int tetrahedronId;
+#ifdef SPT_NEAR_PLANE_CUTS
+flat out int cutByNearPlane; // 1: the fragment stage computes the segment from the cell
+#endif
 
 vec3 vertexVC[4];
 vec4 vertexDC[4];
@@ -56,8 +70,48 @@ void emitPoint(vec3 frontVC, vec4 frontDC, float frontScalar, vec3 backVC, vec4 
   backVCOverW = vec4(backVC, 1.0) / backDC.w;
   scalarsOverW = vec2(frontScalar / frontDC.w, backScalar / backDC.w);
   tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
+#ifdef SPT_NEAR_PLANE_CUTS
+  cutByNearPlane = 0;
+#endif
   EmitVertex();
 }
+
+#ifdef SPT_NEAR_PLANE_CUTS
+// The exit faces of a tetrahedron cut by the near plane: the faces whose plane has the eye on
+// its inner side. Each pixel the cell covers behind the near plane gets one fragment (the
+// point where its ray leaves the cell), which carries nothing but the cell's id.
+void emitExitFaces()
+{
+  for (int k = 0; k < 4; ++k)
+  {
+    int a = (k + 1) % 4;
+    int b = (k + 2) % 4;
+    int c = (k + 3) % 4;
+    vec3 normal = cross(vertexVC[b] - vertexVC[a], vertexVC[c] - vertexVC[a]);
+    float towardsOpposite = dot(normal, vertexVC[k] - vertexVC[a]);
+    if (towardsOpposite == 0.0)
+    {
+      return; // a flat tetrahedron holds no volume
+    }
+    normal = towardsOpposite > 0.0 ? -normal : normal; // outward
+    if (dot(vec4(normal, -dot(normal, vertexVC[a])), eyeVC) >= 0.0)
+    {
+      continue; // an entry face, or seen edge-on
+    }
+    for (int corner = 0; corner < 3; ++corner)
+    {
+      gl_Position = vertexDC[(k + 1 + corner) % 4];
+      frontVCOverW = vec4(0.0);
+      backVCOverW = vec4(0.0);
+      scalarsOverW = vec2(0.0);
+      tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
+      cutByNearPlane = 1;
+      EmitVertex();
+    }
+    EndPrimitive();
+  }
+}
+#endif
 
 // An outline vertex: the tetrahedron has zero thickness there.
 void emitOutline(int i)
@@ -131,14 +185,27 @@ void emitClass2(int a, int b, int c, int d, float u, float v)
 
 void main()
 {
+  // Clip space puts a point in front of the near plane, or behind the eye, at z < -w.
+  int inFrontOfNearPlane = 0;
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
     vertexDC[i] = positionDCVSOutput[i];
-    if (vertexDC[i].w <= 0.0)
-    {
-      return; // reaches behind the eye: no valid projection
-    }
+    inFrontOfNearPlane += vertexDC[i].z < -vertexDC[i].w ? 1 : 0;
+  }
+  if (inFrontOfNearPlane == 4)
+  {
+    return; // wholly in front of the near plane: nothing visible
+  }
+  if (inFrontOfNearPlane > 0)
+  {
+#ifdef SPT_NEAR_PLANE_CUTS
+    emitExitFaces();
+#endif
+    return; // (without the near plane cutting the mesh's bounds, this cannot happen)
+  }
+  for (int i = 0; i < 4; ++i)
+  {
     vertexNDC[i] = vertexDC[i].xy / vertexDC[i].w;
 #ifdef SPT_CELL_SCALARS
     vertexScalar[i] = texelFetch(cellScalars, primitiveOffset + gl_PrimitiveIDIn).r;

@@ -60,7 +60,7 @@ def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling, 
 def test_depth_keys_are_reported_and_released(have_display):
     s = _scene()
     window, renderer = render.make_window(SIZE, SIZE)
-    mapper = render.spt_mapper(4, per_pass=1, **SAMPLING["survivor"])
+    mapper = render.spt_mapper(12, per_pass=1, **SAMPLING["survivor"])
     render.add_volume(renderer, s.grid, s.property, mapper)
     render.place_camera(renderer, s.grid.GetBounds(), s.view)
     window.Render()
@@ -73,6 +73,10 @@ def test_depth_keys_are_reported_and_released(have_display):
     mapper.ExactCoverageOn()
     window.Render()
     assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (8 * 4 + 16)
+    # A render of fewer repetitions than a pass draws holds keys for those only.
+    mapper.SetRepetitionLevel(3)
+    window.Render()
+    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (3 * 4 + 16)
     mapper.ReleaseGraphicsResources(window)
     assert mapper.GetGPUMemorySize() == 0
     window.Finalize()
