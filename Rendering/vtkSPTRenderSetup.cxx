@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkUnstructuredGridVolumeMapper.h"
 #include "vtkVolume.h"
@@ -129,4 +130,24 @@ bool vtkSPTRenderSetup::ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper,
     return false;
   }
   return true;
+}
+
+bool vtkSPTRenderSetup::HasOpaqueScene(vtkRenderer* ren)
+{
+  if (ren->GetPreserveDepthBuffer())
+  {
+    return true;
+  }
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (prop->GetVisibility() && prop->IsA("vtkProp3D") && !prop->IsA("vtkVolume") &&
+      prop->HasOpaqueGeometry())
+    {
+      return true;
+    }
+  }
+  return false;
 }

@@ -92,6 +92,13 @@ public:
   static bool ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren,
     vtkVolume* vol, const vtkSPTMeshBuffers* mesh, vtkSPTViewMatrices& matrices);
 
+  /**
+   * Whether opaque geometry may have been drawn into the renderer's depth buffer before the
+   * volume: a visible 3D prop other than a volume with opaque geometry, or a depth buffer
+   * preserved from an earlier renderer. Without it, the shaders leave out the scene depth.
+   */
+  static bool HasOpaqueScene(vtkRenderer* ren);
+
 private:
   vtkMTimeType ReportedMeshError = 0;
   vtkMTimeType ReportedSkippedCells = 0;

@@ -178,9 +178,10 @@ public:
   RepetitionBudget Budget;
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
+  bool OpaqueScene = false;   // opaque geometry was drawn before the volume
 
   vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* renWin, bool cellScalars,
-    bool nearPlaneCuts, PassKind kind, int repetitionsPerPass, int estimator);
+    bool nearPlaneCuts, bool sceneDepth, PassKind kind, int repetitionsPerPass, int estimator);
   std::vector<double> Signature(vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y,
     int width, int height) const;
 
@@ -197,7 +198,8 @@ public:
 };
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRenderWindow* renWin,
-  bool cellScalars, bool nearPlaneCuts, PassKind kind, int repetitionsPerPass, int estimator)
+  bool cellScalars, bool nearPlaneCuts, bool sceneDepth, PassKind kind, int repetitionsPerPass,
+  int estimator)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
@@ -205,6 +207,7 @@ vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRender
   // only while the near plane cuts the mesh's bounds (a fragment stage pays for its branches).
   std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
   common += nearPlaneCuts ? "#define SPT_NEAR_PLANE_CUTS\n" : "";
+  common += sceneDepth ? "#define SPT_SCENE_DEPTH\n" : "";
   std::string geometry = vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
 
@@ -371,6 +374,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   bool coverage = false;
   if (first == 0)
   {
+    internals.OpaqueScene = vtkSPTRenderSetup::HasOpaqueScene(ren);
     ensemble->CaptureSceneDepth(x, y);
     ensemble->ClearSum();
     internals.AccumulatedRepetitions = 0;
@@ -428,7 +432,8 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
       continue;
     }
     programs[k] = this->ReadyProgram(renWin, this->Mesh->GetCellScalars(),
-      this->Matrices.NearPlaneCutsBounds, static_cast<PassKind>(k), lanes, estimator);
+      this->Matrices.NearPlaneCutsBounds, this->OpaqueScene, static_cast<PassKind>(k), lanes,
+      estimator);
     if (!programs[k])
     {
       vtkErrorWithObjectMacro(self, "Could not compile the SPT shaders.");

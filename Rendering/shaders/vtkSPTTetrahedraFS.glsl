@@ -24,6 +24,7 @@ uniform mat3 VCMCLinear;               // view -> model, for lengths: the unit d
                                        // opacity is a length in the data's own coordinates
 
 uniform sampler2D sceneDepthTexture;   // depth of the opaque scene, one texel per pixel
+                                       // (SPT_SCENE_DEPTH: opaque geometry was drawn)
 uniform int subpixelLevel;
 uniform vec2 passSizeInPixels;
 uniform mat4 DCVCMatrix;               // clip -> view
@@ -156,6 +157,7 @@ bool visibleSegment(out Segment segment)
     segment.frontDepth = gl_FragCoord.z;
   }
 
+#ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
   float sceneDepth = texelFetch(sceneDepthTexture, ivec2(gl_FragCoord.xy) / subpixelLevel, 0).r;
   if (segment.frontDepth >= sceneDepth)
@@ -174,6 +176,7 @@ bool visibleSegment(out Segment segment)
       segment.backScalar = mix(segment.frontScalar, segment.backScalar, t);
     }
   }
+#endif
   return true;
 }
 
