@@ -7,6 +7,8 @@
 //   front of the survivor contributes what it would composite;
 // - otherwise (the survivor estimator), its color written opaque once for each repetition
 //   whose survivor it is.
+// Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
+// none is discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 
 void main()
@@ -16,28 +18,39 @@ void main()
   {
     discard;
   }
-  vec4 color = preIntegrated(segment);
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  int count = 0;
-  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
-  {
+  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
 #ifdef SPT_VISIBILITY_WEIGHTED
+  int count = 0;
+  for (int r = 0; r < lanes; ++r)
+  {
     count += key <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
-#else
-    if (threshold(uint(repetition + r)) < color.a)
-    {
-      count += imageLoad(depthKeys, ivec3(r, pixel)).r == key ? 1 : 0;
-    }
-#endif
   }
   if (count == 0)
   {
     discard;
   }
-#ifdef SPT_VISIBILITY_WEIGHTED
-  gl_FragData[0] = float(count) * color;
+  gl_FragData[0] = float(count) * preIntegrated(segment);
 #else
+  bool holdsOne = false; // the minimum of some repetition is this fragment's key
+  for (int r = 0; r < lanes; ++r)
+  {
+    holdsOne = holdsOne || imageLoad(depthKeys, ivec3(r, pixel)).r == key;
+  }
+  if (!holdsOne)
+  {
+    discard;
+  }
+  // The key holds 8 bits of the cell's id: a fragment of another cell at the same depth may
+  // share it, so the keep-or-discard decision is checked too.
+  vec4 color = preIntegrated(segment);
+  int count = 0;
+  for (int r = 0; r < lanes; ++r)
+  {
+    count += imageLoad(depthKeys, ivec3(r, pixel)).r == key &&
+        threshold(uint(repetition + r)) < color.a ? 1 : 0;
+  }
   gl_FragData[0] = float(count) * vec4(color.rgb / color.a, 1.0);
 #endif
 }

@@ -17,7 +17,10 @@ void main()
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
   {
-    if (threshold(uint(repetition + r)) < color.a)
+    // A kept fragment behind the nearest survivor so far changes nothing: a plain load
+    // spares it the atomic read-modify-write.
+    if (threshold(uint(repetition + r)) < color.a &&
+      key < imageLoad(depthKeys, ivec3(r, pixel)).r)
     {
       imageAtomicMin(depthKeys, ivec3(r, pixel), key);
     }
