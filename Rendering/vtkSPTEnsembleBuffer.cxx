@@ -13,7 +13,11 @@
 #include "vtkSPTSceneDepth.h"
 
 #include "vtkSPTAccumulateFS.h"
+#include "vtkSPTNoiseFS.h"
 #include "vtkSPTResolveFS.h"
+
+#include <cmath>
+#include <vector>
 
 vtkStandardNewMacro(vtkSPTEnsembleBuffer);
 
@@ -97,8 +101,7 @@ void vtkSPTEnsembleBuffer::ClearSum()
   vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->PushDrawFramebufferBinding();
-  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  this->SumFramebuffer->ActivateDrawBuffers(1);
+  this->SumsFramebuffer(this->Halves)->Bind(GL_DRAW_FRAMEBUFFER);
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
@@ -119,23 +122,21 @@ void vtkSPTEnsembleBuffer::BeginPass()
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void vtkSPTEnsembleBuffer::BeginSumPass()
+void vtkSPTEnsembleBuffer::BeginSumPass(bool halves)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
-  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  this->SumFramebuffer->ActivateDrawBuffers(1);
+  this->SumsFramebuffer(halves)->Bind(GL_DRAW_FRAMEBUFFER);
   ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
 }
 
-void vtkSPTEnsembleBuffer::EndPass()
+void vtkSPTEnsembleBuffer::EndPass(bool secondHalf)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
-  this->SumFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  this->SumFramebuffer->ActivateDrawBuffers(1);
+  this->SumsFramebuffer(secondHalf)->Bind(GL_DRAW_FRAMEBUFFER);
   ostate->vtkglEnable(GL_BLEND);
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
@@ -144,6 +145,153 @@ void vtkSPTEnsembleBuffer::EndPass()
   this->Accumulate->Program->SetUniformi("passTexture", this->PassColor->GetTextureUnit());
   this->Accumulate->Render();
   this->PassColor->Deactivate();
+}
+
+vtkOpenGLFramebufferObject* vtkSPTEnsembleBuffer::SumsFramebuffer(bool secondHalf)
+{
+  // Draw buffers are state of a framebuffer object: one object per set of sums.
+  return secondHalf && this->Halves ? this->HalvesFramebuffer.Get() : this->SumFramebuffer.Get();
+}
+
+bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
+{
+  this->Halves = false;
+  if (!halves)
+  {
+    this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
+    this->SecondHalf->ReleaseGraphicsResources(this->Context);
+    return true;
+  }
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->SecondHalf->GetWidth()) == w &&
+    static_cast<int>(this->SecondHalf->GetHeight()) == h && this->SecondHalf->GetHandle() &&
+    this->HalvesSum == this->Sum->GetHandle())
+  {
+    this->Halves = true;
+    return true;
+  }
+  vtkSPTSceneDepth::UseNearestTexels(this->SecondHalf, this->Context);
+  bool ok = this->SecondHalf->Allocate2D(w, h, 4, VTK_FLOAT);
+  vtkOpenGLState* ostate = this->Context->GetState();
+  ostate->PushFramebufferBindings();
+  this->HalvesFramebuffer->SetContext(this->Context);
+  this->HalvesFramebuffer->Bind();
+  if (ok)
+  {
+    this->HalvesFramebuffer->AddColorAttachment(0, this->Sum);
+    this->HalvesFramebuffer->AddColorAttachment(1, this->SecondHalf);
+    this->HalvesFramebuffer->ActivateDrawBuffers(2);
+    ok = this->HalvesFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  }
+  ostate->PopFramebufferBindings();
+  if (!ok)
+  {
+    vtkErrorMacro("Could not allocate the " << w << "x" << h
+                                            << " sum of the second half of the ensemble.");
+    this->SecondHalf->ReleaseGraphicsResources(this->Context);
+    this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
+    return false;
+  }
+  this->HalvesSum = this->Sum->GetHandle();
+  this->Halves = true;
+  return true;
+}
+
+double vtkSPTEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+{
+  if (!this->Halves || halfCount < 1)
+  {
+    return -1.0;
+  }
+  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
+  vtkOpenGLState* ostate = this->Context->GetState();
+  if (static_cast<int>(this->Noise->GetWidth()) != this->Width ||
+    static_cast<int>(this->Noise->GetHeight()) != this->Height || !this->Noise->GetHandle())
+  {
+    vtkSPTSceneDepth::UseNearestTexels(this->Noise, this->Context);
+    bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
+    ostate->PushFramebufferBindings();
+    this->NoiseFramebuffer->SetContext(this->Context);
+    this->NoiseFramebuffer->Bind();
+    if (ok)
+    {
+      this->NoiseFramebuffer->AddColorAttachment(0, this->Noise);
+      this->NoiseFramebuffer->ActivateDrawBuffers(1);
+      ok = this->NoiseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+    }
+    ostate->PopFramebufferBindings();
+    if (!ok)
+    {
+      vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height
+                                              << " buffer of the noise estimate.");
+      this->Noise->ReleaseGraphicsResources(this->Context);
+      return -1.0;
+    }
+  }
+  if (!this->NoiseQuad)
+  {
+    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkSPTNoiseFS, ""));
+  }
+  vtkShaderProgram* program = this->NoiseQuad->Program;
+  if (!program)
+  {
+    vtkErrorMacro("Could not compile the shader of the noise estimate.");
+    return -1.0;
+  }
+
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  ostate->PushFramebufferBindings();
+  this->NoiseFramebuffer->Bind();
+  this->NoiseFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglViewport(0, 0, this->Width, this->Height);
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  this->Sum->Activate();
+  this->SecondHalf->Activate();
+  vtkTextureObject* coverage = exactCoverage ? this->Coverage.Get() : this->Sum.Get();
+  coverage->Activate();
+  program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  program->SetUniformi("secondHalfTexture", this->SecondHalf->GetTextureUnit());
+  program->SetUniformi("coverageTexture", coverage->GetTextureUnit());
+  program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
+  program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformf("inverseHalfCount", 1.0f / float(halfCount));
+  this->NoiseQuad->Render();
+  coverage->Deactivate();
+  this->SecondHalf->Deactivate();
+  this->Sum->Deactivate();
+
+  std::vector<float> values(size_t(2) * size_t(this->Width) * size_t(this->Height));
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, this->Width, this->Height, GL_RG, GL_FLOAT, values.data());
+  ostate->PopFramebufferBindings();
+
+  double squares = 0.0;
+  size_t footprint = 0;
+  for (size_t i = 0; i < values.size(); i += 2)
+  {
+    if (values[i + 1] > 0.5f)
+    {
+      squares += values[i];
+      ++footprint;
+    }
+  }
+  if (footprint == 0)
+  {
+    return -1.0;
+  }
+  // The mean of the halves has a quarter of the variance of their difference; the mean over
+  // the four channels of the footprint's pixels.
+  return std::sqrt(squares / (4.0 * 4.0 * static_cast<double>(footprint)));
 }
 
 bool vtkSPTEnsembleBuffer::BeginCoveragePass()
@@ -232,20 +380,26 @@ size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
   // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel,
   // and the RGBA32F coverage when it is used.
   const size_t coverage = this->Coverage->GetHandle() ? 16 : 0;
-  return samples * (16 + 16 + 4 + coverage) + pixels * 4;
+  const size_t secondHalf = this->SecondHalf->GetHandle() ? 16 : 0;
+  const size_t noise = this->Noise->GetHandle() ? 8 : 0;
+  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise);
 }
 
 void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
   this->Mean.reset();
-  for (vtkOpenGLFramebufferObject* framebuffer :
-    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get() })
+  this->NoiseQuad.reset();
+  this->Halves = false;
+  this->HalvesSum = 0;
+  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
+         this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get(),
+         this->HalvesFramebuffer.Get(), this->NoiseFramebuffer.Get() })
   {
     framebuffer->ReleaseGraphicsResources(window);
   }
-  for (vtkTextureObject* texture :
-    { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(), this->Coverage.Get() })
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(),
+         this->Sum.Get(), this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }

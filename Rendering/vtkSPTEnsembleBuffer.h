@@ -68,14 +68,31 @@ public:
    * PopFramebufferBindings() and restores the viewport and the scissor test.
    */
   void BeginPass();
-  void EndPass();
+  void EndPass(bool secondHalf = false);
 
   /**
    * Bind the sum itself for drawing, with the viewport set to it and the scissor test off, for
    * a caller that adds its fragments straight into the sum (additive blending, set by the
    * caller). Bracketed like BeginPass().
    */
-  void BeginSumPass();
+  void BeginSumPass(bool halves = false);
+
+  /**
+   * The noise estimate of an ensemble drawn as two independent halves of equal size: with
+   * halves on, a second sum holds the second half alone. EndPass(true) adds the pass to both
+   * sums; BeginSumPass(true) binds both, the sum as draw buffer 0 and the second half's as
+   * draw buffer 1, for shaders that write each fragment's share of the second half there.
+   * Call before ClearSum(); false, with an error, when the buffer cannot be allocated.
+   */
+  bool SetHalves(bool halves);
+
+  /**
+   * The root mean square noise of the resolved image (premultiplied RGBA over the pixels of
+   * its footprint, alpha above 1/255): a quarter of the mean squared difference between the
+   * two halves' images, each of `halfCount` passes, resolved as Resolve() resolves the whole.
+   * Reads back one float pair per pixel. Negative when there is no footprint or no halves.
+   */
+  double EstimateNoise(int halfCount, bool exactCoverage);
 
   /**
    * Allocate the coverage buffer (if needed), bind it for drawing with the viewport set to it
@@ -117,6 +134,7 @@ private:
   void operator=(const vtkSPTEnsembleBuffer&) = delete;
 
   void Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat);
+  vtkOpenGLFramebufferObject* SumsFramebuffer(bool secondHalf);
 
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;
@@ -127,12 +145,19 @@ private:
   vtkNew<vtkTextureObject> PassDepth;
   vtkNew<vtkTextureObject> Sum;
   vtkNew<vtkTextureObject> Coverage;
+  vtkNew<vtkTextureObject> SecondHalf;
+  vtkNew<vtkTextureObject> Noise;
+  bool Halves = false;
   vtkNew<vtkSPTSceneDepth> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> CoverageFramebuffer;
+  vtkNew<vtkOpenGLFramebufferObject> HalvesFramebuffer; // the sum and the second half's
+  unsigned int HalvesSum = 0; // the sum texture that HalvesFramebuffer holds
+  vtkNew<vtkOpenGLFramebufferObject> NoiseFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
+  std::unique_ptr<vtkOpenGLQuadHelper> NoiseQuad;
 };
 
 #endif

@@ -33,6 +33,7 @@
 #include "vtkSPTTetrahedraVS.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -175,6 +176,12 @@ public:
   std::vector<double> SumSignature;
   int AccumulatedRepetitions = 0;
 
+  // The error target: repetitions in each half of the ensemble, whether the halves are still
+  // of equal size, and the last noise estimate.
+  int HalfCount = 0;
+  bool Balanced = true;
+  double Estimate = -1.0;
+
   RepetitionBudget Budget;
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
@@ -185,16 +192,22 @@ public:
   std::vector<double> Signature(vtkRenderer* ren, vtkSPTVolumeMapper* self, int x, int y,
     int width, int height) const;
 
-  // Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal.
-  // With coverage, the exact coverage is drawn first (see vtkSPTEnsembleBuffer).
+  // Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal;
+  // with halves, the second half of them also into the second half's sum (each half a block
+  // of strata of its own). With coverage, the exact coverage is drawn too.
   bool DrawRepetitions(vtkSPTVolumeMapper* self, int first, int count, int perPass,
-    int estimator, bool coverage, double maxThickness, vtkTextureObject* table);
+    int estimator, bool coverage, double maxThickness, vtkTextureObject* table,
+    bool halves = false);
+  // Draw at most count repetitions from first on, in rounds of two equal halves, until the
+  // estimated noise meets the mapper's TargetError. Returns how many, or -1 on failure.
+  int DrawToTarget(vtkSPTVolumeMapper* self, int first, int count, int perPass, int estimator,
+    bool coverage, double maxThickness, vtkTextureObject* table);
   // Keys then colors for each group of perPass repetitions; with coverage, the first key
   // traversal also draws the exact coverage.
-  bool DrawRepetitionGroups(int first, int count, int perPass, bool coverage,
+  bool DrawRepetitionGroups(int first, int count, int perPass, bool coverage, bool halves,
     const std::function<void(PassKind, int, int)>& traverse);
   void SetCommonUniforms(vtkSPTVolumeMapper* self, vtkShaderProgram* program,
-    double maxThickness, vtkTextureObject* table, int first, int count);
+    double maxThickness, vtkTextureObject* table, int first, int count, bool halves);
 };
 
 vtkShaderProgram* vtkSPTVolumeMapper::vtkInternals::ReadyProgram(vtkOpenGLRenderWindow* renWin,
@@ -371,38 +384,55 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   internals.SumSignature = signature;
 
   ostate->PushFramebufferBindings();
+  const bool toTarget = this->TargetError > 0.0;
   bool coverage = false;
   if (first == 0)
   {
     internals.OpaqueScene = vtkSPTRenderSetup::HasOpaqueScene(ren);
     ensemble->CaptureSceneDepth(x, y);
-    ensemble->ClearSum();
-    internals.AccumulatedRepetitions = 0;
-    coverage = this->ExactCoverage;
-    internals.CoverageDrawn = false;
-  }
-  if (count > 0)
-  {
-    vtkNew<vtkTimerLog> timer;
-    timer->StartTimer();
-    if (!internals.DrawRepetitions(
-          this, first, count, perPass, estimator, coverage, maxThickness, table))
+    if (!ensemble->SetHalves(toTarget))
     {
       ostate->PopFramebufferBindings();
       internals.SumSignature.clear();
       return;
     }
-    if (this->AutoAdjustRepetitions)
+    ensemble->ClearSum();
+    internals.AccumulatedRepetitions = 0;
+    coverage = this->ExactCoverage;
+    internals.CoverageDrawn = false;
+    internals.HalfCount = 0;
+    internals.Balanced = true;
+    internals.Estimate = -1.0;
+  }
+  if (count > 0)
+  {
+    vtkNew<vtkTimerLog> timer;
+    timer->StartTimer();
+    const int drawn = toTarget
+      ? internals.DrawToTarget(
+          this, first, count, perPass, estimator, coverage, maxThickness, table)
+      : (internals.DrawRepetitions(
+           this, first, count, perPass, estimator, coverage, maxThickness, table)
+            ? count
+            : -1);
+    if (drawn < 0)
+    {
+      ostate->PopFramebufferBindings();
+      internals.SumSignature.clear();
+      return;
+    }
+    if (this->AutoAdjustRepetitions && drawn > 0)
     {
       glFinish();
       timer->StopTimer();
-      this->TimePerRepetition = timer->GetElapsedTime() / count;
-      internals.Budget.Measure(timer->GetElapsedTime(), count, perPass);
+      this->TimePerRepetition = timer->GetElapsedTime() / drawn;
+      internals.Budget.Measure(timer->GetElapsedTime(), drawn, perPass);
     }
-    internals.AccumulatedRepetitions += count;
-    internals.CoverageDrawn = internals.CoverageDrawn || coverage;
+    internals.AccumulatedRepetitions += drawn;
+    internals.CoverageDrawn = internals.CoverageDrawn || (coverage && drawn > 0);
   }
   ostate->PopFramebufferBindings();
+  this->EstimatedError = toTarget ? internals.Estimate : -1.0;
   this->LastRepetitionCount = internals.AccumulatedRepetitions;
   ensemble->Resolve(
     x, y, internals.AccumulatedRepetitions, this->ExactCoverage && internals.CoverageDrawn);
@@ -411,7 +441,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
 bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self, int first,
   int count, int perPass, int estimator, bool coverage, double maxThickness,
-  vtkTextureObject* table)
+  vtkTextureObject* table, bool halves)
 {
   vtkOpenGLRenderWindow* renWin = this->Context;
   vtkOpenGLState* ostate = renWin->GetState();
@@ -453,7 +483,7 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
     if (program)
     {
       renWin->GetShaderCache()->ReadyShaderProgram(program);
-      this->SetCommonUniforms(self, program, maxThickness, table, first, count);
+      this->SetCommonUniforms(self, program, maxThickness, table, first, count, halves);
     }
   }
 
@@ -475,7 +505,7 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   if (!single)
   {
-    return this->DrawRepetitionGroups(first, count, lanes, coverage, traverse);
+    return this->DrawRepetitionGroups(first, count, lanes, coverage, halves, traverse);
   }
   if (coverage)
   {
@@ -497,13 +527,13 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitions(vtkSPTVolumeMapper* self,
   {
     ensemble->BeginPass();
     traverse(PassKind::Single, r, 1);
-    ensemble->EndPass();
+    ensemble->EndPass(halves && r >= first + count / 2);
   }
   return true;
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count, int perPass,
-  bool coverage, const std::function<void(PassKind, int, int)>& traverse)
+  bool coverage, bool halves, const std::function<void(PassKind, int, int)>& traverse)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
@@ -528,7 +558,7 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count
     }
     else
     {
-      ensemble->BeginSumPass();
+      ensemble->BeginSumPass(); // written to nothing: the color mask is off
       ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       ostate->vtkglDisable(GL_BLEND);
     }
@@ -536,7 +566,7 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count
     {
       traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
       vtkSPTDepthKeyBuffer::Barrier();
-      ensemble->BeginSumPass();
+      ensemble->BeginSumPass(halves);
       ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       ostate->vtkglEnable(GL_BLEND);
       traverse(PassKind::Colors, r, inGroup);
@@ -550,8 +580,73 @@ bool vtkSPTVolumeMapper::vtkInternals::DrawRepetitionGroups(int first, int count
   return ok;
 }
 
+namespace
+{
+// The repetitions to add to each half for the noise to fall from `estimate` to `target`, if it
+// falls as one over the square root of the repetitions (stratified sampling does better, so
+// this rarely falls short): at least one, at most 16 times what each half holds.
+int RepetitionsToTarget(int half, double estimate, double target)
+{
+  const double ratio = estimate / target;
+  const double more = std::ceil(half * (ratio * ratio - 1.0));
+  return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
+}
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DrawToTarget(vtkSPTVolumeMapper* self, int first,
+  int count, int perPass, int estimator, bool coverage, double maxThickness,
+  vtkTextureObject* table)
+{
+  const double target = self->TargetError;
+  if (!this->Balanced)
+  {
+    // A lone repetition went to the first half: its noise is no longer estimated.
+    return this->DrawRepetitions(
+             self, first, count, perPass, estimator, coverage, maxThickness, table)
+      ? count
+      : -1;
+  }
+  if (this->HalfCount > 0 && this->Estimate <= target)
+  {
+    return 0; // the image meets the target (or shows nothing)
+  }
+  const bool exactCoverage = self->ExactCoverage && (this->CoverageDrawn || coverage);
+  int drawn = 0;
+  int half = this->HalfCount == 0 ? 1 : RepetitionsToTarget(this->HalfCount, this->Estimate, target);
+  while (count - drawn >= 2)
+  {
+    half = std::min(half, (count - drawn) / 2);
+    if (!this->DrawRepetitions(self, first + drawn, 2 * half, perPass, estimator,
+          coverage && drawn == 0, maxThickness, table, true))
+    {
+      return -1;
+    }
+    drawn += 2 * half;
+    this->HalfCount += half;
+    this->Estimate = this->Ensemble->EstimateNoise(this->HalfCount, exactCoverage);
+    if (this->Estimate <= target)
+    {
+      break; // met, or nothing to see (negative)
+    }
+    half = RepetitionsToTarget(this->HalfCount, this->Estimate, target);
+  }
+  if (drawn == 0)
+  {
+    // Room for one repetition only (the cap or the time budget).
+    if (!this->DrawRepetitions(self, first, 1, perPass, estimator, coverage, maxThickness, table))
+    {
+      return -1;
+    }
+    this->Balanced = false;
+    this->Estimate = -1.0;
+    drawn = 1;
+  }
+  return drawn;
+}
+
 void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* self,
-  vtkShaderProgram* program, double maxThickness, vtkTextureObject* table, int first, int count)
+  vtkShaderProgram* program, double maxThickness, vtkTextureObject* table, int first, int count,
+  bool halves)
 {
   vtkInternals& internals = *this;
   vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
@@ -565,11 +660,14 @@ void vtkSPTVolumeMapper::vtkInternals::SetCommonUniforms(vtkSPTVolumeMapper* sel
   program->SetUniformi("subpixelLevel", self->SubpixelLevel);
   program->SetUniform2f("passSizeInPixels", passSize);
   program->SetUniformi("seed", static_cast<int>(self->Seed));
-  // Strata: the repetitions of this render form one block (progressive renders add blocks).
-  program->SetUniformi("stratumCount", self->StratifiedSampling ? count : 0);
+  // Strata: the repetitions of this draw form one block (progressive renders add blocks),
+  // or two, one per half, so that the halves stay independent.
+  const int block = halves ? count / 2 : count;
+  program->SetUniformi("stratumCount", self->StratifiedSampling ? block : 0);
   program->SetUniformi("stratumOrigin", first);
+  program->SetUniformi("secondHalfStart", halves ? first + block : VTK_INT_MAX);
   int bits = 0;
-  while ((1 << bits) < count)
+  while ((1 << bits) < block)
   {
     ++bits;
   }
@@ -599,6 +697,9 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.Context = nullptr;
   internals.SumSignature.clear();
   internals.AccumulatedRepetitions = 0;
+  internals.HalfCount = 0;
+  internals.Balanced = true;
+  internals.Estimate = -1.0;
   internals.Budget = RepetitionBudget();
   this->Superclass::ReleaseGraphicsResources(window);
 }
@@ -627,6 +728,8 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off")
      << "\n";
+  os << indent << "TargetError: " << this->TargetError << "\n";
+  os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
   os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
   os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";

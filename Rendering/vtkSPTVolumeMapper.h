@@ -162,6 +162,29 @@ public:
 
   ///@{
   /**
+   * Error target: the noise (root mean square of premultiplied RGBA over the image's
+   * footprint) at which a render stops adding repetitions; RepetitionLevel becomes a cap.
+   * The noise is estimated from the image itself, never from a reference: the repetitions are
+   * drawn as two independent halves of equal size, and the mean of both has a quarter of the
+   * variance of their difference. A render draws 1 + 1 repetitions, then as many as the
+   * estimate predicts (the noise falling as one over the square root of the repetitions),
+   * until the estimate is at most the target, RepetitionLevel is reached or, with
+   * AutoAdjustRepetitions, the time allotted is spent. With ProgressiveRefinement, a render
+   * of an image that already meets the target adds nothing. 0 (the default) turns it off.
+   * Range 0 to 1; 0.005 is about two levels of an 8-bit image.
+   */
+  vtkSetClampMacro(TargetError, double, 0.0, 1.0);
+  vtkGetMacro(TargetError, double);
+  ///@}
+
+  /**
+   * The noise estimated for the image of the last render, on the scale of TargetError; -1
+   * when none was (TargetError off, fewer than two repetitions, or nothing drawn).
+   */
+  vtkGetMacro(EstimatedError, double);
+
+  ///@{
+  /**
    * Progressive refinement: while the camera, the viewport, the input, the transfer functions,
    * the settings and the props of the renderer stay unchanged, each render adds
    * RepetitionLevel repetitions to the image shown before, up to
@@ -277,8 +300,10 @@ protected:
   vtkTypeBool ProgressiveRefinement = 0;
   int MaximumProgressiveRepetitions = 4096;
   vtkTypeBool AutoAdjustRepetitions = 1;
+  double TargetError = 0.0;
   int LastRepetitionCount = 0;
   double TimePerRepetition = 0.0;
+  double EstimatedError = -1.0;
 
 private:
   vtkSPTVolumeMapper(const vtkSPTVolumeMapper&) = delete;

@@ -1,7 +1,8 @@
 //VTK::System::Dec
 //VTK::Output::Dec
 
-// Adds one pass of the ensemble to the running sum (additive blending is set by the caller).
+// Adds one pass of the ensemble to the running sum (additive blending is set by the caller),
+// and to the second half's sum when that is bound too (vtkSPTEnsembleBuffer).
 // The quad covers the pass exactly, so nearest filtering at texCoord reads one sample.
 in vec2 texCoord;
 uniform sampler2D passTexture;
@@ -9,4 +10,5 @@ uniform sampler2D passTexture;
 void main()
 {
   gl_FragData[0] = texture(passTexture, texCoord);
+  gl_FragData[1] = gl_FragData[0];
 }

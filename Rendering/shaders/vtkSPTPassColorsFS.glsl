@@ -7,9 +7,11 @@
 //   front of the survivor contributes what it would composite;
 // - otherwise (the survivor estimator), its color written opaque once for each repetition
 //   whose survivor it is.
-// Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
+// When the ensemble's noise is estimated, what the repetitions from secondHalfStart on add also
+// goes to the second half's sum (the second draw buffer). Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
 // none is discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
+uniform int secondHalfStart; // the first repetition of the second half
 
 void main()
 {
@@ -23,15 +25,20 @@ void main()
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
 #ifdef SPT_VISIBILITY_WEIGHTED
   int count = 0;
+  int inSecondHalf = 0;
   for (int r = 0; r < lanes; ++r)
   {
-    count += key <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
+    int visible = key <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
+    count += visible;
+    inSecondHalf += repetition + r >= secondHalfStart ? visible : 0;
   }
   if (count == 0)
   {
     discard;
   }
-  gl_FragData[0] = float(count) * preIntegrated(segment);
+  vec4 color = preIntegrated(segment);
+  gl_FragData[0] = float(count) * color;
+  gl_FragData[1] = float(inSecondHalf) * color;
 #else
   bool holdsOne = false; // the minimum of some repetition is this fragment's key
   for (int r = 0; r < lanes; ++r)
@@ -46,11 +53,15 @@ void main()
   // share it, so the keep-or-discard decision is checked too.
   vec4 color = preIntegrated(segment);
   int count = 0;
+  int inSecondHalf = 0;
   for (int r = 0; r < lanes; ++r)
   {
-    count += imageLoad(depthKeys, ivec3(r, pixel)).r == key &&
+    int wins = imageLoad(depthKeys, ivec3(r, pixel)).r == key &&
         threshold(uint(repetition + r)) < color.a ? 1 : 0;
+    count += wins;
+    inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
   }
   gl_FragData[0] = float(count) * vec4(color.rgb / color.a, 1.0);
+  gl_FragData[1] = float(inSecondHalf) * vec4(color.rgb / color.a, 1.0);
 #endif
 }
