@@ -1,0 +1,168 @@
+"""SPT's error target: the noise the mapper estimates from its own image, checked against the
+exact reference, and the images it stops at.
+
+The mapper draws its repetitions as two independent halves and estimates the noise of their
+mean from their difference, never from a reference. The tests check that
+- the estimate is within a factor of 1.5 of the error measured against the exact reference,
+  and of the noise measured from two seeds, on the embedded mesh, SPX, Blunt Fin and the Post;
+- a render stops once the estimate meets the target, with fewer repetitions than the cap;
+- the images it stops at are unbiased: their bias against the reference is that of a fixed
+  repetition count, within four standard errors;
+- RepetitionLevel caps the repetitions, progressive refinement stops adding once the target
+  is met, and the time budget still cuts an interactive frame.
+"""
+
+from functools import lru_cache
+
+import numpy as np
+import pytest
+import vtk
+
+from spt import data, figures, metrics, render, statistics
+
+from conftest import load_or_skip
+from statistics_checks import Z
+
+SIZE = 128
+CAP = 256
+#: Targets well above the floor of the 8-bit read-back (about 0.0012), so that the error
+#: against the reference is the noise.
+TARGETS = {"default": 0.006, "spx": 0.006, "bluntfin": 0.005, "post": 0.01}
+SCENES = list(TARGETS)
+
+
+@lru_cache(maxsize=None)
+def _scene(name):
+    if name != "default":
+        load_or_skip(name)
+    return figures.scene(name)
+
+
+@lru_cache(maxsize=None)
+def _reference(name):
+    s = _scene(name)
+    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
+
+
+def _mapper(level, seed, target):
+    mapper = render.spt_mapper(level, seed=seed)
+    mapper.SetTargetError(target)
+    return mapper
+
+
+@lru_cache(maxsize=None)
+def _stopped(name, seed):
+    """The image at the scene's target, the estimate and the repetitions it took."""
+    s = _scene(name)
+    mapper = _mapper(CAP, seed, TARGETS[name])
+    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    return image, mapper.GetEstimatedError(), mapper.GetLastRepetitionCount()
+
+
+@lru_cache(maxsize=None)
+def _fixed(name, level, seed):
+    s = _scene(name)
+    return render.render(s.grid, s.property, render.spt_mapper(level, seed=seed), s.view,
+                         (SIZE, SIZE)).image
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
+        name, have_display):
+    image, estimated, level = _stopped(name, 1)
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert 2 <= level < CAP, f"stopped at {level} repetitions"
+    assert 0.0 < estimated <= TARGETS[name]
+    measured = metrics.rmse(image, _reference(name))
+    assert measured / 1.5 <= estimated <= 1.5 * measured, (
+        f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
+    # The noise alone, from two seeds at the same count (half their mean squared difference).
+    noise = np.sqrt(statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
+                                        _reference(name), level).noise)
+    assert noise / 1.5 <= estimated <= 1.5 * noise, (
+        f"estimated {estimated:.4f}, two-seed noise {noise:.4f}")
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_stopped_images_are_unbiased(name, have_display):
+    """Two seeds at the target against two seeds at the same fixed count: the same bias."""
+    first, _, level = _stopped(name, 1)
+    second, _, second_level = _stopped(name, 2)
+    stopped = statistics.estimate(first, second, _reference(name), min(level, second_level))
+    fixed = statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
+                                _reference(name), level)
+    tolerance = Z * np.hypot(stopped.bias2_error, fixed.bias2_error)
+    assert stopped.bias2 <= fixed.bias2 + tolerance, (
+        f"bias^2 {stopped.bias2:.2e} stopped, {fixed.bias2:.2e} fixed, tolerance "
+        f"{tolerance:.2e}")
+
+
+def _window_with(mapper):
+    s = _scene("default")
+    window, renderer = render.make_window(SIZE, SIZE)
+    render.add_volume(renderer, s.grid, data.default_transfer_function(s.grid), mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    return window, renderer
+
+
+def test_repetition_level_caps_an_unreachable_target(have_display):
+    mapper = _mapper(8, 1, 1.0e-5)
+    window, _ = _window_with(mapper)
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 8
+    assert mapper.GetEstimatedError() > 1.0e-5
+    window.Finalize()
+
+
+def test_no_estimate_without_a_target_or_with_one_repetition(have_display):
+    mapper = render.spt_mapper(8, seed=1)
+    window, _ = _window_with(mapper)
+    window.Render()
+    assert mapper.GetEstimatedError() < 0.0
+    mapper.SetTargetError(0.01)
+    mapper.SetRepetitionLevel(1)
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 1
+    assert mapper.GetEstimatedError() < 0.0
+    window.Finalize()
+
+
+def test_progressive_refinement_stops_adding_at_the_target(have_display):
+    """Each render adds at most RepetitionLevel; once the estimate meets the target, renders
+    add nothing and show the same image."""
+    mapper = _mapper(4, 1, 0.004)
+    mapper.ProgressiveRefinementOn()
+    window, _ = _window_with(mapper)
+    counts, estimates = [], []
+    for _ in range(12):
+        window.Render()
+        counts.append(mapper.GetLastRepetitionCount())
+        estimates.append(mapper.GetEstimatedError())
+        if 0.0 < estimates[-1] <= 0.004:
+            break
+    assert 0.0 < estimates[-1] <= 0.004, f"estimates {estimates}"
+    assert all(b - a <= 4 for a, b in zip(counts, counts[1:])), f"counts {counts}"
+    assert estimates[0] > 0.004, "the first render should not meet the target yet"
+    met = render.read_rgba(window)
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == counts[-1]
+    assert np.array_equal(render.read_rgba(window), met)
+    window.Finalize()
+
+
+def test_time_budget_comes_first_when_it_is_shorter(have_display):
+    mapper = _mapper(256, 1, 1.0e-4)
+    mapper.AutoAdjustRepetitionsOn()
+    window, _ = _window_with(mapper)
+    interactor = vtk.vtkRenderWindowInteractor()
+    interactor.SetRenderWindow(window)
+    window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
+    window.Render()
+    still = mapper.GetLastRepetitionCount()
+    assert still == 256
+    window.SetDesiredUpdateRate(1000.0)  # 1 ms: the cheapest frame
+    window.Render()
+    interactive = mapper.GetLastRepetitionCount()
+    assert 1 <= interactive < still
+    assert render.read_rgba(window)[..., 3].max() > 0.2
+    window.Finalize()
