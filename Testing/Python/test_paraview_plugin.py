@@ -22,11 +22,15 @@ METHODS = (SPT, HAVS, PBVR)
 ARTIFACT = {SPT: "spt", HAVS: "havs", PBVR: "pbvr"}
 REPETITIONS = 8
 SEED = 3
+#: SPT's Target Error as the plugin declares it by default; the renders use it, with
+#: REPETITIONS as the cap.
+TARGET_ERROR = 0.005
 # Each method's settings as the Properties panel groups them, and their values after the test
 # set some by name (--set NAME=VALUE): defaults, but for the repetitions and seed of SPT and
 # PBVR and the settings below.
 SETTINGS = {
-    SPT: {"RepetitionLevel": REPETITIONS, "SubpixelLevel": 1, "Seed": SEED,
+    SPT: {"TargetError": TARGET_ERROR, "RepetitionLevel": REPETITIONS, "SubpixelLevel": 1,
+          "Seed": SEED,
           "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64,
           "RepetitionsPerPass": 16, "StratifiedSampling": 1, "Estimator": 1,
           "ExactCoverage": 1, "ProgressiveRefinement": 0,
@@ -52,6 +56,7 @@ def render_command(mesh, output, *extra, representation=SPT):
     return [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
             "--data", mesh, "--output", output, "--report", output.with_suffix(""),
             "--repetitions", REPETITIONS, "--seed", SEED, "--representation", representation,
+            "--target-error", TARGET_ERROR,
             *[argument for item in SET_BY_NAME[representation] for argument in ("--set", item)],
             *extra]
 
@@ -98,6 +103,14 @@ def test_settings_reach_the_mapper_on_the_server(rendered, method):
     assert report["mapper_is_spt"] == (method == SPT)
     assert report["mapper_settings"] == expected
     assert report["tetrahedra"] == report["cells"] == 48000
+
+
+def test_spt_has_an_error_target_by_default(builtin):
+    """The Properties panel shows Target Error next to Repetition Level, which is its cap."""
+    report = read_report(builtin)
+    assert report["defaults"]["TargetError"] == TARGET_ERROR
+    assert report["defaults"]["RepetitionLevel"] == 256
+    assert report["property_groups"][GROUPS[SPT]][:2] == ["TargetError", "RepetitionLevel"]
 
 
 @pytest.mark.parametrize("method", METHODS)

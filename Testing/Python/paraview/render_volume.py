@@ -24,11 +24,12 @@ METHODS = {
     "Volume (SPT)": {
         "mapper": "vtkSPTVolumeMapper",
         "settings": {name: name for name in (
-            "RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+            "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
             "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
             "Estimator", "ExactCoverage", "ProgressiveRefinement", "AutoAdjustRepetitions")},
         "repetitions": "RepetitionLevel",
         "seed": "Seed",
+        "target": "TargetError",
     },
     "Volume (HAVS-like)": {
         "mapper": "vtkHAVSVolumeMapper",
@@ -66,6 +67,8 @@ def parse_arguments(argv):
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="an integer setting of the representation, by its name")
     parser.add_argument("--repetitions", type=int, default=16)
+    parser.add_argument("--target-error", type=float, default=0.0,
+                        help="SPT's Target Error (default 0: exactly --repetitions)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--use-data-partitions", action="store_true",
                         help="keep the pieces where they were read (no redistribution)")
@@ -129,7 +132,7 @@ def setup_view(size):
 
 
 def settings_to_set(args):
-    return {name: int(value) for name, value in (item.split("=", 1) for item in args.set)}
+    return {name: value for name, value in (item.split("=", 1) for item in args.set)}
 
 
 def method(args):
@@ -144,13 +147,19 @@ def setting_names(args):
     return names
 
 
+def _is_double(display, name):
+    return display.SMProxy.GetProperty(name).IsA("vtkSMDoubleVectorProperty")
+
+
 def get_setting(display, name):
-    """An integer setting as its number (an enumeration's value, not its text)."""
-    return int(display.SMProxy.GetProperty(name).GetElement(0))
+    """A setting as its number (an enumeration's value, not its text)."""
+    value = display.SMProxy.GetProperty(name).GetElement(0)
+    return float(value) if _is_double(display, name) else int(value)
 
 
 def set_setting(display, name, value):
-    display.SMProxy.GetProperty(name).SetElement(0, int(value))
+    value = float(value) if _is_double(display, name) else int(value)
+    display.SMProxy.GetProperty(name).SetElement(0, value)
     display.SMProxy.UpdateVTKObjects()
 
 
@@ -165,14 +174,18 @@ def show_volume(reader, view, args, like):
     else:
         display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(args.representation)
+    # What the representation starts with: the defaults the plugin's XML declares.
+    defaults = {name: get_setting(display, name) for name in setting_names(args)}
     chosen = method(args)
+    if "target" in chosen:
+        set_setting(display, chosen["target"], args.target_error)
     if "repetitions" in chosen:
         set_setting(display, chosen["repetitions"], args.repetitions)
         set_setting(display, chosen["seed"], args.seed)
     for name, value in settings_to_set(args).items():
         set_setting(display, name, value)
     display.UseDataPartitions = int(args.use_data_partitions)
-    return display
+    return display, defaults
 
 
 def look_along(view, axis):
@@ -229,7 +242,7 @@ def local_mapper_report(display, names):
         if hasattr(mapper, "GetInput") and mapper.GetInput() is not None:
             info["mapper_input_bounds"] = list(mapper.GetInput().GetBounds())
         info["mapper_settings"] = {
-            exposed: int(getattr(mapper, "Get" + own)())
+            exposed: getattr(mapper, "Get" + own)()
             for exposed, own in names.items() if hasattr(mapper, "Get" + own)}
     return info
 
@@ -276,7 +289,7 @@ def render_plain(display, view, args):
     window.Finalize()
 
 
-def report(display, reader, view, args):
+def report(display, defaults, reader, view, args):
     """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
     own file."""
     rank, ranks = rank_and_ranks()
@@ -285,6 +298,7 @@ def report(display, reader, view, args):
     info["representation_types"] = list(display.GetProperty("Representation").Available)
     names = setting_names(args)
     info["settings"] = {name: get_setting(display, name) for name in names}
+    info["defaults"] = defaults
     info["documentation"] = {name: documentation(display, name) for name in names}
     info["property_groups"] = property_groups(display)
     info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
@@ -316,14 +330,14 @@ def main(argv):
     if args.like:
         with open(args.like) as stream:
             like = json.load(stream)
-    display = show_volume(reader, view, args, like)
+    display, defaults = show_volume(reader, view, args, like)
     if like:
         set_camera(view, like["camera"])
     else:
         look_along(view, args.view_axis)
     simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
                           TransparentBackground=int(args.transparent))
-    report(display, reader, view, args)
+    report(display, defaults, reader, view, args)
     if args.plain:
         render_plain(display, view.GetClientSideObject(), args)
 
