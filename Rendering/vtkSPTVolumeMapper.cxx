@@ -373,6 +373,13 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     count = internals.Budget.Choose(vol->GetAllocatedRenderTime(), count, perPass);
   }
+  // When not even one group of repetitions fits, the cheapest frame: the paper's single
+  // passes, one traversal each, unbiased too; the exact coverage waits for a later frame.
+  const bool cheapest = perPass == 1 && this->RepetitionsPerPass > 1;
+  if (cheapest)
+  {
+    estimator = SURVIVOR_ESTIMATOR;
+  }
   std::vector<double> signature = internals.Signature(ren, this, x, y, width, height);
   int first = 0;
   if (this->ProgressiveRefinement && signature == internals.SumSignature &&
@@ -385,7 +392,6 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   ostate->PushFramebufferBindings();
   const bool toTarget = this->TargetError > 0.0;
-  bool coverage = false;
   if (first == 0)
   {
     internals.OpaqueScene = vtkSPTRenderSetup::HasOpaqueScene(ren);
@@ -398,12 +404,13 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     ensemble->ClearSum();
     internals.AccumulatedRepetitions = 0;
-    coverage = this->ExactCoverage;
     internals.CoverageDrawn = false;
     internals.HalfCount = 0;
     internals.Balanced = true;
     internals.Estimate = -1.0;
   }
+  // The coverage is additive and needs nothing random: any frame of an accumulation may draw it.
+  const bool coverage = this->ExactCoverage && !internals.CoverageDrawn && !cheapest;
   if (count > 0)
   {
     vtkNew<vtkTimerLog> timer;

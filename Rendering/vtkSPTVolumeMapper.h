@@ -204,9 +204,10 @@ public:
    * desired update rate, as during interaction in a vtkRenderWindowInteractor or ParaView's
    * interactive renders) is shorter than RepetitionLevel repetitions take, draw only as many
    * as fit, timed from the previous renders: whole traversals of RepetitionsPerPass
-   * repetitions while one fits, else repetitions drawn one per traversal (the cheapest
-   * frame), at least one. Still renders (the default, tiny desired update rate) draw the full
-   * RepetitionLevel. Default on.
+   * repetitions while one fits, else the cheapest frame there is, the paper's single passes
+   * (one traversal per repetition, the survivor estimator, no exact coverage; unbiased too),
+   * as many as fit and at least one. Still renders (the default, tiny desired update rate)
+   * draw the full RepetitionLevel. Default on.
    */
   vtkSetMacro(AutoAdjustRepetitions, vtkTypeBool);
   vtkGetMacro(AutoAdjustRepetitions, vtkTypeBool);
