@@ -38,6 +38,12 @@
  * The camera may be anywhere, inside the mesh too: a tetrahedron cut by the near plane
  * contributes its segments from the near plane to their exits, exactly.
  *
+ * Several SPT volumes in one renderer composite exactly where they interpenetrate, each
+ * with its own input, transfer functions and vtkVolume transform: nothing in a frame depends
+ * on order (an atomic minimum of depth keys, then sums), so the first visible SPT volume of
+ * the renderer draws them all into one set of buffers, with its own sampling settings
+ * (RepetitionLevel, Seed, TargetError, ...), and the others draw nothing themselves.
+ *
  * @sa
  * vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper
  */

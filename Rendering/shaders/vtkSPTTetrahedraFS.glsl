@@ -37,6 +37,7 @@ uniform usamplerBuffer tetrahedra;
 uniform samplerBuffer points;
 uniform samplerBuffer scalars;
 
+uniform int cellIdOffset; // where this volume's cell ids start among the frame's volumes
 uniform int repetition; // first repetition of this pass; bit patterns of unsigned values:
 uniform int seed;       // VTK sets int uniforms only
 uniform int stratumCount;  // stratified sampling: the repetitions from stratumOrigin on form
@@ -197,12 +198,18 @@ vec4 opticalDepthTerms(vec4 color)
   return color.a > 0.0 ? vec4(color.rgb * (tau / color.a), tau) : vec4(0.0);
 }
 
+// The id of this fragment's cell among the frame's volumes, which its random numbers follow.
+uint cellId()
+{
+  return uint(tetrahedronId) + uint(cellIdOffset);
+}
+
 // The depth key of a segment for the atomic minimum: the depth in 24 bits (as a depth buffer
 // holds it), then 8 bits of the tetrahedron's id, so that two fragments at one depth do not
 // both win.
 uint depthKey(Segment segment)
 {
-  return (uint(segment.frontDepth * 16777215.0) << 8u) | (uint(tetrahedronId) & 0xFFu);
+  return (uint(segment.frontDepth * 16777215.0) << 8u) | (cellId() & 0xFFu);
 }
 
 float unitFloat(uint bits)
@@ -247,7 +254,7 @@ uint orderKey;
 
 float threshold(uint r)
 {
-  uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), uint(tetrahedronId));
+  uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
   if ((r >> 2u) != hashGroup)
   {
     hashGroup = r >> 2u;

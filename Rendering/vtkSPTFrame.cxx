@@ -1,0 +1,355 @@
+#include "vtkSPTFrame.h"
+
+#include "vtkObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include "vtkSPTDepthKeyBuffer.h"
+#include "vtkSPTEnsembleBuffer.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTViewMatrices.h"
+
+#include "vtkSPTPassColorsFS.h"
+#include "vtkSPTPassCoverageFS.h"
+#include "vtkSPTPassKeysFS.h"
+#include "vtkSPTPassSingleFS.h"
+#include "vtkSPTRandom.h"
+#include "vtkSPTTetrahedraFS.h"
+#include "vtkSPTTetrahedraGS.h"
+#include "vtkSPTTetrahedraVS.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <initializer_list>
+#include <string>
+
+namespace
+{
+constexpr int DepthKeyImageUnit = 0;
+
+// Texture objects active for a scope, deactivated in reverse order on every way out.
+class ScopedTextures
+{
+public:
+  explicit ScopedTextures(std::initializer_list<vtkTextureObject*> textures)
+    : Textures(textures)
+  {
+    for (vtkTextureObject* texture : this->Textures)
+    {
+      texture->Activate();
+    }
+  }
+  ~ScopedTextures()
+  {
+    for (auto it = this->Textures.rbegin(); it != this->Textures.rend(); ++it)
+    {
+      (*it)->Deactivate();
+    }
+  }
+  ScopedTextures(const ScopedTextures&) = delete;
+  ScopedTextures& operator=(const ScopedTextures&) = delete;
+
+private:
+  std::vector<vtkTextureObject*> Textures;
+};
+
+// The repetitions to add to each half for the noise to fall from `estimate` to `target`, if it
+// falls as one over the square root of the repetitions (stratified sampling does better, so
+// this rarely falls short): at least one, at most 16 times what each half holds.
+int RepetitionsToTarget(int half, double estimate, double target)
+{
+  const double ratio = estimate / target;
+  const double more = std::ceil(half * (ratio * ratio - 1.0));
+  return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
+}
+}
+
+vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* ensemble,
+  vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
+  vtkObject* reporter)
+  : Window(window)
+  , Ensemble(ensemble)
+  , DepthKeys(depthKeys)
+  , Volumes(volumes)
+  , FrameSettings(settings)
+  , Reporter(reporter)
+{
+  for (const Volume& volume : volumes)
+  {
+    this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
+  }
+}
+
+vtkShaderProgram* vtkSPTFrame::ReadyProgram(
+  bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes)
+{
+  const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
+    vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
+  // Both stages: scalars per cell, the path for cells cut by the near plane (compiled in only
+  // while the near plane cuts some volume's bounds: a fragment stage pays for its branches),
+  // and the scene depth (only when opaque geometry was drawn).
+  std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  common += nearPlaneCuts ? "#define SPT_NEAR_PLANE_CUTS\n" : "";
+  common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  std::string geometry = vtkSPTTetrahedraGS;
+  vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
+
+  std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  if (kind == PassKind::KeysAndCoverage)
+  {
+    defines += "\n#define SPT_WRITE_COVERAGE";
+  }
+  if (kind == PassKind::Colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR)
+  {
+    defines += "\n#define SPT_VISIBILITY_WEIGHTED";
+  }
+  // VTK declares GLSL 1.50; image load/store comes as the extension.
+  const bool atomics =
+    kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
+  std::string fragment = vtkSPTTetrahedraFS;
+  vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
+    atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkSPTRandom);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
+  return this->Window->GetShaderCache()->ReadyShaderProgram(
+    vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
+}
+
+bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  // The programs this render needs, by pass kind and by scalars per cell or per point; the
+  // others stay null. Groups draw the coverage with their first key traversal; single passes
+  // need a traversal of its own.
+  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
+  const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
+    !single && coverage, !single, single && coverage };
+  // A render of fewer repetitions than a group draws only those: the fragment loops are sized
+  // by the compiled count.
+  const int lanes = std::min(perPass, count);
+  vtkShaderProgram* programs[NumberOfPassKinds][2] = {};
+  for (int k = 0; k < NumberOfPassKinds; ++k)
+  {
+    for (const Volume& volume : this->Volumes)
+    {
+      const bool cellScalars = volume.Mesh->GetCellScalars();
+      vtkShaderProgram*& program = programs[k][cellScalars ? 1 : 0];
+      if (!needed[k] || program)
+      {
+        continue;
+      }
+      program =
+        this->ReadyProgram(cellScalars, this->NearPlaneCuts, static_cast<PassKind>(k), lanes);
+      if (!program)
+      {
+        vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
+        return false;
+      }
+      this->SetFrameUniforms(program, first, count, halves);
+    }
+  }
+  if (!single &&
+    !this->DepthKeys->Prepare(
+      this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes))
+  {
+    return false;
+  }
+  ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
+
+  ostate->vtkglDisable(GL_CULL_FACE);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  auto traverse = [&](PassKind kind, int repetition, int inGroup) {
+    for (const Volume& volume : this->Volumes)
+    {
+      // The ensemble's accumulation binds its own program between passes; uniforms go to the
+      // bound program.
+      vtkShaderProgram* program =
+        programs[static_cast<int>(kind)][volume.Mesh->GetCellScalars() ? 1 : 0];
+      this->Window->GetShaderCache()->ReadyShaderProgram(program);
+      ScopedTextures textures({ volume.TableTexture, volume.Mesh->GetScalarTexture(),
+        volume.Mesh->GetPointTexture(), volume.Mesh->GetTetrahedronTexture() });
+      SetVolumeUniforms(program, volume);
+      program->SetUniformi("repetition", repetition);
+      program->SetUniformi("repetitionsInGroup", inGroup);
+      volume.Mesh->Bind(program);
+      volume.Mesh->Draw(program, 0, volume.Mesh->GetNumberOfTetrahedra());
+      volume.Mesh->Unbind();
+    }
+  };
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  if (!single)
+  {
+    return this->DrawGroups(first, count, lanes, coverage, halves, traverse);
+  }
+  if (coverage)
+  {
+    // Every segment once, added: no depth test, nothing random.
+    if (!this->Ensemble->BeginCoveragePass())
+    {
+      return false;
+    }
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    ostate->vtkglDepthMask(GL_FALSE);
+    ostate->vtkglEnable(GL_BLEND);
+    traverse(PassKind::Coverage, first, 1);
+  }
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LESS);
+  for (int r = first; r < first + count; ++r)
+  {
+    this->Ensemble->BeginPass();
+    traverse(PassKind::Single, r, 1);
+    this->Ensemble->EndPass(halves && r >= first + count / 2);
+  }
+  return true;
+}
+
+bool vtkSPTFrame::DrawGroups(
+  int first, int count, int perPass, bool coverage, bool halves, const Traversal& traverse)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
+  // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
+  // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDepthMask(GL_FALSE);
+  this->DepthKeys->BindImage(DepthKeyImageUnit);
+  bool ok = true;
+  for (int r = first; ok && r < first + count; r += perPass)
+  {
+    const int inGroup = std::min(perPass, first + count - r);
+    this->DepthKeys->Clear();
+    vtkSPTDepthKeyBuffer::Barrier();
+    // The first key traversal also adds up the coverage: it visits every segment anyway.
+    const bool withCoverage = coverage && r == first;
+    if (withCoverage)
+    {
+      ok = ensemble->BeginCoveragePass();
+      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      ostate->vtkglEnable(GL_BLEND);
+    }
+    else
+    {
+      ensemble->BeginSumPass(); // written to nothing: the color mask is off
+      ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      ostate->vtkglDisable(GL_BLEND);
+    }
+    if (ok)
+    {
+      traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
+      vtkSPTDepthKeyBuffer::Barrier();
+      ensemble->BeginSumPass(halves);
+      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      ostate->vtkglEnable(GL_BLEND);
+      traverse(PassKind::Colors, r, inGroup);
+      vtkSPTDepthKeyBuffer::Barrier();
+    }
+  }
+  vtkSPTDepthKeyBuffer::UnbindImage(DepthKeyImageUnit);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDepthMask(GL_TRUE);
+  return ok;
+}
+
+int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage,
+  bool exactCoverage, double target, TargetState& state)
+{
+  if (!state.Balanced)
+  {
+    // A lone repetition went to the first half: its noise is no longer estimated.
+    return this->DrawRepetitions(first, count, perPass, coverage) ? count : -1;
+  }
+  if (state.HalfCount > 0 && state.Estimate <= target)
+  {
+    return 0; // the image meets the target (or shows nothing)
+  }
+  int drawn = 0;
+  int half =
+    state.HalfCount == 0 ? 1 : RepetitionsToTarget(state.HalfCount, state.Estimate, target);
+  while (count - drawn >= 2)
+  {
+    half = std::min(half, (count - drawn) / 2);
+    if (!this->DrawRepetitions(first + drawn, 2 * half, perPass, coverage && drawn == 0, true))
+    {
+      return -1;
+    }
+    drawn += 2 * half;
+    state.HalfCount += half;
+    state.Estimate = this->Ensemble->EstimateNoise(state.HalfCount, exactCoverage);
+    if (state.Estimate <= target)
+    {
+      break; // met, or nothing to see (negative)
+    }
+    half = RepetitionsToTarget(state.HalfCount, state.Estimate, target);
+  }
+  if (drawn == 0)
+  {
+    // Room for one repetition only (the cap or the time budget).
+    if (!this->DrawRepetitions(first, 1, perPass, coverage))
+    {
+      return -1;
+    }
+    state.Balanced = false;
+    state.Estimate = -1.0;
+    drawn = 1;
+  }
+  return drawn;
+}
+
+void vtkSPTFrame::SetFrameUniforms(
+  vtkShaderProgram* program, int first, int count, bool halves) const
+{
+  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
+  const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
+  program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", this->FrameSettings.SubpixelLevel);
+  program->SetUniform2f("passSizeInPixels", passSize);
+  program->SetUniformi("seed", static_cast<int>(this->FrameSettings.Seed));
+  // Strata: the repetitions of this draw form one block (progressive renders add blocks),
+  // or two, one per half, so that the halves stay independent.
+  const int block = halves ? count / 2 : count;
+  program->SetUniformi("stratumCount", this->FrameSettings.StratifiedSampling ? block : 0);
+  program->SetUniformi("stratumOrigin", first);
+  program->SetUniformi("secondHalfStart", halves ? first + block : INT_MAX);
+  int bits = 0;
+  while ((1 << bits) < block)
+  {
+    ++bits;
+  }
+  program->SetUniformi("stratumMask", (1 << bits) - 1);
+  program->SetUniformi("stratumShift", std::max((bits + 1) / 2, 1));
+  if (program->IsUniformUsed("depthKeys"))
+  {
+    program->SetUniformi("depthKeys", DepthKeyImageUnit);
+  }
+}
+
+void vtkSPTFrame::SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume)
+{
+  const vtkSPTViewMatrices& matrices = *volume.Matrices;
+  program->SetUniformMatrix4x4("MCVCMatrix", const_cast<float*>(matrices.MCVC));
+  program->SetUniformMatrix4x4("VCDCMatrix", const_cast<float*>(matrices.VCDC));
+  program->SetUniformMatrix4x4("DCVCMatrix", const_cast<float*>(matrices.DCVC));
+  program->SetUniformMatrix3x3("VCMCLinear", const_cast<float*>(matrices.VCMCLinear));
+  volume.Table->SetUniforms(program, volume.TableTexture, volume.MaxThickness);
+  const int scalarUnit = volume.Mesh->GetScalarTexture()->GetTextureUnit();
+  program->SetUniformi("scalars", scalarUnit);
+  program->SetUniformi("cellScalars", scalarUnit);
+  program->SetUniformi("points", volume.Mesh->GetPointTexture()->GetTextureUnit());
+  program->SetUniformi("tetrahedra", volume.Mesh->GetTetrahedronTexture()->GetTextureUnit());
+  program->SetUniformi("cellIdOffset", static_cast<int>(volume.CellIdOffset));
+  const bool parallel = matrices.ParallelProjection;
+  const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };
+  program->SetUniform4f("eyeVC", eyeVC);
+}

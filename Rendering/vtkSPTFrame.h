@@ -1,0 +1,126 @@
+/**
+ * @class   vtkSPTFrame
+ * @brief   the traversals of one SPT image: one or more volumes into one ensemble
+ *
+ * Draws the passes of sorting-free projected tetrahedra (vtkSPTVolumeMapper) for a set of
+ * volumes, each with its own mesh, pre-integration table and matrices, into one ensemble
+ * buffer and one set of depth keys. Everything a pass does is a reduction that ignores order
+ * (an atomic minimum of depth keys, then sums), so volumes that interpenetrate composite
+ * exactly: their segments interleave per sample as those of one mesh do.
+ *
+ * A group of repetitions takes two traversals of every volume: the keys (each kept fragment
+ * takes the atomic minimum of its depth key per repetition; the first also adds up the exact
+ * coverage) and the colors (each fragment adds what it composites in the repetitions where it
+ * is visible). The paper's single passes take one traversal per repetition.
+ *
+ * Private helper of the SPT module; not wrapped.
+ */
+
+#ifndef vtkSPTFrame_h
+#define vtkSPTFrame_h
+
+#include "SPTRenderingModule.h" // For export macro
+
+#include <functional> // For the traversal
+#include <vector>     // For the volumes
+
+class vtkObject;
+class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
+class vtkSPTDepthKeyBuffer;
+class vtkSPTEnsembleBuffer;
+class vtkSPTMeshBuffers;
+class vtkSPTPreIntegrationTable;
+class vtkTextureObject;
+struct vtkSPTViewMatrices;
+
+class SPTRENDERING_EXPORT vtkSPTFrame
+{
+public:
+  /// One volume of the frame, uploaded and ready to draw.
+  struct Volume
+  {
+    vtkSPTMeshBuffers* Mesh = nullptr;
+    vtkSPTPreIntegrationTable* Table = nullptr;
+    vtkTextureObject* TableTexture = nullptr;
+    const vtkSPTViewMatrices* Matrices = nullptr;
+    double MaxThickness = 0.0; // the table's thickness range, in the mesh's normalized units
+    /// Added to the cell ids that the random numbers and depth keys follow, so that they stay
+    /// apart across the volumes of a frame.
+    unsigned int CellIdOffset = 0;
+  };
+
+  /// What a pass writes; see the vtkSPTPass*FS.glsl shaders.
+  enum class PassKind
+  {
+    Single,          // one repetition, opaque with the depth test
+    Keys,            // several repetitions: nearest survivors by atomic minimum of depth keys
+    KeysAndCoverage, // the same, and every segment's optical depth terms
+    Colors,          // several repetitions: what the visible segments (or survivors) add
+    Coverage,        // every segment's optical depth terms, for the single passes
+  };
+  static constexpr int NumberOfPassKinds = 5;
+
+  enum EstimatorType
+  {
+    SURVIVOR_ESTIMATOR = 0,
+    VISIBILITY_ESTIMATOR = 1
+  };
+
+  /// The frame's settings (the mapper's, where several volumes share the frame).
+  struct Settings
+  {
+    int Estimator = VISIBILITY_ESTIMATOR;
+    bool StratifiedSampling = true;
+    int SubpixelLevel = 1;
+    unsigned int Seed = 0;
+    bool OpaqueScene = false; // opaque geometry was drawn before the volumes
+  };
+
+  vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* ensemble,
+    vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes,
+    const Settings& settings, vtkObject* reporter);
+
+  /**
+   * Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal;
+   * with halves, the second half of them also into the second half's sum, each half a block
+   * of strata of its own. With coverage, the exact coverage is drawn too. False, after an
+   * error on the reporter, when a shader or a buffer fails.
+   */
+  bool DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves = false);
+
+  /// Progress towards an error target over the renders of one image.
+  struct TargetState
+  {
+    int HalfCount = 0;     // repetitions in each half
+    bool Balanced = true;  // the halves are of equal size
+    double Estimate = -1.0; // the last noise estimate; negative: none
+  };
+
+  /**
+   * Draw at most count repetitions from first on, in rounds of two halves of equal size,
+   * until the noise estimated from the halves is at most target. Returns how many were drawn,
+   * or -1 on failure. `exactCoverage`: the coverage is (or is being) drawn for this image.
+   */
+  int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
+    double target, TargetState& state);
+
+private:
+  using Traversal = std::function<void(PassKind, int, int)>;
+
+  vtkShaderProgram* ReadyProgram(bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes);
+  bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves,
+    const Traversal& traverse);
+  void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
+  static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
+
+  vtkOpenGLRenderWindow* Window;
+  vtkSPTEnsembleBuffer* Ensemble;
+  vtkSPTDepthKeyBuffer* DepthKeys;
+  const std::vector<Volume>& Volumes;
+  Settings FrameSettings;
+  vtkObject* Reporter;
+  bool NearPlaneCuts = false; // the near plane cuts the bounds of some volume
+};
+
+#endif
