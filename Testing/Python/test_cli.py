@@ -44,6 +44,8 @@ BAD_ARGUMENTS = [
     (("demo", "--repetitions", "-3"), "outside"),
     (("demo", "--repetitions", "65537"), "outside"),
     (("demo", "--dataset", "nosuch"), "unknown data set"),
+    (("demo", "--target-error", "0"), "outside 0 (exclusive) .. 1"),
+    (("demo", "--target-error", "lots"), "not a number"),
     (("demo", "--dataset", "spx,post"), "give one data set"),
     (("demo", "--output"), "expected one argument"),
     (("figures",), "required"),
@@ -109,19 +111,25 @@ def test_accuracy_figure(tmp_path):
     assert -0.6 < slope < -0.4
 
 
-def test_demo_writes_images_and_a_table(tmp_path, have_display):
-    result = run("demo", "--size", "64", "--repetitions", "8", "--output", str(tmp_path / "demo"))
+def test_demo_writes_images_and_the_race(tmp_path, have_display):
+    result = run("demo", "--dataset", "default", "--size", "64", "--repetitions", "16",
+                 "--output", str(tmp_path / "demo"))
     assert result.returncode == 0, result.stderr
     for name in ("spt.png", "vtk_pt.png", "reference.png", "comparison.png", "table.md"):
         assert (tmp_path / "demo" / name).stat().st_size > 100, name
     lines = result.stdout.splitlines()
     header = re.split(r"\s{2,}", lines[0].strip())
-    rows = {cells[0]: dict(zip(header, cells))
-            for cells in (re.split(r"\s{2,}", line.strip()) for line in lines[2:5])}
-    assert header[:2] == ["method", "RMSE"] and "VTK PT" in rows
-    spt_row = next(row for name, row in rows.items() if name.startswith("SPT"))
-    assert 0.0 < float(spt_row["RMSE"]) < 0.3
+    table = [re.split(r"\s{2,}", line.strip()) for line in lines[2:]]
+    rows = {cells[0]: dict(zip(header, cells)) for cells in table if len(cells) == len(header)}
+    assert header[:2] == ["method", "RMSE"] and header[-1] == "repetitions"
+    assert {"VTK PT", "HAVS-like k=2", "HAVS-like k=6", "PBVR (32 repetitions)",
+            "SPT at VTK PT's error", "reference"} <= set(rows)
+    at_target = rows["SPT (target error 0.005)"]
+    assert 0.0 < float(at_target["RMSE"]) < 0.3
+    assert 2 <= int(at_target["repetitions"]) <= 16
+    assert float(rows["VTK PT"]["time / VTK PT"]) == 1.0
     assert float(rows["reference"]["RMSE"]) == 0.0
+    assert "SPT reaches VTK PT's error in" in result.stdout
 
 
 def test_missing_data_is_a_clear_error(tmp_path):

@@ -44,7 +44,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkUnstructuredGrid
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkVolumeProperty
 
-from . import data, figures, metrics, render
+from . import data, figures, metrics, render, tables
+from .progress import Progress
 
 #: The sections of a full run, in the order they run.
 SECTIONS = ("cells", "repetitions", "subpixels", "image", "quality", "host", "large")
@@ -101,39 +102,6 @@ METHODS: Dict[str, Method] = {m.name: m for m in (
            False),
     Method("floor", "floor: all faces opaque (vtkPolyDataMapper)", None, False),
 )}
-
-
-# --------------------------------------------------------------------------------------------
-# Progress
-# --------------------------------------------------------------------------------------------
-
-class Progress:
-    """A progress bar on standard error: redrawn in place on a terminal, one line per step
-    otherwise (logs)."""
-
-    def __init__(self, total: int, title: str, stream=sys.stderr) -> None:
-        self.total = max(total, 1)
-        self.done = 0
-        self.title = title
-        self.stream = stream
-        self.start = time.perf_counter()
-        self.tty = hasattr(stream, "isatty") and stream.isatty()
-
-    def step(self, label: str) -> None:
-        self.done += 1
-        elapsed = time.perf_counter() - self.start
-        remaining = elapsed / self.done * (self.total - self.done)
-        filled = int(30 * self.done / self.total)
-        bar = "#" * filled + "." * (30 - filled)
-        text = (f"{self.title} [{bar}] {self.done}/{self.total} {label} "
-                f"({elapsed:.0f} s, ~{remaining:.0f} s left)")
-        if self.tty:
-            self.stream.write("\r" + text[:160].ljust(160))
-            if self.done == self.total:
-                self.stream.write("\n")
-        else:
-            self.stream.write(text + "\n")
-        self.stream.flush()
 
 
 # --------------------------------------------------------------------------------------------
@@ -215,7 +183,7 @@ def time_method(s: figures.Scene, method: Method, size: int, repetitions: int = 
         render.add_volume(renderer, s.grid, s.property, volume_mapper)
     render.place_camera(renderer, s.grid.GetBounds(), s.view)
     if volume_mapper is not None:
-        render._warm_up(window, volume_mapper)
+        render.warm_up(window, volume_mapper)
     else:
         window.Render()
         window.WaitForCompletion()
@@ -861,7 +829,7 @@ def _plot_quality(entries: Sequence[Dict[str, object]], path: pathlib.Path) -> N
 
 def _table(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(figures._format(v) for v in row) + " |" for row in rows]
+    lines += ["| " + " | ".join(tables.format_value(v) for v in row) + " |" for row in rows]
     return "\n".join(lines) + "\n"
 
 
@@ -977,7 +945,7 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
                            (f"≤ {t['spt_repetitions']}" if t.get("at_most")
                             else t["spt_repetitions"]),
                            t["spt_seconds"],
-                           (f"≤ {figures._format(t['spt_over_havs'])}" if t.get("at_most")
+                           (f"≤ {tables.format_value(t['spt_over_havs'])}" if t.get("at_most")
                             else t["spt_over_havs"])]
                           for t in cross["time_at_equal_error"]])]
 

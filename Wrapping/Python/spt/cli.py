@@ -79,6 +79,16 @@ def _cell_count(text: str) -> int:
     return value
 
 
+def _target_error(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    if not 0.0 < value <= 1.0:
+        raise argparse.ArgumentTypeError(f"{value} is outside 0 (exclusive) .. 1")
+    return value
+
+
 def _seed(text: str) -> int:
     try:
         value = int(text)
@@ -100,8 +110,10 @@ def _parser() -> argparse.ArgumentParser:
     demo.add_argument("--output", type=_output_directory, default=pathlib.Path("out/demo"))
     demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=384,
                       help="image width and height in pixels (default 384)")
-    demo.add_argument("--repetitions", type=_positive_int(65536), default=128,
-                      help="SPT RepetitionLevel (default 128)")
+    demo.add_argument("--repetitions", type=_positive_int(65536), default=256,
+                      help="SPT's RepetitionLevel, the cap of its error target (default 256)")
+    demo.add_argument("--target-error", type=_target_error, default=None,
+                      help="SPT's error target, RMSE of premultiplied RGBA (default 0.005)")
     demo.add_argument("--dataset", type=_dataset, default="drill",
                       help="data set (default: drill, the generated drill of 200,000 "
                            "tetrahedra; 'default' is the embedded helix mesh of the tests)")
@@ -194,9 +206,9 @@ def _methods(text: str) -> List[str]:
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
-    from .figures import _format
+    from .tables import format_value
 
-    cells = [list(header)] + [[_format(v) for v in row] for row in rows]
+    cells = [list(header)] + [[format_value(v) for v in row] for row in rows]
     widths = [max(len(row[i]) for row in cells) for i in range(len(header))]
     for index, row in enumerate(cells):
         print("  ".join(value.ljust(width) for value, width in zip(row, widths)))
@@ -230,14 +242,18 @@ def _bench(arguments: argparse.Namespace) -> None:
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; returns the exit status."""
     arguments = _parser().parse_args(argv)
-    from . import figures
+    from . import figures, render
 
     try:
         if arguments.command == "demo":
+            target = (render.DEFAULT_TARGET_ERROR if arguments.target_error is None
+                      else arguments.target_error)
             rows = figures.demo(arguments.output, arguments.size, arguments.repetitions,
-                                arguments.dataset)
-            _print_table(["method", "RMSE", "PSNR [dB]", "pixels off > 0.05", "time [s]",
-                          "time / VTK PT"], rows)
+                                arguments.dataset, target_error=target)
+            _print_table(figures.DEMO_TABLE_HEADER, rows)
+            race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
+            print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
+                  f"({race[6]} repetitions).")
             print(f"Images and comparison.png written to {arguments.output}")
         elif arguments.command == "bench":
             _bench(arguments)

@@ -17,7 +17,8 @@ import numpy as np
 from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 from vtkmodules.vtkRenderingCore import vtkVolumeProperty
 
-from . import accuracy, data, metrics, render
+from . import accuracy, data, metrics, render, tables
+from .progress import Progress
 
 PathLike = pathlib.Path
 
@@ -76,21 +77,6 @@ def scene(name: str) -> Scene:
     if name not in SCENES:
         raise ValueError(f"unknown data set '{name}'; choose from {', '.join(SCENES)}")
     return SCENES[name]()
-
-
-def _write_table(path: PathLike, header: Sequence[str], rows: List[Sequence[object]]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    for row in rows:
-        lines.append("| " + " | ".join(_format(v) for v in row) + " |")
-    text = "\n".join(lines) + "\n"
-    path.write_text(text)
-    return text
-
-
-def _format(value: object) -> str:
-    if isinstance(value, float):
-        return "inf" if math.isinf(value) else f"{value:.4g}"
-    return str(value)
 
 
 def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
@@ -178,7 +164,7 @@ def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
                      result["pt_seconds"], 1.0])
         rows.append([result["dataset"], "reference", 0.0, math.inf, result["reference_seconds"],
                      result["reference_seconds"] / result["pt_seconds"]])
-    _write_table(output / "convergence.md",
+    tables.write_table(output / "convergence.md",
                  ["data set", "method", "RMSE", "PSNR [dB]", "time [s]", "time / VTK PT"], rows)
     return results
 
@@ -253,7 +239,7 @@ def sorting(datasets: Sequence[str], size: int, output: PathLike, repetitions: i
                          entry.get("gpu_seconds", "")])
         rows.append([result["dataset"], "reference", 0.0, math.inf,
                      result["reference_seconds"], "", ""])
-    _write_table(output / "sorting.md", SORTING_HEADER, rows)
+    tables.write_table(output / "sorting.md", SORTING_HEADER, rows)
     return rows
 
 
@@ -399,14 +385,14 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
                for name in datasets]
     (output / "pbvr.json").write_text(json.dumps(results, indent=2))
     rows = [row for result in results for row in _pbvr_rows(result)]
-    _write_table(output / "pbvr.md", PBVR_TABLE_HEADER, rows)
+    tables.write_table(output / "pbvr.md", PBVR_TABLE_HEADER, rows)
     _plot_pbvr_convergence(results, output / "pbvr_convergence.png")
     curves = []
     for result in results:
         for label, entries in result["methods"].items():
             curves.append([result["dataset"], label] + [e["rmse"] for e in entries])
     level_list = [e["repetitions"] for e in results[0]["methods"]["SPT"]] if results else []
-    _write_table(output / "pbvr_convergence.md",
+    tables.write_table(output / "pbvr_convergence.md",
                  ["data set", "method"] + [f"L={level}" for level in level_list], curves)
     return rows
 
@@ -421,34 +407,64 @@ def accuracy_figure(output: PathLike, n_rays: int = 1000, seed: int = 2009) -> D
     return result
 
 
-def demo(output: PathLike, size: int = 384, repetitions: int = 128,
-         dataset: str = DEMO_SCENE, seed: int = 0) -> List[List[object]]:
-    """The main job: one scene with SPT, VTK's projected tetrahedra and the reference; the
-    images, a side-by-side comparison and a table of error and time. Returns the table rows."""
+#: The demo's columns.
+DEMO_TABLE_HEADER = ["method", "RMSE", "PSNR [dB]", "pixels off > 0.05", "time [s]",
+                     "time / VTK PT", "repetitions"]
+
+
+def _demo_methods(repetitions: int, seed: int, target_error: float) -> List[tuple]:
+    """(label, mapper) of the race's methods but SPT at VTK PT's error."""
+    return [(f"SPT (target error {target_error:g})",
+             render.spt_mapper(repetitions, seed=seed, target_error=target_error)),
+            ("VTK PT", render.projected_tetrahedra_mapper()),
+            ("HAVS-like k=2", render.havs_mapper(2)),
+            ("HAVS-like k=6", render.havs_mapper(6)),
+            ("PBVR (32 repetitions)", render.pbvr_mapper(32, seed=seed))]
+
+
+def demo(output: PathLike, size: int = 384, repetitions: int = 256,
+         dataset: str = DEMO_SCENE, seed: int = 0,
+         target_error: float = render.DEFAULT_TARGET_ERROR) -> List[List[object]]:
+    """The main job: the race on one scene. SPT at its error target, VTK's projected
+    tetrahedra, the HAVS-like k-buffer (k = 2 and 6) and PBVR, each against the exact
+    reference (error, and time as the best of two frames), and SPT with VTK PT's error as its
+    target: the time SPT takes to reach VTK PT's error, as a multiple of VTK PT's frame.
+    Writes the images, a side-by-side comparison and the table; returns the table rows."""
     output.mkdir(parents=True, exist_ok=True)
     s = scene(dataset)
     shape = (size, size)
+    progress = Progress(7, f"demo on {dataset}")
     reference = render.reference(s.grid, s.property, s.view, shape)
-    pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
-    spt = render.render(s.grid, s.property, render.spt_mapper(repetitions, seed=seed), s.view, shape)
-    names = {"spt": spt, "vtk_pt": pt, "reference": reference}
-    for name, rendering in names.items():
+    progress.step("reference")
+    results = []
+    for label, mapper in _demo_methods(repetitions, seed, target_error):
+        results.append((label, render.render(s.grid, s.property, mapper, s.view, shape,
+                                             frames=2)))
+        progress.step(label)
+    pt = results[1][1]
+    pt_error = metrics.rmse(pt.image, reference.image)
+    race = render.render(s.grid, s.property,
+                         render.spt_mapper(repetitions, seed=seed, target_error=pt_error),
+                         s.view, shape, frames=2)
+    results.insert(2, ("SPT at VTK PT's error", race))
+    progress.step("SPT at VTK PT's error")
+    spt = results[0][1]
+    for name, rendering in (("spt", spt), ("vtk_pt", pt), ("reference", reference)):
         metrics.write_png(output / f"{name}.png", rendering.image)
     comparison = metrics.side_by_side(
         [spt.image, pt.image, reference.image,
          metrics.difference_image(spt.image, reference.image),
          metrics.difference_image(pt.image, reference.image)],
-        [f"SPT, {repetitions} repetitions", "VTK projected tetrahedra",
-         "reference (exact ray caster)",
+        [results[0][0], "VTK projected tetrahedra", "reference (exact ray caster)",
          "|SPT - reference| x4", "|VTK PT - reference| x4"])
     metrics.write_png(output / "comparison.png", comparison)
     rows = []
-    for label, rendering in [(f"SPT (RepetitionLevel {repetitions})", spt), ("VTK PT", pt),
-                             ("reference", reference)]:
+    for label, rendering in results + [("reference", reference)]:
+        count = rendering.mapper.GetLastRepetitionCount() if hasattr(
+            rendering.mapper, "GetLastRepetitionCount") else ""
         rows.append([label, metrics.rmse(rendering.image, reference.image),
                      metrics.psnr(rendering.image, reference.image),
                      metrics.fraction_off(rendering.image, reference.image),
-                     rendering.seconds, rendering.seconds / pt.seconds])
-    _write_table(output / "table.md", ["method", "RMSE", "PSNR [dB]", "pixels off > 0.05",
-                                       "time [s]", "time / VTK PT"], rows)
+                     rendering.seconds, rendering.seconds / pt.seconds, count])
+    tables.write_table(output / "table.md", DEMO_TABLE_HEADER, rows)
     return rows

@@ -63,15 +63,23 @@ _ESTIMATORS = {"survivor": vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
                "visibility": vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR}
 
 
+#: The error target that the demo, the command line and the ParaView plugin use by default
+#: (RMSE of premultiplied RGBA, about one level of an 8-bit image).
+DEFAULT_TARGET_ERROR = 0.005
+
+
 def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                stratified: Optional[bool] = None, per_pass: Optional[int] = None,
-               estimator: Optional[str] = None, exact_coverage: Optional[bool] = None
-               ) -> vtkSPTVolumeMapper:
+               estimator: Optional[str] = None, exact_coverage: Optional[bool] = None,
+               target_error: Optional[float] = None) -> vtkSPTVolumeMapper:
     """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``,
     ``per_pass``, ``estimator`` ("survivor" or "visibility") and ``exact_coverage`` set
     StratifiedSampling, RepetitionsPerPass, Estimator and ExactCoverage (None keeps the
-    mapper's defaults). The time budget is off, so that the image has exactly
-    ``repetitions`` repetitions."""
+    mapper's defaults). The time budget is off. Without ``target_error`` the image has
+    exactly ``repetitions`` repetitions; with it, rendering stops once the noise the mapper
+    estimates is at most ``target_error``, and ``repetitions`` is the cap."""
+    if target_error is not None and not 0.0 <= target_error <= 1.0:
+        raise ValueError(f"the target error must be in 0..1, not {target_error}")
     mapper = vtkSPTVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
@@ -88,6 +96,8 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
         mapper.SetEstimator(_ESTIMATORS[estimator])
     if exact_coverage is not None:
         mapper.SetExactCoverage(exact_coverage)
+    if target_error is not None:
+        mapper.SetTargetError(target_error)
     return mapper
 
 
@@ -280,15 +290,16 @@ def read_rgba(window: vtkRenderWindow) -> np.ndarray:
     return metrics.from_vtk_image(grab.GetOutput(), as_float_rgba=True)
 
 
-def _warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
+def warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
     """One untimed render that builds what later frames reuse (shaders, buffers, tables).
-    SPT does it with one repetition: its caches do not depend on the count. PBVR does it at
-    its full count: its particles (one set per repetition) are what it reuses."""
+    SPT does it with one traversal group: its shaders are compiled for the repetitions a
+    group draws, and its other caches do not depend on the count; with an error target, at
+    its full count, whose rounds compile their own. PBVR does it at its full count: its
+    particles (one set per repetition) are what it reuses."""
     repetitions = None
-    if hasattr(mapper, "GetRepetitionLevel") and not isinstance(mapper, vtkPBVRVolumeMapper):
+    if isinstance(mapper, vtkSPTVolumeMapper) and mapper.GetTargetError() <= 0.0:
         repetitions = mapper.GetRepetitionLevel()
-    if repetitions is not None:
-        mapper.SetRepetitionLevel(1)
+        mapper.SetRepetitionLevel(min(repetitions, mapper.GetRepetitionsPerPass()))
     window.Render()
     window.WaitForCompletion()
     if repetitions is not None:
@@ -324,12 +335,13 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
            view: View = View(), size: Tuple[int, int] = (256, 256),
            window: Optional[vtkRenderWindow] = None,
-           actors: Sequence[vtkProp] = ()) -> Rendering:
+           actors: Sequence[vtkProp] = (), frames: int = 1) -> Rendering:
     """Render ``grid`` with ``mapper`` (and any opaque ``actors``) and return the image and
     the wall time of the render.
 
-    The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``); a first,
-    untimed render builds the caches (tables, buffers, shaders) that later frames reuse.
+    The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``), the best of
+    ``frames`` such renders; a first, untimed render builds the caches (tables, buffers,
+    shaders) that later frames reuse.
     """
     reference = is_reference(mapper)
     own_window = window is None or reference
@@ -346,11 +358,13 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
-    _warm_up(window, mapper)
-    start = time.perf_counter()
-    window.Render()
-    window.WaitForCompletion()
-    seconds = time.perf_counter() - start
+    warm_up(window, mapper)
+    seconds = float("inf")
+    for _ in range(max(1, frames)):
+        start = time.perf_counter()
+        window.Render()
+        window.WaitForCompletion()
+        seconds = min(seconds, time.perf_counter() - start)
     report = mapper_report(mapper)
     image = read_rgba(window)
     if reference:

@@ -15,7 +15,7 @@ from typing import Dict, List, Sequence
 
 import numpy as np
 
-from . import figures, metrics, render
+from . import figures, metrics, render, tables
 
 _SURVIVOR = {"estimator": "survivor", "exact_coverage": False}
 
@@ -106,7 +106,7 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
         for paper_point, point in zip(paper["points"], curve["points"]):
             rows.append([curve["mode"], point["repetitions"], point["rmse"], point["seconds"],
                          paper_point["seconds"] / point["seconds"]])
-    figures._write_table(output / "sampling.md", ["mode", "repetitions", "RMSE", "time [s]",
+    tables.write_table(output / "sampling.md", ["mode", "repetitions", "RMSE", "time [s]",
                                                   "speed-up over the paper's mode"], rows)
     _plot(curves, output / "sampling.png", f"{dataset}, {size} x {size}")
     (output / "sampling.json").write_text(json.dumps(result, indent=2))
