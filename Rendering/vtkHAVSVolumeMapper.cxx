@@ -17,6 +17,7 @@
 #include "vtkHAVSKBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
+#include "vtkSPTGPUTimer.h"
 #include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
@@ -39,7 +40,7 @@ public:
   vtkOpenGLRenderWindow* Context = nullptr;
   std::unique_ptr<vtkOpenGLQuadHelper> Flush;
   std::string FlushSource;
-  unsigned int TimerQuery = 0;
+  vtkSPTGPUTimer Timer;
   int AccessInUse = -1;
   bool InterlockFailed = false;
   vtkSPTRenderSetup Setup;
@@ -50,8 +51,6 @@ public:
   void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
   bool DrawFaces(vtkTextureObject* table, int width, int height);
   bool DrawFlush(vtkTextureObject* table);
-  bool StartTimer();
-  double StopTimer();
   void ReleaseGraphicsResources(vtkWindow* window);
 };
 
@@ -140,31 +139,6 @@ bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
   return true;
 }
 
-bool vtkHAVSVolumeMapper::vtkInternals::StartTimer()
-{
-  // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
-  GLint activeQuery = 0;
-  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);
-  if (activeQuery != 0)
-  {
-    return false;
-  }
-  if (!this->TimerQuery)
-  {
-    glGenQueries(1, &this->TimerQuery);
-  }
-  glBeginQuery(GL_TIME_ELAPSED, this->TimerQuery);
-  return true;
-}
-
-double vtkHAVSVolumeMapper::vtkInternals::StopTimer()
-{
-  glEndQuery(GL_TIME_ELAPSED);
-  GLuint64 nanoseconds = 0;
-  glGetQueryObjectui64v(this->TimerQuery, GL_QUERY_RESULT, &nanoseconds);
-  return 1.0e-9 * static_cast<double>(nanoseconds);
-}
-
 void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Mesh->ReleaseGraphicsResources(window);
@@ -173,11 +147,7 @@ void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* wind
   this->KBuffer->ReleaseGraphicsResources(window);
   this->Flush.reset();
   this->FlushSource.clear();
-  if (this->TimerQuery && this->Context)
-  {
-    glDeleteQueries(1, &this->TimerQuery);
-  }
-  this->TimerQuery = 0;
+  this->Timer.Release(this->Context != nullptr);
   this->Context = nullptr;
   this->InterlockFailed = false;
 }
@@ -300,7 +270,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSPTRenderSetup::SavedState savedState(ostate);
-  const bool timed = internals.StartTimer();
+  internals.Timer.Start();
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;
   ostate->PushFramebufferBindings();
@@ -319,7 +289,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   {
     kbuffer->Resolve(x, y);
   }
-  this->LastGPUTime = timed ? internals.StopTimer() : -1.0;
+  this->LastGPUTime = internals.Timer.Stop();
   internals.AccessInUse = drawn ? access : -1;
   if (!drawn)
   {

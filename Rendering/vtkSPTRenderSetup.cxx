@@ -45,7 +45,8 @@ bool vtkSPTRenderSetup::BeginFrame(vtkUnstructuredGridVolumeMapper* mapper, vtkR
 }
 
 vtkSPTRenderSetup::SavedState::SavedState(vtkOpenGLState* state)
-  : Blend(state, GL_BLEND)
+  : State(state)
+  , Blend(state, GL_BLEND)
   , DepthTest(state, GL_DEPTH_TEST)
   , CullFace(state, GL_CULL_FACE)
   , ScissorTest(state, GL_SCISSOR_TEST)
@@ -55,6 +56,15 @@ vtkSPTRenderSetup::SavedState::SavedState(vtkOpenGLState* state)
   , ClearColor(state)
   , Viewport(state)
 {
+  // vtkOpenGLState has no scoped savers of these two.
+  state->vtkglGetDoublev(GL_DEPTH_CLEAR_VALUE, &this->ClearDepth);
+  state->vtkglGetFloatv(GL_POINT_SIZE, &this->PointSize);
+}
+
+vtkSPTRenderSetup::SavedState::~SavedState()
+{
+  this->State->vtkglClearDepth(this->ClearDepth);
+  this->State->vtkglPointSize(this->PointSize);
 }
 
 bool vtkSPTRenderSetup::UpdateMesh(vtkUnstructuredGridVolumeMapper* mapper,

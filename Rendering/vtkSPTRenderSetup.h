@@ -54,11 +54,17 @@ public:
   /**
    * The OpenGL state that the mappers change while they draw, restored when this goes out of
    * scope: blending, depth test and function, culling, scissor test, the depth and color
-   * masks, the clear color and the viewport.
+   * masks, the clear color and depth, the point size and the viewport.
    */
   struct SavedState
   {
     explicit SavedState(vtkOpenGLState* state);
+    ~SavedState();
+    SavedState(const SavedState&) = delete;
+    SavedState& operator=(const SavedState&) = delete;
+    vtkOpenGLState* State;
+    double ClearDepth = 1.0;
+    float PointSize = 1.0f;
     vtkOpenGLState::ScopedglEnableDisable Blend;
     vtkOpenGLState::ScopedglEnableDisable DepthTest;
     vtkOpenGLState::ScopedglEnableDisable CullFace;

@@ -17,6 +17,7 @@
 #include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTFrame.h"
+#include "vtkSPTGPUTimer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
 #include "vtkSPTRenderSetup.h"
@@ -130,6 +131,7 @@ public:
   RepetitionBudget Budget;
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
+  vtkSPTGPUTimer Timer;       // the time of the repetitions, for the budget
 
   // The visible SPT volumes of the renderer, vol's first when it is not among them.
   static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
@@ -370,25 +372,33 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const bool coverage = this->ExactCoverage && !internals.CoverageDrawn && !cheapest;
   if (count > 0)
   {
-    vtkNew<vtkTimerLog> timer;
-    timer->StartTimer();
+    // The budget's measure: the GPU time of the repetitions, or where another time query is
+    // running (they do not nest), the wall time until the GPU has finished them.
+    const bool timed = this->AutoAdjustRepetitions && internals.Timer.Start();
+    vtkNew<vtkTimerLog> clock;
+    clock->StartTimer();
     const int drawn = toTarget
       ? frame.DrawToTarget(first, count, perPass, coverage,
           this->ExactCoverage && (internals.CoverageDrawn || coverage), this->TargetError,
           internals.Target)
       : (frame.DrawRepetitions(first, count, perPass, coverage) ? count : -1);
+    double seconds = timed ? internals.Timer.Stop() : -1.0;
+    if (this->AutoAdjustRepetitions && !timed)
+    {
+      glFinish();
+      clock->StopTimer();
+      seconds = clock->GetElapsedTime();
+    }
     if (drawn < 0)
     {
       ostate->PopFramebufferBindings();
       internals.SumSignature.clear();
       return;
     }
-    if (this->AutoAdjustRepetitions && drawn > 0)
+    if (seconds >= 0.0 && drawn > 0)
     {
-      glFinish();
-      timer->StopTimer();
-      this->TimePerRepetition = timer->GetElapsedTime() / drawn;
-      internals.Budget.Measure(timer->GetElapsedTime(), drawn, perPass);
+      this->TimePerRepetition = seconds / drawn;
+      internals.Budget.Measure(seconds, drawn, perPass);
     }
     internals.AccumulatedRepetitions += drawn;
     internals.CoverageDrawn = internals.CoverageDrawn || (coverage && drawn > 0);
@@ -415,6 +425,7 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.SumSignature.clear();
   internals.ResetAccumulation();
   internals.Budget = RepetitionBudget();
+  internals.Timer.Release(window != nullptr);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

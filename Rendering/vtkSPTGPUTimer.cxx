@@ -1,0 +1,44 @@
+#include "vtkSPTGPUTimer.h"
+
+#include "vtk_glew.h"
+
+bool vtkSPTGPUTimer::Start()
+{
+  // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
+  GLint activeQuery = 0;
+  glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);
+  if (activeQuery != 0)
+  {
+    return false;
+  }
+  if (!this->Query)
+  {
+    glGenQueries(1, &this->Query);
+  }
+  glBeginQuery(GL_TIME_ELAPSED, this->Query);
+  this->Running = true;
+  return true;
+}
+
+double vtkSPTGPUTimer::Stop()
+{
+  if (!this->Running)
+  {
+    return -1.0;
+  }
+  glEndQuery(GL_TIME_ELAPSED);
+  this->Running = false;
+  GLuint64 nanoseconds = 0;
+  glGetQueryObjectui64v(this->Query, GL_QUERY_RESULT, &nanoseconds);
+  return 1.0e-9 * static_cast<double>(nanoseconds);
+}
+
+void vtkSPTGPUTimer::Release(bool contextCurrent)
+{
+  if (this->Query && contextCurrent)
+  {
+    glDeleteQueries(1, &this->Query);
+  }
+  this->Query = 0;
+  this->Running = false;
+}
