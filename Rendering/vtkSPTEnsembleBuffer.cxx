@@ -17,6 +17,7 @@
 #include "vtkSPTResolveFS.h"
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkSPTEnsembleBuffer);
@@ -78,10 +79,16 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthForm
 
   if (!this->Accumulate)
   {
-    this->Accumulate.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTAccumulateFS, ""));
+    // Adding a pass to the sum, or to both sums: a second output only where one is bound.
+    std::string one = vtkSPTAccumulateFS;
+    std::string both = vtkSPTAccumulateFS;
+    vtkShaderProgram::Substitute(one, "//SPT::Defines::Dec", "");
+    vtkShaderProgram::Substitute(both, "//SPT::Defines::Dec", "#define SPT_SECOND_HALF");
+    this->Accumulate.reset(new vtkOpenGLQuadHelper(renWin, nullptr, one.c_str(), ""));
+    this->AccumulateBoth.reset(new vtkOpenGLQuadHelper(renWin, nullptr, both.c_str(), ""));
     this->Mean.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTResolveFS, ""));
   }
-  ok = ok && this->Accumulate->Program && this->Mean->Program;
+  ok = ok && this->Accumulate->Program && this->AccumulateBoth->Program && this->Mean->Program;
   if (!ok)
   {
     vtkErrorMacro("Could not allocate the " << w << "x" << h
@@ -140,10 +147,12 @@ void vtkSPTEnsembleBuffer::EndPass(bool secondHalf)
   ostate->vtkglEnable(GL_BLEND);
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-  this->Context->GetShaderCache()->ReadyShaderProgram(this->Accumulate->Program);
+  vtkOpenGLQuadHelper* accumulate =
+    secondHalf && this->Halves ? this->AccumulateBoth.get() : this->Accumulate.get();
+  this->Context->GetShaderCache()->ReadyShaderProgram(accumulate->Program);
   this->PassColor->Activate();
-  this->Accumulate->Program->SetUniformi("passTexture", this->PassColor->GetTextureUnit());
-  this->Accumulate->Render();
+  accumulate->Program->SetUniformi("passTexture", this->PassColor->GetTextureUnit());
+  accumulate->Render();
   this->PassColor->Deactivate();
 }
 
@@ -158,8 +167,12 @@ bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
   this->Halves = false;
   if (!halves)
   {
-    this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
-    this->SecondHalf->ReleaseGraphicsResources(this->Context);
+    if (this->HalvesSum)
+    {
+      this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
+      this->SecondHalf->ReleaseGraphicsResources(this->Context);
+      this->HalvesSum = 0;
+    }
     return true;
   }
   const int w = this->GetPassWidth();
@@ -388,6 +401,7 @@ size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
 void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
+  this->AccumulateBoth.reset();
   this->Mean.reset();
   this->NoiseQuad.reset();
   this->Halves = false;

@@ -156,6 +156,7 @@ private:
   unsigned int HalvesSum = 0; // the sum texture that HalvesFramebuffer holds
   vtkNew<vtkOpenGLFramebufferObject> NoiseFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
+  std::unique_ptr<vtkOpenGLQuadHelper> AccumulateBoth; // to the sum and the second half's
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
   std::unique_ptr<vtkOpenGLQuadHelper> NoiseQuad;
 };

@@ -87,7 +87,7 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* en
 }
 
 vtkShaderProgram* vtkSPTFrame::ReadyProgram(
-  bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes)
+  bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
@@ -108,6 +108,10 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   if (kind == PassKind::Colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR)
   {
     defines += "\n#define SPT_VISIBILITY_WEIGHTED";
+  }
+  if (kind == PassKind::Colors && halves)
+  {
+    defines += "\n#define SPT_SECOND_HALF"; // a second output only where one is bound
   }
   // VTK declares GLSL 1.50; image load/store comes as the extension.
   const bool atomics =
@@ -134,6 +138,8 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // A render of fewer repetitions than a group draws only those: the fragment loops are sized
   // by the compiled count.
   const int lanes = std::min(perPass, count);
+  // Active before the frame's uniforms name its unit.
+  ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
   vtkShaderProgram* programs[NumberOfPassKinds][2] = {};
   for (int k = 0; k < NumberOfPassKinds; ++k)
   {
@@ -145,8 +151,8 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
       {
         continue;
       }
-      program =
-        this->ReadyProgram(cellScalars, this->NearPlaneCuts, static_cast<PassKind>(k), lanes);
+      program = this->ReadyProgram(
+        cellScalars, this->NearPlaneCuts, static_cast<PassKind>(k), lanes, halves);
       if (!program)
       {
         vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
@@ -161,7 +167,6 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   {
     return false;
   }
-  ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
 
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);

@@ -108,7 +108,8 @@ public:
 private:
   using Traversal = std::function<void(PassKind, int, int)>;
 
-  vtkShaderProgram* ReadyProgram(bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes);
+  vtkShaderProgram* ReadyProgram(
+    bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves,
     const Traversal& traverse);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;

@@ -7,8 +7,8 @@
 //   front of the survivor contributes what it would composite;
 // - otherwise (the survivor estimator), its color written opaque once for each repetition
 //   whose survivor it is.
-// When the ensemble's noise is estimated, what the repetitions from secondHalfStart on add also
-// goes to the second half's sum (the second draw buffer). Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
+// With SPT_SECOND_HALF (the ensemble's noise is estimated), what the repetitions from
+// secondHalfStart on add also goes to the second half's sum (the second draw buffer). Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
 // none is discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 uniform int secondHalfStart; // the first repetition of the second half
@@ -38,7 +38,9 @@ void main()
   }
   vec4 color = preIntegrated(segment);
   gl_FragData[0] = float(count) * color;
+#ifdef SPT_SECOND_HALF
   gl_FragData[1] = float(inSecondHalf) * color;
+#endif
 #else
   bool holdsOne = false; // the minimum of some repetition is this fragment's key
   for (int r = 0; r < lanes; ++r)
@@ -62,6 +64,8 @@ void main()
     inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
   }
   gl_FragData[0] = float(count) * vec4(color.rgb / color.a, 1.0);
+#ifdef SPT_SECOND_HALF
   gl_FragData[1] = float(inSecondHalf) * vec4(color.rgb / color.a, 1.0);
+#endif
 #endif
 }

@@ -59,13 +59,16 @@ def environment(**overrides: str) -> Dict[str, str]:
 
 def run(command: Sequence[str], env: Optional[Dict[str, str]] = None,
         cwd: Optional[os.PathLike] = None) -> subprocess.CompletedProcess:
-    """Run a ParaView executable; fail the test with its output if it fails."""
+    """Run a ParaView executable; fail the test with its output if it fails, or if VTK's
+    OpenGL state checks reported an error (ParaView's build has them on)."""
     result = subprocess.run([str(c) for c in command], env=env or environment(), cwd=cwd,
                             capture_output=True, text=True, timeout=SUBPROCESS_TIMEOUT,
                             check=False)
     assert result.returncode == 0, (
         f"{' '.join(map(str, command))} failed ({result.returncode}):\n"
         f"{result.stdout[-4000:]}\n{result.stderr[-4000:]}")
+    assert "OpenGL errors detected" not in result.stderr, (
+        f"{' '.join(map(str, command))} left OpenGL errors:\n{result.stderr[-4000:]}")
     return result
 
 

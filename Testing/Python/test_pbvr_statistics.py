@@ -27,6 +27,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 from spt import data, figures, metrics, render, statistics
 
 from conftest import load_or_skip
+from scene_support import reference, scene
 from robustness_support import opaque_plane
 from statistics_checks import (Z, check_alpha_noise_is_bernoulli,
                                check_noise_falls_as_one_over_repetitions,
@@ -37,16 +38,12 @@ LEVELS = {"spx": (4, 16, 64, 256), "bluntfin": (4, 16, 64)}
 SCENES = list(LEVELS)
 
 
-@lru_cache(maxsize=None)
 def _scene(name):
-    load_or_skip(name)
-    return figures.scene(name)
+    return scene(name)
 
 
-@lru_cache(maxsize=None)
 def _reference(name):
-    s = _scene(name)
-    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
+    return reference(name, SIZE)
 
 
 @lru_cache(maxsize=None)

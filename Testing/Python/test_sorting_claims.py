@@ -21,24 +21,19 @@ from functools import lru_cache
 
 import pytest
 
-from spt import figures, metrics, render, statistics
+from spt import metrics, render, statistics
 
-from conftest import load_or_skip
+from scene_support import reference, scene
 
 SIZE = (128, 128)
 
 
-@lru_cache(maxsize=None)
 def _scene(name):
-    if name != "default":
-        load_or_skip(name)
-    return figures.scene(name)
+    return scene(name)
 
 
-@lru_cache(maxsize=None)
 def _reference(name):
-    s = _scene(name)
-    return render.reference(s.grid, s.property, s.view, SIZE).image
+    return reference(name, SIZE[0])
 
 
 @lru_cache(maxsize=None)

@@ -19,9 +19,9 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import figures, metrics, render, statistics
+from spt import metrics, render, statistics
 
-from conftest import load_or_skip
+from scene_support import reference, scene
 from robustness_support import opaque_plane
 from statistics_checks import (Z, check_alpha_noise_is_bernoulli,
                                check_noise_falls_as_one_over_repetitions,
@@ -32,17 +32,12 @@ LEVELS = {"default": (4, 16, 64), "spx": (4, 16, 64, 256), "bluntfin": (4, 16), 
 SCENES = list(LEVELS)
 
 
-@lru_cache(maxsize=None)
 def _scene(name):
-    if name != "default":
-        load_or_skip(name)
-    return figures.scene(name)
+    return scene(name)
 
 
-@lru_cache(maxsize=None)
 def _reference(name):
-    s = _scene(name)
-    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
+    return reference(name, SIZE)
 
 
 @lru_cache(maxsize=None)

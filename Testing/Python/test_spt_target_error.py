@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 import vtk
 
-from spt import data, figures, metrics, render, statistics
+from spt import data, metrics, render, statistics
 
-from conftest import load_or_skip
+from scene_support import reference, scene
 from statistics_checks import Z
 
 SIZE = 128
@@ -31,17 +31,12 @@ TARGETS = {"default": 0.006, "spx": 0.006, "bluntfin": 0.005, "post": 0.01}
 SCENES = list(TARGETS)
 
 
-@lru_cache(maxsize=None)
 def _scene(name):
-    if name != "default":
-        load_or_skip(name)
-    return figures.scene(name)
+    return scene(name)
 
 
-@lru_cache(maxsize=None)
 def _reference(name):
-    s = _scene(name)
-    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
+    return reference(name, SIZE)
 
 
 def _mapper(level, seed, target):

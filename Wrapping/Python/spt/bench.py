@@ -34,7 +34,6 @@ import pathlib
 import shutil
 import signal
 import subprocess
-import sys
 import tempfile
 import time
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Tuple

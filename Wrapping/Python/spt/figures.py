@@ -11,7 +11,7 @@ import dataclasses
 import json
 import math
 import pathlib
-from typing import Callable, Dict, List, Optional, Sequence
+from typing import Callable, Dict, List, Sequence
 
 import numpy as np
 from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
