@@ -82,20 +82,20 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* en
 {
   for (const Volume& volume : volumes)
   {
-    this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
+    this->ClipPlanesCut = this->ClipPlanesCut || volume.Matrices->ClipPlanesCutBounds;
   }
 }
 
 vtkShaderProgram* vtkSPTFrame::ReadyProgram(
-  bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes, bool halves)
+  bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
-  // Both stages: scalars per cell, the path for cells cut by the near plane (compiled in only
-  // while the near plane cuts some volume's bounds: a fragment stage pays for its branches),
+  // Both stages: scalars per cell, the path for cells that a clipping plane cuts (compiled in
+  // only while one cuts some volume's bounds: a fragment stage pays for its branches),
   // and the scene depth (only when opaque geometry was drawn).
   std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
-  common += nearPlaneCuts ? "#define SPT_NEAR_PLANE_CUTS\n" : "";
+  common += clippedCells ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   std::string geometry = vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
@@ -152,7 +152,7 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
         continue;
       }
       program = this->ReadyProgram(
-        cellScalars, this->NearPlaneCuts, static_cast<PassKind>(k), lanes, halves);
+        cellScalars, this->ClipPlanesCut, static_cast<PassKind>(k), lanes, halves);
       if (!program)
       {
         vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");

@@ -109,7 +109,7 @@ private:
   using Traversal = std::function<void(PassKind, int, int)>;
 
   vtkShaderProgram* ReadyProgram(
-    bool cellScalars, bool nearPlaneCuts, PassKind kind, int lanes, bool halves);
+    bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves,
     const Traversal& traverse);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
@@ -121,7 +121,7 @@ private:
   const std::vector<Volume>& Volumes;
   Settings FrameSettings;
   vtkObject* Reporter;
-  bool NearPlaneCuts = false; // the near plane cuts the bounds of some volume
+  bool ClipPlanesCut = false; // a clipping plane cuts the bounds of some volume
 };
 
 #endif

@@ -75,10 +75,11 @@ void vtkSPTViewMatrices::Compute(
   }
   this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
 
-  // A corner of the bounding box in front of the near plane (or behind the eye) has clip
-  // z < -w; the box is convex, so without such a corner no cell reaches there.
+  // A corner of the bounding box beyond the near plane (or behind the eye) or a side plane has
+  // clip z < -w, |x| > w or |y| > w; the box is convex, so without such a corner no cell
+  // reaches there.
   const double* bounds = mesh->GetNormalizedBounds();
-  this->NearPlaneCutsBounds = false;
+  this->ClipPlanesCutBounds = false;
   for (int corner = 0; corner < 8; ++corner)
   {
     const double point[4] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
@@ -94,7 +95,9 @@ void vtkSPTViewMatrices::Compute(
       clip[i] = this->ViewToClip[i][0] * view[0] + this->ViewToClip[i][1] * view[1] +
         this->ViewToClip[i][2] * view[2] + this->ViewToClip[i][3] * view[3];
     }
-    this->NearPlaneCutsBounds = this->NearPlaneCutsBounds || !(clip[2] >= -clip[3]);
+    const bool inside = clip[2] >= -clip[3] && std::abs(clip[0]) <= clip[3] &&
+      std::abs(clip[1]) <= clip[3];
+    this->ClipPlanesCutBounds = this->ClipPlanesCutBounds || !inside;
   }
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)

@@ -34,9 +34,9 @@ struct SPTRENDERING_EXPORT vtkSPTViewMatrices
   double ViewScale = 1.0;
   /// Whether the camera projects in parallel.
   bool ParallelProjection = false;
-  /// Whether the near plane cuts the mesh's bounding box (the camera is inside or close to
-  /// it): then some tetrahedra may reach in front of the near plane or behind the eye.
-  bool NearPlaneCutsBounds = false;
+  /// Whether a clipping plane (near or side) cuts the mesh's bounding box, as with the camera
+  /// inside or close to the mesh or a view zoomed into it: then some tetrahedra may be cut.
+  bool ClipPlanesCutBounds = false;
   /// Whether model -> view mirrors space (negative determinant), which swaps the facing of
   /// triangles on the screen.
   bool Mirrored = false;

@@ -12,8 +12,8 @@ noperspective in vec4 frontVCOverW;
 noperspective in vec4 backVCOverW;
 noperspective in vec2 scalarsOverW;
 flat in int tetrahedronId;
-#ifdef SPT_NEAR_PLANE_CUTS
-flat in int cutByNearPlane;
+#ifdef SPT_CLIPPED_CELLS
+flat in int clippedCell;
 #endif
 
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
@@ -31,7 +31,7 @@ uniform mat4 DCVCMatrix;               // clip -> view
 uniform mat4 VCDCMatrix;               // view -> clip
 uniform mat4 MCVCMatrix;               // model -> view
 
-// The mesh, for the cells cut by the near plane: four point ids per tetrahedron, the points
+// The mesh, for the cells that a clipping plane cuts: four point ids per tetrahedron, the points
 // (model coordinates) and their scalars (or one scalar per tetrahedron).
 uniform usamplerBuffer tetrahedra;
 uniform samplerBuffer points;
@@ -68,12 +68,12 @@ float scalarAt(uint pointId)
 #endif
 }
 
-#ifdef SPT_NEAR_PLANE_CUTS
-// The segment of a cell cut by the near plane: the sample's ray runs from the near plane
+#ifdef SPT_CLIPPED_CELLS
+// The segment of a cell that a clipping plane cuts: the sample's ray runs from the near plane
 // (t = 0) to the far plane (t = 1), enters the cell at the last of the entry faces' planes
 // and leaves it at the first of the exit faces'. The scalars at both ends are interpolated
 // with the barycentric weights of the cell. False when the ray misses the cell.
-bool nearPlaneSegment(out Segment segment)
+bool cellSegment(out Segment segment)
 {
   vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
   vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
@@ -140,10 +140,10 @@ bool nearPlaneSegment(out Segment segment)
 // nothing of it is visible.
 bool visibleSegment(out Segment segment)
 {
-#ifdef SPT_NEAR_PLANE_CUTS
-  if (cutByNearPlane != 0)
+#ifdef SPT_CLIPPED_CELLS
+  if (clippedCell != 0)
   {
-    if (!nearPlaneSegment(segment))
+    if (!cellSegment(segment))
     {
       return false;
     }

@@ -13,14 +13,16 @@
 // interpolated without perspective, so that the fragment stage recovers the exact front and
 // back points of its own ray under perspective and parallel projection alike.
 //
-// That needs every vertex in front of the near plane. A tetrahedron that the near plane cuts
-// (the camera inside or close to the mesh, possibly with vertices behind the eye) is drawn as
-// its exit faces instead, which the hardware clips at the near plane; each of their fragments
-// finds its own entry, the near plane or the nearest entry face (vtkSPTSegmentFS.glsl).
+// That needs the whole tetrahedron inside the view volume: clipping does not interpolate those
+// values right where w varies much across a triangle. A tetrahedron that a clipping plane cuts
+// (the near plane with the camera inside or close to the mesh, possibly with vertices behind
+// the eye; a side plane when the view is zoomed in) is drawn as its exit faces instead, which
+// the hardware clips; each of their fragments finds its own segment from the cell's face
+// planes, from the near plane or the nearest entry face on (vtkSPTTetrahedraFS.glsl).
 
 layout(lines_adjacency) in;
-#ifdef SPT_NEAR_PLANE_CUTS
-layout(triangle_strip, max_vertices = 9) out; // up to three exit faces
+#ifdef SPT_CLIPPED_CELLS
+layout(triangle_strip, max_vertices = 12) out; // all four faces with the eye inside
 #else
 layout(triangle_strip, max_vertices = 7) out;
 #endif
@@ -40,8 +42,8 @@ noperspective out vec4 frontVCOverW; // (front point, 1) / w_front
 noperspective out vec4 backVCOverW;  // (back point, 1) / w_back
 noperspective out vec2 scalarsOverW; // (front scalar / w_front, back scalar / w_back)
 flat out int tetrahedronId;
-#ifdef SPT_NEAR_PLANE_CUTS
-flat out int cutByNearPlane; // 1: the fragment stage computes the segment from the cell
+#ifdef SPT_CLIPPED_CELLS
+flat out int clippedCell; // 1: the fragment stage computes the segment from the cell
 #endif
 
 vec3 vertexVC[4];
@@ -70,15 +72,15 @@ void emitPoint(vec3 frontVC, vec4 frontDC, float frontScalar, vec3 backVC, vec4 
   backVCOverW = vec4(backVC, 1.0) / backDC.w;
   scalarsOverW = vec2(frontScalar / frontDC.w, backScalar / backDC.w);
   tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
-#ifdef SPT_NEAR_PLANE_CUTS
-  cutByNearPlane = 0;
+#ifdef SPT_CLIPPED_CELLS
+  clippedCell = 0;
 #endif
   EmitVertex();
 }
 
-#ifdef SPT_NEAR_PLANE_CUTS
-// The exit faces of a tetrahedron cut by the near plane: the faces whose plane has the eye on
-// its inner side. Each pixel the cell covers behind the near plane gets one fragment (the
+#ifdef SPT_CLIPPED_CELLS
+// The exit faces of a tetrahedron that a clipping plane cuts: the faces whose plane has the eye
+// on its inner side. Each pixel the cell covers in the view volume gets one fragment (the
 // point where its ray leaves the cell), which carries nothing but the cell's id.
 void emitExitFaces()
 {
@@ -105,7 +107,7 @@ void emitExitFaces()
       backVCOverW = vec4(0.0);
       scalarsOverW = vec2(0.0);
       tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
-      cutByNearPlane = 1;
+      clippedCell = 1;
       EmitVertex();
     }
     EndPrimitive();
@@ -185,24 +187,26 @@ void emitClass2(int a, int b, int c, int d, float u, float v)
 
 void main()
 {
-  // Clip space puts a point in front of the near plane, or behind the eye, at z < -w.
-  int inFrontOfNearPlane = 0;
+  // Clip space puts a point outside the view volume's near and side planes at z < -w,
+  // |x| > w or |y| > w (a point behind the eye too); count the vertices beyond each plane.
+  ivec4 beyond = ivec4(0);
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
     vertexDC[i] = positionDCVSOutput[i];
-    inFrontOfNearPlane += vertexDC[i].z < -vertexDC[i].w ? 1 : 0;
+    vec4 p = vertexDC[i];
+    beyond += ivec4(p.z < -p.w, p.x < -p.w, p.x > p.w, p.y < -p.w || p.y > p.w);
   }
-  if (inFrontOfNearPlane == 4)
+  if (any(equal(beyond.xyz, ivec3(4))))
   {
-    return; // wholly in front of the near plane: nothing visible
+    return; // wholly beyond one plane: nothing visible
   }
-  if (inFrontOfNearPlane > 0)
+  if (any(greaterThan(beyond, ivec4(0))))
   {
-#ifdef SPT_NEAR_PLANE_CUTS
+#ifdef SPT_CLIPPED_CELLS
     emitExitFaces();
 #endif
-    return; // (without the near plane cutting the mesh's bounds, this cannot happen)
+    return; // (without a plane cutting the mesh's bounds, this cannot happen)
   }
   for (int i = 0; i < 4; ++i)
   {

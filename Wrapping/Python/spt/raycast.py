@@ -1,6 +1,7 @@
 """An exact ray caster of the project's own, in NumPy: the second reference.
 
-One ray through the centre of each pixel; each tetrahedron the ray crosses gives one segment
+One ray through the centre of each pixel, from the near to the far clipping plane, wherever
+the camera is (inside the mesh too); each tetrahedron the ray crosses gives one segment
 (entry and exit by clipping the ray against the tetrahedron's four face planes, the scalar
 from the cell's linear interpolant); each segment is integrated with the optical model of
 :class:`vtkSPTPreIntegrationTable` and VTK's ``vtkUnstructuredGridLinearRayIntegrator``
@@ -151,20 +152,24 @@ def _camera_rays(camera: vtkCamera, width: int, height: int
 
 
 def _pairs(mesh: _Mesh, m: np.ndarray, width: int, height: int):
-    """Batches of (tetrahedron, pixel) pairs: the pixel centres in each projected bounding box."""
+    """Batches of (tetrahedron, pixel) pairs: the pixel centres in each projected bounding box;
+    every pixel for a tetrahedron that reaches the eye plane or behind it, whose projection
+    is unbounded (the rays start at the near plane, so its part in view is still found)."""
     n = len(mesh.vertices)
     homogeneous = np.concatenate([mesh.vertices, np.ones((n, 4, 1))], axis=2) @ m.T
     w = homogeneous[..., 3]
-    visible = (w > 0).all(axis=1)
+    projected = (w > 0).all(axis=1)
     ndc = homogeneous[..., :2] / np.where(w > 0, w, 1.0)[..., None]
     px = (ndc[..., 0] + 1.0) * 0.5 * width - 0.5
     py = (ndc[..., 1] + 1.0) * 0.5 * height - 0.5
-    i0 = np.clip(np.ceil(px.min(axis=1)), 0, width).astype(np.int64)
-    i1 = np.clip(np.floor(px.max(axis=1)), -1, width - 1).astype(np.int64)
-    j0 = np.clip(np.ceil(py.min(axis=1)), 0, height).astype(np.int64)
-    j1 = np.clip(np.floor(py.max(axis=1)), -1, height - 1).astype(np.int64)
-    nx = np.where(visible, np.maximum(i1 - i0 + 1, 0), 0)
-    ny = np.where(visible, np.maximum(j1 - j0 + 1, 0), 0)
+    i0 = np.where(projected, np.clip(np.ceil(px.min(axis=1)), 0, width), 0).astype(np.int64)
+    i1 = np.where(projected, np.clip(np.floor(px.max(axis=1)), -1, width - 1),
+                  width - 1).astype(np.int64)
+    j0 = np.where(projected, np.clip(np.ceil(py.min(axis=1)), 0, height), 0).astype(np.int64)
+    j1 = np.where(projected, np.clip(np.floor(py.max(axis=1)), -1, height - 1),
+                  height - 1).astype(np.int64)
+    nx = np.maximum(i1 - i0 + 1, 0)
+    ny = np.maximum(j1 - j0 + 1, 0)
     counts = nx * ny
     cumulative = np.cumsum(counts)
     start = 0
