@@ -2,17 +2,17 @@
 
 from functools import lru_cache
 
-from spt import figures, render
+from spt import render, scenes
 
 from conftest import load_or_skip
 
 
 @lru_cache(maxsize=None)
-def scene(name: str) -> figures.Scene:
-    """A scene of spt.figures; a skip when its data set is not in SPT_DATA_DIR."""
+def scene(name: str) -> scenes.Scene:
+    """A scene of spt.scenes; a skip when its data set is not in SPT_DATA_DIR."""
     if name != "default":
         load_or_skip(name)
-    return figures.scene(name)
+    return scenes.scene(name)
 
 
 @lru_cache(maxsize=None)

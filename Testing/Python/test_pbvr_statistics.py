@@ -24,7 +24,7 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk
 
-from spt import data, figures, metrics, render, statistics
+from spt import data, metrics, render, scenes, statistics
 
 from conftest import load_or_skip
 from scene_support import reference, scene
@@ -145,7 +145,7 @@ def _block_mean(image, factor):
 def test_subpixel_level_averages_subpixels(have_display):
     """SubpixelLevel 2: the expectation is near the 2x2 box filter of the reference at twice
     the resolution, and the alpha noise is the subpixels' a (1 - a) / (4 L)."""
-    s = figures.scene("default")
+    s = scenes.scene("default")
     level, size = 16, SIZE // 2
     fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
     reference = _block_mean(fine, 2)
@@ -162,7 +162,7 @@ def test_subpixel_level_averages_subpixels(have_display):
 
 
 def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
-    s = figures.scene("default")
+    s = scenes.scene("default")
     actor = opaque_plane()
     reference = render.reference(s.grid, s.property, s.view, (SIZE, SIZE), method="vtk",
                                  actors=[actor]).image
@@ -185,7 +185,7 @@ def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display)
     papers is biased several times more than the noise at 64 repetitions."""
     grid = load_or_skip("bluntfin")
     prop = data.transfer_function(grid, "steep", steep_center=0.3)
-    view = figures.scene("bluntfin").view
+    view = scenes.scene("bluntfin").view
     reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
     level = 64
     biases = {}

@@ -15,14 +15,14 @@ import numpy as np
 import pytest
 import vtk
 
-from spt import data, figures, metrics, render, statistics
+from spt import data, metrics, render, scenes, statistics
 
 SIZE = 128
 
 
 @lru_cache(maxsize=None)
 def _scene():
-    return figures.scene("default")
+    return scenes.scene("default")
 
 
 @lru_cache(maxsize=None)

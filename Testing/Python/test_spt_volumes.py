@@ -16,7 +16,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import figures, metrics, render, statistics
+from spt import metrics, render, scenes, statistics
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkAppendFilter
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
@@ -33,7 +33,7 @@ SCENES = ("default", "spx")
 def _scene(name):
     if name != "default":
         load_or_skip(name)
-    return figures.scene(name)
+    return scenes.scene(name)
 
 
 def _offset(grid):

@@ -25,6 +25,9 @@ from typing import Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import plots
+from .progress import Progress
+
 #: Repetition levels L of the default experiment: 1, 2, 4, ..., 4096.
 DEFAULT_LEVELS: Tuple[int, ...] = tuple(2 ** k for k in range(13))
 
@@ -115,7 +118,7 @@ def fit_slope(levels: Sequence[float],
 
 def run(n_segments: int = 16, levels: Sequence[int] = DEFAULT_LEVELS,
         n_rays: int = 1000, max_alpha: float = 0.5,
-        seed: int = 2009) -> Dict[str, object]:
+        seed: int = 2009, progress: Optional[Progress] = None) -> Dict[str, object]:
     """Mean absolute error of the stochastic estimate versus repetitions.
 
     For every level L, ``n_rays`` fresh random rays are drawn and each is
@@ -137,6 +140,8 @@ def run(n_segments: int = 16, levels: Sequence[int] = DEFAULT_LEVELS,
         errors.append(deviation.mean())
         stderrs.append(deviation.std(ddof=1) / math.sqrt(n_rays)
                        if n_rays > 1 else math.nan)
+        if progress is not None:
+            progress.step(f"L={level}")
     slope, intercept = fit_slope(levels, errors)
     return {"levels": levels, "error": np.asarray(errors),
             "stderr": np.asarray(stderrs), "slope": slope,
@@ -176,14 +181,11 @@ def plot(result: Dict[str, object],
          path: Union[str, pathlib.Path]) -> None:
     """Write a log-log PNG of mean absolute error versus repetitions L,
     with the least-squares fit and a 1/sqrt(L) reference line."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
     levels = np.asarray(result["levels"], dtype=float)
     error = np.asarray(result["error"], dtype=float)
     slope, intercept = float(result["slope"]), float(result["intercept"])
     anchor = math.exp(float(np.mean(np.log(error) + 0.5 * np.log(levels))))
-    figure = Figure(figsize=(6.0, 4.5), dpi=120)
+    figure = plots.figure(6.0, 4.5)
     axes = figure.add_subplot(1, 1, 1)
     axes.errorbar(levels, error, yerr=result.get("stderr"), fmt="o",
                   color="tab:blue", label="stochastic estimate")
@@ -194,17 +196,11 @@ def plot(result: Dict[str, object],
               label=r"reference $\propto 1/\sqrt{L}$")
     axes.set_xscale("log", base=2)
     axes.set_yscale("log")
-    axes.set_xlabel("repetitions L")
-    axes.set_ylabel("mean absolute error of brightness")
-    axes.set_title(
-        "Accuracy of stochastic volume rendering\n"
-        f"{result['n_segments']} segments, alpha ~ U(0, "
-        f"{result['max_alpha']}), {result['n_rays']} rays per L",
-        fontsize=10)
-    axes.grid(True, which="both", alpha=0.3)
-    axes.legend()
-    figure.tight_layout()
-    FigureCanvasAgg(figure).print_png(str(path))
+    plots.finish_axes(axes, "repetitions L", "mean absolute error of brightness",
+                      "Accuracy of stochastic volume rendering\n"
+                      f"{result['n_segments']} segments, alpha ~ U(0, "
+                      f"{result['max_alpha']}), {result['n_rays']} rays per L")
+    plots.save(figure, path)
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -42,7 +42,7 @@ def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
 
 
 def _datasets(text: str) -> List[str]:
-    from .figures import SCENES
+    from .scenes import SCENES
 
     return _names(text, list(SCENES), "data set")
 
@@ -99,12 +99,7 @@ def _seed(text: str) -> int:
     return value
 
 
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="python3 -m spt",
-        description="Sorting-free pre-integrated projected tetrahedra (SPT) for VTK.")
-    commands = parser.add_subparsers(dest="command", required=True)
-
+def _add_demo(commands) -> None:
     demo = commands.add_parser(
         "demo", help="render a data set with SPT, VTK's projected tetrahedra and the reference")
     demo.add_argument("--output", type=_output_directory, default=pathlib.Path("out/demo"))
@@ -118,8 +113,8 @@ def _parser() -> argparse.ArgumentParser:
                       help="data set (default: drill, the generated drill of 200,000 "
                            "tetrahedra; 'default' is the embedded helix mesh of the tests)")
 
-    figures = commands.add_parser("figures", help="reproduce the paper's figures")
-    figure = figures.add_subparsers(dest="figure", required=True)
+
+def _add_convergence_and_pbvr(figure) -> None:
     convergence = figure.add_parser(
         "convergence", help="RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
     convergence.add_argument("--output", type=_output_directory,
@@ -137,6 +132,9 @@ def _parser() -> argparse.ArgumentParser:
     pbvr.add_argument("--levels", type=_levels, default=[4, 16, 64, 144],
                       help="repetition levels of the convergence curves (default 4,16,64,144)")
     pbvr.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+
+
+def _add_sampling_sorting_accuracy(figure) -> None:
     sampling = figure.add_parser(
         "sampling", help="several repetitions per pass and stratified thresholds, measured")
     sampling.add_argument("--output", type=_output_directory,
@@ -159,13 +157,15 @@ def _parser() -> argparse.ArgumentParser:
                           default=pathlib.Path("out/figures/accuracy"))
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
 
+
+def _add_bench(commands) -> None:
     bench = commands.add_parser(
         "bench", help="time and GPU memory of every method, fitted models and a report "
                       "(long: about an hour; --quick takes minutes)")
     bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
     bench.add_argument("--sections", type=_sections, default=None,
                        help="comma-separated sections to run (default: all): "
-                            "cells,repetitions,subpixels,image,quality,host,large")
+                            "race,cells,repetitions,subpixels,image,quality,host,large")
     bench.add_argument("--shape", choices=("drill", "torus", "helix"), default="drill",
                        help="generated mesh of the sweeps (default drill)")
     bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,
@@ -177,9 +177,18 @@ def _parser() -> argparse.ArgumentParser:
                             "methods' results in OUTPUT/bench.json are kept")
     bench.add_argument("--frames", type=_positive_int(100), default=None,
                        help="timed frames per point, their median is reported (default 3)")
+    bench.add_argument("--scenes", type=_race_scenes, default=None,
+                       help="comma-separated scenes of the race (default: spx,torus,bluntfin,"
+                            "post,drill-0.2M,drill-1M,drill-3M)")
+    bench.add_argument("--max-repetitions", type=_positive_int(65536), default=None,
+                       help="the race's largest repetition level (default 256)")
+    bench.add_argument("--race-size", type=_positive_int(MAX_IMAGE_SIZE), default=None,
+                       help="the race's image width and height (default 256)")
     bench.add_argument("--quick", action="store_true",
                        help="every section at small sizes, a smoke run of a few minutes")
 
+
+def _add_mesh(commands) -> None:
     mesh = commands.add_parser(
         "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
     mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
@@ -190,6 +199,20 @@ def _parser() -> argparse.ArgumentParser:
                       help="the .vtk file to write (VTK legacy binary)")
     mesh.add_argument("--no-cache", action="store_true",
                       help="mesh again instead of reading SPT_CACHE_DIR (which is not written)")
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python3 -m spt",
+        description="Sorting-free pre-integrated projected tetrahedra (SPT) for VTK.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    _add_demo(commands)
+    figures = commands.add_parser("figures", help="reproduce the paper's figures")
+    figure = figures.add_subparsers(dest="figure", required=True)
+    _add_convergence_and_pbvr(figure)
+    _add_sampling_sorting_accuracy(figure)
+    _add_bench(commands)
+    _add_mesh(commands)
     return parser
 
 
@@ -202,18 +225,19 @@ def _sections(text: str) -> List[str]:
 def _methods(text: str) -> List[str]:
     from .bench import METHODS
 
-    return _names(text, tuple(METHODS) + ("havs4",), "method")
+    return _names(text, tuple(METHODS), "method")
+
+
+def _race_scenes(text: str) -> List[str]:
+    from .bench.race import scene_names
+
+    return _names(text, scene_names(), "scene")
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
-    from .tables import format_value
+    from .tables import print_table
 
-    cells = [list(header)] + [[format_value(v) for v in row] for row in rows]
-    widths = [max(len(row[i]) for row in cells) for i in range(len(header))]
-    for index, row in enumerate(cells):
-        print("  ".join(value.ljust(width) for value, width in zip(row, widths)))
-        if index == 0:
-            print("  ".join("-" * width for width in widths))
+    print_table(header, rows)
 
 
 def _bench(arguments: argparse.Namespace) -> None:
@@ -232,6 +256,12 @@ def _bench(arguments: argparse.Namespace) -> None:
         changes["frames"] = arguments.frames
     if arguments.methods is not None:
         changes["only_methods"] = tuple(arguments.methods)
+    if arguments.scenes is not None:
+        changes["race_scenes"] = tuple(arguments.scenes)
+    if arguments.max_repetitions is not None:
+        changes["race_max_repetitions"] = arguments.max_repetitions
+    if arguments.race_size is not None:
+        changes["race_size"] = arguments.race_size
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)
@@ -239,67 +269,94 @@ def _bench(arguments: argparse.Namespace) -> None:
     print(f"Results, plots and bench.md written to {arguments.output}")
 
 
+def _demo(arguments: argparse.Namespace) -> None:
+    from . import figures, render
+
+    target = (render.DEFAULT_TARGET_ERROR if arguments.target_error is None
+              else arguments.target_error)
+    rows = figures.demo(arguments.output, arguments.size, arguments.repetitions,
+                        arguments.dataset, target_error=target)
+    _print_table(figures.DEMO_TABLE_HEADER, rows)
+    race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
+    print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
+          f"({race[6]} repetitions).")
+    print(f"Images and comparison.png written to {arguments.output}")
+
+
+def _mesh(arguments: argparse.Namespace) -> None:
+    from .meshes import generate, write_legacy
+
+    grid = generate(arguments.shape, arguments.cells, arguments.seed,
+                    cache=not arguments.no_cache)
+    write_legacy(grid, arguments.output)
+    print(f"{grid.GetNumberOfCells()} tetrahedra, {grid.GetNumberOfPoints()} points "
+          f"written to {arguments.output}")
+
+
+def _convergence(arguments: argparse.Namespace) -> None:
+    from . import figures
+
+    results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
+                                  arguments.output)
+    print((arguments.output / "convergence.md").read_text())
+    print(f"{len(results)} data sets; figures written to {arguments.output}")
+
+
+def _pbvr(arguments: argparse.Namespace) -> None:
+    from . import figures
+
+    rows = figures.pbvr_figure(arguments.datasets, arguments.repetitions,
+                               arguments.levels, arguments.size, arguments.output)
+    _print_table(figures.PBVR_TABLE_HEADER, rows)
+    print()
+    print((arguments.output / "pbvr_convergence.md").read_text())
+    print(f"Images, comparisons and pbvr_convergence.png written to {arguments.output}")
+
+
+def _sampling(arguments: argparse.Namespace) -> None:
+    from .sampling import sampling_figure
+
+    result = sampling_figure(arguments.dataset, arguments.levels, arguments.size,
+                             arguments.output)
+    print((arguments.output / "sampling.md").read_text())
+    check = result["per_pass_check"]
+    print(f"16 per pass against 1 per pass at {check['repetitions']} repetitions: "
+          f"{check['speedup']:.2f}x faster, largest pixel difference "
+          f"{check['max_abs_difference']:.4f}")
+    print(f"stratified thresholds reach the error of {result['levels'][-1]} independent "
+          f"repetitions with {result['stratified_repetitions_to_match']}")
+    print(f"the default estimator reaches it with {result['default_repetitions_to_match']}")
+
+
+def _sorting(arguments: argparse.Namespace) -> None:
+    from . import figures
+
+    rows = figures.sorting(arguments.datasets, arguments.size, arguments.output,
+                           arguments.repetitions)
+    _print_table(figures.SORTING_HEADER, rows)
+    print(f"Images, comparisons and sorting.md written to {arguments.output}")
+
+
+def _accuracy(arguments: argparse.Namespace) -> None:
+    from . import figures
+
+    result = figures.accuracy_figure(arguments.output, arguments.rays)
+    print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "
+          f"plot written to {arguments.output / 'accuracy.png'}")
+
+
+_COMMANDS = {"demo": _demo, "bench": _bench, "mesh": _mesh}
+_FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
+            "sorting": _sorting, "accuracy": _accuracy}
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; returns the exit status."""
     arguments = _parser().parse_args(argv)
-    from . import figures, render
-
+    command = (_COMMANDS[arguments.command] if arguments.command in _COMMANDS
+               else _FIGURES[arguments.figure])
     try:
-        if arguments.command == "demo":
-            target = (render.DEFAULT_TARGET_ERROR if arguments.target_error is None
-                      else arguments.target_error)
-            rows = figures.demo(arguments.output, arguments.size, arguments.repetitions,
-                                arguments.dataset, target_error=target)
-            _print_table(figures.DEMO_TABLE_HEADER, rows)
-            race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
-            print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
-                  f"({race[6]} repetitions).")
-            print(f"Images and comparison.png written to {arguments.output}")
-        elif arguments.command == "bench":
-            _bench(arguments)
-        elif arguments.command == "mesh":
-            from .meshes import generate, write_legacy
-
-            grid = generate(arguments.shape, arguments.cells, arguments.seed,
-                            cache=not arguments.no_cache)
-            write_legacy(grid, arguments.output)
-            print(f"{grid.GetNumberOfCells()} tetrahedra, {grid.GetNumberOfPoints()} points "
-                  f"written to {arguments.output}")
-        elif arguments.figure == "convergence":
-            results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
-                                          arguments.output)
-            print((arguments.output / "convergence.md").read_text())
-            print(f"{len(results)} data sets; figures written to {arguments.output}")
-        elif arguments.figure == "pbvr":
-            rows = figures.pbvr_figure(arguments.datasets, arguments.repetitions,
-                                       arguments.levels, arguments.size, arguments.output)
-            _print_table(figures.PBVR_TABLE_HEADER, rows)
-            print()
-            print((arguments.output / "pbvr_convergence.md").read_text())
-            print(f"Images, comparisons and pbvr_convergence.png written to {arguments.output}")
-        elif arguments.figure == "sampling":
-            from .sampling import sampling_figure
-
-            result = sampling_figure(arguments.dataset, arguments.levels, arguments.size,
-                                     arguments.output)
-            print((arguments.output / "sampling.md").read_text())
-            check = result["per_pass_check"]
-            print(f"16 per pass against 1 per pass at {check['repetitions']} repetitions: "
-                  f"{check['speedup']:.2f}x faster, largest pixel difference "
-                  f"{check['max_abs_difference']:.4f}")
-            print(f"stratified thresholds reach the error of {result['levels'][-1]} independent "
-                  f"repetitions with {result['stratified_repetitions_to_match']}")
-            print(f"the default estimator reaches it with "
-                  f"{result['default_repetitions_to_match']}")
-        elif arguments.figure == "sorting":
-            rows = figures.sorting(arguments.datasets, arguments.size, arguments.output,
-                                   arguments.repetitions)
-            _print_table(figures.SORTING_HEADER, rows)
-            print(f"Images, comparisons and sorting.md written to {arguments.output}")
-        else:
-            result = figures.accuracy_figure(arguments.output, arguments.rays)
-            print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "
-                  f"plot written to {arguments.output / 'accuracy.png'}")
+        command(arguments)
     except (OSError, ValueError) as error:
         # Missing data sets, unwritable output folders, data the figures cannot use.
         print(f"python3 -m spt: error: {error}", file=sys.stderr)

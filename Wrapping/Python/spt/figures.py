@@ -7,86 +7,30 @@ its output folder, and returns the numbers.
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 import pathlib
-from typing import Callable, Dict, List, Sequence
+from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
-from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
-from vtkmodules.vtkRenderingCore import vtkVolumeProperty
-
-from . import accuracy, data, metrics, render, tables
+from . import accuracy, data, metrics, plots, render, tables
 from .progress import Progress
+from .scenes import DEMO_SCENE, Scene, scene
 
 PathLike = pathlib.Path
 
 
-@dataclasses.dataclass
-class Scene:
-    """A data set, its transfer functions and a camera."""
-
-    name: str
-    grid: vtkUnstructuredGrid
-    property: vtkVolumeProperty
-    view: render.View
-
-
-def _default_scene() -> Scene:
-    grid = data.make_default_mesh()
-    return Scene("default", grid, data.default_transfer_function(grid),
-                 render.View(azimuth=30.0, elevation=30.0))
-
-
-def _data_scene(name: str, view: render.View, opacity_scale: float = 1.0) -> Callable[[], Scene]:
-    def make() -> Scene:
-        grid = data.load(name)
-        return Scene(name, grid, data.transfer_function(grid, opacity_scale=opacity_scale), view)
-    return make
-
-
-def _generated_scene(name: str, shape: str, cells: int, view: render.View
-                     ) -> Callable[[], Scene]:
-    def make() -> Scene:
-        from . import meshes
-        grid = meshes.generate(shape, cells)
-        return Scene(name, grid, data.transfer_function(grid), view)
-    return make
-
-
-#: The main job's data set: the drill of :mod:`spt.meshes` (TetGen, cached on disk), the
-#: shape of the paper's large data set, at a size that renders in seconds.
-DEMO_SCENE = "drill"
-
-SCENES: Dict[str, Callable[[], Scene]] = {
-    "drill": _generated_scene("drill", "drill", 200_000,
-                              render.View(azimuth=30.0, elevation=25.0, zoom=1.3)),
-    "ring": _generated_scene("ring", "torus", 200_000,
-                             render.View(azimuth=20.0, elevation=40.0)),
-    "default": _default_scene,
-    "spx": _data_scene("spx", render.View(azimuth=30.0, elevation=30.0)),
-    "bluntfin": _data_scene("bluntfin", render.View(azimuth=40.0, elevation=25.0), 0.5),
-    "post": _data_scene("post", render.View(azimuth=30.0, elevation=20.0), 0.5),
-    "torus": _data_scene("torus", render.View(azimuth=20.0, elevation=40.0)),
-}
-
-
-def scene(name: str) -> Scene:
-    """The named scene; raises ValueError for an unknown name."""
-    if name not in SCENES:
-        raise ValueError(f"unknown data set '{name}'; choose from {', '.join(SCENES)}")
-    return SCENES[name]()
-
-
 def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
-            seed: int = 0) -> Dict[str, object]:
+            seed: int = 0, progress: Optional[Progress] = None) -> Dict[str, object]:
     """Reference, VTK's projected tetrahedra and SPT at each repetition level on one scene:
     images, difference images, footprint RMSE and PSNR, and render times."""
     output.mkdir(parents=True, exist_ok=True)
+    progress = progress or Progress.silent()
     shape = (size, size)
     reference = render.reference(s.grid, s.property, s.view, shape)
+    progress.step(f"{s.name} reference")
     pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view, shape)
+    progress.step(f"{s.name} VTK PT")
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
     metrics.write_png(output / f"{s.name}_vtk_pt.png", pt.image)
     result = {"dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
@@ -110,15 +54,13 @@ def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
             entry.update({f"{mode}rmse": metrics.rmse(spt.image, reference.image),
                           f"{mode}psnr": metrics.psnr(spt.image, reference.image),
                           f"{mode}seconds": spt.seconds})
+            progress.step(f"{s.name} SPT {mode}L={level}")
         result["levels"].append(entry)
     return result
 
 
 def _plot_convergence(results: List[Dict[str, object]], path: PathLike) -> None:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(6.5, 4.5))
+    figure = plots.figure(6.5, 4.5)
     axes = figure.add_subplot()
     for index, result in enumerate(results):
         color = f"C{index}"
@@ -136,12 +78,9 @@ def _plot_convergence(results: List[Dict[str, object]], path: PathLike) -> None:
                      label=f"{result['dataset']} VTK PT")
         guide = errors[0] * np.sqrt(levels[0] / np.asarray(levels, dtype=float))
         axes.loglog(levels, guide, "--", color=color, alpha=0.35)
-    axes.set_xlabel("RepetitionLevel")
-    axes.set_ylabel("footprint RMSE against the reference")
-    axes.set_title("SPT convergence (dashed: 1/sqrt(L) from the first level)", fontsize=9)
-    axes.legend(fontsize=7)
-    figure.tight_layout()
-    FigureCanvasAgg(figure).print_png(str(path))
+    plots.finish_axes(axes, "RepetitionLevel", "footprint RMSE against the reference",
+                      "SPT convergence (dashed: 1/sqrt(L) from the first level)")
+    plots.save(figure, path)
 
 
 def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
@@ -149,7 +88,8 @@ def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
     """The convergence figure: RMSE of SPT against the reference per repetition level, next to
     VTK's projected tetrahedra, for each data set."""
     output.mkdir(parents=True, exist_ok=True)
-    results = [compare(scene(name), levels, size, output, seed) for name in datasets]
+    progress = Progress(len(datasets) * (2 + 3 * len(levels)), "convergence")
+    results = [compare(scene(name), levels, size, output, seed, progress) for name in datasets]
     _plot_convergence(results, output / "convergence.png")
     (output / "convergence.json").write_text(json.dumps(results, indent=2))
     rows = []
@@ -187,12 +127,14 @@ def _stack(rows: Sequence[np.ndarray], gap: int = 4) -> np.ndarray:
 
 
 def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
-                  seed: int = 0) -> Dict[str, object]:
+                  seed: int = 0, progress: Optional[Progress] = None) -> Dict[str, object]:
     """One scene of the sorting figure: the reference, SPT, HAVS-like with k = 2 and 6 and
     VTK's projected tetrahedra, each with its difference image, error and render time."""
+    progress = progress or Progress.silent()
     shape = (size, size)
     reference = render.reference(s.grid, s.property, s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
+    progress.step(f"{s.name} reference")
     result = {"dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
               "reference_seconds": reference.seconds, "methods": []}
     images, differences, labels = [reference.image], [], ["reference"]
@@ -212,6 +154,7 @@ def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
         images.append(rendering.image)
         differences.append(difference)
         labels.append(label)
+        progress.step(f"{s.name} {label}")
     top = metrics.side_by_side(images, labels)
     bottom = metrics.side_by_side([np.zeros_like(differences[0])] + differences,
                                   [""] + [f"|{label} - ref| x4" for label in labels[1:]])
@@ -229,7 +172,10 @@ def sorting(datasets: Sequence[str], size: int, output: PathLike, repetitions: i
     sort), with difference images, footprint RMSE and PSNR and render times from one run.
     Writes PNGs, sorting.md and sorting.json into ``output``; returns the table rows."""
     output.mkdir(parents=True, exist_ok=True)
-    results = [sorting_scene(scene(name), size, output, repetitions, seed) for name in datasets]
+    progress = Progress(len(datasets) * (1 + len(_sorting_methods(repetitions, seed))),
+                        "sorting")
+    results = [sorting_scene(scene(name), size, output, repetitions, seed, progress)
+               for name in datasets]
     (output / "sorting.json").write_text(json.dumps(results, indent=2))
     rows = []
     for result in results:
@@ -291,15 +237,18 @@ def _method_entry(rendering: render.Rendering, reference: np.ndarray, level: int
 
 
 def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
-                 output: PathLike, seed: int = 0) -> Dict[str, object]:
+                 output: PathLike, seed: int = 0, progress: Optional[Progress] = None
+                 ) -> Dict[str, object]:
     """The reference and every method of PBVR_METHODS on one scene:
     images and difference images at `repetitions`, and the RMSE at every level of `levels`
     (which gets `repetitions` added) for the convergence curves."""
     output.mkdir(parents=True, exist_ok=True)
+    progress = progress or Progress.silent()
     shape = (size, size)
     levels = sorted(set(levels) | {repetitions})
     reference = render.reference(s.grid, s.property, s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
+    progress.step(f"{s.name} reference")
     result: Dict[str, object] = {
         "dataset": s.name, "tetrahedra": s.grid.GetNumberOfCells(), "size": size,
         "repetitions": repetitions, "reference_seconds": reference.seconds, "methods": {}}
@@ -310,6 +259,7 @@ def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
         for level in levels:
             rendering = render.render(s.grid, s.property, make(level, seed), s.view, shape)
             entries.append(_method_entry(rendering, reference.image, level))
+            progress.step(f"{s.name} {label} L={level}")
             if level == repetitions:
                 difference = metrics.difference_image(rendering.image, reference.image)
                 metrics.write_png(output / f"{s.name}_{stem}_{level}.png", rendering.image)
@@ -347,26 +297,19 @@ def _pbvr_rows(result: Dict[str, object]) -> List[List[object]]:
 
 
 def _plot_pbvr_convergence(results: List[Dict[str, object]], path: PathLike) -> None:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(5.0 * len(results), 4.2))
+    figure = plots.figure(5.0 * len(results), 4.2)
     for index, result in enumerate(results):
         axes = figure.add_subplot(1, len(results), index + 1)
         for number, (label, entries) in enumerate(result["methods"].items()):
             levels = np.asarray([e["repetitions"] for e in entries], dtype=float)
             errors = [e["rmse"] for e in entries]
-            # Distinct markers and dashes: curves that coincide stay visible.
-            style = ["o-", "s--", "^:", "v-."][number % 4]
-            axes.loglog(levels, errors, style, color=f"C{number}", label=label, markersize=5)
+            axes.loglog(levels, errors, plots.line_style(number), color=f"C{number}",
+                        label=label, markersize=5)
             axes.loglog(levels, errors[0] * np.sqrt(levels[0] / levels), "--",
                         color=f"C{number}", alpha=0.3)
-        axes.set_xlabel("RepetitionLevel")
-        axes.set_ylabel("footprint RMSE against the reference")
-        axes.set_title(f"{result['dataset']}, steep transfer function (faint: 1/sqrt(L))")
-        axes.legend(fontsize=7)
-    figure.tight_layout()
-    FigureCanvasAgg(figure).print_png(str(path))
+        plots.finish_axes(axes, "RepetitionLevel", "footprint RMSE against the reference",
+                          f"{result['dataset']}, steep transfer function (faint: 1/sqrt(L))")
+    plots.save(figure, path)
 
 
 def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int], size: int,
@@ -381,8 +324,10 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
     for name in datasets:
         if name not in STEEP_SCENES:
             raise ValueError(f"unknown data set '{name}'; choose from {', '.join(STEEP_SCENES)}")
-    results = [pbvr_compare(STEEP_SCENES[name](), repetitions, levels, size, output, seed)
-               for name in datasets]
+    count = len(set(levels) | {repetitions})
+    progress = Progress(len(datasets) * (1 + len(PBVR_METHODS) * count), "pbvr")
+    results = [pbvr_compare(STEEP_SCENES[name](), repetitions, levels, size, output, seed,
+                            progress) for name in datasets]
     (output / "pbvr.json").write_text(json.dumps(results, indent=2))
     rows = [row for result in results for row in _pbvr_rows(result)]
     tables.write_table(output / "pbvr.md", PBVR_TABLE_HEADER, rows)
@@ -400,7 +345,8 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
 def accuracy_figure(output: PathLike, n_rays: int = 1000, seed: int = 2009) -> Dict[str, object]:
     """The paper's "accuracy of stochastic volume rendering" along one ray."""
     output.mkdir(parents=True, exist_ok=True)
-    result = accuracy.run(n_rays=n_rays, seed=seed)
+    result = accuracy.run(n_rays=n_rays, seed=seed,
+                          progress=Progress(len(accuracy.DEFAULT_LEVELS), "accuracy"))
     accuracy.plot(result, output / "accuracy.png")
     serializable = {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in result.items()}
     (output / "accuracy.json").write_text(json.dumps(serializable, indent=2))

@@ -1,5 +1,7 @@
 """Progress of long commands on standard error."""
 
+from __future__ import annotations
+
 import sys
 import time
 
@@ -16,8 +18,15 @@ class Progress:
         self.start = time.perf_counter()
         self.tty = hasattr(stream, "isatty") and stream.isatty()
 
+    @staticmethod
+    def silent() -> "Progress":
+        """A progress that counts its steps and shows nothing (for library calls)."""
+        return Progress(1, "", stream=None)
+
     def step(self, label: str) -> None:
         self.done += 1
+        if self.stream is None:
+            return
         elapsed = time.perf_counter() - self.start
         remaining = elapsed / self.done * (self.total - self.done)
         filled = int(30 * self.done / self.total)

@@ -15,7 +15,9 @@ from typing import Dict, List, Sequence
 
 import numpy as np
 
-from . import figures, metrics, render, tables
+from . import metrics, plots, render, tables
+from .progress import Progress
+from .scenes import Scene, scene
 
 _SURVIVOR = {"estimator": "survivor", "exact_coverage": False}
 
@@ -27,15 +29,15 @@ MODES = [("paper: independent, 1 per pass", False, 1, _SURVIVOR),
          ("default: visibility, exact coverage, stratified, 16 per pass", True, 16, {})]
 
 
-def _render(s: figures.Scene, level: int, stratified: bool, per_pass: int, size: int,
+def _render(s: Scene, level: int, stratified: bool, per_pass: int, size: int,
             seed: int, estimator: Dict[str, object] = _SURVIVOR) -> render.Rendering:
     mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
                                **estimator)
     return render.render(s.grid, s.property, mapper, s.view, (size, size))
 
 
-def _curves(s: figures.Scene, reference: np.ndarray, levels: Sequence[int], size: int,
-            seed: int) -> List[Dict[str, object]]:
+def _curves(s: Scene, reference: np.ndarray, levels: Sequence[int], size: int,
+            seed: int, progress: Progress) -> List[Dict[str, object]]:
     curves = []
     for label, stratified, per_pass, estimator in MODES:
         points = []
@@ -43,32 +45,26 @@ def _curves(s: figures.Scene, reference: np.ndarray, levels: Sequence[int], size
             rendering = _render(s, level, stratified, per_pass, size, seed, estimator)
             points.append({"repetitions": level, "seconds": rendering.seconds,
                            "rmse": metrics.rmse(rendering.image, reference)})
+            progress.step(f"{label} L={level}")
         curves.append({"mode": label, "stratified": stratified, "per_pass": per_pass,
                        "points": points})
     return curves
 
 
 def _plot(curves: List[Dict[str, object]], path: pathlib.Path, title: str) -> None:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(10, 4.2))
+    figure = plots.figure(10, 4.2)
     by_level, by_time = figure.add_subplot(1, 2, 1), figure.add_subplot(1, 2, 2)
     for curve in curves:
         levels = [p["repetitions"] for p in curve["points"]]
         errors = [p["rmse"] for p in curve["points"]]
         seconds = [p["seconds"] for p in curve["points"]]
-        by_level.loglog(levels, errors, "o-", label=curve["mode"])
-        by_time.loglog(seconds, errors, "o-", label=curve["mode"])
-    by_level.set_xlabel("RepetitionLevel")
-    by_time.set_xlabel("render time [s]")
-    for axes in (by_level, by_time):
-        axes.set_ylabel("footprint RMSE against the exact reference")
-        axes.grid(True, which="both", alpha=0.3)
-        axes.legend(fontsize=7)
+        style = plots.line_style(len(by_level.lines))
+        by_level.loglog(levels, errors, style, label=curve["mode"])
+        by_time.loglog(seconds, errors, style, label=curve["mode"])
+    for axes, xlabel in ((by_level, "RepetitionLevel"), (by_time, "render time [s]")):
+        plots.finish_axes(axes, xlabel, "footprint RMSE against the exact reference")
     figure.suptitle(title)
-    figure.tight_layout()
-    FigureCanvasAgg(figure).print_png(str(path))
+    plots.save(figure, path)
 
 
 def _repetitions_to_match(curve: Dict[str, object], target: float) -> object:
@@ -82,12 +78,16 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
                     seed: int = 1) -> Dict[str, object]:
     """The sampling figure on one data set; returns the numbers it writes."""
     output.mkdir(parents=True, exist_ok=True)
-    s = figures.scene(dataset)
+    progress = Progress(3 + len(MODES) * len(levels), "sampling")
+    s = scene(dataset)
     reference = render.reference(s.grid, s.property, s.view, (size, size)).image
+    progress.step("reference")
     check_level = 64 if 64 in levels else levels[0]
     single = _render(s, check_level, False, 1, size, seed)
+    progress.step(f"1 per pass, L={check_level}")
     several = _render(s, check_level, False, 16, size, seed)
-    curves = _curves(s, reference, levels, size, seed)
+    progress.step(f"16 per pass, L={check_level}")
+    curves = _curves(s, reference, levels, size, seed, progress)
     paper, independent, stratified, default = curves
     target = independent["points"][-1]["rmse"]
     result = {

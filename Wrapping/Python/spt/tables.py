@@ -2,7 +2,7 @@
 
 import math
 import pathlib
-from typing import Sequence
+from typing import Iterable, Sequence
 
 
 def format_value(value: object) -> str:
@@ -12,12 +12,27 @@ def format_value(value: object) -> str:
     return str(value)
 
 
-def write_table(path: pathlib.Path, header: Sequence[str],
-                rows: Sequence[Sequence[object]]) -> str:
-    """Write ``rows`` under ``header`` as a Markdown table to ``path``; returns the text."""
+def markdown(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
+    """``rows`` under ``header`` as a Markdown table."""
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     for row in rows:
         lines.append("| " + " | ".join(format_value(v) for v in row) + " |")
-    text = "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n"
+
+
+def write_table(path: pathlib.Path, header: Sequence[str],
+                rows: Iterable[Sequence[object]]) -> str:
+    """Write ``rows`` under ``header`` as a Markdown table to ``path``; returns the text."""
+    text = markdown(header, rows)
     path.write_text(text)
     return text
+
+
+def print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
+    """``rows`` under ``header`` as aligned columns on standard output."""
+    cells = [list(header)] + [[format_value(v) for v in row] for row in rows]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(header))]
+    for index, row in enumerate(cells):
+        print("  ".join(value.ljust(width) for value, width in zip(row, widths)))
+        if index == 0:
+            print("  ".join("-" * width for width in widths))
