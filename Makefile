@@ -2,6 +2,8 @@
 #   make demo   install what is missing, build, install, and render the default data set
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
+#   make lint   the same set-up, then the format and lint checks: flake8 on the Python
+#               (.flake8) and clang-format on every C++ file (.clang-format)
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores).
@@ -23,9 +25,10 @@ PACKAGES := cmake ninja-build g++ make \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	libtet1.5-dev libglm-dev \
 	python3-numpy python3-matplotlib python3-pytest \
-	xvfb xauth libgl1-mesa-dri
+	xvfb xauth libgl1-mesa-dri \
+	clang-format flake8
 
-.PHONY: all deps configure build install demo test sanitize clean
+.PHONY: all deps configure build install demo test sanitize lint clean
 
 all: build
 
@@ -79,6 +82,14 @@ sanitize: deps
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/Testing/Sanitizers/lsan.supp:print_suppressions=0 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$(CURDIR)/Testing/Sanitizers/ubsan.supp \
 	  $(XVFB) ctest --output-on-failure --timeout 1500
+
+# Every C++ source and header of the project, wherever it is (build trees left out).
+CXX_SOURCES = $(shell find Rendering Meshing Module Testing \( -name '*.h' -o -name '*.cxx' \
+	-o -name '*.c' \) -not -path '*/build*' | sort)
+
+lint: deps
+	flake8 .
+	clang-format --dry-run -Werror $(CXX_SOURCES)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-sanitize out

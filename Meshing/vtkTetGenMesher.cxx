@@ -318,8 +318,8 @@ void CopyTetGenOutput(const tetgenio& out, vtkUnstructuredGrid* output)
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(out.numberofpoints);
-  std::copy_n(out.pointlist, 3 * static_cast<std::size_t>(out.numberofpoints),
-    coordinates->GetPointer(0));
+  std::copy_n(
+    out.pointlist, 3 * static_cast<std::size_t>(out.numberofpoints), coordinates->GetPointer(0));
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
 
@@ -409,8 +409,7 @@ int vtkTetGenMesher::RequestData(
   const double volume = std::abs(SignedEnclosedVolume(surface));
   if (!(volume > DegenerateVolumeFraction * std::pow(surface.Diagonal, 3)))
   {
-    vtkErrorMacro("Cannot mesh the input: the surface encloses no volume (" << volume
-                                                                             << ").");
+    vtkErrorMacro("Cannot mesh the input: the surface encloses no volume (" << volume << ").");
     return 0;
   }
   this->EnclosedVolume = volume;
@@ -448,8 +447,8 @@ int vtkTetGenMesher::RequestData(
   this->UpdateProgress(0.05);
   if (!RunTetGen(this->Internals->Switches, in, out, error))
   {
-    vtkErrorMacro("Cannot mesh the input: " << error << " (switches "
-                                            << this->Internals->Switches << ").");
+    vtkErrorMacro(
+      "Cannot mesh the input: " << error << " (switches " << this->Internals->Switches << ").");
     return 0;
   }
   this->UpdateProgress(0.9);

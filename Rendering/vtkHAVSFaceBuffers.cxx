@@ -252,8 +252,8 @@ bool vtkHAVSFaceBuffers::Upload(vtkOpenGLRenderWindow* renWin)
   }
   if (!this->IndexBuffer->Upload(this->SortedTriangles, vtkOpenGLBufferObject::ElementArrayBuffer))
   {
-    vtkErrorMacro("Could not upload the " << this->Boundary.size()
-                                          << " sorted faces (out of GPU memory?).");
+    vtkErrorMacro(
+      "Could not upload the " << this->Boundary.size() << " sorted faces (out of GPU memory?).");
     this->ReleaseGraphicsResources(renWin);
     return false;
   }

@@ -215,8 +215,7 @@ void vtkHAVSKBuffer::EndPass()
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     for (int t = 0; t < this->GetNumberOfTargets(); ++t)
     {
-      glBindImageTexture(
-        static_cast<GLuint>(t), 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+      glBindImageTexture(static_cast<GLuint>(t), 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     }
   }
 }

@@ -64,8 +64,7 @@ public:
    * Size the targets for a viewport of width x height pixels and a k-buffer of kbufferSize
    * (2 to 6) candidates, accessed as given. Reallocates only when one of these changed.
    */
-  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize,
-    int access);
+  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize, int access);
 
   /**
    * The lines that the shaders' //HAVS::Defines::Dec tag becomes for this size and access.

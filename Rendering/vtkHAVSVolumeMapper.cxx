@@ -15,9 +15,9 @@
 
 #include "vtkHAVSFaceBuffers.h"
 #include "vtkHAVSKBuffer.h"
+#include "vtkSPTGPUTimer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTGPUTimer.h"
 #include "vtkSPTRenderSetup.h"
 #include "vtkSPTViewMatrices.h"
 
@@ -91,8 +91,7 @@ void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
   program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
 }
 
-bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(
-  vtkTextureObject* table, int width, int height)
+bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(vtkTextureObject* table, int width, int height)
 {
   vtkShaderProgram* program = this->Context->GetShaderCache()->ReadyShaderProgram(
     vtkHAVSFacesVS, this->Source(vtkHAVSFacesFS).c_str(), "");
@@ -241,11 +240,11 @@ void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       internals.ReportedAccessError = this->KBufferSynchronization;
       vtkErrorMacro("This OpenGL context cannot keep the k-buffer's read-modify-write in "
                     "primitive order as requested (KBufferSynchronization "
-                    << this->KBufferSynchronization
-                    << "): it needs GL_ARB_fragment_shader_interlock or "
-                       "GL_EXT_shader_framebuffer_fetch. "
-                       "SetKBufferSynchronizationToRasterizationOrder() renders without "
-                       "either, correctly only where the rasterizer keeps primitive order.");
+        << this->KBufferSynchronization
+        << "): it needs GL_ARB_fragment_shader_interlock or "
+           "GL_EXT_shader_framebuffer_fetch. "
+           "SetKBufferSynchronizationToRasterizationOrder() renders without "
+           "either, correctly only where the rasterizer keeps primitive order.");
     }
     return;
   }
@@ -314,12 +313,11 @@ void vtkHAVSVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "KBufferSize: " << this->KBufferSize << "\n";
   os << indent << "KBufferSynchronization: " << this->KBufferSynchronization << "\n";
-  os << indent << "KBufferSynchronizationInUse: " << this->GetKBufferSynchronizationInUse()
-     << "\n";
+  os << indent << "KBufferSynchronizationInUse: " << this->GetKBufferSynchronizationInUse() << "\n";
   os << indent << "PreIntegrationScalarResolution: " << this->PreIntegrationScalarResolution
      << "\n";
-  os << indent << "PreIntegrationThicknessResolution: "
-     << this->PreIntegrationThicknessResolution << "\n";
+  os << indent << "PreIntegrationThicknessResolution: " << this->PreIntegrationThicknessResolution
+     << "\n";
   os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
      << "\n";
   os << indent << "VectorComponent: " << this->VectorComponent << "\n";

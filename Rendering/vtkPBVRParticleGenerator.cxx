@@ -69,9 +69,10 @@ public:
   {
     if (mean > LargePoissonMean)
     {
-      const double normal = std::sqrt(-2.0 * std::log(this->OpenUniform())) *
-        std::cos(TwoPi * this->OpenUniform());
-      return static_cast<uint64_t>(std::max(0.0, std::floor(mean + std::sqrt(mean) * normal + 0.5)));
+      const double normal =
+        std::sqrt(-2.0 * std::log(this->OpenUniform())) * std::cos(TwoPi * this->OpenUniform());
+      return static_cast<uint64_t>(
+        std::max(0.0, std::floor(mean + std::sqrt(mean) * normal + 0.5)));
     }
     // A sum of Poisson variables is Poisson; pieces of mean 32 keep exp(-mean) far from
     // underflow and the inversion short.
@@ -423,8 +424,8 @@ bool vtkPBVRParticleGenerator::Generate(
   {
     std::ostringstream reason;
     reason << "The particles would not fit: more than " << settings.MaximumParticles
-           << " particles for " << settings.Sets << " sets (about "
-           << std::llround(candidates) << " candidates).";
+           << " particles for " << settings.Sets << " sets (about " << std::llround(candidates)
+           << " candidates).";
     return this->Fail(reason.str());
   }
 

@@ -83,8 +83,8 @@ public:
    * reason in GetLastError() and no particles, when the settings are invalid or the particles
    * would exceed MaximumParticles.
    */
-  bool Generate(
-    const vtkSPTMeshBuffers* mesh, const std::vector<double>& attenuation, const Settings& settings);
+  bool Generate(const vtkSPTMeshBuffers* mesh, const std::vector<double>& attenuation,
+    const Settings& settings);
   const std::string& GetLastError() const { return this->LastError; }
 
   ///@{

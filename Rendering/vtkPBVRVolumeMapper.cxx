@@ -481,8 +481,8 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   vtkOpenGLRenderWindow* renWin = target.Window;
 
-  if (!internals.Setup.UpdateMesh(this, internals.Mesh,
-        this->VectorMode == COMPONENT ? this->VectorComponent : -1, true))
+  if (!internals.Setup.UpdateMesh(
+        this, internals.Mesh, this->VectorMode == COMPONENT ? this->VectorComponent : -1, true))
   {
     internals.ReleaseParticles();
     return;
@@ -526,7 +526,8 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
     renWin->GetShaderCache()->ReadyShaderProgram(vertex.c_str(), vtkPBVRParticlesFS, "");
   if (!colors || !program)
   {
-    vtkErrorMacro("Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));
+    vtkErrorMacro(
+      "Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));
     return;
   }
   ostate->PushFramebufferBindings();
@@ -581,8 +582,8 @@ void vtkPBVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepetitionLevel: " << this->RepetitionLevel << "\n";
   os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "SamplingMode: "
-     << (this->SamplingMode == REJECTION ? "Rejection" : "CellAverage") << "\n";
+  os << indent
+     << "SamplingMode: " << (this->SamplingMode == REJECTION ? "Rejection" : "CellAverage") << "\n";
   os << indent << "MaximumParticleMemory: " << this->MaximumParticleMemory << " MiB\n";
   os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
      << "\n";

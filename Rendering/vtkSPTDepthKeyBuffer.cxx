@@ -23,8 +23,7 @@ bool vtkSPTDepthKeyBuffer::IsSupported(vtkOpenGLRenderWindow* renWin)
   return imageLoadStore && clearTexture;
 }
 
-bool vtkSPTDepthKeyBuffer::Prepare(
-  vtkOpenGLRenderWindow* renWin, int width, int height, int layers)
+bool vtkSPTDepthKeyBuffer::Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers)
 {
   if (renWin == this->Context && width == this->Width && height == this->Height &&
     layers == this->Layers)
@@ -60,8 +59,8 @@ void vtkSPTDepthKeyBuffer::Clear()
 
 void vtkSPTDepthKeyBuffer::BindImage(int unit)
 {
-  glBindImageTexture(static_cast<GLuint>(unit), this->Keys->GetHandle(), 0, GL_TRUE, 0,
-    GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(
+    static_cast<GLuint>(unit), this->Keys->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
 void vtkSPTDepthKeyBuffer::UnbindImage(int unit)
@@ -77,8 +76,7 @@ void vtkSPTDepthKeyBuffer::Barrier()
 
 size_t vtkSPTDepthKeyBuffer::GetGPUMemorySize() const
 {
-  return this->Context ? size_t(this->Width) * size_t(this->Height) * size_t(this->Layers) * 4
-                       : 0;
+  return this->Context ? size_t(this->Width) * size_t(this->Height) * size_t(this->Layers) * 4 : 0;
 }
 
 void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
@@ -94,6 +92,5 @@ void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
 void vtkSPTDepthKeyBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Size: " << this->Width << " x " << this->Height << " x " << this->Layers
-     << "\n";
+  os << indent << "Size: " << this->Width << " x " << this->Height << " x " << this->Layers << "\n";
 }

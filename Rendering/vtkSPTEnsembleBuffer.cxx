@@ -50,7 +50,8 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthForm
 {
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
+  for (vtkTextureObject* texture :
+    { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
   {
     vtkSPTSceneDepth::UseNearestTexels(texture, renWin);
   }
@@ -91,8 +92,8 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthForm
   ok = ok && this->Accumulate->Program && this->AccumulateBoth->Program && this->Mean->Program;
   if (!ok)
   {
-    vtkErrorMacro("Could not allocate the " << w << "x" << h
-                                            << " float framebuffers of the ensemble.");
+    vtkErrorMacro(
+      "Could not allocate the " << w << "x" << h << " float framebuffers of the ensemble.");
     this->ReleaseGraphicsResources(renWin);
     return;
   }
@@ -200,8 +201,8 @@ bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
   ostate->PopFramebufferBindings();
   if (!ok)
   {
-    vtkErrorMacro("Could not allocate the " << w << "x" << h
-                                            << " sum of the second half of the ensemble.");
+    vtkErrorMacro(
+      "Could not allocate the " << w << "x" << h << " sum of the second half of the ensemble.");
     this->SecondHalf->ReleaseGraphicsResources(this->Context);
     this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
     return false;
@@ -406,14 +407,14 @@ void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->NoiseQuad.reset();
   this->Halves = false;
   this->HalvesSum = 0;
-  for (vtkOpenGLFramebufferObject* framebuffer : { this->PassFramebuffer.Get(),
-         this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get(),
-         this->HalvesFramebuffer.Get(), this->NoiseFramebuffer.Get() })
+  for (vtkOpenGLFramebufferObject* framebuffer :
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get(),
+      this->HalvesFramebuffer.Get(), this->NoiseFramebuffer.Get() })
   {
     framebuffer->ReleaseGraphicsResources(window);
   }
-  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(),
-         this->Sum.Get(), this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get() })
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
+         this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }

@@ -170,7 +170,8 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
 
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
-  auto traverse = [&](PassKind kind, int repetition, int inGroup) {
+  auto traverse = [&](PassKind kind, int repetition, int inGroup)
+  {
     for (const Volume& volume : this->Volumes)
     {
       // The ensemble's accumulation binds its own program between passes; uniforms go to the
@@ -267,8 +268,8 @@ bool vtkSPTFrame::DrawGroups(
   return ok;
 }
 
-int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage,
-  bool exactCoverage, double target, TargetState& state)
+int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
+  double target, TargetState& state)
 {
   if (!state.Balanced)
   {

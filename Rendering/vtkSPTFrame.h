@@ -78,8 +78,8 @@ public:
   };
 
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* ensemble,
-    vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes,
-    const Settings& settings, vtkObject* reporter);
+    vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
+    vtkObject* reporter);
 
   /**
    * Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal;
@@ -92,8 +92,8 @@ public:
   /// Progress towards an error target over the renders of one image.
   struct TargetState
   {
-    int HalfCount = 0;     // repetitions in each half
-    bool Balanced = true;  // the halves are of equal size
+    int HalfCount = 0;      // repetitions in each half
+    bool Balanced = true;   // the halves are of equal size
     double Estimate = -1.0; // the last noise estimate; negative: none
   };
 
@@ -110,8 +110,8 @@ private:
 
   vtkShaderProgram* ReadyProgram(
     bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves);
-  bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves,
-    const Traversal& traverse);
+  bool DrawGroups(
+    int first, int count, int perPass, bool coverage, bool halves, const Traversal& traverse);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 

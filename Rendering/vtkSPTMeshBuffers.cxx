@@ -147,8 +147,8 @@ bool vtkSPTMeshBuffers::Update(vtkDataSet* input, const ScalarSelection& selecti
   if (scalars->GetNumberOfTuples() < needed)
   {
     std::ostringstream reason;
-    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
-           << "' has " << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
+    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+           << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
            << (cellFlag == 1 ? " cells." : " points.");
     return this->Fail(reason.str());
   }
@@ -204,8 +204,8 @@ bool vtkSPTMeshBuffers::CheckConnectivity(vtkDataSet* input)
       if (ids[i] < 0 || ids[i] >= numberOfPoints)
       {
         std::ostringstream reason;
-        reason << "Cell " << cellId << " refers to point id " << ids[i]
-               << ", but the grid has " << numberOfPoints << " points.";
+        reason << "Cell " << cellId << " refers to point id " << ids[i] << ", but the grid has "
+               << numberOfPoints << " points.";
         return this->Fail(reason.str());
       }
     }
@@ -244,7 +244,7 @@ vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(
   auto output = vtkSmartPointer<vtkUnstructuredGrid>::New();
   output->ShallowCopy(triangulate->GetOutput());
   vtkFieldData* attributes = cellScalars ? static_cast<vtkFieldData*>(output->GetCellData())
-                                          : static_cast<vtkFieldData*>(output->GetPointData());
+                                         : static_cast<vtkFieldData*>(output->GetPointData());
   scalars = attributes->GetArray(SplitScalarsName);
   return output;
 }
@@ -303,8 +303,10 @@ bool vtkSPTMeshBuffers::Extract(
   double diagonal = 0.0;
   for (int a = 0; a < 3; ++a)
   {
-    this->Center[a] = bounds[2 * a] <= bounds[2 * a + 1] ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
-    const double extent = bounds[2 * a] <= bounds[2 * a + 1] ? bounds[2 * a + 1] - bounds[2 * a] : 0.0;
+    this->Center[a] =
+      bounds[2 * a] <= bounds[2 * a + 1] ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
+    const double extent =
+      bounds[2 * a] <= bounds[2 * a + 1] ? bounds[2 * a + 1] - bounds[2 * a] : 0.0;
     diagonal = std::max(diagonal, extent);
   }
   this->Scale = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1.0;
@@ -428,7 +430,8 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
   bool ok = this->PointBuffer->Upload(this->Points, vtkOpenGLBufferObject::ArrayBuffer) &&
     this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer) &&
     this->ScalarBuffer->Upload(this->Scalars,
-      this->CellScalars ? vtkOpenGLBufferObject::TextureBuffer : vtkOpenGLBufferObject::ArrayBuffer);
+      this->CellScalars ? vtkOpenGLBufferObject::TextureBuffer
+                        : vtkOpenGLBufferObject::ArrayBuffer);
   ok = ok &&
     MakeBufferTexture(this->ScalarTexture, renWin, this->ScalarBuffer, this->Scalars.size(), 1,
       VTK_FLOAT, GL_R32F) &&

@@ -18,9 +18,9 @@
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the buffers
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // For the buffers
+#include "vtkSmartPointer.h"  // For the buffers
 #include "vtkTextureObject.h" // For GetScalarTexture()
-#include "vtkTimeStamp.h"    // For the caches
+#include "vtkTimeStamp.h"     // For the caches
 
 #include <string> // For the array name
 #include <vector> // For the CPU copies

@@ -95,10 +95,10 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
     this->LastError = "No volume property to pre-integrate.";
     return false;
   }
-  const bool unchanged = property == this->LastProperty &&
-    this->CheckTime > property->GetMTime() && scalarRange[0] == this->ScalarRange[0] &&
-    scalarRange[1] == this->ScalarRange[1] && maxLength == this->MaxLength &&
-    scalarResolution == this->ScalarResolution && lengthResolution == this->LengthResolution;
+  const bool unchanged = property == this->LastProperty && this->CheckTime > property->GetMTime() &&
+    scalarRange[0] == this->ScalarRange[0] && scalarRange[1] == this->ScalarRange[1] &&
+    maxLength == this->MaxLength && scalarResolution == this->ScalarResolution &&
+    lengthResolution == this->LengthResolution;
   if (unchanged)
   {
     return true;
@@ -119,8 +119,7 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   const bool sameAxes = scalarRange[0] == this->ScalarRange[0] &&
     scalarRange[1] == this->ScalarRange[1] && maxLength == this->MaxLength &&
     resolution == this->ScalarResolution && std::max(2, lengthResolution) == this->LengthResolution;
-  if (sameAxes && !this->Table.empty() && color == this->Color &&
-    attenuation == this->Attenuation)
+  if (sameAxes && !this->Table.empty() && color == this->Color && attenuation == this->Attenuation)
   {
     this->LastProperty = property;
     this->CheckTime.Modified();
@@ -139,13 +138,15 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   const int ns = this->ScalarResolution;
   const size_t slice = size_t(ns) * ns * 4;
   std::vector<float> table(slice * this->LengthResolution, 0.0f);
-  vtkSMPTools::For(0, ns * ns, [this, &table](vtkIdType begin, vtkIdType end) {
-    const int n = this->ScalarResolution;
-    for (vtkIdType pair = begin; pair < end; ++pair)
+  vtkSMPTools::For(0, ns * ns,
+    [this, &table](vtkIdType begin, vtkIdType end)
     {
-      this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
-    }
-  });
+      const int n = this->ScalarResolution;
+      for (vtkIdType pair = begin; pair < end; ++pair)
+      {
+        this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
+      }
+    });
   this->LastProperty = property;
   this->CheckTime.Modified();
   // A property can be touched without a change of its functions (VTK creates default

@@ -59,8 +59,7 @@ public:
    * in `error`, when the unit distance is not a positive, finite distance.
    */
   static bool SampleTransferFunctions(vtkVolumeProperty* property, const double scalarRange[2],
-    int samples, std::vector<double>& color, std::vector<double>& attenuation,
-    std::string& error);
+    int samples, std::vector<double>& color, std::vector<double>& attenuation, std::string& error);
 
   /**
    * When the contents of the table last changed.
@@ -102,8 +101,7 @@ public:
    * to the centers of the first and last texels) and `thicknessToTable` (1 / the longest
    * thickness, in the units of the shaders' lengths: `maxThickness`).
    */
-  void SetUniforms(
-    vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
+  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
 
   /**
    * Bytes held on the GPU.
@@ -135,7 +133,7 @@ private:
   std::vector<float> Table;
   std::string LastError;
   vtkVolumeProperty* LastProperty = nullptr; // identity only, never dereferenced
-  vtkTimeStamp CheckTime; // the inputs were last compared
+  vtkTimeStamp CheckTime;                    // the inputs were last compared
   int IntegrationCount = 0;
   vtkTimeStamp BuildTime; // the contents last changed
   vtkTimeStamp UploadTime;

@@ -21,8 +21,7 @@ bool vtkSPTRenderSetup::GetTarget(
   target.Window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   if (!target.Window)
   {
-    vtkErrorWithObjectMacro(
-      mapper, << mapper->GetClassName() << " needs an OpenGL render window.");
+    vtkErrorWithObjectMacro(mapper, << mapper->GetClassName() << " needs an OpenGL render window.");
     return false;
   }
   ren->GetTiledSizeAndOrigin(&target.Width, &target.Height, &target.X, &target.Y);
@@ -67,8 +66,8 @@ vtkSPTRenderSetup::SavedState::~SavedState()
   this->State->vtkglPointSize(this->PointSize);
 }
 
-bool vtkSPTRenderSetup::UpdateMesh(vtkUnstructuredGridVolumeMapper* mapper,
-  vtkSPTMeshBuffers* mesh, int component, bool cellScalars)
+bool vtkSPTRenderSetup::UpdateMesh(
+  vtkUnstructuredGridVolumeMapper* mapper, vtkSPTMeshBuffers* mesh, int component, bool cellScalars)
 {
   if (vtkAlgorithm* input = mapper->GetInputAlgorithm())
   {
@@ -93,11 +92,11 @@ bool vtkSPTRenderSetup::UpdateMesh(vtkUnstructuredGridVolumeMapper* mapper,
       }
       else
       {
-        vtkErrorWithObjectMacro(mapper,
-          << mapper->GetClassName()
-          << " renders point scalars only (its faces interpolate them); the selected array "
-             "is cell data. Convert it with vtkCellDataToPointData, or render it with "
-             "vtkSPTVolumeMapper or vtkPBVRVolumeMapper.");
+        vtkErrorWithObjectMacro(
+          mapper, << mapper->GetClassName()
+                  << " renders point scalars only (its faces interpolate them); the selected array "
+                     "is cell data. Convert it with vtkCellDataToPointData, or render it with "
+                     "vtkSPTVolumeMapper or vtkPBVRVolumeMapper.");
       }
     }
     return false;
@@ -125,8 +124,8 @@ bool vtkSPTRenderSetup::CheckProperty(vtkUnstructuredGridVolumeMapper* mapper, v
   return true;
 }
 
-bool vtkSPTRenderSetup::ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper,
-  vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh, vtkSPTViewMatrices& matrices)
+bool vtkSPTRenderSetup::ComputeMatrices(vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren,
+  vtkVolume* vol, const vtkSPTMeshBuffers* mesh, vtkSPTViewMatrices& matrices)
 {
   matrices.Compute(ren, vol, mesh);
   const auto finite = [](const float* values, int count)

@@ -48,8 +48,8 @@ public:
    * holds there first: a mapper keeps its GPU resources in one context at a time. `context`
    * becomes the target's window.
    */
-  static bool BeginFrame(vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren,
-    Target& target, vtkOpenGLRenderWindow*& context);
+  static bool BeginFrame(vtkUnstructuredGridVolumeMapper* mapper, vtkRenderer* ren, Target& target,
+    vtkOpenGLRenderWindow*& context);
 
   /**
    * The OpenGL state that the mappers change while they draw, restored when this goes out of
@@ -83,8 +83,8 @@ public:
    * out of range, cell scalars where `cellScalars` is false, ...) and the warning about cells
    * left out for non-finite values are reported once per build.
    */
-  bool UpdateMesh(vtkUnstructuredGridVolumeMapper* mapper, vtkSPTMeshBuffers* mesh,
-    int component, bool cellScalars);
+  bool UpdateMesh(vtkUnstructuredGridVolumeMapper* mapper, vtkSPTMeshBuffers* mesh, int component,
+    bool cellScalars);
 
   /**
    * Whether the volume's property can be rendered (independent components); an error if not.

@@ -13,8 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
-void vtkSPTViewMatrices::Compute(
-  vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
+void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
 {
   // Everything is composed in double and handed to the GPU in units of the mesh's own size
   // (view coordinates divided by viewScale), so that float precision holds whatever the
@@ -95,8 +94,8 @@ void vtkSPTViewMatrices::Compute(
       clip[i] = this->ViewToClip[i][0] * view[0] + this->ViewToClip[i][1] * view[1] +
         this->ViewToClip[i][2] * view[2] + this->ViewToClip[i][3] * view[3];
     }
-    const bool inside = clip[2] >= -clip[3] && std::abs(clip[0]) <= clip[3] &&
-      std::abs(clip[1]) <= clip[3];
+    const bool inside =
+      clip[2] >= -clip[3] && std::abs(clip[0]) <= clip[3] && std::abs(clip[1]) <= clip[3];
     this->ClipPlanesCutBounds = this->ClipPlanesCutBounds || !inside;
   }
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);
@@ -104,8 +103,7 @@ void vtkSPTViewMatrices::Compute(
   {
     for (int row = 0; row < 3; ++row)
     {
-      this->VCMCLinear[3 * column + row] =
-        static_cast<float>(this->ViewToModelLinear[row][column]);
+      this->VCMCLinear[3 * column + row] = static_cast<float>(this->ViewToModelLinear[row][column]);
     }
   }
 }

@@ -23,10 +23,10 @@ bool vtkSISPTVolumeRepresentationProxy::CreateVTKObjects()
   auto* representation = vtkSPTVolumeRepresentation::SafeDownCast(this->GetVTKObject());
   if (!representation)
   {
-    vtkErrorMacro("Proxy " << (this->GetXMLName() ? this->GetXMLName() : "(unnamed)")
-                           << ": its class must be vtkSPTVolumeRepresentation, not "
-                           << (this->GetVTKObject() ? this->GetVTKObject()->GetClassName()
-                                                    : "(none)"));
+    vtkErrorMacro(
+      "Proxy " << (this->GetXMLName() ? this->GetXMLName() : "(unnamed)")
+               << ": its class must be vtkSPTVolumeRepresentation, not "
+               << (this->GetVTKObject() ? this->GetVTKObject()->GetClassName() : "(none)"));
     return false;
   }
 

@@ -1,6 +1,7 @@
 /**
  * @class   vtkSPTVolumeRepresentation
- * @brief   ParaView's unstructured-grid volume representation, drawn by one of this project's mappers
+ * @brief   ParaView's unstructured-grid volume representation, drawn by one of this project's
+ * mappers
  *
  * The representation types that the SPT plugin adds to ParaView ("Volume (SPT)", and one per
  * further mapper) are each a proxy of this class whose subproxy "VolumeMapper" is the mapper
@@ -25,12 +26,13 @@
 #define vtkSPTVolumeRepresentation_h
 
 #include "SPTParaViewRepresentationModule.h" // For export macro
-#include "vtkSmartPointer.h"   // For the mapper
+#include "vtkSmartPointer.h"                 // For the mapper
 #include "vtkUnstructuredGridVolumeRepresentation.h"
 
 class vtkAbstractVolumeMapper;
 
-class SPTPARAVIEWREPRESENTATION_EXPORT vtkSPTVolumeRepresentation : public vtkUnstructuredGridVolumeRepresentation
+class SPTPARAVIEWREPRESENTATION_EXPORT vtkSPTVolumeRepresentation
+  : public vtkUnstructuredGridVolumeRepresentation
 {
 public:
   static vtkSPTVolumeRepresentation* New();

@@ -101,8 +101,8 @@ glm::vec3 Vertex(const vtkHAVSFaceBuffers* faces, unsigned int id)
   return glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]);
 }
 
-void CheckFaces(vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary,
-  const char* name)
+void CheckFaces(
+  vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary, const char* name)
 {
   vtkNew<vtkSPTMeshBuffers> mesh;
   vtkSPTMeshBuffers::ScalarSelection selection;
@@ -201,9 +201,12 @@ void CheckKeysAndRadixSort()
   vtkHAVSFaceBuffers::RadixSort(keys, order, scratchKeys, scratchOrder);
   std::vector<unsigned int> expected(values.size());
   std::iota(expected.begin(), expected.end(), 0u);
-  std::stable_sort(expected.begin(), expected.end(), [&](unsigned int a, unsigned int b) {
-    return vtkHAVSFaceBuffers::SortableKey(values[a]) < vtkHAVSFaceBuffers::SortableKey(values[b]);
-  });
+  std::stable_sort(expected.begin(), expected.end(),
+    [&](unsigned int a, unsigned int b)
+    {
+      return vtkHAVSFaceBuffers::SortableKey(values[a]) <
+        vtkHAVSFaceBuffers::SortableKey(values[b]);
+    });
   Check(order == expected, "the radix sort is the stable sort by key");
   Check(std::is_sorted(keys.begin(), keys.end()), "the sorted keys are in order");
 }
@@ -216,8 +219,8 @@ void CheckSortOrder(bool parallel)
   mesh->Update(grid, selection);
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);
-  const glm::mat4 view = glm::lookAt(glm::vec3(1.3f, -2.0f, 1.7f), glm::vec3(0.0f),
-    glm::vec3(0.0f, 0.0f, 1.0f));
+  const glm::mat4 view =
+    glm::lookAt(glm::vec3(1.3f, -2.0f, 1.7f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
   faces->Sort(glm::value_ptr(view), parallel);
   const std::vector<unsigned int>& order = faces->GetOrder();
   Check(order.size() == size_t(faces->GetNumberOfFaces()), "every face is sorted");

@@ -48,8 +48,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iostream>
 #include <cstring>
+#include <iostream>
 #include <random>
 #include <vector>
 
@@ -206,8 +206,8 @@ glm::vec4 LookUp(const vtkSPTPreIntegrationTable* table, float front, float back
 class KBuffer
 {
 public:
-  KBuffer(int size, const vtkSPTPreIntegrationTable* table, float thicknessToTable,
-    float lengthScale)
+  KBuffer(
+    int size, const vtkSPTPreIntegrationTable* table, float thicknessToTable, float lengthScale)
     : Entries(size - 1, Entry{ 0.0f, EmptyDistance })
     , Table(table)
     , ThicknessToTable(thicknessToTable)
@@ -280,8 +280,8 @@ private:
     const float backScalar = back.Scalar - 2.0f * backCrossing;
     const float thickness = std::max(back.Distance - front.Distance, 0.0f) * this->LengthScale;
     const float length = std::sqrt(std::min(thickness * this->ThicknessToTable, 1.0f));
-    const glm::vec4 segment = LookUp(this->Table, glm::clamp(frontScalar, 0.0f, 1.0f),
-      glm::clamp(backScalar, 0.0f, 1.0f), length);
+    const glm::vec4 segment = LookUp(
+      this->Table, glm::clamp(frontScalar, 0.0f, 1.0f), glm::clamp(backScalar, 0.0f, 1.0f), length);
     this->Color += (1.0f - this->Color.a) * segment;
   }
 
@@ -321,8 +321,8 @@ std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkSPTVie
     for (int v = 0; v < 3; ++v)
     {
       const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
-      vc[v] = glm::dvec3(modelToView *
-        glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
+      vc[v] = glm::dvec3(
+        modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
       const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(vc[v], 1.0);
       w[v] = clip.w;
       window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
@@ -569,9 +569,9 @@ int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, 
       const Comparison races = Compare(pixels, lost, gpu, tolerance);
       std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
                 << same.Compared << " pixels off (largest " << same.Largest << ", "
-                << same.Ambiguous << " on edges left out); perturbed orders, of "
-                << same.Layered << " pixels with 4 fragments or more: " << pairs.Off
-                << " off with pairs swapped, " << races.Off << " with every 4th update lost\n";
+                << same.Ambiguous << " on edges left out); perturbed orders, of " << same.Layered
+                << " pixels with 4 fragments or more: " << pairs.Off << " off with pairs swapped, "
+                << races.Off << " with every 4th update lost\n";
       if (same.Off > 0 || same.Ambiguous > same.Compared / 20)
       {
         std::cerr << "FAILED: the GPU k-buffer differs from the CPU k-buffer fed in draw order.\n";

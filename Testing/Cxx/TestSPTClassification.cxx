@@ -56,7 +56,8 @@ std::string ReadShader(const char* name)
   std::stringstream text;
   text << file.rdbuf();
   std::string source = text.str();
-  auto replace = [&](const std::string& tag, const std::string& with) {
+  auto replace = [&](const std::string& tag, const std::string& with)
+  {
     const size_t at = source.find(tag);
     if (at != std::string::npos)
     {
@@ -140,8 +141,8 @@ float InsideMargin(const std::vector<glm::vec2>& polygon, glm::vec2 q)
 
 // The exact entry and exit of a ray (origin o, direction d) through a tetrahedron, by clipping
 // the ray against its four face planes; scalars by barycentric interpolation.
-bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& front,
-  glm::vec3& back, float& frontScalar, float& backScalar)
+bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& front, glm::vec3& back,
+  float& frontScalar, float& backScalar)
 {
   float enter = -1.0e30f, exit = 1.0e30f;
   for (int f = 0; f < 4; ++f)
@@ -178,8 +179,10 @@ bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& fro
   }
   front = o + enter * d;
   back = o + exit * d;
-  auto scalarAt = [&](glm::vec3 p) {
-    const glm::mat3 m(t.Points[1] - t.Points[0], t.Points[2] - t.Points[0], t.Points[3] - t.Points[0]);
+  auto scalarAt = [&](glm::vec3 p)
+  {
+    const glm::mat3 m(
+      t.Points[1] - t.Points[0], t.Points[2] - t.Points[0], t.Points[3] - t.Points[0]);
     const glm::vec3 w = glm::inverse(m) * (p - t.Points[0]);
     return t.Scalars[0] * (1.0f - w.x - w.y - w.z) + t.Scalars[1] * w.x + t.Scalars[2] * w.y +
       t.Scalars[3] * w.z;
@@ -192,11 +195,11 @@ bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& fro
 std::vector<Tetrahedron> MakeTetrahedra()
 {
   std::vector<Tetrahedron> tetrahedra = {
-    { { glm::vec3(0.1f, 0.05f, -5.0f), glm::vec3(-1.0f, -0.8f, -6.0f), glm::vec3(1.1f, -0.7f, -6.2f),
-        glm::vec3(0.0f, 1.0f, -5.8f) },
+    { { glm::vec3(0.1f, 0.05f, -5.0f), glm::vec3(-1.0f, -0.8f, -6.0f),
+        glm::vec3(1.1f, -0.7f, -6.2f), glm::vec3(0.0f, 1.0f, -5.8f) },
       { 0.2f, 0.9f, 0.4f, 0.6f }, 3, "class 1 (thick vertex in front)" },
-    { { glm::vec3(0.1f, 0.05f, -6.5f), glm::vec3(-1.0f, -0.8f, -5.0f), glm::vec3(1.1f, -0.7f, -5.2f),
-        glm::vec3(0.0f, 1.0f, -5.4f) },
+    { { glm::vec3(0.1f, 0.05f, -6.5f), glm::vec3(-1.0f, -0.8f, -5.0f),
+        glm::vec3(1.1f, -0.7f, -5.2f), glm::vec3(0.0f, 1.0f, -5.4f) },
       { 0.7f, 0.1f, 0.3f, 0.5f }, 3, "class 1 (thick vertex behind)" },
     { { glm::vec3(-1.0f, 0.1f, -5.0f), glm::vec3(1.0f, -0.1f, -5.1f), glm::vec3(0.1f, -1.0f, -6.0f),
         glm::vec3(-0.1f, 1.0f, -6.3f) },
@@ -209,7 +212,8 @@ std::vector<Tetrahedron> MakeTetrahedra()
       { 0.1f, 0.8f, 0.4f, 0.6f }, 1, "class 4 (two vertices on one ray)" },
   };
   std::mt19937 random(7);
-  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-8.0f, -4.0f), unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-8.0f, -4.0f),
+    unit(0.0f, 1.0f);
   for (int n = 0; n < 400; ++n)
   {
     Tetrahedron t{ {}, {}, 0, "random" };
@@ -219,8 +223,8 @@ std::vector<Tetrahedron> MakeTetrahedra()
       t.Scalars[v] = unit(random);
     }
     // Skip slivers, whose exact answer is ill-conditioned in single precision.
-    const float volume = std::abs(glm::dot(t.Points[1] - t.Points[0],
-      glm::cross(t.Points[2] - t.Points[0], t.Points[3] - t.Points[0])));
+    const float volume = std::abs(glm::dot(
+      t.Points[1] - t.Points[0], glm::cross(t.Points[2] - t.Points[0], t.Points[3] - t.Points[0])));
     if (volume > 0.05f)
     {
       tetrahedra.push_back(t);
@@ -255,7 +259,8 @@ public:
     direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
   }
 
-  int Check(const Tetrahedron& t, const std::vector<Captured>& triangles, std::mt19937& random) const;
+  int Check(
+    const Tetrahedron& t, const std::vector<Captured>& triangles, std::mt19937& random) const;
 
   bool Parallel;
   glm::mat4 Projection;
@@ -329,8 +334,10 @@ int Checker::Check(
       const float whole = Cross2(s[0], s[1], s[2]);
       if (std::abs(whole) > 1.0e-5f * hullArea)
       {
-        weights[i] = glm::vec3(Cross2(q, s[1], s[2]), Cross2(s[0], q, s[2]), Cross2(s[0], s[1], q)) / whole;
-        ambiguous = ambiguous || std::abs(std::min(weights[i].x, std::min(weights[i].y, weights[i].z))) < 1.0e-4f;
+        weights[i] =
+          glm::vec3(Cross2(q, s[1], s[2]), Cross2(s[0], q, s[2]), Cross2(s[0], s[1], q)) / whole;
+        ambiguous = ambiguous ||
+          std::abs(std::min(weights[i].x, std::min(weights[i].y, weights[i].z))) < 1.0e-4f;
       }
     }
     if (ambiguous)
@@ -360,8 +367,8 @@ int Checker::Check(
       glm::vec3 origin, direction, exactFront, exactBack;
       float exactFrontScalar, exactBackScalar;
       this->Ray(q, origin, direction);
-      if (!ExactSegment(t, origin, direction, exactFront, exactBack, exactFrontScalar,
-            exactBackScalar))
+      if (!ExactSegment(
+            t, origin, direction, exactFront, exactBack, exactFrontScalar, exactBackScalar))
       {
         continue; // grazing ray
       }
@@ -374,11 +381,10 @@ int Checker::Check(
         std::abs(scalars.x / front.w - exactFrontScalar) > tolerance ||
         std::abs(scalars.y / back.w - exactBackScalar) > tolerance)
       {
-        std::cerr << t.Name << (this->Parallel ? " (parallel)" : " (perspective)") << " at ("
-                  << q.x << ", " << q.y << "): thickness " << thickness << " vs exact "
-                  << exactThickness << ", scalars " << scalars.x / front.w << " "
-                  << scalars.y / back.w << " vs exact " << exactFrontScalar << " "
-                  << exactBackScalar << "\n";
+        std::cerr << t.Name << (this->Parallel ? " (parallel)" : " (perspective)") << " at (" << q.x
+                  << ", " << q.y << "): thickness " << thickness << " vs exact " << exactThickness
+                  << ", scalars " << scalars.x / front.w << " " << scalars.y / back.w
+                  << " vs exact " << exactFrontScalar << " " << exactBackScalar << "\n";
         ++failures;
       }
     }
@@ -470,9 +476,10 @@ int TestSPTClassification(int, char*[])
     Checker checker(parallel);
     glUseProgram(program);
     const glm::mat4 identity(1.0f);
-    glUniformMatrix4fv(glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
-    glUniformMatrix4fv(glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE,
-      glm::value_ptr(checker.Projection));
+    glUniformMatrix4fv(
+      glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
+    glUniformMatrix4fv(
+      glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
     glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
     // One draw per tetrahedron, so that its triangles are known to be its own.
     for (size_t n = 0; n < tetrahedra.size(); ++n)
@@ -487,8 +494,8 @@ int TestSPTClassification(int, char*[])
       GLuint written = 0;
       glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
       std::vector<Captured> captured(3 * written);
-      glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.size() * sizeof(Captured),
-        captured.data());
+      glGetBufferSubData(
+        GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.size() * sizeof(Captured), captured.data());
       failures += checker.Check(tetrahedra[n], captured, random);
       if (failures > 20)
       {

@@ -23,8 +23,8 @@ namespace
 // Front-to-back emission-absorption along a segment whose scalar varies linearly, with the
 // model of vtkUnstructuredGridLinearRayIntegrator (tau = opacity / unit distance, emission
 // C tau), by the midpoint rule with many steps.
-void FineIntegral(vtkVolumeProperty* property, double front, double back, double length,
-  double rgba[4])
+void FineIntegral(
+  vtkVolumeProperty* property, double front, double back, double length, double rgba[4])
 {
   const int steps = 20000;
   const double unit = property->GetScalarOpacityUnitDistance();
@@ -68,16 +68,16 @@ void VTKLinearIntegral(vtkVolumeProperty* property, const double range[2], doubl
   }
 }
 
-bool Near(const float* table, const double* expected, double tolerance, const char* what,
-  int i, int j, int k)
+bool Near(const float* table, const double* expected, double tolerance, const char* what, int i,
+  int j, int k)
 {
   for (int c = 0; c < 4; ++c)
   {
     if (!(std::abs(table[c] - expected[c]) <= tolerance))
     {
       std::cerr << "Entry (" << i << ", " << j << ", " << k << ") channel " << c << ": table "
-                << table[c] << ", " << what << " " << expected[c] << " (tolerance "
-                << tolerance << ")\n";
+                << table[c] << ", " << what << " " << expected[c] << " (tolerance " << tolerance
+                << ")\n";
       return false;
     }
   }
@@ -120,9 +120,8 @@ int TestSPTPreIntegrationTable(int, char*[])
     return EXIT_FAILURE;
   }
   const std::vector<float>& values = table->GetTable();
-  auto entry = [&](int i, int j, int k) {
-    return &values[4 * (i + scalarResolution * (j + size_t(scalarResolution) * k))];
-  };
+  auto entry = [&](int i, int j, int k)
+  { return &values[4 * (i + scalarResolution * (j + size_t(scalarResolution) * k))]; };
   if (values.size() != size_t(4) * scalarResolution * scalarResolution * lengthResolution)
   {
     std::cerr << "Table has " << values.size() << " values.\n";

@@ -115,8 +115,8 @@ void Expect(vtkPolyData* input, const std::string& expected, const std::string& 
 int TestTetGenMesherErrors(int, char*[])
 {
   auto sphere = Sphere(0.0);
-  const std::vector<double> cube = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1,
-    1, 0, 1, 1 };
+  const std::vector<double> cube = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1,
+    0, 1, 1 };
   const std::vector<double> twoTetrahedra = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0,
     -1 };
 

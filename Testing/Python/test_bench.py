@@ -12,7 +12,6 @@ import sys
 import numpy as np
 import pytest
 
-import spt
 from spt import bench
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid

@@ -158,6 +158,8 @@ def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
     rows = [re.split(r"\s{2,}", line.strip()) for line in result.stdout.splitlines()[2:7]]
     havs = next(row for row in rows if row[1] == "HAVS-like k=6")
     assert 0.0 < float(havs[2]) < 0.05 and float(havs[5]) > 0.0 and float(havs[6]) > 0.0
+
+
 def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
     output = tmp_path / "pbvr"
     result = run("figures", "pbvr", "--datasets", "default", "--size", "48", "--repetitions", "8",

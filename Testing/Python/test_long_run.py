@@ -77,7 +77,7 @@ def test_a_thousand_renders_do_not_grow(kind, have_display):
     prop = data.transfer_function(grid)
     window, renderer = render.make_window(64, 64)
     mapper = MAPPERS[kind]()
-    volume = render.add_volume(renderer, grid, prop, mapper)
+    render.add_volume(renderer, grid, prop, mapper)
     renderer.ResetCamera()
     errors = Errors(mapper, window, renderer)
     opacity = prop.GetScalarOpacity()

@@ -169,6 +169,7 @@ def compare(reference, image, other_seed):
     the same scene (another seed): per channel of the premultiplied color over black."""
     covered = pvs.footprint(reference) | pvs.footprint(image)
     mean = 0.5 * (reference + image)[covered]
+
     def iou(a, b):
         return float((pvs.footprint(a) & pvs.footprint(b)).sum()
                      / (pvs.footprint(a) | pvs.footprint(b)).sum())

@@ -148,8 +148,9 @@ def test_subpixel_level_averages_subpixels(have_display):
     level, size = 16, SIZE // 2
     fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
     reference = _block_mean(fine, 2)
-    first, second = (render.render(s.grid, s.property, render.spt_mapper(level, 2, seed, **render.PAPER_SAMPLING), s.view,
-                                   (size, size)).image for seed in (1, 2))
+    first, second = (render.render(
+        s.grid, s.property, render.spt_mapper(level, 2, seed, **render.PAPER_SAMPLING), s.view,
+        (size, size)).image for seed in (1, 2))
     e = statistics.estimate(first, second, reference, level)
     mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
     coverage = np.clip(fine[..., 3], 0.0, 1.0)

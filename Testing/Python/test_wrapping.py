@@ -2,7 +2,6 @@
 
 import os
 import subprocess
-import sys
 
 import pytest
 import vtk
@@ -73,7 +72,8 @@ def test_installed_package_imports_from_any_directory(tmp_path):
         pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     result = subprocess.run(
-        ["/usr/bin/python3", "-c", "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
+        ["/usr/bin/python3", "-c",
+         "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
         cwd=tmp_path, env=env, capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "vtkSPTVolumeMapper"

@@ -22,7 +22,6 @@ output = pathlib.Path(os.environ["SPT_GUI_OUTPUT"])
 shutil.copy(os.environ["SPT_GUI_FRAMEBUFFER"], output / f"window_{step}.xwd")
 
 
-
 def capture():
     display = simple.GetDisplayProperties()
     view = simple.GetActiveView()

@@ -24,7 +24,8 @@ METHODS = {
     "Volume (SPT)": {
         "mapper": "vtkSPTVolumeMapper",
         "settings": {name: name for name in (
-            "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+            "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed",
+            "PreIntegrationScalarResolution",
             "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
             "Estimator", "ExactCoverage", "ProgressiveRefinement", "AutoAdjustRepetitions")},
         "repetitions": "RepetitionLevel",

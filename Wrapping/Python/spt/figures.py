@@ -105,7 +105,8 @@ def convergence(datasets: Sequence[str], levels: Sequence[int], size: int,
         rows.append([result["dataset"], "reference", 0.0, math.inf, result["reference_seconds"],
                      result["reference_seconds"] / result["pt_seconds"]])
     tables.write_table(output / "convergence.md",
-                 ["data set", "method", "RMSE", "PSNR [dB]", "time [s]", "time / VTK PT"], rows)
+                       ["data set", "method", "RMSE", "PSNR [dB]", "time [s]", "time / VTK PT"],
+                       rows)
     return results
 
 
@@ -338,7 +339,7 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
             curves.append([result["dataset"], label] + [e["rmse"] for e in entries])
     level_list = [e["repetitions"] for e in results[0]["methods"]["SPT"]] if results else []
     tables.write_table(output / "pbvr_convergence.md",
-                 ["data set", "method"] + [f"L={level}" for level in level_list], curves)
+                       ["data set", "method"] + [f"L={level}" for level in level_list], curves)
     return rows
 
 

@@ -107,7 +107,7 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
             rows.append([curve["mode"], point["repetitions"], point["rmse"], point["seconds"],
                          paper_point["seconds"] / point["seconds"]])
     tables.write_table(output / "sampling.md", ["mode", "repetitions", "RMSE", "time [s]",
-                                                  "speed-up over the paper's mode"], rows)
+                                                "speed-up over the paper's mode"], rows)
     _plot(curves, output / "sampling.png", f"{dataset}, {size} x {size}")
     (output / "sampling.json").write_text(json.dumps(result, indent=2))
     return result

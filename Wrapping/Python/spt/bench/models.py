@@ -18,6 +18,7 @@ from .methods import PER_PASS
 
 Entry = Dict[str, object]
 
+
 @dataclasses.dataclass
 class Fit:
     """A linear least-squares model ``y = sum(coefficient_i * term_i)``."""
@@ -168,7 +169,6 @@ def memory_models(entries: Sequence[Dict[str, object]]) -> Dict[str, Fit]:
     if model:
         models["pbvr"] = model
     return models
-
 
 
 def predict_large(entry: Entry, time_fits: Dict[str, Fit], cpu_fits: Dict[str, Fit],

@@ -281,4 +281,3 @@ def race(settings: Settings, progress: Progress, output: pathlib.Path) -> Dict[s
             "frames": FRAMES, "max_repetitions": settings.race_max_repetitions,
             "host_source": "perf" if use_perf else "thread_time",
             "rows": rows, "summary": summarize(rows)}
-
