@@ -1,4 +1,4 @@
-"""The HAVS-like and PBVR mappers on bad and unusual input (issue 8), as test_spt_robustness.py
+"""The HAVS-like and PBVR mappers on bad and unusual input, as test_spt_robustness.py
 does for SPT: each case gives an image close to the reference or a clear error that names the
 problem, never a crash or a silently wrong image, and the input is left exactly as it was.
 Then: the input changed between renders, released resources, several windows, resizes and a
