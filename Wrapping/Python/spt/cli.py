@@ -10,12 +10,17 @@ from typing import Dict, List, Optional, Sequence
 MAX_IMAGE_SIZE = 4096
 
 
+def _convert(text: str, kind, noun: str):
+    """``kind(text)``, or an argument error that says ``text`` is not ``noun``."""
+    try:
+        return kind(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+
+
 def _positive_int(limit: int):
     def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+        value = _convert(text, int, "a whole number")
         if not 1 <= value <= limit:
             raise argparse.ArgumentTypeError(f"{value} is outside 1..{limit}")
         return value
@@ -70,30 +75,21 @@ def _steep_datasets(text: str) -> List[str]:
 def _cell_count(text: str) -> int:
     from .meshes import MAX_CELLS, MIN_CELLS
 
-    try:
-        value = int(text.replace("_", ""))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    value = _convert(text.replace("_", ""), int, "a whole number")
     if not MIN_CELLS <= value <= MAX_CELLS:
         raise argparse.ArgumentTypeError(f"{value} is outside {MIN_CELLS}..{MAX_CELLS}")
     return value
 
 
 def _target_error(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number") from None
+    value = _convert(text, float, "a number")
     if not 0.0 < value <= 1.0:
         raise argparse.ArgumentTypeError(f"{value} is outside 0 (exclusive) .. 1")
     return value
 
 
 def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a whole number") from None
+    value = _convert(text, int, "a whole number")
     if value < 0:
         raise argparse.ArgumentTypeError(f"{value} is negative")
     return value
