@@ -156,11 +156,11 @@ def _blanked_grid():
 
 def test_blanked_cells_are_removed():
     grid = _blanked_grid()
-    data._flag_hidden_cells(grid)
-    tets = data._to_unstructured(grid, "s", tetrahedralize=True)
+    data.flag_hidden_cells(grid)
+    tets = data.to_unstructured(grid, "s", tetrahedralize=True)
     assert tets.GetNumberOfCells() == 7 * 5
     assert tets.GetCellData().GetNumberOfArrays() == 0
-    hexes = data._to_unstructured(grid, "s", tetrahedralize=False)
+    hexes = data.to_unstructured(grid, "s", tetrahedralize=False)
     assert hexes.GetNumberOfCells() == 7
 
 

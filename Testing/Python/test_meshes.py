@@ -54,7 +54,7 @@ def test_surface_is_closed_and_faces_outwards(shape, resolution):
     # Closed, manifold and consistently oriented: each edge once in each direction.
     assert all(count == 1 for count in uses.values())
     assert all((b, a) in uses for a, b in uses)
-    assert meshes._signed_volume(points, triangles) > 0.0
+    assert meshes.signed_volume(points, triangles) > 0.0
     assert np.isfinite(points).all()
     polydata = meshes.surface(shape, resolution)
     assert polydata.GetNumberOfPolys() == len(triangles)
@@ -62,7 +62,7 @@ def test_surface_is_closed_and_faces_outwards(shape, resolution):
 
 @pytest.mark.parametrize("shape", meshes.SHAPES)
 def test_surface_converges_to_the_shape_volume(shape):
-    coarse, fine = (meshes._signed_volume(*meshes.surface_arrays(shape, r)) for r in (32, 128))
+    coarse, fine = (meshes.signed_volume(*meshes.surface_arrays(shape, r)) for r in (32, 128))
     assert abs(fine - meshes._VOLUMES[shape]) < 0.002 * meshes._VOLUMES[shape]
     assert abs(coarse - meshes._VOLUMES[shape]) > abs(fine - meshes._VOLUMES[shape])
 
@@ -88,7 +88,7 @@ def test_generated_mesh_has_the_size_and_fills_the_surface(shape):
     volumes = tet_volumes(points, tets)
     assert volumes.min() > 0.0
     resolution, _ = meshes.mesh_parameters(shape, SMALL)
-    enclosed = meshes._signed_volume(*meshes.surface_arrays(shape, resolution))
+    enclosed = meshes.signed_volume(*meshes.surface_arrays(shape, resolution))
     # TetGen treats triangles within 0.1 degrees of coplanar as one facet and may put points
     # slightly off them (3e-6 here); one missing tetrahedron would be 5e-5.
     assert abs(volumes.sum() - enclosed) < 2e-5 * enclosed
@@ -124,7 +124,7 @@ def test_unreadable_cache_file_is_replaced(cache_folder):
     path.write_bytes(b"not a mesh")
     mesh = meshes.generate_arrays("drill", 10_000)
     assert len(mesh.tetrahedra) > 0
-    assert meshes._load(path) is not None
+    assert meshes.load_cached(path) is not None
 
 
 def test_seed_moves_the_field_not_the_mesh():
@@ -154,7 +154,7 @@ def test_bad_arguments_raise_value_error(call, message):
 def test_mesher_reports_an_open_surface_without_crashing():
     points, triangles = meshes.surface_arrays("torus", 8)
     polydata = meshes.surface("torus", 8)
-    polydata.SetPolys(meshes._cell_array(triangles[1:]))
+    polydata.SetPolys(meshes.cell_array(triangles[1:]))
     messages = []
     mesher = spt.vtkTetGenMesher()
     mesher.AddObserver(vtkCommand.ErrorEvent, lambda caller, event: messages.append(event))

@@ -196,7 +196,7 @@ def _read_plot3d(stem: str, function: Optional[int],
     ``function`` is a PLOT3D derived-scalar number (e.g. 153 for
     VelocityMagnitude); ``None`` keeps the reader's default scalar
     (100, Density). With ``iblanking`` the returned grid carries a cell
-    array flagging blanked cells (see :func:`_flag_hidden_cells`).
+    array flagging blanked cells (see :func:`flag_hidden_cells`).
     """
     reader = vtkMultiBlockPLOT3DReader()
     reader.SetXYZFileName(_data_file(stem + "xyz.bin"))
@@ -212,7 +212,7 @@ def _read_plot3d(stem: str, function: Optional[int],
     grid = reader.GetOutput().GetBlock(0)
     if grid is None or grid.GetNumberOfCells() == 0:
         raise RuntimeError(f"PLOT3D reader produced no grid for {stem}")
-    _flag_hidden_cells(grid)
+    flag_hidden_cells(grid)
     return grid
 
 
@@ -253,7 +253,7 @@ _READERS: Dict[str, Callable[[], vtkDataSet]] = {
 # Conversion to a clean (tetrahedral) unstructured grid
 # --------------------------------------------------------------------------
 
-def _flag_hidden_cells(grid: vtkStructuredGrid) -> None:
+def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
     """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``.
 
     A cell is hidden when the ghost array marks it HIDDENCELL, or when any
@@ -323,8 +323,8 @@ def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
     return result
 
 
-def _to_unstructured(dataset: vtkDataSet, array_name: str,
-                     tetrahedralize: bool) -> vtkUnstructuredGrid:
+def to_unstructured(dataset: vtkDataSet, array_name: str,
+                    tetrahedralize: bool) -> vtkUnstructuredGrid:
     """Convert a data set to an unstructured grid (tetrahedra when
     ``tetrahedralize``) whose only array is point scalar ``array_name``;
     cells flagged as hidden are removed."""
@@ -363,7 +363,7 @@ def load(name: str, tetrahedralize: bool = True) -> vtkUnstructuredGrid:
         known = ", ".join(["default", *sorted(DATASETS)])
         raise KeyError(f"unknown data set {name!r}; known: {known}")
     dataset = _READERS[key]()
-    return _to_unstructured(dataset, DATASETS[key][1], tetrahedralize)
+    return to_unstructured(dataset, DATASETS[key][1], tetrahedralize)
 
 
 # --------------------------------------------------------------------------
@@ -474,8 +474,8 @@ def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
     field = numpy_to_vtk(default_field(coords).astype(np.float32), deep=True)
     field.SetName(DEFAULT_FIELD_NAME)
     structured.GetPointData().AddArray(field)
-    return _to_unstructured(structured, DEFAULT_FIELD_NAME,
-                            tetrahedralize=True)
+    return to_unstructured(structured, DEFAULT_FIELD_NAME,
+                           tetrahedralize=True)
 
 
 # --------------------------------------------------------------------------

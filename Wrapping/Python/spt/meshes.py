@@ -126,12 +126,13 @@ def _sweep(rings: List[Ring], closed: bool) -> Tuple[np.ndarray, np.ndarray]:
     triangles = np.concatenate([
         _zip_rings(rings[a], rings[b], offsets[a], offsets[b]) for a, b in pairs])
     points = np.concatenate([ring.points for ring in rings])
-    if _signed_volume(points, triangles) < 0.0:
+    if signed_volume(points, triangles) < 0.0:
         triangles = triangles[:, ::-1].copy()
     return points, triangles
 
 
-def _signed_volume(points: np.ndarray, triangles: np.ndarray) -> float:
+def signed_volume(points: np.ndarray, triangles: np.ndarray) -> float:
+    """The volume a closed triangulated surface encloses, positive when its triangles face out."""
     a, b, c = (points[triangles[:, k]] for k in range(3))
     return float(np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0)
 
@@ -265,7 +266,7 @@ def surface(shape: str, resolution: int = 64) -> vtkPolyData:
     points, triangles = surface_arrays(shape, resolution)
     polydata = vtkPolyData()
     polydata.SetPoints(_vtk_points(points))
-    polydata.SetPolys(_cell_array(triangles))
+    polydata.SetPolys(cell_array(triangles))
     return polydata
 
 
@@ -406,7 +407,7 @@ def _save(path: pathlib.Path, mesh: MeshArrays) -> None:
         raise
 
 
-def _load(path: pathlib.Path) -> Optional[MeshArrays]:
+def load_cached(path: pathlib.Path) -> Optional[MeshArrays]:
     """The cached mesh, or None when the file is missing, unreadable or of another format."""
     try:
         with np.load(path, allow_pickle=False) as data:
@@ -428,7 +429,7 @@ def generate_arrays(shape: str, cells: int, seed: int = 0, cache: bool = True) -
     """:func:`generate`'s mesh as NumPy arrays."""
     path = cache_path(shape, cells, seed)
     if cache:
-        mesh = _load(path)
+        mesh = load_cached(path)
         if mesh is not None:
             return mesh
     points, tetrahedra = tetrahedralize(shape, cells)
@@ -442,7 +443,7 @@ def to_grid(mesh: MeshArrays) -> vtkUnstructuredGrid:
     """A vtkUnstructuredGrid of VTK_TETRA cells with the active point scalars "field"."""
     grid = vtkUnstructuredGrid()
     grid.SetPoints(_vtk_points(mesh.points))
-    grid.SetCells(VTK_TETRA, _cell_array(mesh.tetrahedra))
+    grid.SetCells(VTK_TETRA, cell_array(mesh.tetrahedra))
     values = numpy_to_vtk(np.ascontiguousarray(mesh.field, dtype=np.float32), deep=True)
     values.SetName(FIELD_NAME)
     grid.GetPointData().SetScalars(values)
@@ -484,7 +485,7 @@ def _vtk_points(points: np.ndarray) -> vtkPoints:
     return result
 
 
-def _cell_array(cells: np.ndarray) -> vtkCellArray:
+def cell_array(cells: np.ndarray) -> vtkCellArray:
     """A vtkCellArray of cells of equal size from an (m, k) array of point ids."""
     count, size = cells.shape
     offsets = numpy_to_vtkIdTypeArray(np.arange(0, (count + 1) * size, size, dtype=np.int64),
