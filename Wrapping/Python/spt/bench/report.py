@@ -18,8 +18,8 @@ PAPER = {"spt_bytes_per_cell": 20.6}
 
 
 def table(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
-    """A Markdown table, followed by a blank line."""
-    return tables.markdown(header, rows) + "\n"
+    """A Markdown table (its last line ends the paragraph in the report)."""
+    return tables.markdown(header, rows)
 
 
 def _reached(cell) -> str:
