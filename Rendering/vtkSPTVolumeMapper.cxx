@@ -203,8 +203,8 @@ vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
   return shared;
 }
 
-bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper,
-  vtkRenderer* ren, vtkVolume* vol, vtkSPTRenderSetup::Target& target, vtkSPTFrame::Volume& out)
+bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren,
+  vtkVolume* vol, vtkSPTRenderSetup::Target& target, vtkSPTFrame::Volume& out)
 {
   vtkInternals& internals = *mapper->Internals;
   if (!vtkSPTRenderSetup::BeginFrame(mapper, ren, target, internals.Context))
@@ -437,22 +437,20 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "PreIntegrationScalarResolution: " << this->PreIntegrationScalarResolution
      << "\n";
-  os << indent << "PreIntegrationThicknessResolution: "
-     << this->PreIntegrationThicknessResolution << "\n";
+  os << indent << "PreIntegrationThicknessResolution: " << this->PreIntegrationThicknessResolution
+     << "\n";
   os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
      << "\n";
   os << indent << "VectorComponent: " << this->VectorComponent << "\n";
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
-  os << indent << "Estimator: "
-     << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility") << "\n";
-  os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off")
+  os << indent
+     << "Estimator: " << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility")
      << "\n";
-  os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions
-     << "\n";
-  os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off")
-     << "\n";
+  os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off") << "\n";
+  os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions << "\n";
+  os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off") << "\n";
   os << indent << "TargetError: " << this->TargetError << "\n";
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";

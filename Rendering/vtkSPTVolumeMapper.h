@@ -102,9 +102,9 @@ public:
    * traversal and a color traversal). N > 1 makes N keep-or-discard decisions per fragment and
    * finds each repetition's nearest survivor with image atomics (two traversals for N
    * repetitions), which gives the same image as N single passes with the same random numbers,
-   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Needs OpenGL 4.4 (image load/store, clear
-   * texture); without it the mapper falls back to 1 and to the survivor estimator. Range 1 to
-   * 64, default 16.
+   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Needs
+   * OpenGL 4.4 (image load/store, clear texture); without it the mapper falls back to 1 and to the
+   * survivor estimator. Range 1 to 64, default 16.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
   vtkGetMacro(RepetitionsPerPass, int);

@@ -50,7 +50,8 @@ def _volume_integral_of_attenuation(grid, prop):
     volume = np.abs(np.linalg.det(v[:, 1:] - v[:, :1])) / 6.0
     centroid_scalar = scalars[cells].mean(axis=1)
     opacity = prop.GetScalarOpacity()
-    tau = np.array([opacity.GetValue(s) for s in centroid_scalar]) / prop.GetScalarOpacityUnitDistance()
+    unit = prop.GetScalarOpacityUnitDistance()
+    tau = np.array([opacity.GetValue(s) for s in centroid_scalar]) / unit
     return float((volume * tau).sum())
 
 

@@ -200,8 +200,8 @@ def _pairs(mesh: _Mesh, m: np.ndarray, width: int, height: int):
         stop = int(np.searchsorted(cumulative, base + PAIRS_PER_BATCH, side="right"))
         stop = max(stop, start + 1)
         tet = np.repeat(np.arange(start, stop), counts[start:stop])
-        local = np.arange(len(tet)) - np.repeat(cumulative[start:stop] - counts[start:stop] - base,
-                                               counts[start:stop])
+        first = cumulative[start:stop] - counts[start:stop] - base
+        local = np.arange(len(tet)) - np.repeat(first, counts[start:stop])
         ix = i0[tet] + local % np.maximum(nx[tet], 1)
         iy = j0[tet] + local // np.maximum(nx[tet], 1)
         yield tet, iy * width + ix
