@@ -7,7 +7,7 @@
 #include "vtkShaderProgram.h"
 #include "vtk_glew.h"
 
-#include "vtkSPTMeshBuffers.h"
+#include "vtkTetrahedralMesh.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -82,7 +82,7 @@ vtkHAVSFaceBuffers::vtkHAVSFaceBuffers() = default;
 
 vtkHAVSFaceBuffers::~vtkHAVSFaceBuffers() = default;
 
-void vtkHAVSFaceBuffers::Update(const vtkSPTMeshBuffers* mesh)
+void vtkHAVSFaceBuffers::Update(const vtkTetrahedralMesh* mesh)
 {
   if (mesh->GetBuildTime() == this->MeshBuildTime && this->BuildTime.GetMTime() > 0)
   {
@@ -92,7 +92,7 @@ void vtkHAVSFaceBuffers::Update(const vtkSPTMeshBuffers* mesh)
   this->Build(mesh);
 }
 
-void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
+void vtkHAVSFaceBuffers::Build(const vtkTetrahedralMesh* mesh)
 {
   const std::vector<float>& points = mesh->GetPoints();
   const std::vector<FaceOfTetrahedron> all = FacesOfTetrahedra(mesh->GetTetrahedra());
@@ -139,7 +139,7 @@ void vtkHAVSFaceBuffers::Build(const vtkSPTMeshBuffers* mesh)
   this->BuildTime.Modified();
 }
 
-void vtkHAVSFaceBuffers::BuildVertices(const vtkSPTMeshBuffers* mesh,
+void vtkHAVSFaceBuffers::BuildVertices(const vtkTetrahedralMesh* mesh,
   const std::vector<unsigned int>& boundaryCopy, unsigned int numberOfCopies)
 {
   const std::vector<float>& points = mesh->GetPoints();

@@ -37,7 +37,7 @@ class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
-class vtkSPTMeshBuffers;
+class vtkTetrahedralMesh;
 class vtkWindow;
 
 class SPTRENDERING_EXPORT vtkHAVSFaceBuffers : public vtkObject
@@ -53,7 +53,7 @@ public:
   /**
    * Rebuild the faces when the mesh was rebuilt since the last call (point scalars only).
    */
-  void Update(const vtkSPTMeshBuffers* mesh);
+  void Update(const vtkTetrahedralMesh* mesh);
 
   ///@{
   /**
@@ -121,8 +121,8 @@ private:
   vtkHAVSFaceBuffers(const vtkHAVSFaceBuffers&) = delete;
   void operator=(const vtkHAVSFaceBuffers&) = delete;
 
-  void Build(const vtkSPTMeshBuffers* mesh);
-  void BuildVertices(const vtkSPTMeshBuffers* mesh, const std::vector<unsigned int>& boundaryCopy,
+  void Build(const vtkTetrahedralMesh* mesh);
+  void BuildVertices(const vtkTetrahedralMesh* mesh, const std::vector<unsigned int>& boundaryCopy,
     unsigned int numberOfCopies);
 
   std::vector<unsigned int> Faces;

@@ -10,9 +10,9 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
-#include "vtkSPTSceneDepth.h"
+#include "vtkSceneDepthTexture.h"
 
-#include "vtkSPTAccumulateFS.h"
+#include "vtkEnsembleAccumulateFS.h"
 
 #include <cstring>
 #include <sstream>
@@ -87,7 +87,7 @@ bool vtkHAVSKBuffer::Prepare(
   vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize, int access)
 {
   int hasDepth = 0;
-  const int depthFormat = vtkSPTSceneDepth::QueryFormat(&hasDepth);
+  const int depthFormat = vtkSceneDepthTexture::QueryFormat(&hasDepth);
   if (renWin != this->Context || width != this->Width || height != this->Height ||
     kbufferSize != this->KBufferSize || access != this->AccessMode ||
     depthFormat != this->SceneDepth->GetFormat())
@@ -115,7 +115,7 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
   }
   for (int t = 0; t < targets; ++t)
   {
-    vtkSPTSceneDepth::UseNearestTexels(this->Targets[t], renWin);
+    vtkSceneDepthTexture::UseNearestTexels(this->Targets[t], renWin);
     ok = ok && this->Targets[t]->Allocate2D(this->Width, this->Height, 4, VTK_FLOAT);
   }
   ok = ok && this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
@@ -138,7 +138,7 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 
   if (!this->Copy)
   {
-    this->Copy.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTAccumulateFS, ""));
+    this->Copy.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkEnsembleAccumulateFS, ""));
   }
   ok = ok && this->Copy->Program;
   if (!ok)

@@ -29,7 +29,7 @@
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the framebuffers
 #include "vtkObject.h"
-#include "vtkSPTSceneDepth.h" // For the scene depth
+#include "vtkSceneDepthTexture.h" // For the scene depth
 
 #include <memory> // For the quad helpers
 #include <string> // For the shader definitions
@@ -143,7 +143,7 @@ private:
   bool SceneDepthActive = false;
 
   vtkNew<vtkTextureObject> Targets[MaximumTargets];
-  vtkNew<vtkSPTSceneDepth> SceneDepth;
+  vtkNew<vtkSceneDepthTexture> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Copy;
 };

@@ -13,13 +13,13 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkGPUFrameTimer.h"
 #include "vtkHAVSFaceBuffers.h"
 #include "vtkHAVSKBuffer.h"
-#include "vtkSPTGPUTimer.h"
-#include "vtkSPTMeshBuffers.h"
-#include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTRenderSetup.h"
-#include "vtkSPTViewMatrices.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSavedGLState.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
 
 #include "vtkHAVSFacesFS.h"
 #include "vtkHAVSFacesVS.h"
@@ -32,18 +32,18 @@
 class vtkHAVSVolumeMapper::vtkInternals
 {
 public:
-  vtkNew<vtkSPTMeshBuffers> Mesh;
   vtkNew<vtkHAVSFaceBuffers> Faces;
-  vtkNew<vtkSPTPreIntegrationTable> Table;
+  vtkNew<vtkPreIntegrationTable> Table;
   vtkNew<vtkHAVSKBuffer> KBuffer;
-  vtkSPTViewMatrices Matrices;
+  vtkVolumeViewMatrices Matrices;
+  vtkTetrahedralMesh* Mesh = nullptr; // the base class's
+  // The frame's context, as the base class has it.
   vtkOpenGLRenderWindow* Context = nullptr;
   std::unique_ptr<vtkOpenGLQuadHelper> Flush;
   std::string FlushSource;
-  vtkSPTGPUTimer Timer;
+  vtkGPUFrameTimer Timer;
   int AccessInUse = -1;
   bool InterlockFailed = false;
-  vtkSPTRenderSetup Setup;
   int ReportedAccessError = -1;
 
   std::string Source(const char* shader) const;
@@ -51,7 +51,7 @@ public:
   void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
   bool DrawFaces(vtkTextureObject* table, int width, int height);
   bool DrawFlush(vtkTextureObject* table);
-  void ReleaseGraphicsResources(vtkWindow* window);
+  void ReleaseGraphicsResources(vtkWindow* window, bool current);
 };
 
 std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
@@ -138,16 +138,14 @@ bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
   return true;
 }
 
-void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window)
+void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window, bool current)
 {
-  this->Mesh->ReleaseGraphicsResources(window);
   this->Faces->ReleaseGraphicsResources(window);
   this->Table->ReleaseGraphicsResources(window);
   this->KBuffer->ReleaseGraphicsResources(window);
   this->Flush.reset();
   this->FlushSource.clear();
-  this->Timer.Release(this->Context != nullptr);
-  this->Context = nullptr;
+  this->Timer.Release(current);
   this->InterlockFailed = false;
 }
 
@@ -156,6 +154,7 @@ vtkStandardNewMacro(vtkHAVSVolumeMapper);
 vtkHAVSVolumeMapper::vtkHAVSVolumeMapper()
   : Internals(new vtkInternals)
 {
+  this->Internals->Mesh = this->GetMesh();
 }
 
 vtkHAVSVolumeMapper::~vtkHAVSVolumeMapper() = default;
@@ -163,11 +162,6 @@ vtkHAVSVolumeMapper::~vtkHAVSVolumeMapper() = default;
 int vtkHAVSVolumeMapper::GetKBufferSynchronizationInUse()
 {
   return this->Internals->AccessInUse;
-}
-
-vtkIdType vtkHAVSVolumeMapper::GetNumberOfTetrahedra()
-{
-  return this->Internals->Mesh->GetNumberOfTetrahedra();
 }
 
 vtkIdType vtkHAVSVolumeMapper::GetNumberOfFaces()
@@ -180,11 +174,6 @@ vtkIdType vtkHAVSVolumeMapper::GetNumberOfBoundaryFaces()
   return this->Internals->Faces->GetNumberOfBoundaryFaces();
 }
 
-vtkIdType vtkHAVSVolumeMapper::GetNumberOfSkippedCells()
-{
-  return this->Internals->Mesh->GetNumberOfSkippedCells();
-}
-
 vtkIdType vtkHAVSVolumeMapper::GetGPUMemorySize()
 {
   const vtkInternals& internals = *this->Internals;
@@ -195,16 +184,14 @@ vtkIdType vtkHAVSVolumeMapper::GetGPUMemorySize()
 bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkSPTMeshBuffers* mesh = internals.Mesh;
-  if (!internals.Setup.UpdateMesh(
-        this, mesh, this->VectorMode == COMPONENT ? this->VectorComponent : -1, false) ||
-    !vtkSPTRenderSetup::CheckProperty(this, vol))
+  if (!this->PrepareMesh(vol, false))
   {
     return false;
   }
+  vtkTetrahedralMesh* mesh = this->GetMesh();
   vtkVolumeProperty* property = vol->GetProperty();
   internals.Faces->Update(mesh);
-  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, mesh, internals.Matrices))
+  if (!this->ComputeMatrices(ren, vol, internals.Matrices))
   {
     return false;
   }
@@ -221,11 +208,12 @@ bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)
 void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkSPTRenderSetup::Target target;
-  if (!vtkSPTRenderSetup::BeginFrame(this, ren, target, internals.Context))
+  RenderTarget target;
+  if (!this->BeginFrame(ren, target))
   {
     return;
   }
+  internals.Context = target.Window;
   vtkOpenGLRenderWindow* renWin = target.Window;
   internals.AccessInUse = -1;
   if (!this->PrepareInput(ren, vol))
@@ -263,12 +251,12 @@ void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = internals.Context;
+  vtkOpenGLRenderWindow* renWin = this->GetContext();
   int width, height, x, y;
   ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkSPTRenderSetup::SavedState savedState(ostate);
+  vtkSavedGLState savedState(ostate);
   internals.Timer.Start();
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;
@@ -304,7 +292,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
 
 void vtkHAVSVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internals->ReleaseGraphicsResources(window);
+  this->Internals->ReleaseGraphicsResources(window, this->GetContext() != nullptr);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -314,17 +302,8 @@ void vtkHAVSVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "KBufferSize: " << this->KBufferSize << "\n";
   os << indent << "KBufferSynchronization: " << this->KBufferSynchronization << "\n";
   os << indent << "KBufferSynchronizationInUse: " << this->GetKBufferSynchronizationInUse() << "\n";
-  os << indent << "PreIntegrationScalarResolution: " << this->PreIntegrationScalarResolution
-     << "\n";
-  os << indent << "PreIntegrationThicknessResolution: " << this->PreIntegrationThicknessResolution
-     << "\n";
-  os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
-     << "\n";
-  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
-  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
   os << indent << "NumberOfFaces: " << this->GetNumberOfFaces() << "\n";
   os << indent << "NumberOfBoundaryFaces: " << this->GetNumberOfBoundaryFaces() << "\n";
-  os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
   os << indent << "LastSortTime: " << this->LastSortTime << "\n";
   os << indent << "LastGPUTime: " << this->LastGPUTime << "\n";

@@ -44,7 +44,7 @@
 #define vtkHAVSVolumeMapper_h
 
 #include "SPTRenderingModule.h" // For export macro
-#include "vtkUnstructuredGridVolumeMapper.h"
+#include "vtkTetrahedralVolumeMapper.h"
 
 #include <memory> // For the internals
 
@@ -52,11 +52,11 @@ class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkHAVSVolumeMapper : public vtkUnstructuredGridVolumeMapper
+class SPTRENDERING_EXPORT vtkHAVSVolumeMapper : public vtkTetrahedralVolumeMapper
 {
 public:
   static vtkHAVSVolumeMapper* New();
-  vtkTypeMacro(vtkHAVSVolumeMapper, vtkUnstructuredGridVolumeMapper);
+  vtkTypeMacro(vtkHAVSVolumeMapper, vtkTetrahedralVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -110,52 +110,13 @@ public:
 
   ///@{
   /**
-   * Samples of the pre-integration table along each scalar axis (front and back), as in
-   * vtkSPTVolumeMapper. Range 8 to 1024, default 128.
+   * What the last render drew: the tetrahedra's unique faces and how many of those are on the
+   * boundary, and the bytes this mapper holds on the GPU (vertices, sorted faces,
+   * pre-integration table and k-buffer).
    */
-  vtkSetClampMacro(PreIntegrationScalarResolution, int, 8, 1024);
-  vtkGetMacro(PreIntegrationScalarResolution, int);
-  ///@}
-
-  ///@{
-  /**
-   * Samples of the pre-integration table along the thickness axis, from zero to the longest
-   * edge of the mesh, as in vtkSPTVolumeMapper. Range 4 to 1024, default 64.
-   */
-  vtkSetClampMacro(PreIntegrationThicknessResolution, int, 4, 1024);
-  vtkGetMacro(PreIntegrationThicknessResolution, int);
-  ///@}
-
-  enum VectorModeType
-  {
-    MAGNITUDE = 0,
-    COMPONENT = 1
-  };
-
-  ///@{
-  /**
-   * How a multi-component scalar array becomes one scalar: its MAGNITUDE (default) or one
-   * COMPONENT, chosen by VectorComponent (default 0). Single-component arrays are used as is.
-   */
-  vtkSetClampMacro(VectorMode, int, MAGNITUDE, COMPONENT);
-  vtkGetMacro(VectorMode, int);
-  void SetVectorModeToMagnitude() { this->SetVectorMode(MAGNITUDE); }
-  void SetVectorModeToComponent() { this->SetVectorMode(COMPONENT); }
-  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
-  vtkGetMacro(VectorComponent, int);
-  ///@}
-
-  ///@{
-  /**
-   * What the last render drew: tetrahedra, their unique faces and how many of those are on
-   * the boundary, cells left out (non-finite coordinates or scalars), and the bytes this
-   * mapper holds on the GPU (vertices, sorted faces, pre-integration table and k-buffer).
-   */
-  vtkIdType GetNumberOfTetrahedra();
   vtkIdType GetNumberOfFaces();
   vtkIdType GetNumberOfBoundaryFaces();
-  vtkIdType GetNumberOfSkippedCells();
-  vtkIdType GetGPUMemorySize();
+  vtkIdType GetGPUMemorySize() override;
   ///@}
 
   ///@{
@@ -185,10 +146,6 @@ protected:
 
   int KBufferSize = 6;
   int KBufferSynchronization = AUTOMATIC;
-  int PreIntegrationScalarResolution = 128;
-  int PreIntegrationThicknessResolution = 64;
-  int VectorMode = MAGNITUDE;
-  int VectorComponent = 0;
   double LastSortTime = 0.0;
   double LastGPUTime = 0.0;
 

@@ -3,7 +3,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
 
-#include "vtkSPTMeshBuffers.h"
+#include "vtkTetrahedralMesh.h"
 
 #include <glm/glm.hpp>
 
@@ -224,7 +224,7 @@ struct Cell
 class CellSampler
 {
 public:
-  CellSampler(const vtkSPTMeshBuffers* mesh, const AttenuationTable& table,
+  CellSampler(const vtkTetrahedralMesh* mesh, const AttenuationTable& table,
     const vtkPBVRParticleGenerator::Settings& settings, std::vector<Block>& blocks)
     : Points(mesh->GetPoints())
     , Scalars(mesh->GetScalars())
@@ -377,7 +377,7 @@ void vtkPBVRParticleGenerator::ReleaseParticles()
 }
 
 bool vtkPBVRParticleGenerator::Generate(
-  const vtkSPTMeshBuffers* mesh, const std::vector<double>& attenuation, const Settings& settings)
+  const vtkTetrahedralMesh* mesh, const std::vector<double>& attenuation, const Settings& settings)
 {
   const auto start = std::chrono::steady_clock::now();
   this->LastError.clear();

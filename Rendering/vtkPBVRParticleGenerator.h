@@ -3,7 +3,7 @@
  * @brief   the particles of particle-based volume rendering, generated cell by cell
  *
  * Generates the opaque particles that vtkPBVRVolumeMapper draws, from the tetrahedra of a
- * vtkSPTMeshBuffers and the attenuation of the transfer function, as in
+ * vtkTetrahedralMesh and the attenuation of the transfer function, as in
  *
  *   N. Sakamoto, J. Nonaka, K. Koyamada and S. Tanaka, "Particle-based volume rendering",
  *   Asia-Pacific Symposium on Visualization (APVIS), 2007;
@@ -48,7 +48,7 @@
 #include <string> // For the error
 #include <vector> // For the particles
 
-class vtkSPTMeshBuffers;
+class vtkTetrahedralMesh;
 
 class SPTRENDERING_EXPORT vtkPBVRParticleGenerator : public vtkObject
 {
@@ -83,7 +83,7 @@ public:
    * reason in GetLastError() and no particles, when the settings are invalid or the particles
    * would exceed MaximumParticles.
    */
-  bool Generate(const vtkSPTMeshBuffers* mesh, const std::vector<double>& attenuation,
+  bool Generate(const vtkTetrahedralMesh* mesh, const std::vector<double>& attenuation,
     const Settings& settings);
   const std::string& GetLastError() const { return this->LastError; }
 

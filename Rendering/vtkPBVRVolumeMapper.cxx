@@ -17,16 +17,16 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkEnsembleBuffer.h"
 #include "vtkPBVRParticleGenerator.h"
-#include "vtkSPTEnsembleBuffer.h"
-#include "vtkSPTMeshBuffers.h"
-#include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTRenderSetup.h"
-#include "vtkSPTViewMatrices.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSavedGLState.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
 
+#include "vtkHashRandom.h"
 #include "vtkPBVRParticlesFS.h"
 #include "vtkPBVRParticlesVS.h"
-#include "vtkSPTRandom.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,12 +78,10 @@ double LargestSingularValue(const double matrix[3][3])
 class vtkPBVRVolumeMapper::vtkInternals
 {
 public:
-  vtkNew<vtkSPTMeshBuffers> Mesh;
-  vtkNew<vtkSPTEnsembleBuffer> Ensemble;
+  vtkTetrahedralMesh* Mesh = nullptr;    // the base class's
+  vtkEnsembleBuffer* Ensemble = nullptr; // the base class's
   vtkNew<vtkPBVRParticleGenerator> Generator;
-  vtkSPTViewMatrices Transforms;
-  vtkOpenGLRenderWindow* Context = nullptr;
-  vtkSPTRenderSetup Setup;
+  vtkVolumeViewMatrices Transforms;
 
   // The transfer functions, sampled over the mesh's scalar range.
   std::vector<double> Color;       // RGB
@@ -133,7 +131,7 @@ bool vtkPBVRVolumeMapper::vtkInternals::SampleTransferFunctions(
     return true;
   }
   std::vector<double> color, attenuation;
-  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(
+  if (!vtkPreIntegrationTable::SampleTransferFunctions(
         property, range, TransferFunctionSamples, color, attenuation, error))
   {
     this->SampledProperty = nullptr;
@@ -214,7 +212,7 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int p
   // 4 w^2 / (P00 P11 width height), perspective and parallel alike; per unit length of a
   // perspective ray at angle phi to the axis, it is that times cos(phi). The smallest one over
   // the data's bounding sphere is at its nearest w, at the corner of the frustum.
-  const vtkSPTViewMatrices& t = this->Transforms;
+  const vtkVolumeViewMatrices& t = this->Transforms;
   const double(*p)[4] = t.ViewToClip;
   double modelToView[3][3];
   for (int i = 0; i < 3; ++i)
@@ -271,7 +269,7 @@ bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
 void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
   vtkTextureObject* colors, vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel)
 {
-  vtkSPTViewMatrices& transforms = this->Transforms;
+  vtkVolumeViewMatrices& transforms = this->Transforms;
   const double(*p)[4] = transforms.ViewToClip;
   const float pixelArea = static_cast<float>(4.0 /
     (std::abs(p[0][0] * p[1][1]) * this->Ensemble->GetPassWidth() *
@@ -352,6 +350,8 @@ vtkStandardNewMacro(vtkPBVRVolumeMapper);
 vtkPBVRVolumeMapper::vtkPBVRVolumeMapper()
   : Internals(new vtkInternals)
 {
+  this->Internals->Mesh = this->GetMesh();
+  this->Internals->Ensemble = this->GetEnsemble();
 }
 
 vtkPBVRVolumeMapper::~vtkPBVRVolumeMapper() = default;
@@ -372,16 +372,6 @@ double vtkPBVRVolumeMapper::GetParticleSize()
   return internals.HaveParticles
     ? std::sqrt(internals.Generated.Footprint) * internals.Mesh->GetScale()
     : 0.0;
-}
-
-vtkIdType vtkPBVRVolumeMapper::GetNumberOfTetrahedra()
-{
-  return this->Internals->Mesh->GetNumberOfTetrahedra();
-}
-
-vtkIdType vtkPBVRVolumeMapper::GetNumberOfSkippedCells()
-{
-  return this->Internals->Mesh->GetNumberOfSkippedCells();
 }
 
 vtkIdType vtkPBVRVolumeMapper::GetGPUMemorySize()
@@ -408,7 +398,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight)
 {
   vtkInternals& internals = *this->Internals;
-  if (!vtkSPTRenderSetup::ComputeMatrices(this, ren, vol, internals.Mesh, internals.Transforms))
+  if (!this->ComputeMatrices(ren, vol, internals.Transforms))
   {
     return false;
   }
@@ -474,21 +464,16 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
 void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& internals = *this->Internals;
-  vtkSPTRenderSetup::Target target;
-  if (!vtkSPTRenderSetup::BeginFrame(this, ren, target, internals.Context))
+  RenderTarget target;
+  if (!this->BeginFrame(ren, target))
   {
     return;
   }
   vtkOpenGLRenderWindow* renWin = target.Window;
 
-  if (!internals.Setup.UpdateMesh(
-        this, internals.Mesh, this->VectorMode == COMPONENT ? this->VectorComponent : -1, true))
+  if (!this->PrepareMesh(vol, true))
   {
     internals.ReleaseParticles();
-    return;
-  }
-  if (!vtkSPTRenderSetup::CheckProperty(this, vol))
-  {
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
@@ -501,9 +486,9 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkSPTRenderSetup::SavedState savedState(ostate);
+  vtkSavedGLState savedState(ostate);
 
-  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  vtkEnsembleBuffer* ensemble = internals.Ensemble;
   if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel) ||
     !this->PrepareParticles(ren, vol, ensemble->GetPassWidth(), ensemble->GetPassHeight()))
   {
@@ -516,12 +501,12 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 void vtkPBVRVolumeMapper::DrawSets(int x, int y)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = internals.Context;
+  vtkOpenGLRenderWindow* renWin = this->GetContext();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  vtkEnsembleBuffer* ensemble = internals.Ensemble;
   vtkTextureObject* colors = internals.GetColorTexture(renWin);
   std::string vertex = vtkPBVRParticlesVS;
-  vtkShaderProgram::Substitute(vertex, "//SPT::Random::Impl", vtkSPTRandom);
+  vtkShaderProgram::Substitute(vertex, "//SPT::Random::Impl", vtkHashRandom);
   vtkShaderProgram* program =
     renWin->GetShaderCache()->ReadyShaderProgram(vertex.c_str(), vtkPBVRParticlesFS, "");
   if (!colors || !program)
@@ -565,35 +550,24 @@ void vtkPBVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& internals = *this->Internals;
   internals.ReleaseParticles();
-  internals.Mesh->ReleaseGraphicsResources(window);
-  internals.Ensemble->ReleaseGraphicsResources(window);
   if (internals.ColorTexture)
   {
     internals.ColorTexture->ReleaseGraphicsResources(window);
     internals.ColorTexture = nullptr;
   }
-  internals.Context = nullptr;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
 void vtkPBVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "RepetitionLevel: " << this->RepetitionLevel << "\n";
-  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
   os << indent
      << "SamplingMode: " << (this->SamplingMode == REJECTION ? "Rejection" : "CellAverage") << "\n";
   os << indent << "MaximumParticleMemory: " << this->MaximumParticleMemory << " MiB\n";
-  os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
-     << "\n";
-  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
   os << indent << "NumberOfParticles: " << this->GetNumberOfParticles() << "\n";
   os << indent << "NumberOfParticleSets: " << this->GetNumberOfParticleSets() << "\n";
   os << indent << "ParticleSize: " << this->GetParticleSize() << "\n";
   os << indent << "GenerationCount: " << this->GetGenerationCount() << "\n";
   os << indent << "GenerationTime: " << this->GetGenerationTime() << " s\n";
-  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
-  os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
 }

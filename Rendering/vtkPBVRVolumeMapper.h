@@ -50,7 +50,7 @@
 #define vtkPBVRVolumeMapper_h
 
 #include "SPTRenderingModule.h" // For export macro
-#include "vtkUnstructuredGridVolumeMapper.h"
+#include "vtkStochasticVolumeMapper.h"
 
 #include <memory> // For the internals
 
@@ -58,40 +58,12 @@ class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkPBVRVolumeMapper : public vtkUnstructuredGridVolumeMapper
+class SPTRENDERING_EXPORT vtkPBVRVolumeMapper : public vtkStochasticVolumeMapper
 {
 public:
   static vtkPBVRVolumeMapper* New();
-  vtkTypeMacro(vtkPBVRVolumeMapper, vtkUnstructuredGridVolumeMapper);
+  vtkTypeMacro(vtkPBVRVolumeMapper, vtkStochasticVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * Number of independent particle sets drawn and averaged into one image (the paper's L_R).
-   * Memory and generation time grow with it; the noise falls as 1 / sqrt(RepetitionLevel).
-   * Range 1 to 65536, default 32.
-   */
-  vtkSetClampMacro(RepetitionLevel, int, 1, 65536);
-  vtkGetMacro(RepetitionLevel, int);
-  ///@}
-
-  ///@{
-  /**
-   * Each set is drawn at SubpixelLevel times the width and the height with particles of one
-   * subpixel, and averaged down (the paper's L_S): SubpixelLevel^2 times the particles.
-   * Range 1 to 8, default 1.
-   */
-  vtkSetClampMacro(SubpixelLevel, int, 1, 8);
-  vtkGetMacro(SubpixelLevel, int);
-  ///@}
-
-  ///@{
-  /**
-   * Seed of the random numbers. The same seed, input and view give the same image. Default 0.
-   */
-  vtkSetMacro(Seed, unsigned int);
-  vtkGetMacro(Seed, unsigned int);
-  ///@}
 
   enum SamplingModeType
   {
@@ -122,38 +94,17 @@ public:
   vtkGetMacro(MaximumParticleMemory, int);
   ///@}
 
-  enum VectorModeType
-  {
-    MAGNITUDE = 0,
-    COMPONENT = 1
-  };
-
-  ///@{
-  /**
-   * How a multi-component scalar array becomes one scalar: its MAGNITUDE (default) or one
-   * COMPONENT, chosen by VectorComponent (default 0). Single-component arrays are used as is.
-   */
-  vtkSetClampMacro(VectorMode, int, MAGNITUDE, COMPONENT);
-  vtkGetMacro(VectorMode, int);
-  void SetVectorModeToMagnitude() { this->SetVectorMode(MAGNITUDE); }
-  void SetVectorModeToComponent() { this->SetVectorMode(COMPONENT); }
-  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
-  vtkGetMacro(VectorComponent, int);
-  ///@}
-
   ///@{
   /**
    * What the mapper holds after the last render: the particles of all generated sets, the
    * number of sets, the side of a particle's square cross-section (data units) at the nearest
-   * point of the data, tetrahedra, cells left out (non-finite coordinates or scalars), and the
-   * bytes held on the GPU (particles, color table and ensemble framebuffers).
+   * point of the data, and the bytes held on the GPU (particles, color table and ensemble
+   * framebuffers).
    */
   vtkIdType GetNumberOfParticles();
   int GetNumberOfParticleSets();
   double GetParticleSize();
-  vtkIdType GetNumberOfTetrahedra();
-  vtkIdType GetNumberOfSkippedCells();
-  vtkIdType GetGPUMemorySize();
+  vtkIdType GetGPUMemorySize() override;
   ///@}
 
   ///@{
@@ -181,13 +132,8 @@ protected:
   vtkPBVRVolumeMapper();
   ~vtkPBVRVolumeMapper() override;
 
-  int RepetitionLevel = 32;
-  int SubpixelLevel = 1;
-  unsigned int Seed = 0;
   int SamplingMode = REJECTION;
   int MaximumParticleMemory = 2048;
-  int VectorMode = MAGNITUDE;
-  int VectorComponent = 0;
 
 private:
   vtkPBVRVolumeMapper(const vtkPBVRVolumeMapper&) = delete;

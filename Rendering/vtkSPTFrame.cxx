@@ -8,17 +8,18 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkEnsembleBuffer.h"
+#include "vtkPreIntegrationTable.h"
 #include "vtkSPTDepthKeyBuffer.h"
-#include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTMeshBuffers.h"
-#include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTViewMatrices.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
 
+#include "vtkHashRandom.h"
 #include "vtkSPTPassColorsFS.h"
 #include "vtkSPTPassCoverageFS.h"
 #include "vtkSPTPassKeysFS.h"
 #include "vtkSPTPassSingleFS.h"
-#include "vtkSPTRandom.h"
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraVS.h"
@@ -70,7 +71,7 @@ int RepetitionsToTarget(int half, double estimate, double target)
 }
 }
 
-vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* ensemble,
+vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
   vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
   vtkObject* reporter)
   : Window(window)
@@ -120,7 +121,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
     atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
-  vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkSPTRandom);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkHashRandom);
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
   return this->Window->GetShaderCache()->ReadyShaderProgram(
     vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
@@ -145,7 +146,7 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   {
     for (const Volume& volume : this->Volumes)
     {
-      const bool cellScalars = volume.Mesh->GetCellScalars();
+      const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
       vtkShaderProgram*& program = programs[k][cellScalars ? 1 : 0];
       if (!needed[k] || program)
       {
@@ -177,16 +178,16 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
       // The ensemble's accumulation binds its own program between passes; uniforms go to the
       // bound program.
       vtkShaderProgram* program =
-        programs[static_cast<int>(kind)][volume.Mesh->GetCellScalars() ? 1 : 0];
+        programs[static_cast<int>(kind)][volume.Buffers->GetMesh()->GetCellScalars() ? 1 : 0];
       this->Window->GetShaderCache()->ReadyShaderProgram(program);
-      ScopedTextures textures({ volume.TableTexture, volume.Mesh->GetScalarTexture(),
-        volume.Mesh->GetPointTexture(), volume.Mesh->GetTetrahedronTexture() });
+      ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
+        volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture() });
       SetVolumeUniforms(program, volume);
       program->SetUniformi("repetition", repetition);
       program->SetUniformi("repetitionsInGroup", inGroup);
-      volume.Mesh->Bind(program);
-      volume.Mesh->Draw(program, 0, volume.Mesh->GetNumberOfTetrahedra());
-      volume.Mesh->Unbind();
+      volume.Buffers->Bind(program);
+      volume.Buffers->Draw(program, 0, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
+      volume.Buffers->Unbind();
     }
   };
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
@@ -224,7 +225,7 @@ bool vtkSPTFrame::DrawGroups(
   int first, int count, int perPass, bool coverage, bool halves, const Traversal& traverse)
 {
   vtkOpenGLState* ostate = this->Window->GetState();
-  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
+  vtkEnsembleBuffer* ensemble = this->Ensemble;
   // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
   // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
   ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -316,7 +317,7 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
 void vtkSPTFrame::SetFrameUniforms(
   vtkShaderProgram* program, int first, int count, bool halves) const
 {
-  vtkSPTEnsembleBuffer* ensemble = this->Ensemble;
+  vtkEnsembleBuffer* ensemble = this->Ensemble;
   const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
   program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
   program->SetUniformi("subpixelLevel", this->FrameSettings.SubpixelLevel);
@@ -343,17 +344,17 @@ void vtkSPTFrame::SetFrameUniforms(
 
 void vtkSPTFrame::SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume)
 {
-  const vtkSPTViewMatrices& matrices = *volume.Matrices;
+  const vtkVolumeViewMatrices& matrices = *volume.Matrices;
   program->SetUniformMatrix4x4("MCVCMatrix", const_cast<float*>(matrices.MCVC));
   program->SetUniformMatrix4x4("VCDCMatrix", const_cast<float*>(matrices.VCDC));
   program->SetUniformMatrix4x4("DCVCMatrix", const_cast<float*>(matrices.DCVC));
   program->SetUniformMatrix3x3("VCMCLinear", const_cast<float*>(matrices.VCMCLinear));
   volume.Table->SetUniforms(program, volume.TableTexture, volume.MaxThickness);
-  const int scalarUnit = volume.Mesh->GetScalarTexture()->GetTextureUnit();
+  const int scalarUnit = volume.Buffers->GetScalarTexture()->GetTextureUnit();
   program->SetUniformi("scalars", scalarUnit);
   program->SetUniformi("cellScalars", scalarUnit);
-  program->SetUniformi("points", volume.Mesh->GetPointTexture()->GetTextureUnit());
-  program->SetUniformi("tetrahedra", volume.Mesh->GetTetrahedronTexture()->GetTextureUnit());
+  program->SetUniformi("points", volume.Buffers->GetPointTexture()->GetTextureUnit());
+  program->SetUniformi("tetrahedra", volume.Buffers->GetTetrahedronTexture()->GetTextureUnit());
   program->SetUniformi("cellIdOffset", static_cast<int>(volume.CellIdOffset));
   const bool parallel = matrices.ParallelProjection;
   const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };

@@ -28,11 +28,11 @@ class vtkObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
 class vtkSPTDepthKeyBuffer;
-class vtkSPTEnsembleBuffer;
+class vtkEnsembleBuffer;
 class vtkSPTMeshBuffers;
-class vtkSPTPreIntegrationTable;
+class vtkPreIntegrationTable;
 class vtkTextureObject;
-struct vtkSPTViewMatrices;
+struct vtkVolumeViewMatrices;
 
 class SPTRENDERING_EXPORT vtkSPTFrame
 {
@@ -40,10 +40,10 @@ public:
   /// One volume of the frame, uploaded and ready to draw.
   struct Volume
   {
-    vtkSPTMeshBuffers* Mesh = nullptr;
-    vtkSPTPreIntegrationTable* Table = nullptr;
+    vtkSPTMeshBuffers* Buffers = nullptr;
+    vtkPreIntegrationTable* Table = nullptr;
     vtkTextureObject* TableTexture = nullptr;
-    const vtkSPTViewMatrices* Matrices = nullptr;
+    const vtkVolumeViewMatrices* Matrices = nullptr;
     double MaxThickness = 0.0; // the table's thickness range, in the mesh's normalized units
     /// Added to the cell ids that the random numbers and depth keys follow, so that they stay
     /// apart across the volumes of a frame.
@@ -77,7 +77,7 @@ public:
     bool OpaqueScene = false; // opaque geometry was drawn before the volumes
   };
 
-  vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkSPTEnsembleBuffer* ensemble,
+  vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
     vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
     vtkObject* reporter);
 
@@ -116,7 +116,7 @@ private:
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 
   vtkOpenGLRenderWindow* Window;
-  vtkSPTEnsembleBuffer* Ensemble;
+  vtkEnsembleBuffer* Ensemble;
   vtkSPTDepthKeyBuffer* DepthKeys;
   const std::vector<Volume>& Volumes;
   Settings FrameSettings;

@@ -1,40 +1,22 @@
 #include "vtkSPTMeshBuffers.h"
 
-#include "vtkAbstractMapper.h"
-#include "vtkCellArray.h"
-#include "vtkCellArrayIterator.h"
-#include "vtkCellData.h"
-#include "vtkCellType.h"
-#include "vtkDataArray.h"
-#include "vtkDataSetTriangleFilter.h"
-#include "vtkFieldData.h"
-#include "vtkGenericCell.h"
-#include "vtkIdList.h"
-#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLVertexArrayObject.h"
-#include "vtkPointData.h"
-#include "vtkPoints.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkUnstructuredGrid.h"
 #include "vtk_glew.h"
 
+#include "vtkTetrahedralMesh.h"
+
 #include <algorithm>
-#include <cmath>
-#include <limits>
-#include <map>
-#include <sstream>
+#include <cstdint>
 
 namespace
 {
 // Draw calls are split so that their index counts stay far below GLsizei's range.
 constexpr vtkIdType MaxTetrahedraPerDraw = vtkIdType(1) << 22;
-// The name of the scalars handed to the split into tetrahedra.
-constexpr const char* SplitScalarsName = "vtkSPTMeshBuffers scalars";
 
 // A buffer texture of `texels` texels of `components` values over `buffer`.
 bool MakeBufferTexture(vtkSmartPointer<vtkTextureObject>& texture, vtkOpenGLRenderWindow* renWin,
@@ -50,26 +32,6 @@ bool MakeBufferTexture(vtkSmartPointer<vtkTextureObject>& texture, vtkOpenGLRend
   return texture->CreateTextureBuffer(
     static_cast<unsigned int>(texels), components, dataType, buffer);
 }
-
-double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
-{
-  if (component >= 0)
-  {
-    return array->GetComponent(tuple, component);
-  }
-  const int n = array->GetNumberOfComponents();
-  if (n == 1)
-  {
-    return array->GetComponent(tuple, 0);
-  }
-  double sum = 0.0;
-  for (int c = 0; c < n; ++c)
-  {
-    const double v = array->GetComponent(tuple, c);
-    sum += v * v;
-  }
-  return std::sqrt(sum);
-}
 }
 
 vtkStandardNewMacro(vtkSPTMeshBuffers);
@@ -78,327 +40,9 @@ vtkSPTMeshBuffers::vtkSPTMeshBuffers() = default;
 
 vtkSPTMeshBuffers::~vtkSPTMeshBuffers() = default;
 
-bool vtkSPTMeshBuffers::Fail(const std::string& reason)
+bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh* mesh)
 {
-  this->LastError = reason;
-  this->Points.clear();
-  this->Scalars.clear();
-  this->Tetrahedra.clear();
-  this->BuildTime.Modified();
-  return false;
-}
-
-bool vtkSPTMeshBuffers::Update(vtkDataSet* input, const ScalarSelection& selection)
-{
-  if (!input)
-  {
-    this->LastInput = nullptr;
-    return this->Fail("The mapper has no input data set.");
-  }
-  int cellFlag = -1;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(input, selection.ScalarMode,
-    selection.ArrayAccessMode, selection.ArrayId, selection.ArrayName.c_str(), cellFlag);
-  if (input == this->LastInput && scalars == this->LastScalars &&
-    selection == this->LastSelection && this->BuildTime > input->GetMTime() &&
-    (!scalars || this->BuildTime > scalars->GetMTime()))
-  {
-    return this->LastError.empty();
-  }
-  this->LastInput = input;
-  this->LastScalars = scalars;
-  this->LastSelection = selection;
-  this->LastError.clear();
-  this->SkippedCells = 0;
-
-  if (input->GetNumberOfCells() == 0)
-  {
-    // Nothing to draw is not an error.
-    this->Points.clear();
-    this->Scalars.clear();
-    this->Tetrahedra.clear();
-    this->BuildTime.Modified();
-    return true;
-  }
-  if (!scalars)
-  {
-    std::ostringstream reason;
-    reason << "The input has no scalars to render";
-    if (!selection.ArrayName.empty() || selection.ArrayId >= 0)
-    {
-      reason << " (the selected array '" << selection.ArrayName << "', id " << selection.ArrayId
-             << ", is not in its point or cell data)";
-    }
-    reason << ". Select a point or cell array with SelectScalarArray() and SetScalarMode().";
-    return this->Fail(reason.str());
-  }
-  if (cellFlag != 0 && cellFlag != 1)
-  {
-    return this->Fail("Field-data scalars cannot be volume rendered; use point or cell data.");
-  }
-  if (selection.Component >= scalars->GetNumberOfComponents())
-  {
-    std::ostringstream reason;
-    reason << "Component " << selection.Component << " was selected, but the array '"
-           << (scalars->GetName() ? scalars->GetName() : "") << "' has only "
-           << scalars->GetNumberOfComponents() << " component(s).";
-    return this->Fail(reason.str());
-  }
-  const vtkIdType needed = cellFlag == 1 ? input->GetNumberOfCells() : input->GetNumberOfPoints();
-  if (scalars->GetNumberOfTuples() < needed)
-  {
-    std::ostringstream reason;
-    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-           << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
-           << (cellFlag == 1 ? " cells." : " points.");
-    return this->Fail(reason.str());
-  }
-  if (!this->CheckConnectivity(input))
-  {
-    return false;
-  }
-  vtkSmartPointer<vtkDataArray> tetrahedraScalars = scalars;
-  vtkSmartPointer<vtkDataSet> tetrahedra =
-    this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1);
-  if (!tetrahedraScalars)
-  {
-    return this->Fail("The scalars did not survive the split into tetrahedra.");
-  }
-  return this->Extract(tetrahedra, tetrahedraScalars, cellFlag == 1, selection.Component);
-}
-
-bool vtkSPTMeshBuffers::CheckConnectivity(vtkDataSet* input)
-{
-  // Point ids out of range would crash the triangulation and the GPU draw alike, and so would
-  // a cell with fewer points than its type has (the triangulation reads them all).
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
-  if (!grid || !grid->GetCells())
-  {
-    return true;
-  }
-  const vtkIdType numberOfPoints = grid->GetNumberOfPoints();
-  std::map<int, vtkIdType> pointsOfType; // 0: any number (polygons, polyhedra, ...)
-  vtkNew<vtkGenericCell> prototype;
-  auto cells = vtk::TakeSmartPointer(grid->GetCells()->NewIterator());
-  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
-  {
-    vtkIdType count;
-    const vtkIdType* ids;
-    cells->GetCurrentCell(count, ids);
-    const vtkIdType cellId = cells->GetCurrentCellId();
-    const int type = grid->GetCellType(cellId);
-    auto expected = pointsOfType.find(type);
-    if (expected == pointsOfType.end())
-    {
-      prototype->SetCellType(type);
-      expected = pointsOfType.emplace(type, prototype->GetNumberOfPoints()).first;
-    }
-    if (expected->second > 0 && count != expected->second)
-    {
-      std::ostringstream reason;
-      reason << "Cell " << cellId << " (VTK cell type " << type << ") has " << count
-             << " points; that type has " << expected->second << ".";
-      return this->Fail(reason.str());
-    }
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      if (ids[i] < 0 || ids[i] >= numberOfPoints)
-      {
-        std::ostringstream reason;
-        reason << "Cell " << cellId << " refers to point id " << ids[i] << ", but the grid has "
-               << numberOfPoints << " points.";
-        return this->Fail(reason.str());
-      }
-    }
-  }
-  return true;
-}
-
-vtkSmartPointer<vtkDataSet> vtkSPTMeshBuffers::Tetrahedralize(
-  vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars)
-{
-  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
-  if (grid)
-  {
-    vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
-    if (grid->GetNumberOfCells() == 0 ||
-      (types && types->GetNumberOfTuples() == 1 && types->GetValue(0) == VTK_TETRA))
-    {
-      return input;
-    }
-  }
-  // The split sees the structure and the selected scalars only (under a name of its own, the
-  // values shared with the input's array): the input's other arrays, which the filter would
-  // copy, may not even match the grid.
-  auto bare = vtk::TakeSmartPointer(input->NewInstance());
-  bare->CopyStructure(input);
-  auto shared = vtk::TakeSmartPointer(scalars->NewInstance());
-  shared->ShallowCopy(scalars);
-  shared->SetName(SplitScalarsName);
-  (cellScalars ? static_cast<vtkFieldData*>(bare->GetCellData()) : bare->GetPointData())
-    ->AddArray(shared);
-  vtkNew<vtkDataSetTriangleFilter> triangulate;
-  triangulate->SetInputData(bare);
-  triangulate->TetrahedraOnlyOn();
-  triangulate->Update();
-  // A copy, so that the filter (and through it the input) is not kept alive.
-  auto output = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  output->ShallowCopy(triangulate->GetOutput());
-  vtkFieldData* attributes = cellScalars ? static_cast<vtkFieldData*>(output->GetCellData())
-                                         : static_cast<vtkFieldData*>(output->GetPointData());
-  scalars = attributes->GetArray(SplitScalarsName);
-  return output;
-}
-
-bool vtkSPTMeshBuffers::Extract(
-  vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component)
-{
-  const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
-  if (numberOfPoints > vtkIdType(std::numeric_limits<unsigned int>::max()))
-  {
-    return this->Fail("The mesh has more points than 32-bit indices can address.");
-  }
-  this->CellScalars = cellScalars;
-
-  // Finite coordinates and scalar values; anything else leaves its tetrahedra out.
-  std::vector<double> coordinates(3 * numberOfPoints);
-  std::vector<char> pointIsValid(numberOfPoints, 1);
-  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN,
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
-  for (vtkIdType i = 0; i < numberOfPoints; ++i)
-  {
-    double* p = &coordinates[3 * i];
-    tetrahedra->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      pointIsValid[i] = 0;
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = std::min(bounds[2 * a], p[a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], p[a]);
-    }
-  }
-  const vtkIdType numberOfValues = scalars->GetNumberOfTuples();
-  std::vector<double> values(numberOfValues);
-  double range[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
-  for (vtkIdType i = 0; i < numberOfValues; ++i)
-  {
-    values[i] = ScalarOf(scalars, i, component);
-    if (std::isfinite(values[i]))
-    {
-      range[0] = std::min(range[0], values[i]);
-      range[1] = std::max(range[1], values[i]);
-    }
-  }
-  if (range[0] > range[1])
-  {
-    range[0] = range[1] = 0.0; // no finite value: every tetrahedron is left out below
-  }
-  this->ScalarRange[0] = range[0];
-  this->ScalarRange[1] = range[1];
-  const double width = range[1] - range[0];
-  auto toTable = [&](double v) { return width > 0.0 ? float((v - range[0]) / width) : 0.0f; };
-
-  double diagonal = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    this->Center[a] =
-      bounds[2 * a] <= bounds[2 * a + 1] ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
-    const double extent =
-      bounds[2 * a] <= bounds[2 * a + 1] ? bounds[2 * a + 1] - bounds[2 * a] : 0.0;
-    diagonal = std::max(diagonal, extent);
-  }
-  this->Scale = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const bool empty = bounds[2 * a] > bounds[2 * a + 1];
-    this->NormalizedBounds[2 * a] = empty ? 0.0 : (bounds[2 * a] - this->Center[a]) / this->Scale;
-    this->NormalizedBounds[2 * a + 1] =
-      empty ? 0.0 : (bounds[2 * a + 1] - this->Center[a]) / this->Scale;
-  }
-
-  this->Points.resize(3 * numberOfPoints);
-  for (vtkIdType i = 0; i < 3 * numberOfPoints; ++i)
-  {
-    this->Points[i] = float((coordinates[i] - this->Center[i % 3]) / this->Scale);
-  }
-  this->Scalars.clear();
-  if (!cellScalars)
-  {
-    this->Scalars.resize(numberOfPoints);
-    for (vtkIdType i = 0; i < numberOfPoints; ++i)
-    {
-      pointIsValid[i] = pointIsValid[i] && i < numberOfValues && std::isfinite(values[i]);
-      this->Scalars[i] = pointIsValid[i] ? toTable(values[i]) : 0.0f;
-    }
-  }
-
-  const vtkIdType numberOfCells = tetrahedra->GetNumberOfCells();
-  this->Tetrahedra.clear();
-  this->Tetrahedra.reserve(4 * numberOfCells);
-  if (cellScalars)
-  {
-    this->Scalars.reserve(numberOfCells);
-  }
-  this->MaxEdgeLength = 0.0;
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType cell = 0; cell < numberOfCells; ++cell)
-  {
-    if (tetrahedra->GetCellType(cell) != VTK_TETRA)
-    {
-      continue;
-    }
-    tetrahedra->GetCellPoints(cell, ids);
-    const auto outOfRange = [&](vtkIdType id) { return id < 0 || id >= numberOfPoints; };
-    if (ids->GetNumberOfIds() != 4 || std::any_of(ids->begin(), ids->end(), outOfRange))
-    {
-      return this->Fail("The split into tetrahedra made a tetrahedron that is not one (point "
-                        "ids missing or out of range); the input's cells are not valid.");
-    }
-    bool valid = !cellScalars || (cell < numberOfValues && std::isfinite(values[cell]));
-    for (int v = 0; v < 4 && valid; ++v)
-    {
-      valid = pointIsValid[ids->GetId(v)] != 0;
-    }
-    if (!valid)
-    {
-      ++this->SkippedCells;
-      continue;
-    }
-    for (int v = 0; v < 4; ++v)
-    {
-      this->Tetrahedra.push_back(static_cast<unsigned int>(ids->GetId(v)));
-      const float* p = &this->Points[3 * ids->GetId(v)];
-      for (int w = v + 1; w < 4; ++w)
-      {
-        const float* q = &this->Points[3 * ids->GetId(w)];
-        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-        this->MaxEdgeLength = std::max(this->MaxEdgeLength, std::sqrt(dx * dx + dy * dy + dz * dz));
-      }
-    }
-    if (cellScalars)
-    {
-      this->Scalars.push_back(toTable(values[cell]));
-    }
-  }
-  this->BuildTime.Modified();
-  return true;
-}
-
-void vtkSPTMeshBuffers::GetNormalizationMatrix(vtkMatrix4x4* matrix) const
-{
-  matrix->Identity();
-  for (int a = 0; a < 3; ++a)
-  {
-    matrix->SetElement(a, a, this->Scale);
-    matrix->SetElement(a, 3, this->Center[a]);
-  }
-}
-
-bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
-{
-  if (this->Context == renWin && this->UploadTime > this->BuildTime)
+  if (this->Context == renWin && this->Mesh == mesh && this->UploadedBuild == mesh->GetBuildTime())
   {
     return true;
   }
@@ -407,16 +51,20 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
     this->ReleaseGraphicsResources(this->Context);
   }
   this->Context = renWin;
+  this->Mesh = mesh;
+  this->UploadedBuild = mesh->GetBuildTime();
   this->UploadedBytes = 0;
   this->BoundProgram = nullptr;
-  if (this->Tetrahedra.empty())
+  const std::vector<float>& points = mesh->GetPoints();
+  const std::vector<float>& scalars = mesh->GetScalars();
+  const std::vector<unsigned int>& tetrahedra = mesh->GetTetrahedra();
+  if (tetrahedra.empty())
   {
-    this->UploadTime.Modified();
     return true;
   }
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const size_t texels = std::max(this->Scalars.size(), this->Tetrahedra.size() / 4);
+  const size_t texels = std::max(scalars.size(), tetrahedra.size() / 4);
   if (texels > static_cast<size_t>(maxTexels))
   {
     vtkErrorMacro("The mesh has " << texels
@@ -427,28 +75,27 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin)
   }
   // The scalars are a vertex attribute for point scalars; every buffer is also a buffer
   // texture, for the cells that the fragment stage reads whole.
-  bool ok = this->PointBuffer->Upload(this->Points, vtkOpenGLBufferObject::ArrayBuffer) &&
-    this->IndexBuffer->Upload(this->Tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer) &&
-    this->ScalarBuffer->Upload(this->Scalars,
-      this->CellScalars ? vtkOpenGLBufferObject::TextureBuffer
-                        : vtkOpenGLBufferObject::ArrayBuffer);
+  bool ok = this->PointBuffer->Upload(points, vtkOpenGLBufferObject::ArrayBuffer) &&
+    this->IndexBuffer->Upload(tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer) &&
+    this->ScalarBuffer->Upload(scalars,
+      mesh->GetCellScalars() ? vtkOpenGLBufferObject::TextureBuffer
+                             : vtkOpenGLBufferObject::ArrayBuffer);
   ok = ok &&
-    MakeBufferTexture(this->ScalarTexture, renWin, this->ScalarBuffer, this->Scalars.size(), 1,
-      VTK_FLOAT, GL_R32F) &&
-    MakeBufferTexture(this->PointTexture, renWin, this->PointBuffer, this->Points.size() / 3, 3,
-      VTK_FLOAT, GL_RGB32F) &&
-    MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer,
-      this->Tetrahedra.size() / 4, 4, VTK_UNSIGNED_INT, GL_RGBA32UI);
+    MakeBufferTexture(
+      this->ScalarTexture, renWin, this->ScalarBuffer, scalars.size(), 1, VTK_FLOAT, GL_R32F) &&
+    MakeBufferTexture(
+      this->PointTexture, renWin, this->PointBuffer, points.size() / 3, 3, VTK_FLOAT, GL_RGB32F) &&
+    MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer, tetrahedra.size() / 4, 4,
+      VTK_UNSIGNED_INT, GL_RGBA32UI);
   if (!ok)
   {
-    vtkErrorMacro("Could not upload " << this->GetNumberOfTetrahedra()
+    vtkErrorMacro("Could not upload " << mesh->GetNumberOfTetrahedra()
                                       << " tetrahedra to the GPU (out of GPU memory?).");
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  this->UploadedBytes = sizeof(float) * (this->Points.size() + this->Scalars.size()) +
-    sizeof(unsigned int) * this->Tetrahedra.size();
-  this->UploadTime.Modified();
+  this->UploadedBytes =
+    sizeof(float) * (points.size() + scalars.size()) + sizeof(unsigned int) * tetrahedra.size();
   return true;
 }
 
@@ -464,7 +111,7 @@ void vtkSPTMeshBuffers::Bind(vtkShaderProgram* program)
   {
     this->VertexArray->AddAttributeArray(
       program, this->PointBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
-    if (!this->CellScalars)
+    if (!this->Mesh->GetCellScalars())
     {
       this->VertexArray->AddAttributeArray(
         program, this->ScalarBuffer, "scalarTF", 0, sizeof(float), VTK_FLOAT, 1, false);
@@ -482,7 +129,8 @@ void vtkSPTMeshBuffers::Unbind()
 
 void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
 {
-  const vtkIdType end = std::min(first + count, this->GetNumberOfTetrahedra());
+  const vtkIdType end =
+    std::min(first + count, this->Mesh ? this->Mesh->GetNumberOfTetrahedra() : 0);
   for (vtkIdType begin = first; begin < end; begin += MaxTetrahedraPerDraw)
   {
     const vtkIdType batch = std::min(MaxTetrahedraPerDraw, end - begin);
@@ -490,11 +138,6 @@ void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdTy
     glDrawElements(GL_LINES_ADJACENCY, static_cast<GLsizei>(4 * batch), GL_UNSIGNED_INT,
       reinterpret_cast<const void*>(static_cast<uintptr_t>(4 * sizeof(unsigned int) * begin)));
   }
-}
-
-size_t vtkSPTMeshBuffers::GetGPUMemorySize() const
-{
-  return this->UploadedBytes;
 }
 
 void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
@@ -513,6 +156,8 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
     }
   }
   this->Context = nullptr;
+  this->Mesh = nullptr;
+  this->UploadedBuild = 0;
   this->BoundProgram = nullptr;
   this->UploadedBytes = 0;
 }
@@ -520,10 +165,6 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
 void vtkSPTMeshBuffers::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
-  os << indent << "NumberOfPoints: " << this->GetNumberOfPoints() << "\n";
-  os << indent << "CellScalars: " << this->CellScalars << "\n";
-  os << indent << "ScalarRange: " << this->ScalarRange[0] << " " << this->ScalarRange[1] << "\n";
-  os << indent << "SkippedCells: " << this->SkippedCells << "\n";
+  os << indent << "Mesh: " << this->Mesh.Get() << "\n";
   os << indent << "GPUMemorySize: " << this->UploadedBytes << "\n";
 }

@@ -1,15 +1,14 @@
 /**
  * @class   vtkSPTMeshBuffers
- * @brief   tetrahedra, points and scalars of an unstructured volume, on the CPU and the GPU
+ * @brief   a prepared tetrahedral mesh on the GPU, as SPT's shaders draw and read it
  *
- * Turns the mapper's input into what the projected-tetrahedra shaders draw: point coordinates
- * shifted and scaled to O(1) (so that float precision holds for coordinates near 1e30 or
- * 1e-30), the scalar of every point (or every tetrahedron, for cell data) mapped to [0, 1]
- * over its finite range, and four point ids per tetrahedron. Other linear and quadratic 3D
- * cells are split into tetrahedra by vtkDataSetTriangleFilter when the input changes. The input
- * is never modified. Tetrahedra whose coordinates or scalars are not finite are left out.
+ * Uploads a vtkTetrahedralMesh into vertex and index buffers (points, point scalars, four point
+ * ids per tetrahedron), which a draw binds to the attributes `vertexMC` and `scalarTF`, and
+ * exposes the same buffers as buffer textures for the fragment stage, which reads whole cells
+ * (the tetrahedra cut by a clipping plane, and cell scalars). A draw of millions of tetrahedra is
+ * split into batches that stay within GL's limits.
  *
- * Private helper of the SPT module, shared by its mappers; not wrapped.
+ * Private helper of vtkSPTVolumeMapper; not wrapped.
  */
 
 #ifndef vtkSPTMeshBuffers_h
@@ -20,18 +19,13 @@
 #include "vtkObject.h"
 #include "vtkSmartPointer.h"  // For the buffers
 #include "vtkTextureObject.h" // For GetScalarTexture()
-#include "vtkTimeStamp.h"     // For the caches
+#include "vtkTimeStamp.h"     // For the upload time
 
-#include <string> // For the array name
-#include <vector> // For the CPU copies
-
-class vtkDataArray;
-class vtkDataSet;
-class vtkMatrix4x4;
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
+class vtkTetrahedralMesh;
 class vtkWindow;
 
 class SPTRENDERING_EXPORT vtkSPTMeshBuffers : public vtkObject
@@ -42,62 +36,15 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
-   * How a scalar is chosen from the input, as vtkAbstractVolumeMapper describes it, and how a
-   * multi-component array becomes one scalar (component < 0: magnitude).
+   * Upload the mesh to the context's buffers, unless this mesh, as built, is there already.
+   * False, with an error, when the context cannot hold it.
    */
-  struct ScalarSelection
-  {
-    int ScalarMode = 0;
-    int ArrayAccessMode = 0;
-    int ArrayId = -1;
-    std::string ArrayName;
-    int Component = -1;
-    bool operator==(const ScalarSelection& o) const
-    {
-      return ScalarMode == o.ScalarMode && ArrayAccessMode == o.ArrayAccessMode &&
-        ArrayId == o.ArrayId && ArrayName == o.ArrayName && Component == o.Component;
-    }
-  };
+  bool Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh* mesh);
 
   /**
-   * Rebuild the CPU arrays if the input, its scalars or the selection changed. Returns false,
-   * after reporting the reason with vtkErrorMacro on the caller, when the input cannot be
-   * rendered; the reason is also kept in GetLastError().
+   * The mesh last uploaded (null before the first Upload()).
    */
-  bool Update(vtkDataSet* input, const ScalarSelection& selection);
-  const std::string& GetLastError() const { return this->LastError; }
-
-  ///@{
-  /**
-   * What Update() found.
-   */
-  vtkIdType GetNumberOfTetrahedra() const { return vtkIdType(this->Tetrahedra.size() / 4); }
-  vtkIdType GetNumberOfPoints() const { return vtkIdType(this->Points.size() / 3); }
-  bool GetCellScalars() const { return this->CellScalars; }
-  const double* GetScalarRange() const { return this->ScalarRange; }
-  /// Point coordinates are (x - Center) / Scale.
-  const double* GetCenter() const { return this->Center; }
-  double GetScale() const { return this->Scale; }
-  /// The bounds of the points, in the normalized units of the coordinates.
-  const double* GetNormalizedBounds() const { return this->NormalizedBounds; }
-  /// Longest tetrahedron edge, in the normalized units of the coordinates.
-  double GetMaxEdgeLength() const { return this->MaxEdgeLength; }
-  vtkIdType GetNumberOfSkippedCells() const { return this->SkippedCells; }
-  const std::vector<float>& GetPoints() const { return this->Points; }
-  const std::vector<float>& GetScalars() const { return this->Scalars; }
-  const std::vector<unsigned int>& GetTetrahedra() const { return this->Tetrahedra; }
-  vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
-  ///@}
-
-  /**
-   * The matrix from the normalized coordinates of the points to model coordinates.
-   */
-  void GetNormalizationMatrix(vtkMatrix4x4* matrix) const;
-
-  /**
-   * Upload what changed since the last upload to the context's buffers.
-   */
-  bool Upload(vtkOpenGLRenderWindow* renWin);
+  vtkTetrahedralMesh* GetMesh() const { return this->Mesh; }
 
   /**
    * Bind the vertex arrays to the attributes `vertexMC` (and `scalarTF` for point scalars) of
@@ -118,11 +65,11 @@ public:
   /**
    * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
    * `primitiveOffset` uniform is set so that gl_PrimitiveIDIn + primitiveOffset is the
-   * tetrahedron's index. Splits the draw into batches that stay within GL's limits.
+   * tetrahedron's index.
    */
   void Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
 
-  size_t GetGPUMemorySize() const;
+  size_t GetGPUMemorySize() const { return this->UploadedBytes; }
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
@@ -133,31 +80,8 @@ private:
   vtkSPTMeshBuffers(const vtkSPTMeshBuffers&) = delete;
   void operator=(const vtkSPTMeshBuffers&) = delete;
 
-  bool Fail(const std::string& reason);
-  bool CheckConnectivity(vtkDataSet* input);
-  // The input split into tetrahedra (or the input itself, if it holds nothing else), and in
-  // `scalars` the selected array of that output.
-  vtkSmartPointer<vtkDataSet> Tetrahedralize(
-    vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars);
-  bool Extract(vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component);
-
-  std::string LastError;
-  std::vector<float> Points;
-  std::vector<float> Scalars;
-  std::vector<unsigned int> Tetrahedra;
-  bool CellScalars = false;
-  double ScalarRange[2] = { 0.0, 1.0 };
-  double Center[3] = { 0.0, 0.0, 0.0 };
-  double Scale = 1.0;
-  double NormalizedBounds[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
-  double MaxEdgeLength = 0.0;
-  vtkIdType SkippedCells = 0;
-
-  vtkDataSet* LastInput = nullptr; // identity only, never dereferenced
-  vtkDataArray* LastScalars = nullptr;
-  ScalarSelection LastSelection;
-  vtkTimeStamp BuildTime;
-  vtkTimeStamp UploadTime;
+  vtkSmartPointer<vtkTetrahedralMesh> Mesh;
+  vtkMTimeType UploadedBuild = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
 
   vtkNew<vtkOpenGLBufferObject> PointBuffer;

@@ -14,14 +14,15 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkEnsembleBuffer.h"
+#include "vtkGPUFrameTimer.h"
+#include "vtkPreIntegrationTable.h"
 #include "vtkSPTDepthKeyBuffer.h"
-#include "vtkSPTEnsembleBuffer.h"
 #include "vtkSPTFrame.h"
-#include "vtkSPTGPUTimer.h"
 #include "vtkSPTMeshBuffers.h"
-#include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTRenderSetup.h"
-#include "vtkSPTViewMatrices.h"
+#include "vtkSavedGLState.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
 
 #include <algorithm>
 #include <vector>
@@ -54,11 +55,6 @@ vtkMTimeType RedrawTime(vtkProp* prop)
   return time;
 }
 
-// The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
-// little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
-// 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
-// whole groups, and when not even one group fits, in single-repetition passes, the cheapest
-// frame there is (0.36 s there), as many as fit and at least one.
 // The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
 // little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
 // 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
@@ -115,13 +111,10 @@ struct RepetitionBudget
 class vtkSPTVolumeMapper::vtkInternals
 {
 public:
-  vtkNew<vtkSPTMeshBuffers> Mesh;
-  vtkNew<vtkSPTPreIntegrationTable> Table;
-  vtkNew<vtkSPTEnsembleBuffer> Ensemble;
+  vtkNew<vtkSPTMeshBuffers> Buffers;
+  vtkNew<vtkPreIntegrationTable> Table;
   vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
-  vtkOpenGLRenderWindow* Context = nullptr;
-  vtkSPTRenderSetup Setup;
-  vtkSPTViewMatrices Matrices;
+  vtkVolumeViewMatrices Matrices;
 
   // Progressive refinement: what the accumulated sum was drawn from, and how many repetitions
   // it holds.
@@ -131,16 +124,16 @@ public:
   RepetitionBudget Budget;
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
-  vtkSPTGPUTimer Timer;       // the time of the repetitions, for the budget
+  vtkGPUFrameTimer Timer;     // the time of the repetitions, for the budget
 
   // The visible SPT volumes of the renderer, vol's first when it is not among them.
   static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
     vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
   // Bring a volume's mesh, table and matrices up to date and onto the GPU.
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
-    vtkSPTRenderSetup::Target& target, vtkSPTFrame::Volume& out);
-  static std::vector<double> Signature(vtkRenderer* ren,
-    const std::vector<vtkSPTVolumeMapper*>& mappers, const vtkSPTRenderSetup::Target& target);
+    RenderTarget& target, vtkSPTFrame::Volume& out);
+  static std::vector<double> Signature(
+    vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
 
   void ResetAccumulation()
   {
@@ -159,21 +152,11 @@ vtkSPTVolumeMapper::vtkSPTVolumeMapper()
 
 vtkSPTVolumeMapper::~vtkSPTVolumeMapper() = default;
 
-vtkIdType vtkSPTVolumeMapper::GetNumberOfTetrahedra()
-{
-  return this->Internals->Mesh->GetNumberOfTetrahedra();
-}
-
-vtkIdType vtkSPTVolumeMapper::GetNumberOfSkippedCells()
-{
-  return this->Internals->Mesh->GetNumberOfSkippedCells();
-}
-
 vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
 {
   const vtkInternals& internals = *this->Internals;
-  return static_cast<vtkIdType>(internals.Mesh->GetGPUMemorySize() +
-    internals.Table->GetGPUMemorySize() + internals.Ensemble->GetGPUMemorySize() +
+  return static_cast<vtkIdType>(internals.Buffers->GetGPUMemorySize() +
+    internals.Table->GetGPUMemorySize() + this->GetEnsemble()->GetGPUMemorySize() +
     internals.DepthKeys->GetGPUMemorySize());
 }
 
@@ -204,34 +187,29 @@ vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren,
-  vtkVolume* vol, vtkSPTRenderSetup::Target& target, vtkSPTFrame::Volume& out)
+  vtkVolume* vol, RenderTarget& target, vtkSPTFrame::Volume& out)
 {
   vtkInternals& internals = *mapper->Internals;
-  if (!vtkSPTRenderSetup::BeginFrame(mapper, ren, target, internals.Context))
-  {
-    return false;
-  }
   // Input and transfer functions: rebuilt only when they changed.
-  if (!internals.Setup.UpdateMesh(mapper, internals.Mesh,
-        mapper->VectorMode == COMPONENT ? mapper->VectorComponent : -1, true) ||
-    !vtkSPTRenderSetup::CheckProperty(mapper, vol) ||
-    !vtkSPTRenderSetup::ComputeMatrices(mapper, ren, vol, internals.Mesh, internals.Matrices))
+  if (!mapper->BeginFrame(ren, target) || !mapper->PrepareMesh(vol, true) ||
+    !mapper->ComputeMatrices(ren, vol, internals.Matrices))
   {
     return false;
   }
-  const double maxThickness = internals.Mesh->GetMaxEdgeLength();
-  if (!internals.Table->Update(vol->GetProperty(), internals.Mesh->GetScalarRange(),
-        maxThickness * internals.Mesh->GetScale(), mapper->PreIntegrationScalarResolution,
+  vtkTetrahedralMesh* mesh = mapper->GetMesh();
+  const double maxThickness = mesh->GetMaxEdgeLength();
+  if (!internals.Table->Update(vol->GetProperty(), mesh->GetScalarRange(),
+        maxThickness * mesh->GetScale(), mapper->PreIntegrationScalarResolution,
         mapper->PreIntegrationThicknessResolution))
   {
     vtkErrorWithObjectMacro(mapper, << internals.Table->GetLastError());
     return false;
   }
-  if (!internals.Mesh->Upload(target.Window))
+  if (!internals.Buffers->Upload(target.Window, mesh))
   {
     return false;
   }
-  out.Mesh = internals.Mesh;
+  out.Buffers = internals.Buffers;
   out.Table = internals.Table;
   out.TableTexture = internals.Table->GetTexture(target.Window);
   out.Matrices = &internals.Matrices;
@@ -240,7 +218,7 @@ bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper,
 }
 
 std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(vtkRenderer* ren,
-  const std::vector<vtkSPTVolumeMapper*>& mappers, const vtkSPTRenderSetup::Target& target)
+  const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
 {
   // Everything that changes the expected image: each volume's matrices (camera, volume
   // transform), input and table as built and mapper settings, the viewport, and whatever any
@@ -252,7 +230,7 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(vtkRenderer* ren
     const vtkInternals& internals = *mapper->Internals;
     signature.insert(signature.end(), internals.Matrices.MCVC, internals.Matrices.MCVC + 16);
     signature.insert(signature.end(), internals.Matrices.VCDC, internals.Matrices.VCDC + 16);
-    signature.push_back(double(internals.Mesh->GetBuildTime()));
+    signature.push_back(double(mapper->GetMesh()->GetBuildTime()));
     signature.push_back(double(internals.Table->GetBuildTime()));
     signature.push_back(double(mapper->GetMTime()));
   }
@@ -278,7 +256,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   vtkInternals& internals = *this->Internals;
-  vtkSPTRenderSetup::Target target;
+  RenderTarget target;
   std::vector<vtkSPTFrame::Volume> volumes;
   std::vector<vtkSPTVolumeMapper*> mappers;
   unsigned int cellIds = 0;
@@ -288,7 +266,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (vtkInternals::PrepareVolume(member.second, ren, member.first, target, volume))
     {
       volume.CellIdOffset = cellIds;
-      cellIds += static_cast<unsigned int>(volume.Mesh->GetNumberOfTetrahedra());
+      cellIds += static_cast<unsigned int>(member.second->GetNumberOfTetrahedra());
       volumes.push_back(volume);
       mappers.push_back(member.second);
     }
@@ -300,8 +278,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkSPTRenderSetup::SavedState savedState(ostate);
-  vtkSPTEnsembleBuffer* ensemble = internals.Ensemble;
+  vtkSavedGLState savedState(ostate);
+  vtkEnsembleBuffer* ensemble = this->GetEnsemble();
   if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel))
   {
     return;
@@ -365,7 +343,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.StratifiedSampling = this->StratifiedSampling != 0;
   settings.SubpixelLevel = this->SubpixelLevel;
   settings.Seed = this->Seed;
-  settings.OpaqueScene = vtkSPTRenderSetup::HasOpaqueScene(ren);
+  settings.OpaqueScene = HasOpaqueScene(ren);
   vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
   // it.
@@ -417,11 +395,9 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& internals = *this->Internals;
-  internals.Mesh->ReleaseGraphicsResources(window);
+  internals.Buffers->ReleaseGraphicsResources(window);
   internals.Table->ReleaseGraphicsResources(window);
-  internals.Ensemble->ReleaseGraphicsResources(window);
   internals.DepthKeys->ReleaseGraphicsResources(window);
-  internals.Context = nullptr;
   internals.SumSignature.clear();
   internals.ResetAccumulation();
   internals.Budget = RepetitionBudget();
@@ -432,16 +408,6 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "RepetitionLevel: " << this->RepetitionLevel << "\n";
-  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "PreIntegrationScalarResolution: " << this->PreIntegrationScalarResolution
-     << "\n";
-  os << indent << "PreIntegrationThicknessResolution: " << this->PreIntegrationThicknessResolution
-     << "\n";
-  os << indent << "VectorMode: " << (this->VectorMode == MAGNITUDE ? "Magnitude" : "Component")
-     << "\n";
-  os << indent << "VectorComponent: " << this->VectorComponent << "\n";
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
@@ -455,7 +421,5 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
   os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
-  os << indent << "NumberOfTetrahedra: " << this->GetNumberOfTetrahedra() << "\n";
-  os << indent << "NumberOfSkippedCells: " << this->GetNumberOfSkippedCells() << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
 }

@@ -52,7 +52,7 @@
 #define vtkSPTVolumeMapper_h
 
 #include "SPTRenderingModule.h" // For export macro
-#include "vtkUnstructuredGridVolumeMapper.h"
+#include "vtkStochasticVolumeMapper.h"
 
 #include <memory> // For the internals
 
@@ -60,40 +60,12 @@ class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkSPTVolumeMapper : public vtkUnstructuredGridVolumeMapper
+class SPTRENDERING_EXPORT vtkSPTVolumeMapper : public vtkStochasticVolumeMapper
 {
 public:
   static vtkSPTVolumeMapper* New();
-  vtkTypeMacro(vtkSPTVolumeMapper, vtkUnstructuredGridVolumeMapper);
+  vtkTypeMacro(vtkSPTVolumeMapper, vtkStochasticVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * Number of stochastic passes averaged into one image (the paper's L_R). The noise falls as
-   * 1 / sqrt(RepetitionLevel). Range 1 to 65536, default 32.
-   */
-  vtkSetClampMacro(RepetitionLevel, int, 1, 65536);
-  vtkGetMacro(RepetitionLevel, int);
-  ///@}
-
-  ///@{
-  /**
-   * Supersampling: each pass is drawn at SubpixelLevel times the width and the height and
-   * averaged down (the paper's L_S), which multiplies the samples per pixel by
-   * SubpixelLevel^2 for the memory of that many pixels. Range 1 to 8, default 1.
-   */
-  vtkSetClampMacro(SubpixelLevel, int, 1, 8);
-  vtkGetMacro(SubpixelLevel, int);
-  ///@}
-
-  ///@{
-  /**
-   * Seed of the random numbers. The same seed, input and camera give the same image; change
-   * it for an independent image. Default 0.
-   */
-  vtkSetMacro(Seed, unsigned int);
-  vtkGetMacro(Seed, unsigned int);
-  ///@}
 
   ///@{
   /**
@@ -230,54 +202,11 @@ public:
   vtkGetMacro(TimePerRepetition, double);
   ///@}
 
-  ///@{
   /**
-   * Samples of the pre-integration table along each scalar axis (front and back). Range 8 to
-   * 1024, default 128.
+   * The bytes this mapper holds on the GPU after the last render: mesh buffers,
+   * pre-integration table, depth keys and ensemble framebuffers.
    */
-  vtkSetClampMacro(PreIntegrationScalarResolution, int, 8, 1024);
-  vtkGetMacro(PreIntegrationScalarResolution, int);
-  ///@}
-
-  ///@{
-  /**
-   * Samples of the pre-integration table along the thickness axis, from zero to the longest
-   * edge of the mesh (spaced by the square root of the thickness). Range 4 to 1024,
-   * default 64.
-   */
-  vtkSetClampMacro(PreIntegrationThicknessResolution, int, 4, 1024);
-  vtkGetMacro(PreIntegrationThicknessResolution, int);
-  ///@}
-
-  enum VectorModeType
-  {
-    MAGNITUDE = 0,
-    COMPONENT = 1
-  };
-
-  ///@{
-  /**
-   * How a multi-component scalar array becomes one scalar: its MAGNITUDE (default) or one
-   * COMPONENT, chosen by VectorComponent (default 0). Single-component arrays are used as is.
-   */
-  vtkSetClampMacro(VectorMode, int, MAGNITUDE, COMPONENT);
-  vtkGetMacro(VectorMode, int);
-  void SetVectorModeToMagnitude() { this->SetVectorMode(MAGNITUDE); }
-  void SetVectorModeToComponent() { this->SetVectorMode(COMPONENT); }
-  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
-  vtkGetMacro(VectorComponent, int);
-  ///@}
-
-  ///@{
-  /**
-   * What the last render drew: tetrahedra, cells left out (non-finite coordinates or scalars),
-   * and the bytes this mapper holds on the GPU (mesh buffers, pre-integration table and
-   * ensemble framebuffers).
-   */
-  vtkIdType GetNumberOfTetrahedra();
-  vtkIdType GetNumberOfSkippedCells();
-  vtkIdType GetGPUMemorySize();
-  ///@}
+  vtkIdType GetGPUMemorySize() override;
 
   /**
    * Render the volume. Called by vtkVolume; not meant to be called directly.
@@ -293,13 +222,6 @@ protected:
   vtkSPTVolumeMapper();
   ~vtkSPTVolumeMapper() override;
 
-  int RepetitionLevel = 32;
-  int SubpixelLevel = 1;
-  unsigned int Seed = 0;
-  int PreIntegrationScalarResolution = 128;
-  int PreIntegrationThicknessResolution = 64;
-  int VectorMode = MAGNITUDE;
-  int VectorComponent = 0;
   int RepetitionsPerPass = 16;
   vtkTypeBool StratifiedSampling = 1;
   int Estimator = VISIBILITY_ESTIMATOR;

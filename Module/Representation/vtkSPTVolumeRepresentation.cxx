@@ -2,10 +2,8 @@
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkHAVSVolumeMapper.h"
 #include "vtkObjectFactory.h"
-#include "vtkPBVRVolumeMapper.h"
-#include "vtkSPTVolumeMapper.h"
+#include "vtkTetrahedralVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 vtkStandardNewMacro(vtkSPTVolumeRepresentation);
@@ -46,17 +44,19 @@ vtkAbstractVolumeMapper* vtkSPTVolumeRepresentation::GetVolumeMapper()
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
 
-namespace
+//------------------------------------------------------------------------------
+void vtkSPTVolumeRepresentation::UpdateMapperParameters()
 {
-// The project's mappers have the same vector-mode settings but no common base class for them.
-template <typename Mapper>
-bool SetVectorMode(vtkAbstractVolumeMapper* volumeMapper, vtkColorTransferFunction* colors)
-{
-  auto* mapper = Mapper::SafeDownCast(volumeMapper);
+  this->Superclass::UpdateMapperParameters();
+
+  // As ParaView does for its image volume mappers: the color map's vector mode chooses the
+  // magnitude or one component of a multi-component array.
+  auto* mapper = vtkTetrahedralVolumeMapper::SafeDownCast(this->VolumeMapper);
   if (!mapper)
   {
-    return false;
+    return;
   }
+  vtkColorTransferFunction* colors = this->Property->GetRGBTransferFunction(0);
   if (colors && colors->GetVectorMode() == vtkScalarsToColors::COMPONENT)
   {
     mapper->SetVectorModeToComponent();
@@ -66,21 +66,6 @@ bool SetVectorMode(vtkAbstractVolumeMapper* volumeMapper, vtkColorTransferFuncti
   {
     mapper->SetVectorModeToMagnitude();
   }
-  return true;
-}
-}
-
-//------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::UpdateMapperParameters()
-{
-  this->Superclass::UpdateMapperParameters();
-
-  // As ParaView does for its image volume mappers: the color map's vector mode chooses the
-  // magnitude or one component of a multi-component array.
-  vtkColorTransferFunction* colors = this->Property->GetRGBTransferFunction(0);
-  SetVectorMode<vtkSPTVolumeMapper>(this->VolumeMapper, colors) ||
-    SetVectorMode<vtkHAVSVolumeMapper>(this->VolumeMapper, colors) ||
-    SetVectorMode<vtkPBVRVolumeMapper>(this->VolumeMapper, colors);
 }
 
 //------------------------------------------------------------------------------

@@ -191,7 +191,7 @@ vec4 preIntegrated(Segment segment)
 }
 
 // The segment's optical depth tau = -ln(1 - alpha) and its tau-weighted color, the terms of
-// the exact coverage (see vtkSPTResolveFS.glsl).
+// the exact coverage (see vtkEnsembleResolveFS.glsl).
 vec4 opticalDepthTerms(vec4 color)
 {
   float tau = -log(1.0 - min(color.a, 0.99999994));

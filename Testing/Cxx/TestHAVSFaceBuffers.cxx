@@ -9,7 +9,7 @@
 //   their centroids from the eye (perspective) or by depth (parallel).
 
 #include "vtkHAVSFaceBuffers.h"
-#include "vtkSPTMeshBuffers.h"
+#include "vtkTetrahedralMesh.h"
 
 #include "vtkCellArray.h"
 #include "vtkFloatArray.h"
@@ -104,8 +104,8 @@ glm::vec3 Vertex(const vtkHAVSFaceBuffers* faces, unsigned int id)
 void CheckFaces(
   vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary, const char* name)
 {
-  vtkNew<vtkSPTMeshBuffers> mesh;
-  vtkSPTMeshBuffers::ScalarSelection selection;
+  vtkNew<vtkTetrahedralMesh> mesh;
+  vtkTetrahedralMesh::ScalarSelection selection;
   Check(mesh->Update(grid, selection), "the mesh is accepted");
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);
@@ -140,8 +140,8 @@ void CheckFaces(
 // Boundary faces of a convex mesh face away from its center.
 void CheckOutwardWinding(vtkUnstructuredGrid* grid, const char* name)
 {
-  vtkNew<vtkSPTMeshBuffers> mesh;
-  vtkSPTMeshBuffers::ScalarSelection selection;
+  vtkNew<vtkTetrahedralMesh> mesh;
+  vtkTetrahedralMesh::ScalarSelection selection;
   mesh->Update(grid, selection);
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);
@@ -214,8 +214,8 @@ void CheckKeysAndRadixSort()
 void CheckSortOrder(bool parallel)
 {
   vtkSmartPointer<vtkUnstructuredGrid> grid = MakeBlock(4, 3, 2, false);
-  vtkNew<vtkSPTMeshBuffers> mesh;
-  vtkSPTMeshBuffers::ScalarSelection selection;
+  vtkNew<vtkTetrahedralMesh> mesh;
+  vtkTetrahedralMesh::ScalarSelection selection;
   mesh->Update(grid, selection);
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);

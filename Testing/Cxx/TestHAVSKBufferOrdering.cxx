@@ -20,9 +20,9 @@
 #include "vtkHAVSFaceBuffers.h"
 #include "vtkHAVSKBuffer.h"
 #include "vtkHAVSVolumeMapper.h"
-#include "vtkSPTMeshBuffers.h"
-#include "vtkSPTPreIntegrationTable.h"
-#include "vtkSPTViewMatrices.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -176,7 +176,7 @@ vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double un
 
 // Trilinear lookup of the table at (front, back, sqrt(thickness)) in [0, 1]^3, texel centers
 // at the ends, as the GPU's texture() with the mapper's scale and offset does.
-glm::vec4 LookUp(const vtkSPTPreIntegrationTable* table, float front, float back, float length)
+glm::vec4 LookUp(const vtkPreIntegrationTable* table, float front, float back, float length)
 {
   const int ns = table->GetScalarResolution();
   const int nl = table->GetLengthResolution();
@@ -206,8 +206,7 @@ glm::vec4 LookUp(const vtkSPTPreIntegrationTable* table, float front, float back
 class KBuffer
 {
 public:
-  KBuffer(
-    int size, const vtkSPTPreIntegrationTable* table, float thicknessToTable, float lengthScale)
+  KBuffer(int size, const vtkPreIntegrationTable* table, float thicknessToTable, float lengthScale)
     : Entries(size - 1, Entry{ 0.0f, EmptyDistance })
     , Table(table)
     , ThicknessToTable(thicknessToTable)
@@ -287,13 +286,13 @@ private:
 
   std::vector<Entry> Entries;
   glm::vec4 Color{ 0.0f };
-  const vtkSPTPreIntegrationTable* Table;
+  const vtkPreIntegrationTable* Table;
   float ThicknessToTable;
   float LengthScale;
 };
 
 // The fragments of the mapper's faces, in its draw order, at every pixel center.
-std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkSPTViewMatrices& m)
+std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m)
 {
   const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
   const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
@@ -391,7 +390,7 @@ std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkSPTVie
 }
 
 std::vector<glm::vec4> Simulate(const std::vector<PixelFragments>& pixels, int kbufferSize,
-  const vtkSPTPreIntegrationTable* table, float thicknessToTable, Perturbation perturbation)
+  const vtkPreIntegrationTable* table, float thicknessToTable, Perturbation perturbation)
 {
   std::vector<glm::vec4> image(pixels.size());
   for (size_t p = 0; p < pixels.size(); ++p)
@@ -515,15 +514,15 @@ int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, 
   window->Render(); // creates the context, for Offers()
 
   // The CPU side: the same mesh, faces, sort and table as the mapper.
-  vtkNew<vtkSPTMeshBuffers> mesh;
-  vtkSPTMeshBuffers::ScalarSelection selection;
+  vtkNew<vtkTetrahedralMesh> mesh;
+  vtkTetrahedralMesh::ScalarSelection selection;
   mesh->Update(grid, selection);
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);
-  vtkSPTViewMatrices matrices;
+  vtkVolumeViewMatrices matrices;
   matrices.Compute(renderer, volume, mesh);
   faces->Sort(matrices.MCVC, matrices.ParallelProjection);
-  vtkNew<vtkSPTPreIntegrationTable> table;
+  vtkNew<vtkPreIntegrationTable> table;
   table->Update(property, mesh->GetScalarRange(), mesh->GetMaxEdgeLength() * mesh->GetScale(),
     mapper->GetPreIntegrationScalarResolution(), mapper->GetPreIntegrationThicknessResolution());
   const float thicknessToTable = float(1.0 / mesh->GetMaxEdgeLength());

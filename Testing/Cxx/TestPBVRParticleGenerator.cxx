@@ -10,7 +10,7 @@
 //   settings fail with a message and no particles.
 
 #include "vtkPBVRParticleGenerator.h"
-#include "vtkSPTMeshBuffers.h"
+#include "vtkTetrahedralMesh.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkNew.h"
@@ -94,10 +94,10 @@ std::vector<Particle> Decode(const vtkPBVRParticleGenerator* generator)
 constexpr double Volume = 1.0 / 6.0;
 constexpr double Footprint = 1.0e-3;
 
-void TestConstantDensity(vtkSPTMeshBuffers* mesh)
+void TestConstantDensity(vtkTetrahedralMesh* mesh)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkSPTMeshBuffers::ScalarSelection());
+  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings;
   settings.Footprint = Footprint;
@@ -149,10 +149,10 @@ void TestConstantDensity(vtkSPTMeshBuffers* mesh)
     "constant density: no candidate is rejected");
 }
 
-void TestRejection(vtkSPTMeshBuffers* mesh)
+void TestRejection(vtkTetrahedralMesh* mesh)
 {
   const double scalars[4] = { 0.0, 0.0, 0.0, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkSPTMeshBuffers::ScalarSelection());
+  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings;
   settings.Footprint = Footprint;
@@ -197,10 +197,10 @@ void TestRejection(vtkSPTMeshBuffers* mesh)
   Check(generator->GetNumberOfParticles() == 0, "peak, cell average: the feature is missed");
 }
 
-void TestCellAverageRounding(vtkSPTMeshBuffers* mesh)
+void TestCellAverageRounding(vtkTetrahedralMesh* mesh)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkSPTMeshBuffers::ScalarSelection());
+  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings;
   settings.Footprint = Footprint;
@@ -223,10 +223,10 @@ void TestCellAverageRounding(vtkSPTMeshBuffers* mesh)
     "cell average: mean count");
 }
 
-void TestSeedsLimitsAndErrors(vtkSPTMeshBuffers* mesh)
+void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkSPTMeshBuffers::ScalarSelection());
+  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   const std::vector<double> samples = Sample([](double s) { return 1.0 + s; });
   vtkNew<vtkPBVRParticleGenerator> first, second;
   vtkPBVRParticleGenerator::Settings settings;
@@ -266,7 +266,7 @@ void TestSeedsLimitsAndErrors(vtkSPTMeshBuffers* mesh)
 
 int TestPBVRParticleGenerator(int, char*[])
 {
-  vtkNew<vtkSPTMeshBuffers> mesh;
+  vtkNew<vtkTetrahedralMesh> mesh;
   TestConstantDensity(mesh);
   TestRejection(mesh);
   TestCellAverageRounding(mesh);

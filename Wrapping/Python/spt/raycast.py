@@ -4,7 +4,7 @@ One ray through the centre of each pixel, from the near to the far clipping plan
 the camera is (inside the mesh too); each tetrahedron the ray crosses gives one segment
 (entry and exit by clipping the ray against the tetrahedron's four face planes, the scalar
 from the cell's linear interpolant); each segment is integrated with the optical model of
-:class:`vtkSPTPreIntegrationTable` and VTK's ``vtkUnstructuredGridLinearRayIntegrator``
+:class:`vtkPreIntegrationTable` and VTK's ``vtkUnstructuredGridLinearRayIntegrator``
 (attenuation ``tau(s) = opacity(s) / unit distance``, emission ``C(s) tau(s)``) by fine
 quadrature; the segments of a ray are composited front to back after sorting by depth.
 

@@ -1,5 +1,5 @@
 /**
- * @class   vtkSPTSceneDepth
+ * @class   vtkSceneDepthTexture
  * @brief   the depth of the opaque scene, copied for the volume's shaders to test against
  *
  * The mappers draw into framebuffers of their own (the ensemble of SPT and PBVR, the k-buffer
@@ -11,8 +11,8 @@
  * Private helper of the SPT module, shared by its framebuffers; not wrapped.
  */
 
-#ifndef vtkSPTSceneDepth_h
-#define vtkSPTSceneDepth_h
+#ifndef vtkSceneDepthTexture_h
+#define vtkSceneDepthTexture_h
 
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the texture and framebuffer
@@ -23,11 +23,11 @@ class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkSPTSceneDepth : public vtkObject
+class SPTRENDERING_EXPORT vtkSceneDepthTexture : public vtkObject
 {
 public:
-  static vtkSPTSceneDepth* New();
-  vtkTypeMacro(vtkSPTSceneDepth, vtkObject);
+  static vtkSceneDepthTexture* New();
+  vtkTypeMacro(vtkSceneDepthTexture, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
@@ -64,12 +64,12 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
-  vtkSPTSceneDepth();
-  ~vtkSPTSceneDepth() override;
+  vtkSceneDepthTexture();
+  ~vtkSceneDepthTexture() override;
 
 private:
-  vtkSPTSceneDepth(const vtkSPTSceneDepth&) = delete;
-  void operator=(const vtkSPTSceneDepth&) = delete;
+  vtkSceneDepthTexture(const vtkSceneDepthTexture&) = delete;
+  void operator=(const vtkSceneDepthTexture&) = delete;
 
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;

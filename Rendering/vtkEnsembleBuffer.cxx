@@ -1,4 +1,4 @@
-#include "vtkSPTEnsembleBuffer.h"
+#include "vtkEnsembleBuffer.h"
 
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -10,27 +10,27 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
-#include "vtkSPTSceneDepth.h"
+#include "vtkSceneDepthTexture.h"
 
-#include "vtkSPTAccumulateFS.h"
-#include "vtkSPTNoiseFS.h"
-#include "vtkSPTResolveFS.h"
+#include "vtkEnsembleAccumulateFS.h"
+#include "vtkEnsembleNoiseFS.h"
+#include "vtkEnsembleResolveFS.h"
 
 #include <cmath>
 #include <string>
 #include <vector>
 
-vtkStandardNewMacro(vtkSPTEnsembleBuffer);
+vtkStandardNewMacro(vtkEnsembleBuffer);
 
-vtkSPTEnsembleBuffer::vtkSPTEnsembleBuffer() = default;
+vtkEnsembleBuffer::vtkEnsembleBuffer() = default;
 
-vtkSPTEnsembleBuffer::~vtkSPTEnsembleBuffer() = default;
+vtkEnsembleBuffer::~vtkEnsembleBuffer() = default;
 
-bool vtkSPTEnsembleBuffer::Prepare(
+bool vtkEnsembleBuffer::Prepare(
   vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel)
 {
   int hasDepth = 0;
-  const int depthFormat = vtkSPTSceneDepth::QueryFormat(&hasDepth);
+  const int depthFormat = vtkSceneDepthTexture::QueryFormat(&hasDepth);
   if (renWin != this->Context || width != this->Width || height != this->Height ||
     subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepth->GetFormat())
   {
@@ -46,14 +46,14 @@ bool vtkSPTEnsembleBuffer::Prepare(
   return this->Context != nullptr;
 }
 
-void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
+void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 {
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
   for (vtkTextureObject* texture :
     { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
   {
-    vtkSPTSceneDepth::UseNearestTexels(texture, renWin);
+    vtkSceneDepthTexture::UseNearestTexels(texture, renWin);
   }
   bool ok = this->PassColor->Allocate2D(w, h, 4, VTK_FLOAT) &&
     this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
@@ -81,13 +81,13 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthForm
   if (!this->Accumulate)
   {
     // Adding a pass to the sum, or to both sums: a second output only where one is bound.
-    std::string one = vtkSPTAccumulateFS;
-    std::string both = vtkSPTAccumulateFS;
+    std::string one = vtkEnsembleAccumulateFS;
+    std::string both = vtkEnsembleAccumulateFS;
     vtkShaderProgram::Substitute(one, "//SPT::Defines::Dec", "");
     vtkShaderProgram::Substitute(both, "//SPT::Defines::Dec", "#define SPT_SECOND_HALF");
     this->Accumulate.reset(new vtkOpenGLQuadHelper(renWin, nullptr, one.c_str(), ""));
     this->AccumulateBoth.reset(new vtkOpenGLQuadHelper(renWin, nullptr, both.c_str(), ""));
-    this->Mean.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkSPTResolveFS, ""));
+    this->Mean.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkEnsembleResolveFS, ""));
   }
   ok = ok && this->Accumulate->Program && this->AccumulateBoth->Program && this->Mean->Program;
   if (!ok)
@@ -100,7 +100,7 @@ void vtkSPTEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthForm
   this->Context = renWin;
 }
 
-void vtkSPTEnsembleBuffer::ClearSum()
+void vtkEnsembleBuffer::ClearSum()
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglClearColor clearColor(ostate);
@@ -116,7 +116,7 @@ void vtkSPTEnsembleBuffer::ClearSum()
   ostate->PopDrawFramebufferBinding();
 }
 
-void vtkSPTEnsembleBuffer::BeginPass()
+void vtkEnsembleBuffer::BeginPass()
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   this->PassFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
@@ -130,7 +130,7 @@ void vtkSPTEnsembleBuffer::BeginPass()
   ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void vtkSPTEnsembleBuffer::BeginSumPass(bool halves)
+void vtkEnsembleBuffer::BeginSumPass(bool halves)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   this->SumsFramebuffer(halves)->Bind(GL_DRAW_FRAMEBUFFER);
@@ -138,7 +138,7 @@ void vtkSPTEnsembleBuffer::BeginSumPass(bool halves)
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
 }
 
-void vtkSPTEnsembleBuffer::EndPass(bool secondHalf)
+void vtkEnsembleBuffer::EndPass(bool secondHalf)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
@@ -157,13 +157,13 @@ void vtkSPTEnsembleBuffer::EndPass(bool secondHalf)
   this->PassColor->Deactivate();
 }
 
-vtkOpenGLFramebufferObject* vtkSPTEnsembleBuffer::SumsFramebuffer(bool secondHalf)
+vtkOpenGLFramebufferObject* vtkEnsembleBuffer::SumsFramebuffer(bool secondHalf)
 {
   // Draw buffers are state of a framebuffer object: one object per set of sums.
   return secondHalf && this->Halves ? this->HalvesFramebuffer.Get() : this->SumFramebuffer.Get();
 }
 
-bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
+bool vtkEnsembleBuffer::SetHalves(bool halves)
 {
   this->Halves = false;
   if (!halves)
@@ -185,7 +185,7 @@ bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
     this->Halves = true;
     return true;
   }
-  vtkSPTSceneDepth::UseNearestTexels(this->SecondHalf, this->Context);
+  vtkSceneDepthTexture::UseNearestTexels(this->SecondHalf, this->Context);
   bool ok = this->SecondHalf->Allocate2D(w, h, 4, VTK_FLOAT);
   vtkOpenGLState* ostate = this->Context->GetState();
   ostate->PushFramebufferBindings();
@@ -212,7 +212,7 @@ bool vtkSPTEnsembleBuffer::SetHalves(bool halves)
   return true;
 }
 
-double vtkSPTEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
 {
   if (!this->Halves || halfCount < 1)
   {
@@ -223,7 +223,7 @@ double vtkSPTEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
   if (static_cast<int>(this->Noise->GetWidth()) != this->Width ||
     static_cast<int>(this->Noise->GetHeight()) != this->Height || !this->Noise->GetHandle())
   {
-    vtkSPTSceneDepth::UseNearestTexels(this->Noise, this->Context);
+    vtkSceneDepthTexture::UseNearestTexels(this->Noise, this->Context);
     bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
     ostate->PushFramebufferBindings();
     this->NoiseFramebuffer->SetContext(this->Context);
@@ -245,7 +245,7 @@ double vtkSPTEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
   }
   if (!this->NoiseQuad)
   {
-    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkSPTNoiseFS, ""));
+    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleNoiseFS, ""));
   }
   vtkShaderProgram* program = this->NoiseQuad->Program;
   if (!program)
@@ -308,7 +308,7 @@ double vtkSPTEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
   return std::sqrt(squares / (4.0 * 4.0 * static_cast<double>(footprint)));
 }
 
-bool vtkSPTEnsembleBuffer::BeginCoveragePass()
+bool vtkEnsembleBuffer::BeginCoveragePass()
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   const int w = this->GetPassWidth();
@@ -316,7 +316,7 @@ bool vtkSPTEnsembleBuffer::BeginCoveragePass()
   if (static_cast<int>(this->Coverage->GetWidth()) != w ||
     static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
   {
-    vtkSPTSceneDepth::UseNearestTexels(this->Coverage, this->Context);
+    vtkSceneDepthTexture::UseNearestTexels(this->Coverage, this->Context);
     ostate->PushFramebufferBindings();
     this->CoverageFramebuffer->SetContext(this->Context);
     this->CoverageFramebuffer->Bind();
@@ -346,7 +346,7 @@ bool vtkSPTEnsembleBuffer::BeginCoveragePass()
   return true;
 }
 
-void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
+void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
 {
   exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
   vtkOpenGLState* ostate = this->Context->GetState();
@@ -383,7 +383,7 @@ void vtkSPTEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactC
   this->Sum->Deactivate();
 }
 
-size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
+size_t vtkEnsembleBuffer::GetGPUMemorySize() const
 {
   if (!this->Context)
   {
@@ -399,7 +399,7 @@ size_t vtkSPTEnsembleBuffer::GetGPUMemorySize() const
   return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise);
 }
 
-void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
+void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
   this->AccumulateBoth.reset();
@@ -423,7 +423,7 @@ void vtkSPTEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->Width = this->Height = this->SubpixelLevel = 0;
 }
 
-void vtkSPTEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)
+void vtkEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Width << " x " << this->Height << "\n";

@@ -1,4 +1,4 @@
-#include "vtkSPTSceneDepth.h"
+#include "vtkSceneDepthTexture.h"
 
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
@@ -7,13 +7,13 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
-vtkStandardNewMacro(vtkSPTSceneDepth);
+vtkStandardNewMacro(vtkSceneDepthTexture);
 
-vtkSPTSceneDepth::vtkSPTSceneDepth() = default;
+vtkSceneDepthTexture::vtkSceneDepthTexture() = default;
 
-vtkSPTSceneDepth::~vtkSPTSceneDepth() = default;
+vtkSceneDepthTexture::~vtkSceneDepthTexture() = default;
 
-int vtkSPTSceneDepth::QueryFormat(int* hasDepth)
+int vtkSceneDepthTexture::QueryFormat(int* hasDepth)
 {
   GLint readFramebuffer = 0;
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
@@ -40,7 +40,8 @@ int vtkSPTSceneDepth::QueryFormat(int* hasDepth)
                     : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
 }
 
-void vtkSPTSceneDepth::UseNearestTexels(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin)
+void vtkSceneDepthTexture::UseNearestTexels(
+  vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin)
 {
   texture->SetContext(renWin);
   texture->SetMinificationFilter(vtkTextureObject::Nearest);
@@ -49,7 +50,8 @@ void vtkSPTSceneDepth::UseNearestTexels(vtkTextureObject* texture, vtkOpenGLRend
   texture->SetWrapT(vtkTextureObject::ClampToEdge);
 }
 
-bool vtkSPTSceneDepth::Allocate(vtkOpenGLRenderWindow* renWin, int width, int height, int format)
+bool vtkSceneDepthTexture::Allocate(
+  vtkOpenGLRenderWindow* renWin, int width, int height, int format)
 {
   UseNearestTexels(this->Texture, renWin);
   bool ok = this->Texture->AllocateDepth(width, height, format);
@@ -72,7 +74,7 @@ bool vtkSPTSceneDepth::Allocate(vtkOpenGLRenderWindow* renWin, int width, int he
   return true;
 }
 
-void vtkSPTSceneDepth::Capture(int x, int y)
+void vtkSceneDepthTexture::Capture(int x, int y)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   int hasDepth = 0;
@@ -96,7 +98,7 @@ void vtkSPTSceneDepth::Capture(int x, int y)
   ostate->PopDrawFramebufferBinding();
 }
 
-void vtkSPTSceneDepth::ReleaseGraphicsResources(vtkWindow* window)
+void vtkSceneDepthTexture::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Framebuffer->ReleaseGraphicsResources(window);
   this->Texture->ReleaseGraphicsResources(window);
@@ -105,7 +107,7 @@ void vtkSPTSceneDepth::ReleaseGraphicsResources(vtkWindow* window)
   this->Format = -1;
 }
 
-void vtkSPTSceneDepth::PrintSelf(ostream& os, vtkIndent indent)
+void vtkSceneDepthTexture::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Width << " x " << this->Height << "\n";

@@ -1,4 +1,4 @@
-#include "vtkSPTViewMatrices.h"
+#include "vtkVolumeViewMatrices.h"
 
 #include "vtkCamera.h"
 #include "vtkMath.h"
@@ -7,13 +7,14 @@
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
-#include "vtkSPTMeshBuffers.h"
-#include "vtkSPTShaderUtilities.h"
+#include "vtkShaderSourceUtilities.h"
+#include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
 #include <cmath>
 
-void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh)
+void vtkVolumeViewMatrices::Compute(
+  vtkRenderer* ren, vtkVolume* vol, const vtkTetrahedralMesh* mesh)
 {
   // Everything is composed in double and handed to the GPU in units of the mesh's own size
   // (view coordinates divided by viewScale), so that float precision holds whatever the
@@ -54,9 +55,9 @@ void vtkSPTViewMatrices::Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTM
   }
   vtkNew<vtkMatrix4x4> clipToView;
   vtkMatrix4x4::Invert(viewToClip, clipToView);
-  vtkSPTShaderUtilities::ToColumnMajor(modelToView, this->MCVC);
-  vtkSPTShaderUtilities::ToColumnMajor(viewToClip, this->VCDC);
-  vtkSPTShaderUtilities::ToColumnMajor(clipToView, this->DCVC);
+  vtkShaderSourceUtilities::ToColumnMajor(modelToView, this->MCVC);
+  vtkShaderSourceUtilities::ToColumnMajor(viewToClip, this->VCDC);
+  vtkShaderSourceUtilities::ToColumnMajor(clipToView, this->DCVC);
   for (int i = 0; i < 4; ++i)
   {
     for (int j = 0; j < 4; ++j)

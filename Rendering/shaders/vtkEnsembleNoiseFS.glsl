@@ -2,7 +2,7 @@
 //VTK::Output::Dec
 
 // Per pixel, the squared difference between the images of the two independent halves of the
-// ensemble, each resolved as vtkSPTResolveFS.glsl resolves the whole (the exact coverage and
+// ensemble, each resolved as vtkEnsembleResolveFS.glsl resolves the whole (the exact coverage and
 // its control variate included), summed over the four channels; and whether the pixel is in
 // the image's footprint (alpha over 1/255, as the project's image metrics count it). The
 // variance of the mean of both halves is a quarter of the expected squared difference.

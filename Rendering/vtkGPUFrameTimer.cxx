@@ -1,8 +1,8 @@
-#include "vtkSPTGPUTimer.h"
+#include "vtkGPUFrameTimer.h"
 
 #include "vtk_glew.h"
 
-bool vtkSPTGPUTimer::Start()
+bool vtkGPUFrameTimer::Start()
 {
   // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
   GLint activeQuery = 0;
@@ -20,7 +20,7 @@ bool vtkSPTGPUTimer::Start()
   return true;
 }
 
-double vtkSPTGPUTimer::Stop()
+double vtkGPUFrameTimer::Stop()
 {
   if (!this->Running)
   {
@@ -33,7 +33,7 @@ double vtkSPTGPUTimer::Stop()
   return 1.0e-9 * static_cast<double>(nanoseconds);
 }
 
-void vtkSPTGPUTimer::Release(bool contextCurrent)
+void vtkGPUFrameTimer::Release(bool contextCurrent)
 {
   if (this->Query && contextCurrent)
   {

@@ -1,5 +1,5 @@
 /**
- * @class   vtkSPTEnsembleBuffer
+ * @class   vtkEnsembleBuffer
  * @brief   the framebuffers of stochastic (ensemble-averaged) rendering
  *
  * Sorting-free stochastic renderers (SPT, PBVR) draw the same scene many times with opaque,
@@ -20,13 +20,13 @@
  * Private helper of the SPT module, shared by its mappers; not wrapped.
  */
 
-#ifndef vtkSPTEnsembleBuffer_h
-#define vtkSPTEnsembleBuffer_h
+#ifndef vtkEnsembleBuffer_h
+#define vtkEnsembleBuffer_h
 
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkNew.h"             // For the framebuffers
 #include "vtkObject.h"
-#include "vtkSPTSceneDepth.h" // For the scene depth
+#include "vtkSceneDepthTexture.h" // For the scene depth
 
 #include <memory> // For the quad helpers
 
@@ -36,11 +36,11 @@ class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkSPTEnsembleBuffer : public vtkObject
+class SPTRENDERING_EXPORT vtkEnsembleBuffer : public vtkObject
 {
 public:
-  static vtkSPTEnsembleBuffer* New();
-  vtkTypeMacro(vtkSPTEnsembleBuffer, vtkObject);
+  static vtkEnsembleBuffer* New();
+  vtkTypeMacro(vtkEnsembleBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
@@ -126,12 +126,12 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
-  vtkSPTEnsembleBuffer();
-  ~vtkSPTEnsembleBuffer() override;
+  vtkEnsembleBuffer();
+  ~vtkEnsembleBuffer() override;
 
 private:
-  vtkSPTEnsembleBuffer(const vtkSPTEnsembleBuffer&) = delete;
-  void operator=(const vtkSPTEnsembleBuffer&) = delete;
+  vtkEnsembleBuffer(const vtkEnsembleBuffer&) = delete;
+  void operator=(const vtkEnsembleBuffer&) = delete;
 
   void Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat);
   vtkOpenGLFramebufferObject* SumsFramebuffer(bool secondHalf);
@@ -148,7 +148,7 @@ private:
   vtkNew<vtkTextureObject> SecondHalf;
   vtkNew<vtkTextureObject> Noise;
   bool Halves = false;
-  vtkNew<vtkSPTSceneDepth> SceneDepth;
+  vtkNew<vtkSceneDepthTexture> SceneDepth;
   vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> CoverageFramebuffer;

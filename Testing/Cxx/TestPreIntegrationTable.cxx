@@ -2,7 +2,7 @@
 // fine numerical integration of the same transfer functions, and VTK's own exact
 // piecewise-linear integrator (the reference renderer's), on the same segment.
 
-#include "vtkSPTPreIntegrationTable.h"
+#include "vtkPreIntegrationTable.h"
 
 #include "vtkColorTransferFunction.h"
 #include "vtkDoubleArray.h"
@@ -85,7 +85,7 @@ bool Near(const float* table, const double* expected, double tolerance, const ch
 }
 }
 
-int TestSPTPreIntegrationTable(int, char*[])
+int TestPreIntegrationTable(int, char*[])
 {
   // VTK 9.2's vtkUnstructuredGridLinearRayIntegrator splits segments only at the color
   // function's control points (its loop over the opacity points stops after the first), so the
@@ -113,7 +113,7 @@ int TestSPTPreIntegrationTable(int, char*[])
   const double maxLength = 3.0;
   const int scalarResolution = 81; // scalar samples at multiples of 1/8: on the control points
   const int lengthResolution = 17;
-  vtkNew<vtkSPTPreIntegrationTable> table;
+  vtkNew<vtkPreIntegrationTable> table;
   if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution))
   {
     std::cerr << "Update failed on a valid property.\n";

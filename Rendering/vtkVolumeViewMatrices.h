@@ -1,22 +1,22 @@
 /**
- * @file    vtkSPTViewMatrices.h
+ * @file    vtkVolumeViewMatrices.h
  * @brief   the matrices of one frame in the normalized units of a mesh; shared, not wrapped
  *
- * The mappers hand the GPU coordinates in units of the mesh's own size (vtkSPTMeshBuffers
+ * The mappers hand the GPU coordinates in units of the mesh's own size (vtkTetrahedralMesh
  * shifts and scales the points to O(1)), and compose every matrix in double on the CPU, so
  * that float precision holds whatever the magnitude of the data's coordinates.
  */
 
-#ifndef vtkSPTViewMatrices_h
-#define vtkSPTViewMatrices_h
+#ifndef vtkVolumeViewMatrices_h
+#define vtkVolumeViewMatrices_h
 
 #include "SPTRenderingModule.h" // For export macro
 
 class vtkRenderer;
-class vtkSPTMeshBuffers;
+class vtkTetrahedralMesh;
 class vtkVolume;
 
-struct SPTRENDERING_EXPORT vtkSPTViewMatrices
+struct SPTRENDERING_EXPORT vtkVolumeViewMatrices
 {
   /// Normalized model -> normalized view, column-major (as glUniformMatrix4fv expects).
   float MCVC[16];
@@ -45,7 +45,7 @@ struct SPTRENDERING_EXPORT vtkSPTViewMatrices
    * The matrices of the renderer's active camera for the volume's matrix and the mesh's
    * normalization.
    */
-  void Compute(vtkRenderer* ren, vtkVolume* vol, const vtkSPTMeshBuffers* mesh);
+  void Compute(vtkRenderer* ren, vtkVolume* vol, const vtkTetrahedralMesh* mesh);
 };
 
 #endif

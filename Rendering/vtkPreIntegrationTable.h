@@ -1,5 +1,5 @@
 /**
- * @class   vtkSPTPreIntegrationTable
+ * @class   vtkPreIntegrationTable
  * @brief   pre-integrated color and opacity of linear ray segments, as a 3D texture
  *
  * The table holds, for a ray segment whose scalar varies linearly from a front value to a back
@@ -16,8 +16,8 @@
  * Private helper of the SPT module, shared by its mappers; not wrapped.
  */
 
-#ifndef vtkSPTPreIntegrationTable_h
-#define vtkSPTPreIntegrationTable_h
+#ifndef vtkPreIntegrationTable_h
+#define vtkPreIntegrationTable_h
 
 #include "SPTRenderingModule.h" // For export macro
 #include "vtkObject.h"
@@ -33,11 +33,11 @@ class vtkTextureObject;
 class vtkVolumeProperty;
 class vtkWindow;
 
-class SPTRENDERING_EXPORT vtkSPTPreIntegrationTable : public vtkObject
+class SPTRENDERING_EXPORT vtkPreIntegrationTable : public vtkObject
 {
 public:
-  static vtkSPTPreIntegrationTable* New();
-  vtkTypeMacro(vtkSPTPreIntegrationTable, vtkObject);
+  static vtkPreIntegrationTable* New();
+  vtkTypeMacro(vtkPreIntegrationTable, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
@@ -111,12 +111,12 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:
-  vtkSPTPreIntegrationTable();
-  ~vtkSPTPreIntegrationTable() override;
+  vtkPreIntegrationTable();
+  ~vtkPreIntegrationTable() override;
 
 private:
-  vtkSPTPreIntegrationTable(const vtkSPTPreIntegrationTable&) = delete;
-  void operator=(const vtkSPTPreIntegrationTable&) = delete;
+  vtkPreIntegrationTable(const vtkPreIntegrationTable&) = delete;
+  void operator=(const vtkPreIntegrationTable&) = delete;
 
   void IntegrateScalarPair(int front, int back, float* out) const;
 

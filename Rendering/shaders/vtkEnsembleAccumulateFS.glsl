@@ -2,7 +2,7 @@
 //VTK::Output::Dec
 
 // Adds one pass of the ensemble to the running sum (additive blending is set by the caller),
-// and with SPT_SECOND_HALF to the second half's sum too (vtkSPTEnsembleBuffer).
+// and with SPT_SECOND_HALF to the second half's sum too (vtkEnsembleBuffer).
 // The quad covers the pass exactly, so nearest filtering at texCoord reads one sample.
 //SPT::Defines::Dec
 in vec2 texCoord;

@@ -1,14 +1,14 @@
 /**
- * @file    vtkSPTShaderUtilities.h
+ * @file    vtkShaderSourceUtilities.h
  * @brief   small helpers shared by the SPT mappers' shader set-up; not wrapped
  */
 
-#ifndef vtkSPTShaderUtilities_h
-#define vtkSPTShaderUtilities_h
+#ifndef vtkShaderSourceUtilities_h
+#define vtkShaderSourceUtilities_h
 
 #include "vtkMatrix4x4.h"
 
-namespace vtkSPTShaderUtilities
+namespace vtkShaderSourceUtilities
 {
 /**
  * A vtkMatrix4x4 (row-major, acting on column vectors) as the column-major floats that

@@ -1,5 +1,5 @@
 /**
- * @class   vtkSPTGPUTimer
+ * @class   vtkGPUFrameTimer
  * @brief   the GPU time of a stretch of OpenGL commands, with a GL_TIME_ELAPSED query
  *
  * Start() begins a query unless another GL_TIME_ELAPSED query is active (they do not nest:
@@ -9,17 +9,17 @@
  * Private helper of the SPT module, shared by its mappers; not wrapped.
  */
 
-#ifndef vtkSPTGPUTimer_h
-#define vtkSPTGPUTimer_h
+#ifndef vtkGPUFrameTimer_h
+#define vtkGPUFrameTimer_h
 
 #include "SPTRenderingModule.h" // For export macro
 
-class SPTRENDERING_EXPORT vtkSPTGPUTimer
+class SPTRENDERING_EXPORT vtkGPUFrameTimer
 {
 public:
-  vtkSPTGPUTimer() = default;
-  vtkSPTGPUTimer(const vtkSPTGPUTimer&) = delete;
-  vtkSPTGPUTimer& operator=(const vtkSPTGPUTimer&) = delete;
+  vtkGPUFrameTimer() = default;
+  vtkGPUFrameTimer(const vtkGPUFrameTimer&) = delete;
+  vtkGPUFrameTimer& operator=(const vtkGPUFrameTimer&) = delete;
 
   /// Begin timing in the current context; false when another time query is active.
   bool Start();

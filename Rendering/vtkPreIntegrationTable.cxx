@@ -1,4 +1,4 @@
-#include "vtkSPTPreIntegrationTable.h"
+#include "vtkPreIntegrationTable.h"
 
 #include "vtkColorTransferFunction.h"
 #include "vtkObjectFactory.h"
@@ -23,26 +23,26 @@ constexpr int TransferFunctionSamplesPerCell = 8;
 constexpr int StepsPerCell = 2;
 }
 
-vtkStandardNewMacro(vtkSPTPreIntegrationTable);
+vtkStandardNewMacro(vtkPreIntegrationTable);
 
-vtkSPTPreIntegrationTable::vtkSPTPreIntegrationTable() = default;
+vtkPreIntegrationTable::vtkPreIntegrationTable() = default;
 
-vtkSPTPreIntegrationTable::~vtkSPTPreIntegrationTable() = default;
+vtkPreIntegrationTable::~vtkPreIntegrationTable() = default;
 
-double vtkSPTPreIntegrationTable::GetScalar(int i) const
+double vtkPreIntegrationTable::GetScalar(int i) const
 {
   const double t = this->ScalarResolution > 1 ? double(i) / (this->ScalarResolution - 1) : 0.0;
   return this->ScalarRange[0] + t * (this->ScalarRange[1] - this->ScalarRange[0]);
 }
 
-double vtkSPTPreIntegrationTable::GetLength(int k) const
+double vtkPreIntegrationTable::GetLength(int k) const
 {
   // The length axis is sqrt(length / MaxLength), so short segments get most of the samples.
   const double t = this->LengthResolution > 1 ? double(k) / (this->LengthResolution - 1) : 0.0;
   return this->MaxLength * t * t;
 }
 
-bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* property,
+bool vtkPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* property,
   const double scalarRange[2], int samples, std::vector<double>& color,
   std::vector<double>& attenuation, std::string& error)
 {
@@ -86,7 +86,7 @@ bool vtkSPTPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* prope
   return true;
 }
 
-bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double scalarRange[2],
+bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double scalarRange[2],
   double maxLength, int scalarResolution, int lengthResolution)
 {
   this->LastError.clear();
@@ -111,7 +111,7 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   std::vector<double> color;
   std::vector<double> attenuation;
   this->LastProperty = nullptr;
-  if (!vtkSPTPreIntegrationTable::SampleTransferFunctions(
+  if (!vtkPreIntegrationTable::SampleTransferFunctions(
         property, scalarRange, samples, color, attenuation, this->LastError))
   {
     return false;
@@ -161,7 +161,7 @@ bool vtkSPTPreIntegrationTable::Update(vtkVolumeProperty* property, const double
   return true;
 }
 
-void vtkSPTPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out) const
+void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out) const
 {
   // The color and attenuation at the middle of each step; the same for every length.
   const int steps = 1 + StepsPerCell * std::abs(back - front);
@@ -203,7 +203,7 @@ void vtkSPTPreIntegrationTable::IntegrateScalarPair(int front, int back, float* 
   }
 }
 
-vtkTextureObject* vtkSPTPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* renWin)
+vtkTextureObject* vtkPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* renWin)
 {
   if (this->Table.empty())
   {
@@ -235,7 +235,7 @@ vtkTextureObject* vtkSPTPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* r
   return this->Texture;
 }
 
-void vtkSPTPreIntegrationTable::SetUniforms(
+void vtkPreIntegrationTable::SetUniforms(
   vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const
 {
   const int scalarSamples = this->ScalarResolution;
@@ -250,12 +250,12 @@ void vtkSPTPreIntegrationTable::SetUniforms(
   program->SetUniformf("thicknessToTable", maxThickness > 0.0 ? float(1.0 / maxThickness) : 0.0f);
 }
 
-size_t vtkSPTPreIntegrationTable::GetGPUMemorySize() const
+size_t vtkPreIntegrationTable::GetGPUMemorySize() const
 {
   return this->Texture && this->Texture->GetHandle() ? this->Table.size() * sizeof(float) : 0;
 }
 
-void vtkSPTPreIntegrationTable::ReleaseGraphicsResources(vtkWindow* window)
+void vtkPreIntegrationTable::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Texture)
   {
@@ -264,7 +264,7 @@ void vtkSPTPreIntegrationTable::ReleaseGraphicsResources(vtkWindow* window)
   }
 }
 
-void vtkSPTPreIntegrationTable::PrintSelf(ostream& os, vtkIndent indent)
+void vtkPreIntegrationTable::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "ScalarResolution: " << this->ScalarResolution << "\n";

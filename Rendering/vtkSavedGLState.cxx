@@ -1,0 +1,26 @@
+#include "vtkSavedGLState.h"
+
+#include "vtk_glew.h"
+
+vtkSavedGLState::vtkSavedGLState(vtkOpenGLState* state)
+  : State(state)
+  , Blend(state, GL_BLEND)
+  , DepthTest(state, GL_DEPTH_TEST)
+  , CullFace(state, GL_CULL_FACE)
+  , ScissorTest(state, GL_SCISSOR_TEST)
+  , DepthMask(state)
+  , DepthFunction(state)
+  , ColorMask(state)
+  , ClearColor(state)
+  , Viewport(state)
+{
+  // vtkOpenGLState has no scoped savers of these two.
+  state->vtkglGetDoublev(GL_DEPTH_CLEAR_VALUE, &this->ClearDepth);
+  state->vtkglGetFloatv(GL_POINT_SIZE, &this->PointSize);
+}
+
+vtkSavedGLState::~vtkSavedGLState()
+{
+  this->State->vtkglClearDepth(this->ClearDepth);
+  this->State->vtkglPointSize(this->PointSize);
+}
