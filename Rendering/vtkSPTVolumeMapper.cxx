@@ -217,8 +217,8 @@ bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper,
   return out.TableTexture != nullptr;
 }
 
-std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(vtkRenderer* ren,
-  const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
+std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
+  vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
 {
   // Everything that changes the expected image: each volume's matrices (camera, volume
   // transform), input and table as built and mapper settings, the viewport, and whatever any
