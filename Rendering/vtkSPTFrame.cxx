@@ -127,27 +127,20 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
     vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
 }
 
-bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves)
+bool vtkSPTFrame::ReadyPrograms(
+  const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves)
 {
-  vtkOpenGLState* ostate = this->Window->GetState();
-  // The programs this render needs, by pass kind and by scalars per cell or per point; the
-  // others stay null. Groups draw the coverage with their first key traversal; single passes
-  // need a traversal of its own.
-  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
-  const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
-    !single && coverage, !single, single && coverage };
-  // A render of fewer repetitions than a group draws only those: the fragment loops are sized
-  // by the compiled count.
-  const int lanes = std::min(perPass, count);
-  // Active before the frame's uniforms name its unit.
-  ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
-  vtkShaderProgram* programs[NumberOfPassKinds][2] = {};
+  // Each call has uniforms of its own (first, count, halves).
+  for (auto& byScalars : this->Programs)
+  {
+    byScalars[0] = byScalars[1] = nullptr;
+  }
   for (int k = 0; k < NumberOfPassKinds; ++k)
   {
     for (const Volume& volume : this->Volumes)
     {
       const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
-      vtkShaderProgram*& program = programs[k][cellScalars ? 1 : 0];
+      vtkShaderProgram*& program = this->Programs[k][cellScalars ? 1 : 0];
       if (!needed[k] || program)
       {
         continue;
@@ -162,40 +155,61 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
       this->SetFrameUniforms(program, first, count, halves);
     }
   }
-  if (!single &&
-    !this->DepthKeys->Prepare(
-      this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes))
+  return true;
+}
+
+void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
+{
+  for (const Volume& volume : this->Volumes)
+  {
+    // The ensemble's accumulation binds its own program between passes; uniforms go to the
+    // bound program.
+    vtkShaderProgram* program =
+      this->Programs[static_cast<int>(kind)][volume.Buffers->GetMesh()->GetCellScalars() ? 1 : 0];
+    this->Window->GetShaderCache()->ReadyShaderProgram(program);
+    ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
+      volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture() });
+    SetVolumeUniforms(program, volume);
+    program->SetUniformi("repetition", repetition);
+    program->SetUniformi("repetitionsInGroup", inGroup);
+    volume.Buffers->Bind(program);
+    volume.Buffers->Draw(program, 0, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
+    volume.Buffers->Unbind();
+  }
+}
+
+bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  // The programs this render needs, by pass kind and by scalars per cell or per point; the
+  // others stay null. Groups draw the coverage with their first key traversal; single passes
+  // need a traversal of its own.
+  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
+  const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
+    !single && coverage, !single, single && coverage };
+  // A render of fewer repetitions than a group draws only those: the fragment loops are sized
+  // by the compiled count.
+  const int lanes = std::min(perPass, count);
+  // Active before the frame's uniforms name its unit.
+  ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
+  if (!this->ReadyPrograms(needed, lanes, first, count, halves) ||
+    (!single &&
+      !this->DepthKeys->Prepare(
+        this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes)))
   {
     return false;
   }
-
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
-  auto traverse = [&](PassKind kind, int repetition, int inGroup)
-  {
-    for (const Volume& volume : this->Volumes)
-    {
-      // The ensemble's accumulation binds its own program between passes; uniforms go to the
-      // bound program.
-      vtkShaderProgram* program =
-        programs[static_cast<int>(kind)][volume.Buffers->GetMesh()->GetCellScalars() ? 1 : 0];
-      this->Window->GetShaderCache()->ReadyShaderProgram(program);
-      ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
-        volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture() });
-      SetVolumeUniforms(program, volume);
-      program->SetUniformi("repetition", repetition);
-      program->SetUniformi("repetitionsInGroup", inGroup);
-      volume.Buffers->Bind(program);
-      volume.Buffers->Draw(program, 0, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
-      volume.Buffers->Unbind();
-    }
-  };
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-  if (!single)
-  {
-    return this->DrawGroups(first, count, lanes, coverage, halves, traverse);
-  }
+  return single ? this->DrawSingles(first, count, coverage, halves)
+                : this->DrawGroups(first, count, lanes, coverage, halves);
+}
+
+bool vtkSPTFrame::DrawSingles(int first, int count, bool coverage, bool halves)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
   if (coverage)
   {
     // Every segment once, added: no depth test, nothing random.
@@ -206,7 +220,7 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
     ostate->vtkglDisable(GL_DEPTH_TEST);
     ostate->vtkglDepthMask(GL_FALSE);
     ostate->vtkglEnable(GL_BLEND);
-    traverse(PassKind::Coverage, first, 1);
+    this->Traverse(PassKind::Coverage, first, 1);
   }
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -215,14 +229,13 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   for (int r = first; r < first + count; ++r)
   {
     this->Ensemble->BeginPass();
-    traverse(PassKind::Single, r, 1);
+    this->Traverse(PassKind::Single, r, 1);
     this->Ensemble->EndPass(halves && r >= first + count / 2);
   }
   return true;
 }
 
-bool vtkSPTFrame::DrawGroups(
-  int first, int count, int perPass, bool coverage, bool halves, const Traversal& traverse)
+bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, bool halves)
 {
   vtkOpenGLState* ostate = this->Window->GetState();
   vtkEnsembleBuffer* ensemble = this->Ensemble;
@@ -253,12 +266,12 @@ bool vtkSPTFrame::DrawGroups(
     }
     if (ok)
     {
-      traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
+      this->Traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
       vtkSPTDepthKeyBuffer::Barrier();
       ensemble->BeginSumPass(halves);
       ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       ostate->vtkglEnable(GL_BLEND);
-      traverse(PassKind::Colors, r, inGroup);
+      this->Traverse(PassKind::Colors, r, inGroup);
       vtkSPTDepthKeyBuffer::Barrier();
     }
   }

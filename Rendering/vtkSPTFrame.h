@@ -21,8 +21,7 @@
 
 #include "SPTRenderingModule.h" // For export macro
 
-#include <functional> // For the traversal
-#include <vector>     // For the volumes
+#include <vector> // For the volumes
 
 class vtkObject;
 class vtkOpenGLRenderWindow;
@@ -106,12 +105,15 @@ public:
     double target, TargetState& state);
 
 private:
-  using Traversal = std::function<void(PassKind, int, int)>;
-
   vtkShaderProgram* ReadyProgram(
     bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves);
-  bool DrawGroups(
-    int first, int count, int perPass, bool coverage, bool halves, const Traversal& traverse);
+  // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars.
+  bool ReadyPrograms(
+    const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
+  // One traversal of every volume with the program of that pass kind.
+  void Traverse(PassKind kind, int repetition, int inGroup);
+  bool DrawSingles(int first, int count, bool coverage, bool halves);
+  bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 
@@ -122,6 +124,8 @@ private:
   Settings FrameSettings;
   vtkObject* Reporter;
   bool ClipPlanesCut = false; // a clipping plane cuts the bounds of some volume
+  // The programs of this frame, by pass kind and by scalars per point (0) or per cell (1).
+  vtkShaderProgram* Programs[NumberOfPassKinds][2] = {};
 };
 
 #endif

@@ -134,6 +134,30 @@ public:
     RenderTarget& target, vtkSPTFrame::Volume& out);
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
+  // Prepare every shared volume that can be drawn; false when none can.
+  static bool CollectVolumes(vtkRenderer* ren,
+    const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
+    std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
+
+  // Repetitions per traversal that the context allows, and the estimator with them.
+  int ChooseTraversal(
+    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
+
+  // What one frame draws.
+  struct FramePlan
+  {
+    int First = 0;         // repetitions already accumulated
+    int Count = 0;         // repetitions to add
+    int PerPass = 1;       // repetitions per traversal
+    bool Cheapest = false; // the paper's single passes, when no group fits the budget
+    bool Coverage = false; // draw the exact coverage in this frame
+  };
+  FramePlan Plan(
+    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
+  // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
+  bool StartAccumulation(vtkEnsembleBuffer* ensemble, const RenderTarget& target, bool halves);
+  // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
+  int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 
   void ResetAccumulation()
   {
@@ -246,35 +270,142 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   return signature;
 }
 
-void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren,
+  const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
+  std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers)
 {
-  // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
-  // wherever they overlap: the first of them draws them all, with its own settings.
-  const auto shared = vtkInternals::SharedVolumes(ren, vol, this);
-  if (shared.front().second != this)
-  {
-    return;
-  }
-  vtkInternals& internals = *this->Internals;
-  RenderTarget target;
-  std::vector<vtkSPTFrame::Volume> volumes;
-  std::vector<vtkSPTVolumeMapper*> mappers;
   unsigned int cellIds = 0;
   for (const auto& member : shared)
   {
     vtkSPTFrame::Volume volume;
-    if (vtkInternals::PrepareVolume(member.second, ren, member.first, target, volume))
+    if (PrepareVolume(member.second, ren, member.first, target, volume))
     {
+      // The volumes' cells are numbered one after another, so that each has random numbers
+      // of its own.
       volume.CellIdOffset = cellIds;
       cellIds += static_cast<unsigned int>(member.second->GetNumberOfTetrahedra());
       volumes.push_back(volume);
       mappers.push_back(member.second);
     }
   }
-  if (volumes.empty())
+  return !volumes.empty();
+}
+
+int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
+  vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings)
+{
+  // The survivors of several repetitions per traversal, and every repetition of the visibility
+  // estimator, are found with image atomics; without them, one survivor per traversal.
+  settings.Estimator = self->Estimator;
+  if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR) &&
+    !vtkSPTDepthKeyBuffer::IsSupported(renWin))
+  {
+    if (self->Estimator != SURVIVOR_ESTIMATOR && !this->WarnedNoImageAtomics)
+    {
+      vtkWarningWithObjectMacro(self,
+        "The visibility estimator needs image load/store (OpenGL 4.4); drawing with the "
+        "survivor estimator.");
+      this->WarnedNoImageAtomics = true;
+    }
+    settings.Estimator = SURVIVOR_ESTIMATOR;
+    return 1;
+  }
+  return self->RepetitionsPerPass;
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
+  vtkEnsembleBuffer* ensemble, const RenderTarget& target, bool halves)
+{
+  ensemble->CaptureSceneDepth(target.X, target.Y);
+  this->ResetAccumulation();
+  if (!ensemble->SetHalves(halves))
+  {
+    this->SumSignature.clear();
+    return false;
+  }
+  ensemble->ClearSum();
+  return true;
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
+  vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
+{
+  // The budget's measure: the GPU time of the repetitions, or where another time query is
+  // running (they do not nest), the wall time until the GPU has finished them.
+  const bool timed = self->AutoAdjustRepetitions && this->Timer.Start();
+  vtkNew<vtkTimerLog> clock;
+  clock->StartTimer();
+  const int drawn = self->TargetError > 0.0
+    ? frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
+        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), self->TargetError,
+        this->Target)
+    : (frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count
+                                                                                  : -1);
+  double seconds = timed ? this->Timer.Stop() : -1.0;
+  if (self->AutoAdjustRepetitions && !timed)
+  {
+    glFinish();
+    clock->StopTimer();
+    seconds = clock->GetElapsedTime();
+  }
+  if (drawn < 0)
+  {
+    this->SumSignature.clear();
+    return drawn;
+  }
+  if (seconds >= 0.0 && drawn > 0)
+  {
+    self->TimePerRepetition = seconds / drawn;
+    this->Budget.Measure(seconds, drawn, plan.PerPass);
+  }
+  this->AccumulatedRepetitions += drawn;
+  this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
+  return drawn;
+}
+
+vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Plan(
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature)
+{
+  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
+  // when refining progressively.
+  FramePlan plan;
+  plan.PerPass = perPass;
+  plan.Count = self->RepetitionLevel;
+  if (self->AutoAdjustRepetitions)
+  {
+    plan.Count = this->Budget.Choose(vol->GetAllocatedRenderTime(), plan.Count, plan.PerPass);
+  }
+  // When not even one group of repetitions fits, the cheapest frame: the paper's single
+  // passes, one traversal each, unbiased too; the exact coverage waits for a later frame.
+  plan.Cheapest = plan.PerPass == 1 && self->RepetitionsPerPass > 1;
+  if (self->ProgressiveRefinement && signature == this->SumSignature &&
+    this->AccumulatedRepetitions > 0)
+  {
+    plan.First = this->AccumulatedRepetitions;
+    plan.Count = std::min(plan.Count, self->MaximumProgressiveRepetitions - plan.First);
+  }
+  this->SumSignature = std::move(signature);
+  // The coverage is additive and needs nothing random: any frame of an accumulation may draw
+  // it, and a new accumulation starts without it.
+  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
+  plan.Coverage = self->ExactCoverage && !coverageDrawn && !plan.Cheapest;
+  return plan;
+}
+
+void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
+  // wherever they overlap: the first of them draws them all, with its own settings.
+  const auto shared = vtkInternals::SharedVolumes(ren, vol, this);
+  RenderTarget target;
+  std::vector<vtkSPTFrame::Volume> volumes;
+  std::vector<vtkSPTVolumeMapper*> mappers;
+  if (shared.front().second != this ||
+    !vtkInternals::CollectVolumes(ren, shared, target, volumes, mappers))
   {
     return;
   }
+  vtkInternals& internals = *this->Internals;
   vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
@@ -284,107 +415,32 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  // The survivors of several repetitions per traversal, and every repetition of the visibility
-  // estimator, are found with image atomics; without them, one survivor per traversal.
-  int perPass = this->RepetitionsPerPass;
   vtkSPTFrame::Settings settings;
-  settings.Estimator = this->Estimator;
-  if ((perPass > 1 || this->Estimator != SURVIVOR_ESTIMATOR) &&
-    !vtkSPTDepthKeyBuffer::IsSupported(renWin))
-  {
-    if (this->Estimator != SURVIVOR_ESTIMATOR && !internals.WarnedNoImageAtomics)
-    {
-      vtkWarningMacro("The visibility estimator needs image load/store (OpenGL 4.4); "
-                      "drawing with the survivor estimator.");
-      internals.WarnedNoImageAtomics = true;
-    }
-    perPass = 1;
-    settings.Estimator = SURVIVOR_ESTIMATOR;
-  }
-
-  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
-  // when refining progressively.
-  int count = this->RepetitionLevel;
-  if (this->AutoAdjustRepetitions)
-  {
-    count = internals.Budget.Choose(vol->GetAllocatedRenderTime(), count, perPass);
-  }
-  // When not even one group of repetitions fits, the cheapest frame: the paper's single
-  // passes, one traversal each, unbiased too; the exact coverage waits for a later frame.
-  const bool cheapest = perPass == 1 && this->RepetitionsPerPass > 1;
-  if (cheapest)
+  const int perPass = internals.ChooseTraversal(this, renWin, settings);
+  const vtkInternals::FramePlan plan =
+    internals.Plan(this, vol, perPass, vtkInternals::Signature(ren, mappers, target));
+  if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR;
-  }
-  std::vector<double> signature = vtkInternals::Signature(ren, mappers, target);
-  int first = 0;
-  if (this->ProgressiveRefinement && signature == internals.SumSignature &&
-    internals.AccumulatedRepetitions > 0)
-  {
-    first = internals.AccumulatedRepetitions;
-    count = std::min(count, this->MaximumProgressiveRepetitions - first);
-  }
-  internals.SumSignature = signature;
-
-  ostate->PushFramebufferBindings();
-  const bool toTarget = this->TargetError > 0.0;
-  if (first == 0)
-  {
-    ensemble->CaptureSceneDepth(target.X, target.Y);
-    internals.ResetAccumulation();
-    if (!ensemble->SetHalves(toTarget))
-    {
-      ostate->PopFramebufferBindings();
-      internals.SumSignature.clear();
-      return;
-    }
-    ensemble->ClearSum();
   }
   settings.StratifiedSampling = this->StratifiedSampling != 0;
   settings.SubpixelLevel = this->SubpixelLevel;
   settings.Seed = this->Seed;
   settings.OpaqueScene = HasOpaqueScene(ren);
+
+  ostate->PushFramebufferBindings();
+  const bool started =
+    plan.First > 0 || internals.StartAccumulation(ensemble, target, this->TargetError > 0.0);
   vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
-  // The coverage is additive and needs nothing random: any frame of an accumulation may draw
-  // it.
-  const bool coverage = this->ExactCoverage && !internals.CoverageDrawn && !cheapest;
-  if (count > 0)
-  {
-    // The budget's measure: the GPU time of the repetitions, or where another time query is
-    // running (they do not nest), the wall time until the GPU has finished them.
-    const bool timed = this->AutoAdjustRepetitions && internals.Timer.Start();
-    vtkNew<vtkTimerLog> clock;
-    clock->StartTimer();
-    const int drawn = toTarget
-      ? frame.DrawToTarget(first, count, perPass, coverage,
-          this->ExactCoverage && (internals.CoverageDrawn || coverage), this->TargetError,
-          internals.Target)
-      : (frame.DrawRepetitions(first, count, perPass, coverage) ? count : -1);
-    double seconds = timed ? internals.Timer.Stop() : -1.0;
-    if (this->AutoAdjustRepetitions && !timed)
-    {
-      glFinish();
-      clock->StopTimer();
-      seconds = clock->GetElapsedTime();
-    }
-    if (drawn < 0)
-    {
-      ostate->PopFramebufferBindings();
-      internals.SumSignature.clear();
-      return;
-    }
-    if (seconds >= 0.0 && drawn > 0)
-    {
-      this->TimePerRepetition = seconds / drawn;
-      internals.Budget.Measure(seconds, drawn, perPass);
-    }
-    internals.AccumulatedRepetitions += drawn;
-    internals.CoverageDrawn = internals.CoverageDrawn || (coverage && drawn > 0);
-  }
+  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(this, frame, plan) >= 0);
   ostate->PopFramebufferBindings();
+  if (!drawn)
+  {
+    return;
+  }
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
-    mapper->EstimatedError = toTarget ? internals.Target.Estimate : -1.0;
+    mapper->EstimatedError = this->TargetError > 0.0 ? internals.Target.Estimate : -1.0;
     mapper->LastRepetitionCount = internals.AccumulatedRepetitions;
   }
   ensemble->Resolve(target.X, target.Y, internals.AccumulatedRepetitions,
