@@ -212,48 +212,39 @@ bool vtkEnsembleBuffer::SetHalves(bool halves)
   return true;
 }
 
-double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+bool vtkEnsembleBuffer::AllocateNoise()
 {
-  if (!this->Halves || halfCount < 1)
+  if (static_cast<int>(this->Noise->GetWidth()) == this->Width &&
+    static_cast<int>(this->Noise->GetHeight()) == this->Height && this->Noise->GetHandle())
   {
-    return -1.0;
+    return true;
   }
-  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
   vtkOpenGLState* ostate = this->Context->GetState();
-  if (static_cast<int>(this->Noise->GetWidth()) != this->Width ||
-    static_cast<int>(this->Noise->GetHeight()) != this->Height || !this->Noise->GetHandle())
+  vtkSceneDepthTexture::UseNearestTexels(this->Noise, this->Context);
+  bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
+  ostate->PushFramebufferBindings();
+  this->NoiseFramebuffer->SetContext(this->Context);
+  this->NoiseFramebuffer->Bind();
+  if (ok)
   {
-    vtkSceneDepthTexture::UseNearestTexels(this->Noise, this->Context);
-    bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
-    ostate->PushFramebufferBindings();
-    this->NoiseFramebuffer->SetContext(this->Context);
-    this->NoiseFramebuffer->Bind();
-    if (ok)
-    {
-      this->NoiseFramebuffer->AddColorAttachment(0, this->Noise);
-      this->NoiseFramebuffer->ActivateDrawBuffers(1);
-      ok = this->NoiseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-    }
-    ostate->PopFramebufferBindings();
-    if (!ok)
-    {
-      vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height
-                                              << " buffer of the noise estimate.");
-      this->Noise->ReleaseGraphicsResources(this->Context);
-      return -1.0;
-    }
+    this->NoiseFramebuffer->AddColorAttachment(0, this->Noise);
+    this->NoiseFramebuffer->ActivateDrawBuffers(1);
+    ok = this->NoiseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   }
-  if (!this->NoiseQuad)
+  ostate->PopFramebufferBindings();
+  if (!ok)
   {
-    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleNoiseFS, ""));
+    vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height
+                                            << " buffer of the noise estimate.");
+    this->Noise->ReleaseGraphicsResources(this->Context);
   }
-  vtkShaderProgram* program = this->NoiseQuad->Program;
-  if (!program)
-  {
-    vtkErrorMacro("Could not compile the shader of the noise estimate.");
-    return -1.0;
-  }
+  return ok;
+}
 
+std::vector<float> vtkEnsembleBuffer::DrawNoise(
+  vtkShaderProgram* program, int halfCount, bool exactCoverage)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
   vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
@@ -288,7 +279,28 @@ double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, this->Width, this->Height, GL_RG, GL_FLOAT, values.data());
   ostate->PopFramebufferBindings();
+  return values;
+}
 
+double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+{
+  if (!this->Halves || halfCount < 1 || !this->AllocateNoise())
+  {
+    return -1.0;
+  }
+  if (!this->NoiseQuad)
+  {
+    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleNoiseFS, ""));
+  }
+  vtkShaderProgram* program = this->NoiseQuad->Program;
+  if (!program)
+  {
+    vtkErrorMacro("Could not compile the shader of the noise estimate.");
+    return -1.0;
+  }
+  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
+  // Per pixel: the squared difference of the halves' means, and whether it is in the footprint.
+  const std::vector<float> values = this->DrawNoise(program, halfCount, exactCoverage);
   double squares = 0.0;
   size_t footprint = 0;
   for (size_t i = 0; i < values.size(); i += 2)

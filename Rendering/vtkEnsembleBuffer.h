@@ -29,10 +29,12 @@
 #include "vtkSceneDepthTexture.h" // For the scene depth
 
 #include <memory> // For the quad helpers
+#include <vector> // For DrawNoise()
 
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
+class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
 
@@ -135,6 +137,10 @@ private:
 
   void Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat);
   vtkOpenGLFramebufferObject* SumsFramebuffer(bool secondHalf);
+  // The two-channel buffer of the noise estimate, at the image's size.
+  bool AllocateNoise();
+  // Per pixel, the squared difference of the halves' means and whether it is in the footprint.
+  std::vector<float> DrawNoise(vtkShaderProgram* program, int halfCount, bool exactCoverage);
 
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;

@@ -69,29 +69,24 @@ float scalarAt(uint pointId)
 }
 
 #ifdef SPT_CLIPPED_CELLS
-// The segment of a cell that a clipping plane cuts: the sample's ray runs from the near plane
-// (t = 0) to the far plane (t = 1), enters the cell at the last of the entry faces' planes
-// and leaves it at the first of the exit faces'. The scalars at both ends are interpolated
-// with the barycentric weights of the cell. False when the ray misses the cell.
-bool cellSegment(out Segment segment)
+// The sample's ray in view coordinates, from the near plane (t = 0) to the far plane (t = 1).
+void sampleRay(out vec3 origin, out vec3 direction)
 {
   vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
   vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
   vec4 farVC = DCVCMatrix * vec4(ndc, 1.0, 1.0);
-  vec3 origin = nearVC.xyz / nearVC.w;
-  vec3 direction = farVC.xyz / farVC.w - origin;
+  origin = nearVC.xyz / nearVC.w;
+  direction = farVC.xyz / farVC.w - origin;
+}
 
-  uvec4 ids = texelFetch(tetrahedra, tetrahedronId);
-  vec3 vertexVC[4];
-  float vertexScalar[4];
-  for (int i = 0; i < 4; ++i)
-  {
-    vertexVC[i] = (MCVCMatrix * vec4(texelFetch(points, int(ids[i])).xyz, 1.0)).xyz;
-    vertexScalar[i] = scalarAt(ids[i]);
-  }
-  float enter = 0.0;
-  float leave = 1.0;
-  vec4 facePlane[4]; // outward normal and offset, scaled so that the opposite vertex is at -1
+// The ray enters the cell at the last of the entry faces' planes and leaves it at the first of
+// the exit faces'. facePlane[k] is the outward plane of the face opposite vertex k, scaled so
+// that the vertex is at -1. False for a flat tetrahedron, which holds no volume.
+bool clipRayByCell(vec3 vertexVC[4], vec3 origin, vec3 direction, out vec4 facePlane[4],
+  out float enter, out float leave)
+{
+  enter = 0.0;
+  leave = 1.0;
   for (int k = 0; k < 4; ++k)
   {
     vec3 a = vertexVC[(k + 1) % 4];
@@ -99,7 +94,7 @@ bool cellSegment(out Segment segment)
     float towardsOpposite = dot(normal, vertexVC[k] - a);
     if (towardsOpposite == 0.0)
     {
-      return false; // a flat tetrahedron holds no volume
+      return false;
     }
     normal /= -towardsOpposite;
     facePlane[k] = vec4(normal, -dot(normal, a));
@@ -114,7 +109,29 @@ bool cellSegment(out Segment segment)
       leave = min(leave, t);
     }
   }
-  if (enter >= leave)
+  return true;
+}
+
+// The segment of a cell that a clipping plane cuts, between the near plane and the cell's
+// exit. The scalars at both ends are interpolated with the barycentric weights of the cell.
+// False when the ray misses the cell.
+bool cellSegment(out Segment segment)
+{
+  vec3 origin;
+  vec3 direction;
+  sampleRay(origin, direction);
+  uvec4 ids = texelFetch(tetrahedra, tetrahedronId);
+  vec3 vertexVC[4];
+  float vertexScalar[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    vertexVC[i] = (MCVCMatrix * vec4(texelFetch(points, int(ids[i])).xyz, 1.0)).xyz;
+    vertexScalar[i] = scalarAt(ids[i]);
+  }
+  vec4 facePlane[4];
+  float enter;
+  float leave;
+  if (!clipRayByCell(vertexVC, origin, direction, facePlane, enter, leave) || enter >= leave)
   {
     return false;
   }

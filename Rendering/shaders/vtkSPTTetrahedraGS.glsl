@@ -185,6 +185,74 @@ void emitClass2(int a, int b, int c, int d, float u, float v)
   EndPrimitive();
 }
 
+// Class 1 test: the vertex whose smallest barycentric weight in the triangle of the other
+// three is largest. Returns that vertex (-1 when all four project onto one line), its
+// smallest weight and its weights.
+int findClass1(out float bestWeight, out vec3 bestWeights)
+{
+  int bestVertex = -1;
+  bestWeight = -1.0e30;
+  bestWeights = vec3(0.0);
+  for (int i = 0; i < 4; ++i)
+  {
+    vec2 pj = vertexNDC[(i + 1) % 4];
+    vec2 pk = vertexNDC[(i + 2) % 4];
+    vec2 pl = vertexNDC[(i + 3) % 4];
+    float area = orient2D(pj, pk, pl);
+    if (area == 0.0)
+    {
+      continue;
+    }
+    vec2 p = vertexNDC[i];
+    vec3 w = vec3(orient2D(p, pk, pl), orient2D(pj, p, pl), orient2D(pj, pk, p)) / area;
+    float smallest = min(w.x, min(w.y, w.z));
+    if (smallest > bestWeight)
+    {
+      bestWeight = smallest;
+      bestVertex = i;
+      bestWeights = w;
+    }
+  }
+  return bestVertex;
+}
+
+// Class 2: of the three ways to pair the edges, the diagonals of the outline are the pair
+// whose crossing lies inside both segments.
+void emitBestClass2()
+{
+  ivec4 pairs[3] = ivec4[3](ivec4(0, 1, 2, 3), ivec4(0, 2, 1, 3), ivec4(0, 3, 1, 2));
+  int bestPair = -1;
+  float bestMargin = -1.0e30;
+  vec2 bestParameters = vec2(0.0);
+  for (int p = 0; p < 3; ++p)
+  {
+    ivec4 e = pairs[p];
+    vec2 r = vertexNDC[e.y] - vertexNDC[e.x];
+    vec2 s = vertexNDC[e.w] - vertexNDC[e.z];
+    float denominator = r.x * s.y - r.y * s.x;
+    if (denominator == 0.0)
+    {
+      continue;
+    }
+    vec2 q = vertexNDC[e.z] - vertexNDC[e.x];
+    float u = (q.x * s.y - q.y * s.x) / denominator;
+    float v = (q.x * r.y - q.y * r.x) / denominator;
+    float margin = min(min(u, 1.0 - u), min(v, 1.0 - v));
+    if (margin > bestMargin)
+    {
+      bestMargin = margin;
+      bestPair = p;
+      bestParameters = vec2(u, v);
+    }
+  }
+  if (bestPair >= 0)
+  {
+    ivec4 e = pairs[bestPair];
+    vec2 uv = clamp(bestParameters, 0.0, 1.0);
+    emitClass2(e.x, e.y, e.z, e.w, uv.x, uv.y);
+  }
+}
+
 void main()
 {
   // Clip space puts a point outside the view volume's near and side planes at z < -w,
@@ -217,74 +285,21 @@ void main()
     vertexScalar[i] = scalarVSOutput[i];
 #endif
   }
-
-  // Class 1 test: the vertex whose smallest barycentric weight in the triangle of the other
-  // three is largest; inside (or on the outline) when that weight is not negative.
-  int bestVertex = -1;
-  float bestWeight = -1.0e30;
-  vec3 bestWeights = vec3(0.0);
-  for (int i = 0; i < 4; ++i)
-  {
-    vec2 pj = vertexNDC[(i + 1) % 4];
-    vec2 pk = vertexNDC[(i + 2) % 4];
-    vec2 pl = vertexNDC[(i + 3) % 4];
-    float area = orient2D(pj, pk, pl);
-    if (area == 0.0)
-    {
-      continue;
-    }
-    vec2 p = vertexNDC[i];
-    vec3 w = vec3(orient2D(p, pk, pl), orient2D(pj, p, pl), orient2D(pj, pk, p)) / area;
-    float smallest = min(w.x, min(w.y, w.z));
-    if (smallest > bestWeight)
-    {
-      bestWeight = smallest;
-      bestVertex = i;
-      bestWeights = w;
-    }
-  }
+  float bestWeight;
+  vec3 bestWeights;
+  int bestVertex = findClass1(bestWeight, bestWeights);
   if (bestVertex < 0)
   {
     return; // all four vertices on one line: the projection covers no area
   }
+  // Inside the triangle of the other three (or on its outline): class 1.
   const float insideTolerance = 1.0e-6;
   if (bestWeight >= -insideTolerance)
   {
     emitClass1(bestVertex, max(bestWeights, vec3(0.0)));
-    return;
   }
-
-  // Class 2: of the three ways to pair the edges, the diagonals of the outline are the pair
-  // whose crossing lies inside both segments.
-  ivec4 pairs[3] = ivec4[3](ivec4(0, 1, 2, 3), ivec4(0, 2, 1, 3), ivec4(0, 3, 1, 2));
-  int bestPair = -1;
-  float bestMargin = -1.0e30;
-  vec2 bestParameters = vec2(0.0);
-  for (int p = 0; p < 3; ++p)
+  else
   {
-    ivec4 e = pairs[p];
-    vec2 r = vertexNDC[e.y] - vertexNDC[e.x];
-    vec2 s = vertexNDC[e.w] - vertexNDC[e.z];
-    float denominator = r.x * s.y - r.y * s.x;
-    if (denominator == 0.0)
-    {
-      continue;
-    }
-    vec2 q = vertexNDC[e.z] - vertexNDC[e.x];
-    float u = (q.x * s.y - q.y * s.x) / denominator;
-    float v = (q.x * r.y - q.y * r.x) / denominator;
-    float margin = min(min(u, 1.0 - u), min(v, 1.0 - v));
-    if (margin > bestMargin)
-    {
-      bestMargin = margin;
-      bestPair = p;
-      bestParameters = vec2(u, v);
-    }
-  }
-  if (bestPair >= 0)
-  {
-    ivec4 e = pairs[bestPair];
-    vec2 uv = clamp(bestParameters, 0.0, 1.0);
-    emitClass2(e.x, e.y, e.z, e.w, uv.x, uv.y);
+    emitBestClass2();
   }
 }
