@@ -3,7 +3,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkShaderProgram.h"
 #include "vtk_glew.h"
 
@@ -20,7 +19,7 @@
 namespace
 {
 // Draw calls are split so that their index counts stay far below GLsizei's range.
-constexpr size_t MaxFacesPerDraw = size_t(1) << 24;
+constexpr vtkIdType MaxFacesPerDraw = vtkIdType(1) << 24;
 
 // One face of one tetrahedron: its vertex ids in increasing order, and the fourth vertex.
 struct FaceOfTetrahedron
@@ -237,7 +236,7 @@ bool vtkHAVSFaceBuffers::Upload(vtkOpenGLRenderWindow* renWin)
   if (this->Context != renWin || this->UploadTime < this->BuildTime)
   {
     this->Context = renWin;
-    this->BoundProgram = nullptr;
+    this->VertexArray.ForgetLayout();
     this->VertexBytes = 0;
     if (!this->PointBuffer->Upload(this->Vertices, vtkOpenGLBufferObject::ArrayBuffer) ||
       !this->ScalarBuffer->Upload(this->VertexScalars, vtkOpenGLBufferObject::ArrayBuffer))
@@ -263,38 +262,21 @@ bool vtkHAVSFaceBuffers::Upload(vtkOpenGLRenderWindow* renWin)
 
 void vtkHAVSFaceBuffers::Bind(vtkShaderProgram* program)
 {
-  const bool programChanged = program != this->BoundProgram;
-  if (programChanged)
-  {
-    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
-  }
-  this->VertexArray->Bind();
-  if (programChanged)
-  {
-    this->VertexArray->AddAttributeArray(
-      program, this->PointBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
-    this->VertexArray->AddAttributeArray(
-      program, this->ScalarBuffer, "scalarTF", 0, sizeof(float), VTK_FLOAT, 1, false);
-    this->BoundProgram = program;
-  }
-  this->IndexBuffer->Bind();
+  this->VertexArray.Bind(program,
+    { { "vertexMC", this->PointBuffer, 3 * sizeof(float), VTK_FLOAT, 3, false },
+      { "scalarTF", this->ScalarBuffer, sizeof(float), VTK_FLOAT, 1, false } },
+    this->IndexBuffer);
 }
 
 void vtkHAVSFaceBuffers::Unbind()
 {
-  this->IndexBuffer->Release();
-  this->VertexArray->Release();
+  this->VertexArray.Release();
 }
 
 void vtkHAVSFaceBuffers::Draw()
 {
-  const size_t numberOfFaces = this->SortedTriangles.size() / 3;
-  for (size_t begin = 0; begin < numberOfFaces; begin += MaxFacesPerDraw)
-  {
-    const size_t batch = std::min(MaxFacesPerDraw, numberOfFaces - begin);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(3 * batch), GL_UNSIGNED_INT,
-      reinterpret_cast<const void*>(static_cast<uintptr_t>(3 * sizeof(unsigned int) * begin)));
-  }
+  const vtkIdType numberOfFaces = static_cast<vtkIdType>(this->SortedTriangles.size() / 3);
+  vtkBatchedVertexArray::DrawElements(GL_TRIANGLES, 3, 0, numberOfFaces, MaxFacesPerDraw);
 }
 
 size_t vtkHAVSFaceBuffers::GetGPUMemorySize() const
@@ -307,9 +289,8 @@ void vtkHAVSFaceBuffers::ReleaseGraphicsResources(vtkWindow*)
   this->PointBuffer->ReleaseGraphicsResources();
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
-  this->VertexArray->ReleaseGraphicsResources();
+  this->VertexArray.ReleaseGraphicsResources();
   this->Context = nullptr;
-  this->BoundProgram = nullptr;
   this->VertexBytes = 0;
   this->IndexBytes = 0;
 }

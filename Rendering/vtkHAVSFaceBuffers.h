@@ -25,8 +25,9 @@
 #ifndef vtkHAVSFaceBuffers_h
 #define vtkHAVSFaceBuffers_h
 
-#include "SPTRenderingModule.h" // For export macro
-#include "vtkNew.h"             // For the buffers
+#include "SPTRenderingModule.h"    // For export macro
+#include "vtkBatchedVertexArray.h" // For the vertex array
+#include "vtkNew.h"                // For the buffers
 #include "vtkObject.h"
 #include "vtkTimeStamp.h" // For the caches
 
@@ -35,7 +36,6 @@
 
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
-class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
 class vtkTetrahedralMesh;
 class vtkWindow;
@@ -146,8 +146,7 @@ private:
   vtkNew<vtkOpenGLBufferObject> PointBuffer;
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
-  vtkNew<vtkOpenGLVertexArrayObject> VertexArray;
-  vtkShaderProgram* BoundProgram = nullptr;
+  vtkBatchedVertexArray VertexArray;
   size_t VertexBytes = 0;
   size_t IndexBytes = 0;
 };

@@ -7,7 +7,6 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
-#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSmartPointer.h"
@@ -17,6 +16,7 @@
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
+#include "vtkBatchedVertexArray.h"
 #include "vtkEnsembleBuffer.h"
 #include "vtkPBVRParticleGenerator.h"
 #include "vtkPreIntegrationTable.h"
@@ -105,8 +105,7 @@ public:
   bool HaveFailed = false;
   vtkIdType GenerationCount = 0;
   vtkNew<vtkOpenGLBufferObject> ParticleBuffer;
-  vtkNew<vtkOpenGLVertexArrayObject> VertexArray;
-  vtkShaderProgram* BoundProgram = nullptr;
+  vtkBatchedVertexArray VertexArray;
   size_t UploadedBytes = 0;
 
   bool SampleTransferFunctions(vtkVolumeProperty* property, std::string& error);
@@ -299,30 +298,17 @@ void vtkPBVRVolumeMapper::vtkInternals::DrawSet(vtkShaderProgram* program, int s
   {
     return;
   }
-  const bool programChanged = program != this->BoundProgram;
-  if (programChanged)
-  {
-    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
-  }
-  this->VertexArray->Bind();
-  if (programChanged)
-  {
-    this->VertexArray->AddAttributeArray(program, this->ParticleBuffer, "particleMC", 0,
-      vtkPBVRParticleGenerator::BytesPerParticle, VTK_UNSIGNED_SHORT, 4, true);
-    this->BoundProgram = program;
-  }
-  for (vtkIdType begin = first; begin < end; begin += MaxParticlesPerDraw)
-  {
-    glDrawArrays(GL_POINTS, static_cast<GLint>(begin),
-      static_cast<GLsizei>(std::min(MaxParticlesPerDraw, end - begin)));
-  }
-  this->VertexArray->Release();
+  this->VertexArray.Bind(program,
+    { { "particleMC", this->ParticleBuffer, vtkPBVRParticleGenerator::BytesPerParticle,
+      VTK_UNSIGNED_SHORT, 4, true } });
+  vtkBatchedVertexArray::DrawArrays(GL_POINTS, first, end - first, MaxParticlesPerDraw);
+  this->VertexArray.Release();
 }
 
 bool vtkPBVRVolumeMapper::vtkInternals::Upload()
 {
   this->UploadedBytes = 0;
-  this->BoundProgram = nullptr;
+  this->VertexArray.ForgetLayout();
   const std::vector<unsigned short>& particles = this->Generator->GetParticles();
   if (!particles.empty())
   {
@@ -339,8 +325,7 @@ bool vtkPBVRVolumeMapper::vtkInternals::Upload()
 void vtkPBVRVolumeMapper::vtkInternals::ReleaseParticles()
 {
   this->ParticleBuffer->ReleaseGraphicsResources();
-  this->VertexArray->ReleaseGraphicsResources();
-  this->BoundProgram = nullptr;
+  this->VertexArray.ReleaseGraphicsResources();
   this->UploadedBytes = 0;
   this->HaveParticles = false;
 }

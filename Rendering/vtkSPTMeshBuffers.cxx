@@ -3,15 +3,14 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkBatchedVertexArray.h"
 #include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
-#include <cstdint>
 
 namespace
 {
@@ -54,7 +53,7 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
   this->Mesh = mesh;
   this->UploadedBuild = mesh->GetBuildTime();
   this->UploadedBytes = 0;
-  this->BoundProgram = nullptr;
+  this->VertexArray.ForgetLayout();
   const std::vector<float>& points = mesh->GetPoints();
   const std::vector<float>& scalars = mesh->GetScalars();
   const std::vector<unsigned int>& tetrahedra = mesh->GetTetrahedra();
@@ -101,43 +100,32 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
 
 void vtkSPTMeshBuffers::Bind(vtkShaderProgram* program)
 {
-  const bool programChanged = program != this->BoundProgram;
-  if (programChanged)
+  using Attribute = vtkBatchedVertexArray::Attribute;
+  const Attribute points{ "vertexMC", this->PointBuffer, 3 * sizeof(float), VTK_FLOAT, 3, false };
+  const Attribute scalars{ "scalarTF", this->ScalarBuffer, sizeof(float), VTK_FLOAT, 1, false };
+  if (this->Mesh && this->Mesh->GetCellScalars())
   {
-    this->VertexArray->ShaderProgramChanged(); // releases the array: call before Bind()
+    this->VertexArray.Bind(program, { points }, this->IndexBuffer);
   }
-  this->VertexArray->Bind();
-  if (programChanged)
+  else
   {
-    this->VertexArray->AddAttributeArray(
-      program, this->PointBuffer, "vertexMC", 0, 3 * sizeof(float), VTK_FLOAT, 3, false);
-    if (!this->Mesh->GetCellScalars())
-    {
-      this->VertexArray->AddAttributeArray(
-        program, this->ScalarBuffer, "scalarTF", 0, sizeof(float), VTK_FLOAT, 1, false);
-    }
-    this->BoundProgram = program;
+    this->VertexArray.Bind(program, { points, scalars }, this->IndexBuffer);
   }
-  this->IndexBuffer->Bind();
 }
 
 void vtkSPTMeshBuffers::Unbind()
 {
-  this->IndexBuffer->Release();
-  this->VertexArray->Release();
+  this->VertexArray.Release();
 }
 
 void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
 {
   const vtkIdType end =
     std::min(first + count, this->Mesh ? this->Mesh->GetNumberOfTetrahedra() : 0);
-  for (vtkIdType begin = first; begin < end; begin += MaxTetrahedraPerDraw)
-  {
-    const vtkIdType batch = std::min(MaxTetrahedraPerDraw, end - begin);
-    program->SetUniformi("primitiveOffset", static_cast<int>(begin));
-    glDrawElements(GL_LINES_ADJACENCY, static_cast<GLsizei>(4 * batch), GL_UNSIGNED_INT,
-      reinterpret_cast<const void*>(static_cast<uintptr_t>(4 * sizeof(unsigned int) * begin)));
-  }
+  vtkBatchedVertexArray::DrawElements(GL_LINES_ADJACENCY, 4, first, end - first,
+    MaxTetrahedraPerDraw,
+    [program](vtkIdType begin)
+    { program->SetUniformi("primitiveOffset", static_cast<int>(begin)); });
 }
 
 void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
@@ -145,7 +133,7 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   this->PointBuffer->ReleaseGraphicsResources();
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
-  this->VertexArray->ReleaseGraphicsResources();
+  this->VertexArray.ReleaseGraphicsResources();
   for (vtkSmartPointer<vtkTextureObject>* texture :
     { &this->ScalarTexture, &this->PointTexture, &this->TetrahedronTexture })
   {
@@ -158,7 +146,6 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   this->Context = nullptr;
   this->Mesh = nullptr;
   this->UploadedBuild = 0;
-  this->BoundProgram = nullptr;
   this->UploadedBytes = 0;
 }
 

@@ -14,8 +14,9 @@
 #ifndef vtkSPTMeshBuffers_h
 #define vtkSPTMeshBuffers_h
 
-#include "SPTRenderingModule.h" // For export macro
-#include "vtkNew.h"             // For the buffers
+#include "SPTRenderingModule.h"    // For export macro
+#include "vtkBatchedVertexArray.h" // For the vertex array
+#include "vtkNew.h"                // For the buffers
 #include "vtkObject.h"
 #include "vtkSmartPointer.h"  // For the buffers
 #include "vtkTextureObject.h" // For GetScalarTexture()
@@ -23,7 +24,6 @@
 
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
-class vtkOpenGLVertexArrayObject;
 class vtkShaderProgram;
 class vtkTetrahedralMesh;
 class vtkWindow;
@@ -87,11 +87,10 @@ private:
   vtkNew<vtkOpenGLBufferObject> PointBuffer;
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
-  vtkNew<vtkOpenGLVertexArrayObject> VertexArray;
+  vtkBatchedVertexArray VertexArray;
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> TetrahedronTexture;
   vtkSmartPointer<vtkTextureObject> PointTexture;
-  vtkShaderProgram* BoundProgram = nullptr;
   size_t UploadedBytes = 0;
 };
 
