@@ -10,6 +10,7 @@
 #include "vtkTextureObject.h"
 #include "vtk_glew.h"
 
+#include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"
 
 #include "vtkEnsembleAccumulateFS.h"
@@ -361,18 +362,8 @@ bool vtkEnsembleBuffer::BeginCoveragePass()
 void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
 {
   exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
-  vtkOpenGLState* ostate = this->Context->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  ostate->vtkglViewport(x, y, this->Width, this->Height);
-  ostate->vtkglEnable(GL_BLEND);
-  ostate->vtkglDisable(GL_DEPTH_TEST);
-  ostate->vtkglDepthMask(GL_FALSE);
   // The mean is premultiplied: "over" the scene.
-  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  vtkScopedOverBlending over(this->Context->GetState(), x, y, this->Width, this->Height);
   vtkShaderProgram* program = this->Mean->Program;
   this->Context->GetShaderCache()->ReadyShaderProgram(program);
   this->Sum->Activate();

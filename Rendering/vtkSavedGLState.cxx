@@ -24,3 +24,18 @@ vtkSavedGLState::~vtkSavedGLState()
   this->State->vtkglClearDepth(this->ClearDepth);
   this->State->vtkglPointSize(this->PointSize);
 }
+
+vtkScopedOverBlending::vtkScopedOverBlending(
+  vtkOpenGLState* state, int x, int y, int width, int height)
+  : Blend(state, GL_BLEND)
+  , DepthTest(state, GL_DEPTH_TEST)
+  , BlendFunction(state)
+  , DepthMask(state)
+  , Viewport(state)
+{
+  state->vtkglViewport(x, y, width, height);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+}
