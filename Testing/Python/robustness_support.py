@@ -51,6 +51,27 @@ def tetrahedra(points, cells, scalars=None, name="s", cell_type=vtk.VTK_TETRA):
     return grid
 
 
+def split_image(image: vtk.vtkImageData) -> vtk.vtkUnstructuredGrid:
+    """The image data's voxels split into tetrahedra, as a grid of its own (a deep copy)."""
+    split = vtk.vtkDataSetTriangleFilter()
+    split.SetInputData(image)
+    split.TetrahedraOnlyOn()
+    split.Update()
+    grid = vtk.vtkUnstructuredGrid()
+    grid.DeepCopy(split.GetOutput())
+    return grid
+
+
+def check_second_window(volume: vtk.vtkVolume, size: Sequence[int], messages) -> None:
+    """The volume's mapper draws in a second window too, without an error."""
+    other, other_renderer = render.make_window(*size)
+    other_renderer.AddVolume(volume)
+    other_renderer.ResetCamera()
+    other.Render()
+    assert render.read_rgba(other)[..., 3].max() > 0.1
+    assert not messages.errors
+
+
 def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
     """Blue to orange over [low, high], constant opacity, the given unit distance."""
     color = vtk.vtkColorTransferFunction()

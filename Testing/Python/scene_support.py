@@ -2,7 +2,9 @@
 
 from functools import lru_cache
 
-from spt import render, scenes
+import vtk
+
+from spt import data, render, scenes
 
 from conftest import load_or_skip
 
@@ -20,3 +22,22 @@ def reference(name: str, size: int):
     """The exact reference image of the scene at size x size pixels."""
     s = scene(name)
     return render.reference(s.grid, s.property, s.view, (size, size)).image
+
+
+def window_with(mapper, size: int, name: str = "default"):
+    """A window showing the named scene through ``mapper``, with a property of its own (the
+    tests change it)."""
+    s = scene(name)
+    window, renderer = render.make_window(size, size)
+    render.add_volume(renderer, s.grid, data.default_transfer_function(s.grid), mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    return window, renderer
+
+
+def render_at_still_rate(window) -> None:
+    """Render as a vtkRenderWindowInteractor does once interaction ends: at its still update
+    rate."""
+    interactor = vtk.vtkRenderWindowInteractor()
+    interactor.SetRenderWindow(window)
+    window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
+    window.Render()

@@ -5,9 +5,16 @@ estimates, estimated from the pixels."""
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Callable, Sequence
 
-from spt import statistics
+import numpy as np
+
+from spt import metrics, render, scenes, statistics
+
+from robustness_support import opaque_plane
+
+#: A stochastic mapper at a repetition level, subpixel level and seed.
+MapperMaker = Callable[[int, int, int], object]
 
 Z = 4.0  # standard errors
 
@@ -48,3 +55,54 @@ def check_rmse_falls_to_a_small_bias_floor(estimates: Sequence[statistics.Estima
             f"RMSE {low.rmse:.4f} at L={low.level}, {high.rmse:.4f} at L={high.level}: "
             f"ratio {measured:.3f}, expected {expected:.3f}")
     assert estimates[0].rmse / estimates[1].rmse > 1.6
+
+
+def check_images_are_volumes(image: np.ndarray, reference: np.ndarray) -> None:
+    """The image and the reference show a volume: a footprint, and some opacity."""
+    assert metrics.footprint(image, reference).mean() > 0.05, "the images are (almost) empty"
+    assert image[..., 3].max() > 0.2 and reference[..., 3].max() > 0.2
+
+
+def block_mean(image: np.ndarray, factor: int) -> np.ndarray:
+    """The mean of each factor x factor block of pixels."""
+    h, w, c = image.shape
+    return image.reshape(h // factor, factor, w // factor, factor, c).mean(axis=(1, 3))
+
+
+def check_subpixel_level_averages_subpixels(make: MapperMaker, size: int,
+                                            level: int = 16) -> None:
+    """SubpixelLevel 2 on the default scene: the expectation is near the 2x2 box filter of the
+    reference at twice the resolution, and the alpha noise is the subpixels' a (1 - a) / (4 L)."""
+    s = scenes.scene("default")
+    fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
+    reference = block_mean(fine, 2)
+    first, second = (render.render(s.grid, s.property, make(level, 2, seed), s.view,
+                                   (size, size)).image for seed in (1, 2))
+    e = statistics.estimate(first, second, reference, level)
+    mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
+    coverage = np.clip(fine[..., 3], 0.0, 1.0)
+    expected = block_mean((coverage * (1.0 - coverage))[..., None], 2)[..., 0][mask].mean() / (
+        4 * level)
+    assert abs(e.alpha_noise - expected) <= Z * e.alpha_noise_error + 0.1 * expected, (
+        f"alpha noise {e.alpha_noise:.4g}, expected {expected:.4g}")
+    assert e.bias <= 0.012, f"bias {e.bias:.4f} against the box-filtered reference"
+
+
+def check_opaque_geometry_hides_and_cuts_the_volume(make: MapperMaker, size: int,
+                                                    level: int = 64) -> None:
+    """An opaque plane through the middle of the default scene: the mapper and the reference
+    (VTK's ray caster, which stops its rays at the z-buffer) agree within the noise, and the
+    plane is really in the picture. The plane fills the view, so that no edge of it (rasterized
+    at the reference's double resolution) is in the picture."""
+    s = scenes.scene("default")
+    actor = opaque_plane()
+    reference = render.reference(s.grid, s.property, s.view, (size, size), method="vtk",
+                                 actors=[actor]).image
+    first, second = (render.render(s.grid, s.property, make(level, 1, seed), s.view,
+                                   (size, size), actors=[actor]).image for seed in (1, 2))
+    without = render.render(s.grid, s.property, make(level, 1, 1), s.view, (size, size)).image
+    plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
+    assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
+    assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
+    e = statistics.estimate(first, second, reference, level)
+    assert e.bias <= 0.015, f"bias {e.bias:.4f} against the reference with the plane"

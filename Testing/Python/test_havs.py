@@ -18,7 +18,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import ONE, opaque_plane, property_for, watch
+from robustness_support import (ONE, check_second_window, opaque_plane, property_for,
+                                split_image, watch)
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -36,13 +37,7 @@ def block(cells=(6, 6, 6), origin=(0.0, 0.0, 0.0)):
     array = numpy_to_vtk(field.astype(np.float32), deep=True)
     array.SetName("f")
     image.GetPointData().SetScalars(array)
-    split = vtk.vtkDataSetTriangleFilter()
-    split.SetInputData(image)
-    split.TetrahedraOnlyOn()
-    split.Update()
-    grid = vtk.vtkUnstructuredGrid()
-    grid.ShallowCopy(split.GetOutput())
-    return grid
+    return split_image(image)
 
 
 @lru_cache(maxsize=None)
@@ -259,9 +254,4 @@ def test_repeated_renders_releases_and_resizes(have_display):
     window.SetSize(SIZE[0] + 17, SIZE[1] + 5)
     window.Render()
     assert render.read_rgba(window).shape[:2] == (SIZE[1] + 5, SIZE[0] + 17)
-    other, other_renderer = render.make_window(*SIZE)
-    other_renderer.AddVolume(volume)
-    other_renderer.ResetCamera()
-    other.Render()
-    assert render.read_rgba(other)[..., 3].max() > 0.1
-    assert not messages.errors
+    check_second_window(volume, SIZE, messages)

@@ -21,7 +21,7 @@ from spt import metrics, render, statistics
 
 from robustness_support import (ONE, UNIT_TETRAHEDRON, assert_unchanged, property_for,
                                 property_with_points, render_scaled, scaled_copy, snapshot,
-                                tetrahedra, watch)
+                                split_image, tetrahedra, watch)
 
 SIZE = (64, 64)
 VIEW = render.View(30, 30)
@@ -93,12 +93,7 @@ def field_grid(cells=(3, 3, 3), array_name="f"):
     field = numpy_to_vtk(values, deep=True)
     field.SetName(array_name)
     image.GetPointData().SetScalars(field)
-    split = vtk.vtkDataSetTriangleFilter()
-    split.SetInputData(image)
-    split.TetrahedraOnlyOn()
-    split.Update()
-    grid = vtk.vtkUnstructuredGrid()
-    grid.DeepCopy(split.GetOutput())
+    grid = split_image(image)
     centers = np.arange(grid.GetNumberOfCells()) % 5 / 4.0
     cell_field = numpy_to_vtk(centers, deep=True)
     cell_field.SetName("c")

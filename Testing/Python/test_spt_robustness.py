@@ -10,8 +10,9 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (ONE, assert_unchanged, property_for, property_with_points,
-                                render_scaled, scaled_copy, snapshot, tetrahedra, watch)
+from robustness_support import (ONE, assert_unchanged, check_second_window, property_for,
+                                property_with_points, render_scaled, scaled_copy, snapshot,
+                                tetrahedra, watch)
 
 SIZE = (96, 96)
 
@@ -242,9 +243,4 @@ def test_input_changes_release_windows_and_resizes(have_display):
     renderer.SetViewport(0.2, 0.2, 0.2, 0.2)
     window.Render()
     # The same mapper in a second window.
-    other, other_renderer = render.make_window(*SIZE)
-    other_renderer.AddVolume(volume)
-    other_renderer.ResetCamera()
-    other.Render()
-    assert render.read_rgba(other)[..., 3].max() > 0.1
-    assert not messages.errors
+    check_second_window(volume, SIZE, messages)

@@ -13,9 +13,10 @@ from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
-from spt import data, metrics, render, scenes, statistics
+from spt import metrics, render, scenes, statistics
+
+from scene_support import render_at_still_rate, window_with
 
 SIZE = 128
 
@@ -101,23 +102,13 @@ def test_stratified_thresholds_keep_the_expectation_and_lower_the_error(have_dis
     assert at_128 <= at_256, f"stratified at 128 {at_128:.4f}, independent at 256 {at_256:.4f}"
 
 
-def _window_with(mapper):
-    """A window showing the default scene through ``mapper``, with a property of its own (the
-    tests change it)."""
-    s = _scene()
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, data.default_transfer_function(s.grid), mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
-    return window, renderer
-
-
 def test_progressive_refinement_accumulates_until_something_changes(have_display):
     """Independent thresholds: four renders of 8 repetitions are the image of 32 (with the
     default estimator, whose exact coverage is drawn with the first)."""
     mapper = render.spt_mapper(8, seed=5, stratified=False)
     mapper.ProgressiveRefinementOn()
     mapper.SetMaximumProgressiveRepetitions(32)
-    window, renderer = _window_with(mapper)
+    window, renderer = window_with(mapper, SIZE)
     for expected in (8, 16, 24, 32, 32):
         window.Render()
         assert mapper.GetLastRepetitionCount() == expected
@@ -147,7 +138,7 @@ def test_stratified_progressive_refinement_converges(have_display):
     128)."""
     mapper = render.spt_mapper(16, seed=5, stratified=True, **SAMPLING["survivor"])
     mapper.ProgressiveRefinementOn()
-    window, renderer = _window_with(mapper)
+    window, renderer = window_with(mapper, SIZE)
     window.Render()
     first = metrics.rmse(render.read_rgba(window), _reference())
     for _ in range(7):
@@ -163,11 +154,8 @@ def test_time_budget_cuts_repetitions_during_interaction(have_display):
     its still update rate afterwards."""
     mapper = render.spt_mapper(64, seed=1)
     mapper.AutoAdjustRepetitionsOn()
-    window, renderer = _window_with(mapper)
-    interactor = vtk.vtkRenderWindowInteractor()
-    interactor.SetRenderWindow(window)
-    window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
-    window.Render()
+    window, renderer = window_with(mapper, SIZE)
+    render_at_still_rate(window)
     assert mapper.GetLastRepetitionCount() == 64
     assert mapper.GetTimePerRepetition() > 0.0
     window.SetDesiredUpdateRate(1000.0)  # 1 ms for the frame: one repetition fits at most
@@ -176,8 +164,7 @@ def test_time_budget_cuts_repetitions_during_interaction(have_display):
     assert 1 <= interactive < 64
     image = render.read_rgba(window)
     assert image[..., 3].max() > 0.2, "an interactive frame must still show the volume"
-    window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
-    window.Render()
+    render_at_still_rate(window)
     assert mapper.GetLastRepetitionCount() == 64
     mapper.AutoAdjustRepetitionsOff()
     window.SetDesiredUpdateRate(1000.0)
@@ -192,7 +179,7 @@ def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
     measure of the still render (64 repetitions, 4 traversals), so the count is exact."""
     mapper = render.spt_mapper(64, seed=1, per_pass=16)
     mapper.AutoAdjustRepetitionsOn()
-    window, renderer = _window_with(mapper)
+    window, renderer = window_with(mapper, SIZE)
     window.SetDesiredUpdateRate(0.0001)
     window.Render()
     assert mapper.GetLastRepetitionCount() == 64

@@ -22,10 +22,11 @@ import pytest
 from spt import metrics, render, statistics
 
 from scene_support import reference, scene
-from robustness_support import opaque_plane
-from statistics_checks import (Z, check_alpha_noise_is_bernoulli,
+from statistics_checks import (check_alpha_noise_is_bernoulli, check_images_are_volumes,
                                check_noise_falls_as_one_over_repetitions,
-                               check_rmse_falls_to_a_small_bias_floor)
+                               check_opaque_geometry_hides_and_cuts_the_volume,
+                               check_rmse_falls_to_a_small_bias_floor,
+                               check_subpixel_level_averages_subpixels)
 
 SIZE = 128
 LEVELS = {"default": (4, 16, 64), "spx": (4, 16, 64, 256), "bluntfin": (4, 16), "post": (4, 16)}
@@ -69,11 +70,7 @@ def _estimate(name, level, mode="paper"):
 
 @pytest.mark.parametrize("name", SCENES)
 def test_images_are_volumes(name, have_display):
-    reference = _reference(name)
-    image = _spt(name, LEVELS[name][-1], 1)
-    covered = metrics.footprint(image, reference)
-    assert covered.mean() > 0.05, "the images are (almost) empty"
-    assert image[..., 3].max() > 0.2 and reference[..., 3].max() > 0.2
+    check_images_are_volumes(_spt(name, LEVELS[name][-1], 1), _reference(name))
 
 
 def _estimates(name):
@@ -136,47 +133,12 @@ def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_dis
         f"the default {measured:.4f} is no better than the paper's sampling {paper:.4f}")
 
 
-def _block_mean(image, factor):
-    h, w, c = image.shape
-    return image.reshape(h // factor, factor, w // factor, factor, c).mean(axis=(1, 3))
-
-
 def test_subpixel_level_averages_subpixels(have_display):
-    """SubpixelLevel 2: the expectation is the 2x2 box filter of the reference at twice the
-    resolution, and the alpha noise is the subpixels' a (1 - a) / (4 L)."""
-    s = _scene("default")
-    level, size = 16, SIZE // 2
-    fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
-    reference = _block_mean(fine, 2)
-    first, second = (render.render(
-        s.grid, s.property, render.spt_mapper(level, 2, seed, **render.PAPER_SAMPLING), s.view,
-        (size, size)).image for seed in (1, 2))
-    e = statistics.estimate(first, second, reference, level)
-    mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
-    coverage = np.clip(fine[..., 3], 0.0, 1.0)
-    expected = _block_mean((coverage * (1.0 - coverage))[..., None], 2)[..., 0][mask].mean() / (
-        4 * level)
-    assert abs(e.alpha_noise - expected) <= Z * e.alpha_noise_error + 0.1 * expected, (
-        f"alpha noise {e.alpha_noise:.4g}, expected {expected:.4g}")
-    assert e.bias <= 0.012, f"bias {e.bias:.4f} against the box-filtered reference"
+    check_subpixel_level_averages_subpixels(
+        lambda level, subpixels, seed: render.spt_mapper(level, subpixels, seed,
+                                                         **render.PAPER_SAMPLING), SIZE // 2)
 
 
 def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
-    """An opaque plane through the middle of the volume: SPT and the reference (which stops its
-    rays at the z-buffer) agree within the noise, and the plane is really in the picture. The
-    plane fills the view, so that no edge of it (rasterized at the reference's double
-    resolution) is in the picture."""
-    s = _scene("default")
-    actor = opaque_plane()
-    reference = render.reference(s.grid, s.property, s.view, (SIZE, SIZE), method="vtk",
-                                 actors=[actor]).image
-    level = 64
-    first, second = (render.render(s.grid, s.property, render.spt_mapper(level, seed=seed),
-                                   s.view, (SIZE, SIZE), actors=[actor]).image
-                     for seed in (1, 2))
-    without = _spt("default", LEVELS["default"][-1], 1)
-    plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
-    assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
-    assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
-    e = statistics.estimate(first, second, reference, level)
-    assert e.bias <= 0.015, f"bias {e.bias:.4f} against the reference with the plane"
+    check_opaque_geometry_hides_and_cuts_the_volume(
+        lambda level, subpixels, seed: render.spt_mapper(level, subpixels, seed), SIZE)

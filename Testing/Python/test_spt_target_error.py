@@ -16,11 +16,10 @@ from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
-from spt import data, metrics, render, statistics
+from spt import metrics, render, statistics
 
-from scene_support import reference, scene
+from scene_support import reference, render_at_still_rate, scene, window_with
 from statistics_checks import Z
 
 SIZE = 128
@@ -92,17 +91,9 @@ def test_stopped_images_are_unbiased(name, have_display):
         f"{tolerance:.2e}")
 
 
-def _window_with(mapper):
-    s = _scene("default")
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, data.default_transfer_function(s.grid), mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
-    return window, renderer
-
-
 def test_repetition_level_caps_an_unreachable_target(have_display):
     mapper = _mapper(8, 1, 1.0e-5)
-    window, _ = _window_with(mapper)
+    window, _ = window_with(mapper, SIZE)
     window.Render()
     assert mapper.GetLastRepetitionCount() == 8
     assert mapper.GetEstimatedError() > 1.0e-5
@@ -111,7 +102,7 @@ def test_repetition_level_caps_an_unreachable_target(have_display):
 
 def test_no_estimate_without_a_target_or_with_one_repetition(have_display):
     mapper = render.spt_mapper(8, seed=1)
-    window, _ = _window_with(mapper)
+    window, _ = window_with(mapper, SIZE)
     window.Render()
     assert mapper.GetEstimatedError() < 0.0
     mapper.SetTargetError(0.01)
@@ -127,7 +118,7 @@ def test_progressive_refinement_stops_adding_at_the_target(have_display):
     add nothing and show the same image."""
     mapper = _mapper(4, 1, 0.004)
     mapper.ProgressiveRefinementOn()
-    window, _ = _window_with(mapper)
+    window, _ = window_with(mapper, SIZE)
     counts, estimates = [], []
     for _ in range(12):
         window.Render()
@@ -148,11 +139,8 @@ def test_progressive_refinement_stops_adding_at_the_target(have_display):
 def test_time_budget_comes_first_when_it_is_shorter(have_display):
     mapper = _mapper(256, 1, 1.0e-4)
     mapper.AutoAdjustRepetitionsOn()
-    window, _ = _window_with(mapper)
-    interactor = vtk.vtkRenderWindowInteractor()
-    interactor.SetRenderWindow(window)
-    window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
-    window.Render()
+    window, _ = window_with(mapper, SIZE)
+    render_at_still_rate(window)
     still = mapper.GetLastRepetitionCount()
     assert still == 256
     window.SetDesiredUpdateRate(1000.0)  # 1 ms: the cheapest frame
