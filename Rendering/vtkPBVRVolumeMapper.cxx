@@ -337,6 +337,8 @@ vtkPBVRVolumeMapper::vtkPBVRVolumeMapper()
 {
   this->Internals->Mesh = this->GetMesh();
   this->Internals->Ensemble = this->GetEnsemble();
+  // Every set is drawn unless asked otherwise, as the papers' PBVR does.
+  this->AutoAdjustRepetitions = 0;
 }
 
 vtkPBVRVolumeMapper::~vtkPBVRVolumeMapper() = default;
@@ -479,11 +481,23 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  this->DrawSets(target.X, target.Y);
+  // The sets that fit the time allotted, after those accumulated when refining progressively;
+  // at most the sets generated.
+  int perPass = 1;
+  int count = this->ChooseRepetitions(vol, this->RepetitionLevel, perPass);
+  std::vector<double> signature(internals.Transforms.MCVC, internals.Transforms.MCVC + 16);
+  signature.insert(signature.end(), internals.Transforms.VCDC, internals.Transforms.VCDC + 16);
+  signature.push_back(double(internals.GenerationCount));
+  signature.push_back(double(this->GetMTime()));
+  const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
+  AppendSceneSignature(ren, viewport, signature);
+  const int first = this->ContinueAccumulation(std::move(signature), count);
+  count = std::max(0, std::min(count, internals.Generated.Sets - first));
+  this->DrawSets(target.X, target.Y, first, count);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
-void vtkPBVRVolumeMapper::DrawSets(int x, int y)
+void vtkPBVRVolumeMapper::DrawSets(int x, int y, int first, int count)
 {
   vtkInternals& internals = *this->Internals;
   vtkOpenGLRenderWindow* renWin = this->GetContext();
@@ -498,11 +512,16 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
   {
     vtkErrorMacro(
       "Could not " << (colors ? "compile the PBVR shaders." : "upload the color table."));
+    this->ForgetAccumulation();
     return;
   }
   ostate->PushFramebufferBindings();
-  ensemble->CaptureSceneDepth(x, y);
-  ensemble->ClearSum();
+  if (first == 0)
+  {
+    ensemble->CaptureSceneDepth(x, y);
+    ensemble->ClearSum();
+    this->ResetAccumulation();
+  }
   colors->Activate();
   vtkTextureObject* sceneDepth = ensemble->GetSceneDepthTexture();
   sceneDepth->Activate();
@@ -513,22 +532,24 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y)
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LESS);
   ostate->vtkglPointSize(1.0f);
-  for (int repetition = 0; repetition < this->RepetitionLevel; ++repetition)
+  this->StartTiming();
+  for (int set = first; set < first + count; ++set)
   {
     ensemble->BeginPass();
     // The ensemble's accumulation binds its own program between passes.
     renWin->GetShaderCache()->ReadyShaderProgram(program);
-    if (repetition == 0)
+    if (set == first)
     {
       internals.SetUniforms(program, colors, sceneDepth, this->Seed, this->SubpixelLevel);
     }
-    internals.DrawSet(program, repetition);
+    internals.DrawSet(program, set);
     ensemble->EndPass();
   }
+  this->AddRepetitions(count, 1, this->StopTiming());
   sceneDepth->Deactivate();
   colors->Deactivate();
   ostate->PopFramebufferBindings();
-  ensemble->Resolve(x, y, this->RepetitionLevel);
+  ensemble->Resolve(x, y, this->GetAccumulatedRepetitions());
 }
 
 void vtkPBVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)

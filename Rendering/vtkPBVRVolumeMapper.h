@@ -36,7 +36,10 @@
  * RepetitionLevel independent particle sets are drawn, each opaque with the depth test into
  * the same float ensemble buffer as SPT, and averaged; the noise falls as
  * 1 / sqrt(RepetitionLevel x SubpixelLevel^2). Opaque geometry drawn before the volume hides
- * it. The camera must be outside the volume.
+ * it. The camera must be outside the volume. The time budget (AutoAdjustRepetitions) and
+ * progressive refinement count particle sets: a render draws the sets that fit the time
+ * allotted, and progressive refinement adds the next ones, up to the sets generated.
+ * AutoAdjustRepetitions is off by default for PBVR: every render draws RepetitionLevel sets.
  *
  * The particles need GPU memory in proportion to RepetitionLevel x SubpixelLevel^2 and to the
  * opacity: 8 bytes each. Generation fails with an error, and nothing is drawn, when they would
@@ -140,7 +143,8 @@ private:
   void operator=(const vtkPBVRVolumeMapper&) = delete;
 
   bool PrepareParticles(vtkRenderer* ren, vtkVolume* vol, int passWidth, int passHeight);
-  void DrawSets(int x, int y);
+  // Draw particle sets [first, first + count) into the ensemble and resolve it.
+  void DrawSets(int x, int y, int first, int count);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -9,13 +9,11 @@
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkTextureObject.h"
-#include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtk_glew.h"
 
 #include "vtkEnsembleBuffer.h"
-#include "vtkGPUFrameTimer.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTFrame.h"
@@ -27,87 +25,6 @@
 #include <algorithm>
 #include <vector>
 
-namespace
-{
-// When the prop last changed in a way that changes what it draws. vtkVolume::GetRedrawMTime()
-// of VTK 9.2 dereferences a null transfer function for point scalars of more than four
-// components (it asks the property for one per component), so volumes are handled here.
-vtkMTimeType RedrawTime(vtkProp* prop)
-{
-  vtkVolume* volume = vtkVolume::SafeDownCast(prop);
-  if (!volume)
-  {
-    return prop->GetRedrawMTime();
-  }
-  vtkMTimeType time = volume->GetMTime();
-  if (vtkVolumeProperty* property = volume->GetProperty())
-  {
-    time = std::max(time, property->GetMTime()); // includes its transfer functions
-  }
-  if (vtkAbstractVolumeMapper* mapper = volume->GetMapper())
-  {
-    time = std::max(time, mapper->GetMTime());
-    if (vtkDataSet* input = mapper->GetDataSetInput())
-    {
-      time = std::max(time, input->GetMTime());
-    }
-  }
-  return time;
-}
-
-// The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
-// little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
-// 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
-// whole groups, and when not even one group fits, in single-repetition passes, the cheapest
-// frame there is (0.36 s there), as many as fit and at least one.
-struct RepetitionBudget
-{
-  double TimePerGroup = 0.0;      // seconds per traversal group of several repetitions
-  double TimePerSinglePass = 0.0; // seconds per repetition drawn one per traversal
-
-  // How many repetitions to draw, and how many per traversal (perPass may drop to 1).
-  int Choose(double allotted, int level, int& perPass) const
-  {
-    int most = level;
-    if (perPass > 1)
-    {
-      const int groups = (level + perPass - 1) / perPass;
-      if (this->TimePerGroup <= 0.0 || allotted >= groups * this->TimePerGroup)
-      {
-        return level;
-      }
-      if (allotted >= this->TimePerGroup)
-      {
-        return std::min(level, static_cast<int>(allotted / this->TimePerGroup) * perPass);
-      }
-      most = std::min(level, perPass);
-      perPass = 1;
-      if (this->TimePerSinglePass <= 0.0)
-      {
-        return 1; // measured by this frame
-      }
-    }
-    if (this->TimePerSinglePass <= 0.0 || allotted >= most * this->TimePerSinglePass)
-    {
-      return most;
-    }
-    return std::max(1, static_cast<int>(allotted / this->TimePerSinglePass));
-  }
-
-  void Measure(double seconds, int count, int perPass)
-  {
-    if (perPass > 1)
-    {
-      this->TimePerGroup = seconds / ((count + perPass - 1) / perPass);
-    }
-    else
-    {
-      this->TimePerSinglePass = seconds / count;
-    }
-  }
-};
-}
-
 class vtkSPTVolumeMapper::vtkInternals
 {
 public:
@@ -116,15 +33,9 @@ public:
   vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
   vtkVolumeViewMatrices Matrices;
 
-  // Progressive refinement: what the accumulated sum was drawn from, and how many repetitions
-  // it holds.
-  std::vector<double> SumSignature;
-  int AccumulatedRepetitions = 0;
   vtkSPTFrame::TargetState Target; // progress towards TargetError
-  RepetitionBudget Budget;
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
-  vtkGPUFrameTimer Timer;     // the time of the repetitions, for the budget
 
   // The visible SPT volumes of the renderer, vol's first when it is not among them.
   static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
@@ -155,16 +66,9 @@ public:
   FramePlan Plan(
     vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
   // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
-  bool StartAccumulation(vtkEnsembleBuffer* ensemble, const RenderTarget& target, bool halves);
+  bool StartAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves);
   // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
   int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
-
-  void ResetAccumulation()
-  {
-    this->AccumulatedRepetitions = 0;
-    this->CoverageDrawn = false;
-    this->Target = vtkSPTFrame::TargetState();
-  }
 };
 
 vtkStandardNewMacro(vtkSPTVolumeMapper);
@@ -247,8 +151,7 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   // Everything that changes the expected image: each volume's matrices (camera, volume
   // transform), input and table as built and mapper settings, the viewport, and whatever any
   // prop of the renderer would draw differently (opaque geometry bounds the volume).
-  std::vector<double> signature = { double(target.X), double(target.Y), double(target.Width),
-    double(target.Height) };
+  std::vector<double> signature;
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
     const vtkInternals& internals = *mapper->Internals;
@@ -258,15 +161,8 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
     signature.push_back(double(internals.Table->GetBuildTime()));
     signature.push_back(double(mapper->GetMTime()));
   }
-  vtkMTimeType redraw = 0;
-  vtkPropCollection* props = ren->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    redraw = std::max(redraw, prop->GetVisibility() ? RedrawTime(prop) : 0);
-  }
-  signature.push_back(double(redraw));
+  const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
+  AppendSceneSignature(ren, viewport, signature);
   return signature;
 }
 
@@ -314,13 +210,16 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
-  vtkEnsembleBuffer* ensemble, const RenderTarget& target, bool halves)
+  vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves)
 {
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
   ensemble->CaptureSceneDepth(target.X, target.Y);
-  this->ResetAccumulation();
+  self->ResetAccumulation();
+  this->CoverageDrawn = false;
+  this->Target = vtkSPTFrame::TargetState();
   if (!ensemble->SetHalves(halves))
   {
-    this->SumSignature.clear();
+    self->ForgetAccumulation();
     return false;
   }
   ensemble->ClearSum();
@@ -330,35 +229,20 @@ bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
 int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
   vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
 {
-  // The budget's measure: the GPU time of the repetitions, or where another time query is
-  // running (they do not nest), the wall time until the GPU has finished them.
-  const bool timed = self->AutoAdjustRepetitions && this->Timer.Start();
-  vtkNew<vtkTimerLog> clock;
-  clock->StartTimer();
+  self->StartTiming();
   const int drawn = self->TargetError > 0.0
     ? frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
         self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), self->TargetError,
         this->Target)
     : (frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count
                                                                                   : -1);
-  double seconds = timed ? this->Timer.Stop() : -1.0;
-  if (self->AutoAdjustRepetitions && !timed)
-  {
-    glFinish();
-    clock->StopTimer();
-    seconds = clock->GetElapsedTime();
-  }
+  const double seconds = self->StopTiming();
   if (drawn < 0)
   {
-    this->SumSignature.clear();
+    self->ForgetAccumulation();
     return drawn;
   }
-  if (seconds >= 0.0 && drawn > 0)
-  {
-    self->TimePerRepetition = seconds / drawn;
-    this->Budget.Measure(seconds, drawn, plan.PerPass);
-  }
-  this->AccumulatedRepetitions += drawn;
+  self->AddRepetitions(drawn, plan.PerPass, seconds);
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
   return drawn;
 }
@@ -370,21 +254,11 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   // when refining progressively.
   FramePlan plan;
   plan.PerPass = perPass;
-  plan.Count = self->RepetitionLevel;
-  if (self->AutoAdjustRepetitions)
-  {
-    plan.Count = this->Budget.Choose(vol->GetAllocatedRenderTime(), plan.Count, plan.PerPass);
-  }
+  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass);
   // When not even one group of repetitions fits, the cheapest frame: the paper's single
   // passes, one traversal each, unbiased too; the exact coverage waits for a later frame.
   plan.Cheapest = plan.PerPass == 1 && self->RepetitionsPerPass > 1;
-  if (self->ProgressiveRefinement && signature == this->SumSignature &&
-    this->AccumulatedRepetitions > 0)
-  {
-    plan.First = this->AccumulatedRepetitions;
-    plan.Count = std::min(plan.Count, self->MaximumProgressiveRepetitions - plan.First);
-  }
-  this->SumSignature = std::move(signature);
+  plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
   // it, and a new accumulation starts without it.
   const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
@@ -430,7 +304,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   ostate->PushFramebufferBindings();
   const bool started =
-    plan.First > 0 || internals.StartAccumulation(ensemble, target, this->TargetError > 0.0);
+    plan.First > 0 || internals.StartAccumulation(this, target, this->TargetError > 0.0);
   vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
   const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(this, frame, plan) >= 0);
   ostate->PopFramebufferBindings();
@@ -441,9 +315,9 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
     mapper->EstimatedError = this->TargetError > 0.0 ? internals.Target.Estimate : -1.0;
-    mapper->LastRepetitionCount = internals.AccumulatedRepetitions;
+    mapper->LastRepetitionCount = this->GetAccumulatedRepetitions();
   }
-  ensemble->Resolve(target.X, target.Y, internals.AccumulatedRepetitions,
+  ensemble->Resolve(target.X, target.Y, this->GetAccumulatedRepetitions(),
     this->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
@@ -454,10 +328,8 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.Buffers->ReleaseGraphicsResources(window);
   internals.Table->ReleaseGraphicsResources(window);
   internals.DepthKeys->ReleaseGraphicsResources(window);
-  internals.SumSignature.clear();
-  internals.ResetAccumulation();
-  internals.Budget = RepetitionBudget();
-  internals.Timer.Release(window != nullptr);
+  internals.CoverageDrawn = false;
+  internals.Target = vtkSPTFrame::TargetState();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -470,12 +342,7 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent
      << "Estimator: " << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility")
      << "\n";
-  os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off") << "\n";
-  os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions << "\n";
-  os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off") << "\n";
   os << indent << "TargetError: " << this->TargetError << "\n";
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
-  os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
-  os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
 }

@@ -76,7 +76,10 @@ public:
    * repetitions), which gives the same image as N single passes with the same random numbers,
    * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Needs
    * OpenGL 4.4 (image load/store, clear texture); without it the mapper falls back to 1 and to the
-   * survivor estimator. Range 1 to 64, default 16.
+   * survivor estimator. With AutoAdjustRepetitions, the time allotted is spent in whole
+   * traversals of RepetitionsPerPass repetitions while one fits, else in the cheapest frame
+   * there is: the paper's single passes (one traversal per repetition, the survivor estimator,
+   * no exact coverage; unbiased too). Range 1 to 64, default 16.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
   vtkGetMacro(RepetitionsPerPass, int);
@@ -161,47 +164,6 @@ public:
    */
   vtkGetMacro(EstimatedError, double);
 
-  ///@{
-  /**
-   * Progressive refinement: while the camera, the viewport, the input, the transfer functions,
-   * the settings and the props of the renderer stay unchanged, each render adds
-   * RepetitionLevel repetitions to the image shown before, up to
-   * MaximumProgressiveRepetitions in all; any change starts again. Default off, maximum 4096
-   * (range 1 to 2^20).
-   */
-  vtkSetMacro(ProgressiveRefinement, vtkTypeBool);
-  vtkGetMacro(ProgressiveRefinement, vtkTypeBool);
-  vtkBooleanMacro(ProgressiveRefinement, vtkTypeBool);
-  vtkSetClampMacro(MaximumProgressiveRepetitions, int, 1, 1 << 20);
-  vtkGetMacro(MaximumProgressiveRepetitions, int);
-  ///@}
-
-  ///@{
-  /**
-   * Fit the render time: when the volume's allocated render time (from the render window's
-   * desired update rate, as during interaction in a vtkRenderWindowInteractor or ParaView's
-   * interactive renders) is shorter than RepetitionLevel repetitions take, draw only as many
-   * as fit, timed from the previous renders: whole traversals of RepetitionsPerPass
-   * repetitions while one fits, else the cheapest frame there is, the paper's single passes
-   * (one traversal per repetition, the survivor estimator, no exact coverage; unbiased too),
-   * as many as fit and at least one. Still renders (the default, tiny desired update rate)
-   * draw the full RepetitionLevel. Default on.
-   */
-  vtkSetMacro(AutoAdjustRepetitions, vtkTypeBool);
-  vtkGetMacro(AutoAdjustRepetitions, vtkTypeBool);
-  vtkBooleanMacro(AutoAdjustRepetitions, vtkTypeBool);
-  ///@}
-
-  ///@{
-  /**
-   * The repetitions averaged into the image of the last render (fewer than RepetitionLevel
-   * when the time budget cut them, more with progressive refinement), and the measured time
-   * of one repetition in seconds (0 before the first measurement).
-   */
-  vtkGetMacro(LastRepetitionCount, int);
-  vtkGetMacro(TimePerRepetition, double);
-  ///@}
-
   /**
    * The bytes this mapper holds on the GPU after the last render: mesh buffers,
    * pre-integration table, depth keys and ensemble framebuffers.
@@ -226,12 +188,7 @@ protected:
   vtkTypeBool StratifiedSampling = 1;
   int Estimator = VISIBILITY_ESTIMATOR;
   vtkTypeBool ExactCoverage = 1;
-  vtkTypeBool ProgressiveRefinement = 0;
-  int MaximumProgressiveRepetitions = 4096;
-  vtkTypeBool AutoAdjustRepetitions = 1;
   double TargetError = 0.0;
-  int LastRepetitionCount = 0;
-  double TimePerRepetition = 0.0;
   double EstimatedError = -1.0;
 
 private:

@@ -10,7 +10,7 @@ import pytest
 import vtk
 
 import spt
-from spt import data, render
+from spt import data, render, scenes
 
 from robustness_support import ONE, property_for, watch
 
@@ -39,6 +39,7 @@ def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     ("SubpixelLevel", 1, 1, 8),
     ("MaximumParticleMemory", 2048, 1, 65536),
     ("SamplingMode", 0, 0, 1),
+    ("MaximumProgressiveRepetitions", 4096, 1, 1 << 20),
 ])
 def test_settings_have_defaults_and_clamps(name, default, low, high):
     mapper = spt.vtkPBVRVolumeMapper()
@@ -60,7 +61,8 @@ def test_print_self_lists_every_setting_and_report():
                     "MaximumParticleMemory", "VectorMode", "VectorComponent",
                     "NumberOfParticles", "NumberOfParticleSets", "ParticleSize",
                     "GenerationCount", "GenerationTime", "NumberOfTetrahedra", "GPUMemorySize",
-                    "ScalarMode"]:
+                    "ScalarMode", "ProgressiveRefinement: Off", "AutoAdjustRepetitions: Off",
+                    "LastRepetitionCount", "TimePerRepetition"]:
         assert setting in text
 
 
@@ -215,3 +217,42 @@ def test_release_resize_and_a_second_window(have_display):
     other.Render()
     assert render.read_rgba(other)[..., 3].max() > 0.1
     assert not scene.messages.errors
+
+
+def test_time_budget_and_progressive_refinement_complete_the_image(have_display):
+    """With a budget of 1 ms a render draws only the sets that fit (at least one); progressive
+    refinement adds the next sets at each render until all are drawn, and the image is then
+    the image of one render of all of them, bit for bit. A change of the camera starts anew."""
+    s = scenes.scene("default")
+    level = 16
+    window, renderer = render.make_window(*SIZE)
+    mapper = render.pbvr_mapper(level, seed=1)
+    mapper.AutoAdjustRepetitionsOn()
+    mapper.ProgressiveRefinementOn()
+    render.add_volume(renderer, s.grid, s.property, mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window.Render()  # measures the time of a set
+    assert mapper.GetLastRepetitionCount() == level
+    assert mapper.GetTimePerRepetition() > 0.0
+    renderer.GetActiveCamera().Azimuth(10.0)
+    window.SetDesiredUpdateRate(1000.0)
+    counts = []
+    for _ in range(level):
+        window.Render()
+        counts.append(mapper.GetLastRepetitionCount())
+        if counts[-1] == level:
+            break
+    assert 1 <= counts[0] < level, f"the budget drew {counts[0]} of {level} sets"
+    assert counts == sorted(set(counts)) and counts[-1] == level, counts
+    progressive = render.read_rgba(window)
+    assert progressive[..., 3].max() > 0.2
+
+    full_window, full_renderer = render.make_window(*SIZE)
+    render.add_volume(full_renderer, s.grid, s.property, render.pbvr_mapper(level, seed=1))
+    full_renderer.SetActiveCamera(renderer.GetActiveCamera())
+    full_renderer.ResetCameraClippingRange()
+    renderer.ResetCameraClippingRange()
+    full_window.Render()
+    assert np.array_equal(render.read_rgba(full_window), progressive)
+    window.Finalize()
+    full_window.Finalize()

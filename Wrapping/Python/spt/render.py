@@ -114,11 +114,13 @@ def havs_mapper(kbuffer_size: int = 6) -> vtkHAVSVolumeMapper:
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                 cell_average: bool = False) -> vtkPBVRVolumeMapper:
     """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
-    selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
+    selects the papers' one-density-per-cell sampling instead of exact rejection sampling.
+    The time budget is off: the image has exactly ``repetitions`` particle sets."""
     mapper = vtkPBVRVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
     mapper.SetSeed(seed)
+    mapper.SetAutoAdjustRepetitions(False)
     if cell_average:
         mapper.SetSamplingModeToCellAverage()
     return mapper
