@@ -384,6 +384,39 @@ int vtkTetGenMesher::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+double vtkTetGenMesher::ComputeMaximumVolume(double enclosedVolume) const
+{
+  double maximumVolume = this->MaximumVolume;
+  if (this->TargetNumberOfCells > 0)
+  {
+    const double fromTarget =
+      MeanVolumeFactor * enclosedVolume / static_cast<double>(this->TargetNumberOfCells);
+    maximumVolume = maximumVolume > 0.0 ? std::min(maximumVolume, fromTarget) : fromTarget;
+  }
+  return maximumVolume;
+}
+
+void vtkTetGenMesher::ComposeSwitches(double maximumVolume)
+{
+  // p: the input is a piecewise linear complex; z: numbered from 0; Q/V: quiet or verbose.
+  std::ostringstream switches;
+  switches.precision(10);
+  switches << "pz" << (this->Verbose ? "V" : "Q");
+  if (this->RadiusEdgeRatio > 0.0)
+  {
+    switches << "q" << this->RadiusEdgeRatio;
+    if (this->MinimumDihedralAngle > 0.0)
+    {
+      switches << "/" << this->MinimumDihedralAngle;
+    }
+  }
+  if (maximumVolume > 0.0)
+  {
+    switches << "a" << maximumVolume;
+  }
+  this->Internals->Switches = switches.str();
+}
+
 int vtkTetGenMesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -414,32 +447,8 @@ int vtkTetGenMesher::RequestData(
   }
   this->EnclosedVolume = volume;
 
-  double maximumVolume = this->MaximumVolume;
-  if (this->TargetNumberOfCells > 0)
-  {
-    const double fromTarget =
-      MeanVolumeFactor * volume / static_cast<double>(this->TargetNumberOfCells);
-    maximumVolume = maximumVolume > 0.0 ? std::min(maximumVolume, fromTarget) : fromTarget;
-  }
-  this->AppliedMaximumVolume = maximumVolume;
-
-  // p: the input is a piecewise linear complex; z: numbered from 0; Q/V: quiet or verbose.
-  std::ostringstream switches;
-  switches.precision(10);
-  switches << "pz" << (this->Verbose ? "V" : "Q");
-  if (this->RadiusEdgeRatio > 0.0)
-  {
-    switches << "q" << this->RadiusEdgeRatio;
-    if (this->MinimumDihedralAngle > 0.0)
-    {
-      switches << "/" << this->MinimumDihedralAngle;
-    }
-  }
-  if (maximumVolume > 0.0)
-  {
-    switches << "a" << maximumVolume;
-  }
-  this->Internals->Switches = switches.str();
+  this->AppliedMaximumVolume = this->ComputeMaximumVolume(volume);
+  this->ComposeSwitches(this->AppliedMaximumVolume);
 
   tetgenio in, out;
   FillTetGenInput(surface, in);

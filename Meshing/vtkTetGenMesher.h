@@ -133,6 +133,11 @@ private:
   vtkTetGenMesher(const vtkTetGenMesher&) = delete;
   void operator=(const vtkTetGenMesher&) = delete;
 
+  /// The -a bound: MaximumVolume, or the mean volume that TargetNumberOfCells asks, if smaller.
+  double ComputeMaximumVolume(double enclosedVolume) const;
+  /// TetGen's switches for the settings and the volume bound, kept in Internals.
+  void ComposeSwitches(double maximumVolume);
+
   class vtkInternals;
   vtkInternals* Internals;
 };

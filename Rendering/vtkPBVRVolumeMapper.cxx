@@ -64,7 +64,32 @@ struct ParticleKey
     return MeshBuild == o.MeshBuild && OpacityChange == o.OpacityChange && Seed == o.Seed &&
       SamplingMode == o.SamplingMode;
   }
+
+  // Whether particles generated for this key serve a view that needs a cross-section `needed`
+  // and `sets` particle sets within the memory of `wanted`.
+  bool Serves(const ParticleKey& wanted, double needed, int sets, size_t particles) const
+  {
+    return this->SameModel(wanted) && needed >= this->Footprint &&
+      needed <= LargestFootprintRatio * this->Footprint && this->Sets >= sets &&
+      particles <= wanted.MaximumParticles;
+  }
+
+  // Whether a generation for `wanted` fails again as the one for this key did: it can only
+  // succeed with larger particles, fewer sets or more memory.
+  bool FailsAgain(const ParticleKey& wanted) const
+  {
+    return this->SameModel(wanted) && this->Sets <= wanted.Sets &&
+      wanted.Footprint <= RetryFootprintRatio * this->Footprint &&
+      this->MaximumParticles >= wanted.MaximumParticles;
+  }
 };
+
+// The particles that fit in a memory bound (MiB), within the range of a draw's int count.
+size_t ParticlesInMemory(int memory)
+{
+  return std::min(size_t(memory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
+    size_t(std::numeric_limits<int>::max() - 1));
+}
 
 double LargestSingularValue(const double matrix[3][3])
 {
@@ -403,24 +428,16 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   wanted.OpacityChange = internals.OpacityChangeTime.GetMTime();
   wanted.Seed = this->Seed;
   wanted.SamplingMode = this->SamplingMode;
-  wanted.MaximumParticles = std::min(
-    size_t(this->MaximumParticleMemory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
-    size_t(std::numeric_limits<int>::max() - 1));
-  const ParticleKey& have = internals.Generated;
-  if (internals.HaveParticles && have.SameModel(wanted) && needed >= have.Footprint &&
-    needed <= LargestFootprintRatio * have.Footprint && have.Sets >= this->RepetitionLevel &&
-    size_t(internals.Generator->GetNumberOfParticles()) <= wanted.MaximumParticles)
+  wanted.MaximumParticles = ParticlesInMemory(this->MaximumParticleMemory);
+  if (internals.HaveParticles &&
+    internals.Generated.Serves(
+      wanted, needed, this->RepetitionLevel, size_t(internals.Generator->GetNumberOfParticles())))
   {
     return true;
   }
   wanted.Footprint = needed;
   wanted.Sets = this->RepetitionLevel;
-  // A generation that failed fails again, unless the view needs larger particles, fewer sets
-  // or the memory holds more.
-  const ParticleKey& failed = internals.Failed;
-  if (internals.HaveFailed && failed.SameModel(wanted) && failed.Sets <= wanted.Sets &&
-    needed <= RetryFootprintRatio * failed.Footprint &&
-    failed.MaximumParticles >= wanted.MaximumParticles)
+  if (internals.HaveFailed && internals.Failed.FailsAgain(wanted))
   {
     return false; // reported when it failed
   }

@@ -96,9 +96,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     return false;
   }
   const bool unchanged = property == this->LastProperty && this->CheckTime > property->GetMTime() &&
-    scalarRange[0] == this->ScalarRange[0] && scalarRange[1] == this->ScalarRange[1] &&
-    maxLength == this->MaxLength && scalarResolution == this->ScalarResolution &&
-    lengthResolution == this->LengthResolution;
+    this->HasAxes(scalarRange, maxLength, scalarResolution, lengthResolution);
   if (unchanged)
   {
     return true;
@@ -116,9 +114,8 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   {
     return false;
   }
-  const bool sameAxes = scalarRange[0] == this->ScalarRange[0] &&
-    scalarRange[1] == this->ScalarRange[1] && maxLength == this->MaxLength &&
-    resolution == this->ScalarResolution && std::max(2, lengthResolution) == this->LengthResolution;
+  const bool sameAxes =
+    this->HasAxes(scalarRange, maxLength, resolution, std::max(2, lengthResolution));
   if (sameAxes && !this->Table.empty() && color == this->Color && attenuation == this->Attenuation)
   {
     this->LastProperty = property;
@@ -135,18 +132,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   this->Attenuation.swap(attenuation);
 
   ++this->IntegrationCount;
-  const int ns = this->ScalarResolution;
-  const size_t slice = size_t(ns) * ns * 4;
-  std::vector<float> table(slice * this->LengthResolution, 0.0f);
-  vtkSMPTools::For(0, ns * ns,
-    [this, &table](vtkIdType begin, vtkIdType end)
-    {
-      const int n = this->ScalarResolution;
-      for (vtkIdType pair = begin; pair < end; ++pair)
-      {
-        this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
-      }
-    });
+  std::vector<float> table = this->IntegrateTable();
   this->LastProperty = property;
   this->CheckTime.Modified();
   // A property can be touched without a change of its functions (VTK creates default
@@ -159,6 +145,31 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     this->Modified();
   }
   return true;
+}
+
+bool vtkPreIntegrationTable::HasAxes(
+  const double scalarRange[2], double maxLength, int scalarResolution, int lengthResolution) const
+{
+  return scalarRange[0] == this->ScalarRange[0] && scalarRange[1] == this->ScalarRange[1] &&
+    maxLength == this->MaxLength && scalarResolution == this->ScalarResolution &&
+    lengthResolution == this->LengthResolution;
+}
+
+std::vector<float> vtkPreIntegrationTable::IntegrateTable() const
+{
+  const int ns = this->ScalarResolution;
+  const size_t slice = size_t(ns) * ns * 4;
+  std::vector<float> table(slice * this->LengthResolution, 0.0f);
+  vtkSMPTools::For(0, ns * ns,
+    [this, &table](vtkIdType begin, vtkIdType end)
+    {
+      const int n = this->ScalarResolution;
+      for (vtkIdType pair = begin; pair < end; ++pair)
+      {
+        this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
+      }
+    });
+  return table;
 }
 
 void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out) const

@@ -118,6 +118,11 @@ private:
   vtkPreIntegrationTable(const vtkPreIntegrationTable&) = delete;
   void operator=(const vtkPreIntegrationTable&) = delete;
 
+  // Whether the table has these axes.
+  bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
+    int lengthResolution) const;
+  // The whole table for the current axes and samples, its scalar pairs in parallel.
+  std::vector<float> IntegrateTable() const;
   void IntegrateScalarPair(int front, int back, float* out) const;
 
   int ScalarResolution = 0;

@@ -47,6 +47,105 @@ double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
   }
   return std::sqrt(sum);
 }
+
+// Why the scalars cannot be rendered, or an empty string if they can.
+std::string CheckScalars(vtkDataSet* input, vtkDataArray* scalars, int cellFlag,
+  const vtkTetrahedralMesh::ScalarSelection& selection)
+{
+  std::ostringstream reason;
+  if (!scalars)
+  {
+    reason << "The input has no scalars to render";
+    if (!selection.ArrayName.empty() || selection.ArrayId >= 0)
+    {
+      reason << " (the selected array '" << selection.ArrayName << "', id " << selection.ArrayId
+             << ", is not in its point or cell data)";
+    }
+    reason << ". Select a point or cell array with SelectScalarArray() and SetScalarMode().";
+    return reason.str();
+  }
+  if (cellFlag != 0 && cellFlag != 1)
+  {
+    return "Field-data scalars cannot be volume rendered; use point or cell data.";
+  }
+  if (selection.Component >= scalars->GetNumberOfComponents())
+  {
+    reason << "Component " << selection.Component << " was selected, but the array '"
+           << (scalars->GetName() ? scalars->GetName() : "") << "' has only "
+           << scalars->GetNumberOfComponents() << " component(s).";
+    return reason.str();
+  }
+  const vtkIdType needed = cellFlag == 1 ? input->GetNumberOfCells() : input->GetNumberOfPoints();
+  if (scalars->GetNumberOfTuples() < needed)
+  {
+    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+           << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
+           << (cellFlag == 1 ? " cells." : " points.");
+    return reason.str();
+  }
+  return std::string();
+}
+
+// The points' coordinates, whether each is finite, and the bounds of the finite ones (empty,
+// min > max, if none is).
+std::vector<double> FiniteCoordinates(
+  vtkDataSet* tetrahedra, std::vector<char>& pointIsValid, double bounds[6])
+{
+  const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
+  std::vector<double> coordinates(3 * numberOfPoints);
+  pointIsValid.assign(numberOfPoints, 1);
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = VTK_DOUBLE_MAX;
+    bounds[2 * a + 1] = VTK_DOUBLE_MIN;
+  }
+  for (vtkIdType i = 0; i < numberOfPoints; ++i)
+  {
+    double* p = &coordinates[3 * i];
+    tetrahedra->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      pointIsValid[i] = 0;
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], p[a]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], p[a]);
+    }
+  }
+  return coordinates;
+}
+
+// The scalar of every tuple, and the range of the finite ones ({0, 0} if none is).
+std::vector<double> ScalarValues(vtkDataArray* scalars, int component, double range[2])
+{
+  const vtkIdType numberOfValues = scalars->GetNumberOfTuples();
+  std::vector<double> values(numberOfValues);
+  range[0] = VTK_DOUBLE_MAX;
+  range[1] = VTK_DOUBLE_MIN;
+  for (vtkIdType i = 0; i < numberOfValues; ++i)
+  {
+    values[i] = ScalarOf(scalars, i, component);
+    if (std::isfinite(values[i]))
+    {
+      range[0] = std::min(range[0], values[i]);
+      range[1] = std::max(range[1], values[i]);
+    }
+  }
+  if (range[0] > range[1])
+  {
+    range[0] = range[1] = 0.0; // no finite value: every tetrahedron is left out
+  }
+  return values;
+}
+
+// A scalar as a coordinate of the pre-integration table, [0, 1] over the range.
+float ToTable(double value, const double range[2])
+{
+  const double width = range[1] - range[0];
+  return width > 0.0 ? float((value - range[0]) / width) : 0.0f;
+}
 }
 
 vtkStandardNewMacro(vtkTetrahedralMesh);
@@ -96,38 +195,10 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
     this->BuildTime.Modified();
     return true;
   }
-  if (!scalars)
+  const std::string reason = CheckScalars(input, scalars, cellFlag, selection);
+  if (!reason.empty())
   {
-    std::ostringstream reason;
-    reason << "The input has no scalars to render";
-    if (!selection.ArrayName.empty() || selection.ArrayId >= 0)
-    {
-      reason << " (the selected array '" << selection.ArrayName << "', id " << selection.ArrayId
-             << ", is not in its point or cell data)";
-    }
-    reason << ". Select a point or cell array with SelectScalarArray() and SetScalarMode().";
-    return this->Fail(reason.str());
-  }
-  if (cellFlag != 0 && cellFlag != 1)
-  {
-    return this->Fail("Field-data scalars cannot be volume rendered; use point or cell data.");
-  }
-  if (selection.Component >= scalars->GetNumberOfComponents())
-  {
-    std::ostringstream reason;
-    reason << "Component " << selection.Component << " was selected, but the array '"
-           << (scalars->GetName() ? scalars->GetName() : "") << "' has only "
-           << scalars->GetNumberOfComponents() << " component(s).";
-    return this->Fail(reason.str());
-  }
-  const vtkIdType needed = cellFlag == 1 ? input->GetNumberOfCells() : input->GetNumberOfPoints();
-  if (scalars->GetNumberOfTuples() < needed)
-  {
-    std::ostringstream reason;
-    reason << "The scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-           << scalars->GetNumberOfTuples() << " values, but the grid has " << needed
-           << (cellFlag == 1 ? " cells." : " points.");
-    return this->Fail(reason.str());
+    return this->Fail(reason);
   }
   if (!this->CheckConnectivity(input))
   {
@@ -237,46 +308,33 @@ bool vtkTetrahedralMesh::Extract(
   this->CellScalars = cellScalars;
 
   // Finite coordinates and scalar values; anything else leaves its tetrahedra out.
-  std::vector<double> coordinates(3 * numberOfPoints);
-  std::vector<char> pointIsValid(numberOfPoints, 1);
-  double bounds[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN,
-    VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
-  for (vtkIdType i = 0; i < numberOfPoints; ++i)
-  {
-    double* p = &coordinates[3 * i];
-    tetrahedra->GetPoint(i, p);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-    {
-      pointIsValid[i] = 0;
-      continue;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      bounds[2 * a] = std::min(bounds[2 * a], p[a]);
-      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], p[a]);
-    }
-  }
-  const vtkIdType numberOfValues = scalars->GetNumberOfTuples();
-  std::vector<double> values(numberOfValues);
-  double range[2] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
-  for (vtkIdType i = 0; i < numberOfValues; ++i)
-  {
-    values[i] = ScalarOf(scalars, i, component);
-    if (std::isfinite(values[i]))
-    {
-      range[0] = std::min(range[0], values[i]);
-      range[1] = std::max(range[1], values[i]);
-    }
-  }
-  if (range[0] > range[1])
-  {
-    range[0] = range[1] = 0.0; // no finite value: every tetrahedron is left out below
-  }
-  this->ScalarRange[0] = range[0];
-  this->ScalarRange[1] = range[1];
-  const double width = range[1] - range[0];
-  auto toTable = [&](double v) { return width > 0.0 ? float((v - range[0]) / width) : 0.0f; };
+  std::vector<char> pointIsValid;
+  double bounds[6];
+  const std::vector<double> coordinates = FiniteCoordinates(tetrahedra, pointIsValid, bounds);
+  const std::vector<double> values = ScalarValues(scalars, component, this->ScalarRange);
+  this->Normalize(coordinates, bounds);
 
+  this->Scalars.clear();
+  if (!cellScalars)
+  {
+    const vtkIdType numberOfValues = vtkIdType(values.size());
+    this->Scalars.resize(numberOfPoints);
+    for (vtkIdType i = 0; i < numberOfPoints; ++i)
+    {
+      pointIsValid[i] = pointIsValid[i] && i < numberOfValues && std::isfinite(values[i]);
+      this->Scalars[i] = pointIsValid[i] ? ToTable(values[i], this->ScalarRange) : 0.0f;
+    }
+  }
+  if (!this->ExtractTetrahedra(tetrahedra, values, pointIsValid))
+  {
+    return false;
+  }
+  this->BuildTime.Modified();
+  return true;
+}
+
+void vtkTetrahedralMesh::Normalize(const std::vector<double>& coordinates, const double bounds[6])
+{
   double diagonal = 0.0;
   for (int a = 0; a < 3; ++a)
   {
@@ -294,27 +352,22 @@ bool vtkTetrahedralMesh::Extract(
     this->NormalizedBounds[2 * a + 1] =
       empty ? 0.0 : (bounds[2 * a + 1] - this->Center[a]) / this->Scale;
   }
-
-  this->Points.resize(3 * numberOfPoints);
-  for (vtkIdType i = 0; i < 3 * numberOfPoints; ++i)
+  this->Points.resize(coordinates.size());
+  for (size_t i = 0; i < coordinates.size(); ++i)
   {
     this->Points[i] = float((coordinates[i] - this->Center[i % 3]) / this->Scale);
   }
-  this->Scalars.clear();
-  if (!cellScalars)
-  {
-    this->Scalars.resize(numberOfPoints);
-    for (vtkIdType i = 0; i < numberOfPoints; ++i)
-    {
-      pointIsValid[i] = pointIsValid[i] && i < numberOfValues && std::isfinite(values[i]);
-      this->Scalars[i] = pointIsValid[i] ? toTable(values[i]) : 0.0f;
-    }
-  }
+}
 
+bool vtkTetrahedralMesh::ExtractTetrahedra(
+  vtkDataSet* tetrahedra, const std::vector<double>& values, const std::vector<char>& pointIsValid)
+{
+  const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
+  const vtkIdType numberOfValues = vtkIdType(values.size());
   const vtkIdType numberOfCells = tetrahedra->GetNumberOfCells();
   this->Tetrahedra.clear();
   this->Tetrahedra.reserve(4 * numberOfCells);
-  if (cellScalars)
+  if (this->CellScalars)
   {
     this->Scalars.reserve(numberOfCells);
   }
@@ -333,7 +386,7 @@ bool vtkTetrahedralMesh::Extract(
       return this->Fail("The split into tetrahedra made a tetrahedron that is not one (point "
                         "ids missing or out of range); the input's cells are not valid.");
     }
-    bool valid = !cellScalars || (cell < numberOfValues && std::isfinite(values[cell]));
+    bool valid = !this->CellScalars || (cell < numberOfValues && std::isfinite(values[cell]));
     for (int v = 0; v < 4 && valid; ++v)
     {
       valid = pointIsValid[ids->GetId(v)] != 0;
@@ -343,24 +396,28 @@ bool vtkTetrahedralMesh::Extract(
       ++this->SkippedCells;
       continue;
     }
-    for (int v = 0; v < 4; ++v)
+    this->AddTetrahedron(ids);
+    if (this->CellScalars)
     {
-      this->Tetrahedra.push_back(static_cast<unsigned int>(ids->GetId(v)));
-      const float* p = &this->Points[3 * ids->GetId(v)];
-      for (int w = v + 1; w < 4; ++w)
-      {
-        const float* q = &this->Points[3 * ids->GetId(w)];
-        const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-        this->MaxEdgeLength = std::max(this->MaxEdgeLength, std::sqrt(dx * dx + dy * dy + dz * dz));
-      }
-    }
-    if (cellScalars)
-    {
-      this->Scalars.push_back(toTable(values[cell]));
+      this->Scalars.push_back(ToTable(values[cell], this->ScalarRange));
     }
   }
-  this->BuildTime.Modified();
   return true;
+}
+
+void vtkTetrahedralMesh::AddTetrahedron(vtkIdList* ids)
+{
+  for (int v = 0; v < 4; ++v)
+  {
+    this->Tetrahedra.push_back(static_cast<unsigned int>(ids->GetId(v)));
+    const float* p = &this->Points[3 * ids->GetId(v)];
+    for (int w = v + 1; w < 4; ++w)
+    {
+      const float* q = &this->Points[3 * ids->GetId(w)];
+      const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+      this->MaxEdgeLength = std::max(this->MaxEdgeLength, std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+  }
 }
 
 void vtkTetrahedralMesh::GetNormalizationMatrix(vtkMatrix4x4* matrix) const

@@ -26,6 +26,7 @@
 
 class vtkDataArray;
 class vtkDataSet;
+class vtkIdList;
 class vtkMatrix4x4;
 
 class SPTRENDERING_EXPORT vtkTetrahedralMesh : public vtkObject
@@ -103,6 +104,12 @@ private:
   vtkSmartPointer<vtkDataSet> Tetrahedralize(
     vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars);
   bool Extract(vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component);
+  // Center, Scale, NormalizedBounds and Points from the input's coordinates and finite bounds.
+  void Normalize(const std::vector<double>& coordinates, const double bounds[6]);
+  // The valid tetrahedra, their cell scalars and MaxEdgeLength; false (after Fail) on bad ids.
+  bool ExtractTetrahedra(vtkDataSet* tetrahedra, const std::vector<double>& values,
+    const std::vector<char>& pointIsValid);
+  void AddTetrahedron(vtkIdList* ids);
 
   std::string LastError;
   std::vector<float> Points;

@@ -17,6 +17,8 @@
 // a soup of 40 overlapping random tetrahedra (every face on the boundary, fragments far from
 // sorted) and a jittered block of tetrahedra with a slot cut out (non-convex, gaps).
 
+#include "HAVSKBufferModel.h"
+
 #include "vtkHAVSFaceBuffers.h"
 #include "vtkHAVSKBuffer.h"
 #include "vtkHAVSVolumeMapper.h"
@@ -55,16 +57,10 @@
 
 namespace
 {
+using namespace HAVSKBufferModel;
+
 constexpr int Size = 96;
 constexpr double EdgeMargin = 0.01; // pixels (llvmpipe snaps vertices to 1/256 pixel)
-constexpr float EmptyDistance = 1.0e30f;
-constexpr float OpaqueAlpha = 0.998046875f;
-
-struct Entry
-{
-  float Scalar; // plus 2 where the ray leaves the mesh, plus 4 where it enters it
-  float Distance;
-};
 
 // What the CPU rasterizer found for one pixel: its fragments in draw order.
 struct PixelFragments
@@ -174,128 +170,38 @@ vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double un
   return property;
 }
 
-// Trilinear lookup of the table at (front, back, sqrt(thickness)) in [0, 1]^3, texel centers
-// at the ends, as the GPU's texture() with the mapper's scale and offset does.
-glm::vec4 LookUp(const vtkPreIntegrationTable* table, float front, float back, float length)
+// A face of the mapper in view and window coordinates, with its clip w and scalars.
+struct ProjectedFace
 {
-  const int ns = table->GetScalarResolution();
-  const int nl = table->GetLengthResolution();
-  const float coordinate[3] = { front * (ns - 1), back * (ns - 1), length * (nl - 1) };
-  const int sizes[3] = { ns, ns, nl };
-  int lower[3];
-  float weight[3];
-  for (int a = 0; a < 3; ++a)
-  {
-    lower[a] = std::min(static_cast<int>(std::floor(coordinate[a])), sizes[a] - 2);
-    weight[a] = coordinate[a] - lower[a];
-  }
-  glm::vec4 result(0.0f);
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const int i = lower[0] + (corner & 1), j = lower[1] + ((corner >> 1) & 1),
-              k = lower[2] + ((corner >> 2) & 1);
-    const float w = ((corner & 1) ? weight[0] : 1.0f - weight[0]) *
-      (((corner >> 1) & 1) ? weight[1] : 1.0f - weight[1]) *
-      (((corner >> 2) & 1) ? weight[2] : 1.0f - weight[2]);
-    result += w * glm::make_vec4(&table->GetTable()[4 * ((size_t(k) * ns + j) * ns + i)]);
-  }
-  return result;
-}
-
-// The k-buffer of the mapper's shaders, on the CPU.
-class KBuffer
-{
-public:
-  KBuffer(int size, const vtkPreIntegrationTable* table, float thicknessToTable, float lengthScale)
-    : Entries(size - 1, Entry{ 0.0f, EmptyDistance })
-    , Table(table)
-    , ThicknessToTable(thicknessToTable)
-    , LengthScale(lengthScale)
-  {
-  }
-
-  void Insert(Entry fragment)
-  {
-    if (this->Color.a >= OpaqueAlpha)
-    {
-      return;
-    }
-    for (Entry& entry : this->Entries)
-    {
-      if (entry.Distance >= EmptyDistance)
-      {
-        entry = fragment;
-        return;
-      }
-    }
-    auto nearest = std::min_element(this->Entries.begin(), this->Entries.end(),
-      [](const Entry& a, const Entry& b) { return a.Distance < b.Distance; });
-    if (fragment.Distance <= nearest->Distance)
-    {
-      this->Composite(fragment, *nearest);
-      return;
-    }
-    // Ties go to the stored entries, as in the shader.
-    Entry next{ 0.0f, EmptyDistance };
-    for (auto entry = this->Entries.begin(); entry != this->Entries.end(); ++entry)
-    {
-      if (entry != nearest && entry->Distance < next.Distance)
-      {
-        next = *entry;
-      }
-    }
-    if (fragment.Distance < next.Distance)
-    {
-      next = fragment;
-    }
-    this->Composite(*nearest, next);
-    *nearest = fragment;
-  }
-
-  glm::vec4 Flush()
-  {
-    if (this->Color.a < OpaqueAlpha)
-    {
-      std::stable_sort(this->Entries.begin(), this->Entries.end(),
-        [](const Entry& a, const Entry& b) { return a.Distance < b.Distance; });
-      for (size_t i = 0; i + 1 < this->Entries.size(); ++i)
-      {
-        this->Composite(this->Entries[i], this->Entries[i + 1]);
-      }
-    }
-    return this->Color;
-  }
-
-private:
-  void Composite(const Entry& front, const Entry& back)
-  {
-    const float frontCrossing = std::floor(front.Scalar * 0.5f);
-    const float backCrossing = std::floor(back.Scalar * 0.5f);
-    if (back.Distance >= EmptyDistance || (frontCrossing == 1.0f && backCrossing == 2.0f))
-    {
-      return;
-    }
-    const float frontScalar = front.Scalar - 2.0f * frontCrossing;
-    const float backScalar = back.Scalar - 2.0f * backCrossing;
-    const float thickness = std::max(back.Distance - front.Distance, 0.0f) * this->LengthScale;
-    const float length = std::sqrt(std::min(thickness * this->ThicknessToTable, 1.0f));
-    const glm::vec4 segment = LookUp(
-      this->Table, glm::clamp(frontScalar, 0.0f, 1.0f), glm::clamp(backScalar, 0.0f, 1.0f), length);
-    this->Color += (1.0f - this->Color.a) * segment;
-  }
-
-  std::vector<Entry> Entries;
-  glm::vec4 Color{ 0.0f };
-  const vtkPreIntegrationTable* Table;
-  float ThicknessToTable;
-  float LengthScale;
+  glm::dvec3 VC[3];
+  glm::dvec2 Window[3];
+  double W[3];
+  double Scalar[3];
+  double Area; // twice the signed window area: positive counter-clockwise
 };
 
-// The fragments of the mapper's faces, in its draw order, at every pixel center.
-std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m)
+ProjectedFace ProjectFace(vtkHAVSFaceBuffers* faces, unsigned int face,
+  const glm::mat4& modelToView, const glm::mat4& viewToClip)
 {
-  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
-  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
+  ProjectedFace f;
+  for (int v = 0; v < 3; ++v)
+  {
+    const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
+    f.VC[v] = glm::dvec3(
+      modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
+    const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(f.VC[v], 1.0);
+    f.W[v] = clip.w;
+    f.Window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
+    f.Scalar[v] = faces->GetVertexScalars()[id];
+  }
+  const glm::dvec2 e01 = f.Window[1] - f.Window[0], e02 = f.Window[2] - f.Window[0];
+  f.Area = e01.x * e02.y - e01.y * e02.x;
+  return f;
+}
+
+// The pixels with their length scale from view to model distance along their rays.
+std::vector<PixelFragments> MakePixels(const vtkVolumeViewMatrices& m)
+{
   const glm::mat4 clipToView = glm::make_mat4(m.DCVC);
   const glm::mat3 viewToModel = glm::make_mat3(m.VCMCLinear);
   std::vector<PixelFragments> pixels(Size * Size);
@@ -312,78 +218,92 @@ std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolume
       pixels[y * Size + x].LengthScale = glm::length(viewToModel * ray);
     }
   }
+  return pixels;
+}
+
+// Barycentric weights of the window point p in the face. Returns whether p is covered (within
+// EdgeMargin pixels of the inside); onEdge tells whether it is that close to an edge.
+bool Cover(const ProjectedFace& f, glm::dvec2 p, double barycentric[3], bool& onEdge)
+{
+  double nearest = 1e30;
+  bool inside = true;
+  for (int v = 0; v < 3; ++v)
+  {
+    const glm::dvec2 a = f.Window[(v + 1) % 3], b = f.Window[(v + 2) % 3];
+    const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / f.Area;
+    barycentric[v] = edge;
+    const double pixelsFromEdge = edge * std::abs(f.Area) / glm::length(b - a);
+    nearest = std::min(nearest, std::abs(pixelsFromEdge));
+    inside = inside && pixelsFromEdge > -EdgeMargin;
+  }
+  onEdge = nearest < EdgeMargin;
+  return inside;
+}
+
+// The fragment at the barycentric weights: scalar (with the crossing code of a boundary face)
+// and eye distance, interpolated perspective-correct, as the GPU does.
+Entry Interpolate(const ProjectedFace& f, const double barycentric[3], bool parallel)
+{
+  const bool boundary = f.Scalar[0] > 1.5;
+  // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
+  const float crossing = boundary ? (f.Area < 0.0 ? 2.0f : 4.0f) : 0.0f;
+  double sum = 0.0, weights[3];
+  for (int v = 0; v < 3; ++v)
+  {
+    weights[v] = barycentric[v] / f.W[v];
+    sum += weights[v];
+  }
+  glm::dvec3 positionVC(0.0);
+  double s = 0.0;
+  for (int v = 0; v < 3; ++v)
+  {
+    positionVC += weights[v] / sum * f.VC[v];
+    s += weights[v] / sum * f.Scalar[v];
+  }
+  const double distance = parallel ? -positionVC.z : glm::length(positionVC);
+  const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
+  return Entry{ code, float(distance) };
+}
+
+void RasterizeFace(const ProjectedFace& f, bool parallel, std::vector<PixelFragments>& pixels)
+{
+  const double lo[2] = { std::min({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
+    std::min({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
+  const double hi[2] = { std::max({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
+    std::max({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
+  for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(Size - 1, int(hi[1]) + 1); ++y)
+  {
+    for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(Size - 1, int(hi[0]) + 1); ++x)
+    {
+      double barycentric[3];
+      bool onEdge = false;
+      if (!Cover(f, glm::dvec2(x + 0.5, y + 0.5), barycentric, onEdge))
+      {
+        continue;
+      }
+      PixelFragments& pixel = pixels[y * Size + x];
+      if (onEdge)
+      {
+        pixel.Ambiguous = true;
+        continue;
+      }
+      pixel.Fragments.push_back(Interpolate(f, barycentric, parallel));
+    }
+  }
+}
+
+// The fragments of the mapper's faces, in its draw order, at every pixel center.
+std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m)
+{
+  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
+  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
+  std::vector<PixelFragments> pixels = MakePixels(m);
   for (unsigned int face : faces->GetOrder())
   {
-    glm::dvec3 vc[3];
-    glm::dvec2 window[3];
-    double w[3], scalar[3];
-    for (int v = 0; v < 3; ++v)
+    const ProjectedFace f = ProjectFace(faces, face, modelToView, viewToClip);
+    if (f.Area != 0.0)
     {
-      const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
-      vc[v] = glm::dvec3(
-        modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
-      const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(vc[v], 1.0);
-      w[v] = clip.w;
-      window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
-      scalar[v] = faces->GetVertexScalars()[id];
-    }
-    const glm::dvec2 e01 = window[1] - window[0], e02 = window[2] - window[0];
-    const double area = e01.x * e02.y - e01.y * e02.x;
-    if (area == 0.0)
-    {
-      continue;
-    }
-    const bool boundary = scalar[0] > 1.5;
-    // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
-    const float crossing = boundary ? (area < 0.0 ? 2.0f : 4.0f) : 0.0f;
-    const double lo[2] = { std::min({ window[0].x, window[1].x, window[2].x }),
-      std::min({ window[0].y, window[1].y, window[2].y }) };
-    const double hi[2] = { std::max({ window[0].x, window[1].x, window[2].x }),
-      std::max({ window[0].y, window[1].y, window[2].y }) };
-    for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(Size - 1, int(hi[1]) + 1); ++y)
-    {
-      for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(Size - 1, int(hi[0]) + 1); ++x)
-      {
-        const glm::dvec2 p(x + 0.5, y + 0.5);
-        double barycentric[3], nearest = 1e30;
-        bool inside = true;
-        for (int v = 0; v < 3; ++v)
-        {
-          const glm::dvec2 a = window[(v + 1) % 3], b = window[(v + 2) % 3];
-          const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / area;
-          barycentric[v] = edge;
-          const double pixelsFromEdge = edge * std::abs(area) / glm::length(b - a);
-          nearest = std::min(nearest, std::abs(pixelsFromEdge));
-          inside = inside && pixelsFromEdge > -EdgeMargin;
-        }
-        if (!inside)
-        {
-          continue;
-        }
-        PixelFragments& pixel = pixels[y * Size + x];
-        if (nearest < EdgeMargin)
-        {
-          pixel.Ambiguous = true;
-          continue;
-        }
-        // Perspective-correct weights, as the GPU interpolates.
-        double sum = 0.0, weights[3];
-        for (int v = 0; v < 3; ++v)
-        {
-          weights[v] = barycentric[v] / w[v];
-          sum += weights[v];
-        }
-        glm::dvec3 positionVC(0.0);
-        double s = 0.0;
-        for (int v = 0; v < 3; ++v)
-        {
-          positionVC += weights[v] / sum * vc[v];
-          s += weights[v] / sum * scalar[v];
-        }
-        const double distance = m.ParallelProjection ? -positionVC.z : glm::length(positionVC);
-        const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
-        pixel.Fragments.push_back(Entry{ code, float(distance) });
-      }
+      RasterizeFace(f, m.ParallelProjection, pixels);
     }
   }
   return pixels;
@@ -487,65 +407,145 @@ vtkSmartPointer<vtkUnsignedCharArray> RenderOnGPU(
   return vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
 }
 
+// The mapper drawing the mesh alone, offscreen, onto a transparent background.
+struct GPUScene
+{
+  GPUScene(vtkUnstructuredGrid* grid, double unitDistance)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetAlphaBitPlanes(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(Size, Size);
+    this->Renderer->SetBackground(0.0, 0.0, 0.0);
+    this->Renderer->SetBackgroundAlpha(0.0);
+    this->Window->AddRenderer(this->Renderer);
+    this->Mapper->SetInputData(grid);
+    double range[2];
+    grid->GetPointData()->GetScalars()->GetRange(range);
+    this->Property = MakeProperty(range, unitDistance);
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+    this->Renderer->GetActiveCamera()->SetPosition(2.0, -3.0, 2.5);
+    this->Renderer->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+    this->Renderer->ResetCamera();
+    this->Window->Render(); // creates the context, for Offers()
+  }
+
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkHAVSVolumeMapper> Mapper;
+  vtkSmartPointer<vtkVolumeProperty> Property;
+  vtkNew<vtkVolume> Volume;
+};
+
+// The CPU images for one k-buffer size: in draw order, and in the two perturbed orders.
+struct Simulations
+{
+  std::vector<glm::vec4> Expected;
+  std::vector<glm::vec4> Swapped;
+  std::vector<glm::vec4> Lost;
+};
+
+// The CPU side: the same mesh, faces, sort and table as the mapper, and the fragments.
+struct CPUScene
+{
+  CPUScene(vtkUnstructuredGrid* grid, GPUScene& gpu)
+  {
+    vtkTetrahedralMesh::ScalarSelection selection;
+    this->Mesh->Update(grid, selection);
+    this->Faces->Update(this->Mesh);
+    vtkVolumeViewMatrices matrices;
+    matrices.Compute(gpu.Renderer, gpu.Volume, this->Mesh);
+    this->Faces->Sort(matrices.MCVC, matrices.ParallelProjection);
+    this->Table->Update(gpu.Property, this->Mesh->GetScalarRange(),
+      this->Mesh->GetMaxEdgeLength() * this->Mesh->GetScale(),
+      gpu.Mapper->GetPreIntegrationScalarResolution(),
+      gpu.Mapper->GetPreIntegrationThicknessResolution());
+    this->ThicknessToTable = float(1.0 / this->Mesh->GetMaxEdgeLength());
+    this->Pixels = Rasterize(this->Faces, matrices);
+  }
+
+  Simulations Simulate(int k) const
+  {
+    Simulations images;
+    images.Expected =
+      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::None);
+    images.Swapped =
+      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::SwapPairs);
+    images.Lost = ::Simulate(
+      this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::LoseEveryFourth);
+    return images;
+  }
+
+  void Print(const char* name) const
+  {
+    size_t fragments = 0, longest = 0;
+    for (const PixelFragments& pixel : this->Pixels)
+    {
+      fragments += pixel.Fragments.size();
+      longest = std::max(longest, pixel.Fragments.size());
+    }
+    std::cout << name << ": " << this->Faces->GetNumberOfFaces() << " faces, " << fragments
+              << " fragments, up to " << longest << " per pixel\n";
+  }
+
+  vtkNew<vtkTetrahedralMesh> Mesh;
+  vtkNew<vtkHAVSFaceBuffers> Faces;
+  vtkNew<vtkPreIntegrationTable> Table;
+  float ThicknessToTable;
+  std::vector<PixelFragments> Pixels;
+};
+
+// The GPU image with one synchronization against the CPU k-buffer in draw order, and against
+// the perturbed orders, which it must tell apart. Returns the failures.
+int CheckSynchronization(GPUScene& gpu, const CPUScene& cpu, int k, int access,
+  const Simulations& simulated, int* modesRun)
+{
+  int failures = 0;
+  const double tolerance = 3.0 / 255.0;
+  gpu.Mapper->SetKBufferSynchronization(access);
+  vtkSmartPointer<vtkUnsignedCharArray> image = RenderOnGPU(gpu.Window, gpu.Mapper);
+  if (!image)
+  {
+    std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
+    return 1;
+  }
+  ++*modesRun;
+  const Comparison same = Compare(cpu.Pixels, simulated.Expected, image, tolerance);
+  const Comparison pairs = Compare(cpu.Pixels, simulated.Swapped, image, tolerance);
+  const Comparison races = Compare(cpu.Pixels, simulated.Lost, image, tolerance);
+  std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
+            << same.Compared << " pixels off (largest " << same.Largest << ", " << same.Ambiguous
+            << " on edges left out); perturbed orders, of " << same.Layered
+            << " pixels with 4 fragments or more: " << pairs.Off << " off with pairs swapped, "
+            << races.Off << " with every 4th update lost\n";
+  if (same.Off > 0 || same.Ambiguous > same.Compared / 20)
+  {
+    std::cerr << "FAILED: the GPU k-buffer differs from the CPU k-buffer fed in draw order.\n";
+    ++failures;
+  }
+  // A k-buffer of 6 absorbs swapped pairs; lost updates show at any size. Measured on
+  // llvmpipe: 70-80% (soup) and 28% (block) of the layered pixels off with lost updates,
+  // 92% and 94% with swapped pairs at k = 2; the bounds leave a factor of 2 or more.
+  if (races.Off < same.Layered / 8 || (k == 2 && pairs.Off < same.Layered / 4))
+  {
+    std::cerr << "FAILED: the comparison does not tell a perturbed order from the right one.\n";
+    ++failures;
+  }
+  return failures;
+}
+
 int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, int* modesRun)
 {
   int failures = 0;
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetAlphaBitPlanes(1);
-  window->SetMultiSamples(0);
-  window->SetSize(Size, Size);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0.0, 0.0, 0.0);
-  renderer->SetBackgroundAlpha(0.0);
-  window->AddRenderer(renderer);
-  vtkNew<vtkHAVSVolumeMapper> mapper;
-  mapper->SetInputData(grid);
-  double range[2];
-  grid->GetPointData()->GetScalars()->GetRange(range);
-  vtkSmartPointer<vtkVolumeProperty> property = MakeProperty(range, unitDistance);
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  renderer->GetActiveCamera()->SetPosition(2.0, -3.0, 2.5);
-  renderer->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
-  renderer->ResetCamera();
-  window->Render(); // creates the context, for Offers()
-
-  // The CPU side: the same mesh, faces, sort and table as the mapper.
-  vtkNew<vtkTetrahedralMesh> mesh;
-  vtkTetrahedralMesh::ScalarSelection selection;
-  mesh->Update(grid, selection);
-  vtkNew<vtkHAVSFaceBuffers> faces;
-  faces->Update(mesh);
-  vtkVolumeViewMatrices matrices;
-  matrices.Compute(renderer, volume, mesh);
-  faces->Sort(matrices.MCVC, matrices.ParallelProjection);
-  vtkNew<vtkPreIntegrationTable> table;
-  table->Update(property, mesh->GetScalarRange(), mesh->GetMaxEdgeLength() * mesh->GetScale(),
-    mapper->GetPreIntegrationScalarResolution(), mapper->GetPreIntegrationThicknessResolution());
-  const float thicknessToTable = float(1.0 / mesh->GetMaxEdgeLength());
-  const std::vector<PixelFragments> pixels = Rasterize(faces, matrices);
-  size_t fragments = 0, longest = 0;
-  for (const PixelFragments& pixel : pixels)
-  {
-    fragments += pixel.Fragments.size();
-    longest = std::max(longest, pixel.Fragments.size());
-  }
-  std::cout << name << ": " << faces->GetNumberOfFaces() << " faces, " << fragments
-            << " fragments, up to " << longest << " per pixel\n";
-
-  const double tolerance = 3.0 / 255.0;
+  GPUScene gpu(grid, unitDistance);
+  const CPUScene cpu(grid, gpu);
+  cpu.Print(name);
   for (int k : { 2, 6 })
   {
-    mapper->SetKBufferSize(k);
-    const std::vector<glm::vec4> expected =
-      Simulate(pixels, k, table, thicknessToTable, Perturbation::None);
-    const std::vector<glm::vec4> swapped =
-      Simulate(pixels, k, table, thicknessToTable, Perturbation::SwapPairs);
-    const std::vector<glm::vec4> lost =
-      Simulate(pixels, k, table, thicknessToTable, Perturbation::LoseEveryFourth);
+    gpu.Mapper->SetKBufferSize(k);
+    const Simulations simulated = cpu.Simulate(k);
     for (int access : { vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK,
            vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH, vtkHAVSVolumeMapper::RASTERIZATION_ORDER })
     {
@@ -554,36 +554,7 @@ int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, 
         std::cout << "  k=" << k << ", synchronization " << access << ": not in this context\n";
         continue;
       }
-      mapper->SetKBufferSynchronization(access);
-      vtkSmartPointer<vtkUnsignedCharArray> gpu = RenderOnGPU(window, mapper);
-      if (!gpu)
-      {
-        std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
-        ++failures;
-        continue;
-      }
-      ++*modesRun;
-      const Comparison same = Compare(pixels, expected, gpu, tolerance);
-      const Comparison pairs = Compare(pixels, swapped, gpu, tolerance);
-      const Comparison races = Compare(pixels, lost, gpu, tolerance);
-      std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
-                << same.Compared << " pixels off (largest " << same.Largest << ", "
-                << same.Ambiguous << " on edges left out); perturbed orders, of " << same.Layered
-                << " pixels with 4 fragments or more: " << pairs.Off << " off with pairs swapped, "
-                << races.Off << " with every 4th update lost\n";
-      if (same.Off > 0 || same.Ambiguous > same.Compared / 20)
-      {
-        std::cerr << "FAILED: the GPU k-buffer differs from the CPU k-buffer fed in draw order.\n";
-        ++failures;
-      }
-      // A k-buffer of 6 absorbs swapped pairs; lost updates show at any size. Measured on
-      // llvmpipe: 70-80% (soup) and 28% (block) of the layered pixels off with lost updates,
-      // 92% and 94% with swapped pairs at k = 2; the bounds leave a factor of 2 or more.
-      if (races.Off < same.Layered / 8 || (k == 2 && pairs.Off < same.Layered / 4))
-      {
-        std::cerr << "FAILED: the comparison does not tell a perturbed order from the right one.\n";
-        ++failures;
-      }
+      failures += CheckSynchronization(gpu, cpu, k, access, simulated, modesRun);
     }
   }
   return failures;

@@ -13,6 +13,67 @@
 
 using namespace SPTTestScene;
 
+namespace
+{
+// The particle count, sets, memory and generation count after the first render, and the input
+// untouched with its hexahedra split into 5 or 6 tetrahedra each.
+int CheckParticles(vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper,
+  vtkUnstructuredGrid* shell, vtkMTimeType inputTime, vtkIdType inputCells)
+{
+  int failures = 0;
+  const vtkIdType particles = pointMapper->GetNumberOfParticles();
+  std::cout << "Particles: " << particles << " (perspective, 64 sets), "
+            << cellMapper->GetNumberOfParticles() << " (parallel, 2x2 subpixels, 32 sets); "
+            << pointMapper->GetGPUMemorySize() << " bytes on the GPU; generated in "
+            << pointMapper->GetGenerationTime() << " s\n";
+  if (particles < 64 * 1000 || pointMapper->GetNumberOfParticleSets() != 64 ||
+    pointMapper->GetGPUMemorySize() < 8 * particles || cellMapper->GetNumberOfParticles() <= 0 ||
+    pointMapper->GetGenerationCount() != 1 || cellMapper->GetGenerationCount() != 1)
+  {
+    std::cerr << "The particle count, sets, memory or generation count are not as expected.\n";
+    ++failures;
+  }
+  const vtkIdType tetrahedra = pointMapper->GetNumberOfTetrahedra();
+  if (shell->GetMTime() != inputTime || shell->GetNumberOfCells() != inputCells ||
+    tetrahedra < 5 * inputCells || tetrahedra > 6 * inputCells)
+  {
+    std::cerr << "The input was modified, or its hexahedra not split into tetrahedra.\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// Particles are kept while nothing that shapes them changes, and made anew when it does.
+int CheckRegeneration(TwoViewports& scene, const std::vector<unsigned char>& first,
+  vtkVolumeProperty* property, vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper)
+{
+  int failures = 0;
+  // The same particles again: the same image, no new generation.
+  scene.Window->Render();
+  if (Capture(scene.Window) != first || pointMapper->GetGenerationCount() != 1)
+  {
+    std::cerr << "A second render differs from the first or generated new particles.\n";
+    ++failures;
+  }
+  // About the data's centre the nearest point of its bounding sphere stays as near.
+  scene.Left->GetActiveCamera()->Azimuth(40.0);
+  scene.Window->Render();
+  if (pointMapper->GetGenerationCount() != 1)
+  {
+    std::cerr << "Rotating the camera about the data generated new particles.\n";
+    ++failures;
+  }
+  property->GetScalarOpacity()->AddPoint(0.5, 0.2);
+  scene.Window->Render();
+  if (pointMapper->GetGenerationCount() != 2 || cellMapper->GetGenerationCount() != 2)
+  {
+    std::cerr << "A new opacity did not generate new particles.\n";
+    ++failures;
+  }
+  return failures;
+}
+}
+
 int TestPBVRVolumeMapper(int argc, char* argv[])
 {
   vtkSmartPointer<vtkUnstructuredGrid> shell = MakeShell();
@@ -45,49 +106,10 @@ int TestPBVRVolumeMapper(int argc, char* argv[])
   int failures = scene.Render();
   const std::vector<unsigned char> first = Capture(scene.Window);
   failures += scene.CheckCovered(first, 1500);
-  const vtkIdType particles = pointMapper->GetNumberOfParticles();
-  std::cout << "Particles: " << particles << " (perspective, 64 sets), "
-            << cellMapper->GetNumberOfParticles() << " (parallel, 2x2 subpixels, 32 sets); "
-            << pointMapper->GetGPUMemorySize() << " bytes on the GPU; generated in "
-            << pointMapper->GetGenerationTime() << " s\n";
-  if (particles < 64 * 1000 || pointMapper->GetNumberOfParticleSets() != 64 ||
-    pointMapper->GetGPUMemorySize() < 8 * particles || cellMapper->GetNumberOfParticles() <= 0 ||
-    pointMapper->GetGenerationCount() != 1 || cellMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "The particle count, sets, memory or generation count are not as expected.\n";
-    ++failures;
-  }
-  const vtkIdType tetrahedra = pointMapper->GetNumberOfTetrahedra();
-  if (shell->GetMTime() != inputTime || shell->GetNumberOfCells() != inputCells ||
-    tetrahedra < 5 * inputCells || tetrahedra > 6 * inputCells)
-  {
-    std::cerr << "The input was modified, or its hexahedra not split into tetrahedra.\n";
-    ++failures;
-  }
+  failures += CheckParticles(pointMapper, cellMapper, shell, inputTime, inputCells);
 
   const int result = scene.CompareWithBaseline(argc, argv);
 
-  // The same particles again: the same image, no new generation.
-  scene.Window->Render();
-  if (Capture(scene.Window) != first || pointMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "A second render differs from the first or generated new particles.\n";
-    ++failures;
-  }
-  // About the data's centre the nearest point of its bounding sphere stays as near.
-  scene.Left->GetActiveCamera()->Azimuth(40.0);
-  scene.Window->Render();
-  if (pointMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "Rotating the camera about the data generated new particles.\n";
-    ++failures;
-  }
-  property->GetScalarOpacity()->AddPoint(0.5, 0.2);
-  scene.Window->Render();
-  if (pointMapper->GetGenerationCount() != 2 || cellMapper->GetGenerationCount() != 2)
-  {
-    std::cerr << "A new opacity did not generate new particles.\n";
-    ++failures;
-  }
+  failures += CheckRegeneration(scene, first, property, pointMapper, cellMapper);
   return TwoViewports::ExitStatus(result, failures);
 }

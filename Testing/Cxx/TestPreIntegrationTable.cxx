@@ -83,69 +83,72 @@ bool Near(const float* table, const double* expected, double tolerance, const ch
   }
   return true;
 }
+
+// The table's settings: scalar samples at multiples of 1/8, on the control points.
+const double Range[2] = { 0.0, 10.0 };
+constexpr double MaxLength = 3.0;
+constexpr int ScalarResolution = 81;
+constexpr int LengthResolution = 17;
+
+// VTK 9.2's vtkUnstructuredGridLinearRayIntegrator splits segments only at the color
+// function's control points (its loop over the opacity points stops after the first), so the
+// color function here has a point wherever the opacity has one.
+struct TransferFunctions
+{
+  TransferFunctions()
+  {
+    this->Color->AddRGBPoint(0.0, 0.1, 0.2, 0.9);
+    this->Color->AddRGBPoint(2.0, 0.3, 0.1, 0.6);
+    this->Color->AddRGBPoint(3.0, 0.2, 0.9, 0.3);
+    this->Color->AddRGBPoint(5.0, 0.6, 0.85, 0.2);
+    this->Color->AddRGBPoint(5.5, 0.7, 0.8, 0.3);
+    this->Color->AddRGBPoint(7.0, 1.0, 0.8, 0.1);
+    this->Color->AddRGBPoint(10.0, 0.9, 0.1, 0.1);
+    this->Opacity->AddPoint(0.0, 0.0);
+    this->Opacity->AddPoint(2.0, 0.05);
+    this->Opacity->AddPoint(5.0, 0.8);
+    this->Opacity->AddPoint(5.5, 0.1);
+    this->Opacity->AddPoint(10.0, 0.6);
+    this->Property->SetColor(this->Color);
+    this->Property->SetScalarOpacity(this->Opacity);
+    this->Property->SetScalarOpacityUnitDistance(0.7);
+  }
+
+  vtkNew<vtkColorTransferFunction> Color;
+  vtkNew<vtkPiecewiseFunction> Opacity;
+  vtkNew<vtkVolumeProperty> Property;
+};
+
+bool UpdateTable(vtkPreIntegrationTable* table, vtkVolumeProperty* property)
+{
+  return table->Update(property, Range, MaxLength, ScalarResolution, LengthResolution);
 }
 
-int TestPreIntegrationTable(int, char*[])
+const float* Entry(const vtkPreIntegrationTable* table, int i, int j, int k)
 {
-  // VTK 9.2's vtkUnstructuredGridLinearRayIntegrator splits segments only at the color
-  // function's control points (its loop over the opacity points stops after the first), so the
-  // color function here has a point wherever the opacity has one.
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.1, 0.2, 0.9);
-  color->AddRGBPoint(2.0, 0.3, 0.1, 0.6);
-  color->AddRGBPoint(3.0, 0.2, 0.9, 0.3);
-  color->AddRGBPoint(5.0, 0.6, 0.85, 0.2);
-  color->AddRGBPoint(5.5, 0.7, 0.8, 0.3);
-  color->AddRGBPoint(7.0, 1.0, 0.8, 0.1);
-  color->AddRGBPoint(10.0, 0.9, 0.1, 0.1);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(2.0, 0.05);
-  opacity->AddPoint(5.0, 0.8);
-  opacity->AddPoint(5.5, 0.1);
-  opacity->AddPoint(10.0, 0.6);
-  vtkNew<vtkVolumeProperty> property;
-  property->SetColor(color);
-  property->SetScalarOpacity(opacity);
-  property->SetScalarOpacityUnitDistance(0.7);
+  return &table->GetTable()[4 * (i + ScalarResolution * (j + size_t(ScalarResolution) * k))];
+}
 
-  const double range[2] = { 0.0, 10.0 };
-  const double maxLength = 3.0;
-  const int scalarResolution = 81; // scalar samples at multiples of 1/8: on the control points
-  const int lengthResolution = 17;
-  vtkNew<vtkPreIntegrationTable> table;
-  if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution))
-  {
-    std::cerr << "Update failed on a valid property.\n";
-    return EXIT_FAILURE;
-  }
-  const std::vector<float>& values = table->GetTable();
-  auto entry = [&](int i, int j, int k)
-  { return &values[4 * (i + scalarResolution * (j + size_t(scalarResolution) * k))]; };
-  if (values.size() != size_t(4) * scalarResolution * scalarResolution * lengthResolution)
-  {
-    std::cerr << "Table has " << values.size() << " values.\n";
-    return EXIT_FAILURE;
-  }
-
-  // Random entries against both integrals, plus the corners and the diagonal.
+// Random entries against both integrals, plus the corners and the diagonal.
+int CheckAgainstIntegrals(const vtkPreIntegrationTable* table, vtkVolumeProperty* property)
+{
   std::mt19937 random(2009);
-  std::uniform_int_distribution<int> scalarIndex(0, scalarResolution - 1);
-  std::uniform_int_distribution<int> lengthIndex(0, lengthResolution - 1);
+  std::uniform_int_distribution<int> scalarIndex(0, ScalarResolution - 1);
+  std::uniform_int_distribution<int> lengthIndex(0, LengthResolution - 1);
   int failures = 0;
   double worstFine = 0.0, worstVTK = 0.0;
   for (int n = 0; n < 300; ++n)
   {
-    const int i = n < 4 ? (n % 2) * (scalarResolution - 1) : scalarIndex(random);
-    const int j = n < 4 ? (n / 2) * (scalarResolution - 1) : (n % 7 == 0 ? i : scalarIndex(random));
-    const int k = n < 4 ? lengthResolution - 1 : lengthIndex(random);
+    const int i = n < 4 ? (n % 2) * (ScalarResolution - 1) : scalarIndex(random);
+    const int j = n < 4 ? (n / 2) * (ScalarResolution - 1) : (n % 7 == 0 ? i : scalarIndex(random));
+    const int k = n < 4 ? LengthResolution - 1 : lengthIndex(random);
     const double front = table->GetScalar(i);
     const double back = table->GetScalar(j);
     const double length = table->GetLength(k);
     double fine[4], vtk[4];
     FineIntegral(property, front, back, length, fine);
-    VTKLinearIntegral(property, range, front, back, length, vtk);
-    const float* value = entry(i, j, k);
+    VTKLinearIntegral(property, Range, front, back, length, vtk);
+    const float* value = Entry(table, i, j, k);
     for (int c = 0; c < 4; ++c)
     {
       worstFine = std::max(worstFine, std::abs(value[c] - fine[c]));
@@ -158,34 +161,45 @@ int TestPreIntegrationTable(int, char*[])
   }
   std::cout << "Largest difference: " << worstFine << " (fine integral), " << worstVTK
             << " (VTK linear integrator)\n";
+  return failures;
+}
 
-  // Homogeneous segments have a closed form: alpha = 1 - exp(-tau d), color = C alpha.
-  for (int i = 0; i < scalarResolution; i += 5)
+// Homogeneous segments have a closed form: alpha = 1 - exp(-tau d), color = C alpha.
+int CheckHomogeneous(const vtkPreIntegrationTable* table, const TransferFunctions& functions)
+{
+  int failures = 0;
+  for (int i = 0; i < ScalarResolution; i += 5)
   {
-    for (int k = 0; k < lengthResolution; k += 4)
+    for (int k = 0; k < LengthResolution; k += 4)
     {
       const double s = table->GetScalar(i);
-      const double alpha = 1.0 - std::exp(-opacity->GetValue(s) / 0.7 * table->GetLength(k));
+      const double alpha =
+        1.0 - std::exp(-functions.Opacity->GetValue(s) / 0.7 * table->GetLength(k));
       double rgb[3];
-      color->GetColor(s, rgb);
+      functions.Color->GetColor(s, rgb);
       const double exact[4] = { rgb[0] * alpha, rgb[1] * alpha, rgb[2] * alpha, alpha };
-      failures += !Near(entry(i, i, k), exact, 2.0e-6, "closed form", i, i, k);
+      failures += !Near(Entry(table, i, i, k), exact, 2.0e-6, "closed form", i, i, k);
     }
   }
+  return failures;
+}
 
-  // Opacity never decreases with length, and zero length is transparent.
-  for (int i = 0; i < scalarResolution; i += 3)
+// Opacity never decreases with length, and zero length is transparent.
+int CheckOpacityGrowsWithLength(const vtkPreIntegrationTable* table)
+{
+  int failures = 0;
+  for (int i = 0; i < ScalarResolution; i += 3)
   {
-    for (int j = 0; j < scalarResolution; j += 3)
+    for (int j = 0; j < ScalarResolution; j += 3)
     {
-      if (entry(i, j, 0)[3] != 0.0f)
+      if (Entry(table, i, j, 0)[3] != 0.0f)
       {
         ++failures;
         std::cerr << "Zero-length entry (" << i << ", " << j << ") is not transparent.\n";
       }
-      for (int k = 1; k < lengthResolution; ++k)
+      for (int k = 1; k < LengthResolution; ++k)
       {
-        if (entry(i, j, k)[3] < entry(i, j, k - 1)[3])
+        if (Entry(table, i, j, k)[3] < Entry(table, i, j, k - 1)[3])
         {
           ++failures;
           std::cerr << "Opacity falls with length at (" << i << ", " << j << ", " << k << ")\n";
@@ -193,31 +207,60 @@ int TestPreIntegrationTable(int, char*[])
       }
     }
   }
+  return failures;
+}
 
-  // A property touched without a change (VTK creates default functions on first access) is
-  // sampled again but not integrated again; a changed function is.
+// A property touched without a change (VTK creates default functions on first access) is
+// sampled again but not integrated again; a changed function is.
+int CheckCaching(vtkPreIntegrationTable* table, TransferFunctions& functions)
+{
+  int failures = 0;
   const int integrations = table->GetIntegrationCount();
   const vtkMTimeType built = table->GetBuildTime();
-  property->Modified();
-  color->Modified();
-  if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||
-    table->GetIntegrationCount() != integrations || table->GetBuildTime() != built)
+  functions.Property->Modified();
+  functions.Color->Modified();
+  if (!UpdateTable(table, functions.Property) || table->GetIntegrationCount() != integrations ||
+    table->GetBuildTime() != built)
   {
     ++failures;
     std::cerr << "An unchanged property was integrated again.\n";
   }
-  opacity->AddPoint(8.0, 0.3);
-  if (!table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||
-    table->GetIntegrationCount() != integrations + 1 || table->GetBuildTime() == built)
+  functions.Opacity->AddPoint(8.0, 0.3);
+  if (!UpdateTable(table, functions.Property) || table->GetIntegrationCount() != integrations + 1 ||
+    table->GetBuildTime() == built)
   {
     ++failures;
     std::cerr << "A changed opacity function did not rebuild the table.\n";
   }
-  opacity->RemovePoint(8.0);
+  functions.Opacity->RemovePoint(8.0);
+  return failures;
+}
+}
+
+int TestPreIntegrationTable(int, char*[])
+{
+  TransferFunctions functions;
+  vtkNew<vtkPreIntegrationTable> table;
+  if (!UpdateTable(table, functions.Property))
+  {
+    std::cerr << "Update failed on a valid property.\n";
+    return EXIT_FAILURE;
+  }
+  const std::vector<float>& values = table->GetTable();
+  if (values.size() != size_t(4) * ScalarResolution * ScalarResolution * LengthResolution)
+  {
+    std::cerr << "Table has " << values.size() << " values.\n";
+    return EXIT_FAILURE;
+  }
+
+  int failures = CheckAgainstIntegrals(table, functions.Property);
+  failures += CheckHomogeneous(table, functions);
+  failures += CheckOpacityGrowsWithLength(table);
+  failures += CheckCaching(table, functions);
 
   // A unit distance that is not positive is refused with a reason that names it.
-  property->SetScalarOpacityUnitDistance(0.0);
-  if (table->Update(property, range, maxLength, scalarResolution, lengthResolution) ||
+  functions.Property->SetScalarOpacityUnitDistance(0.0);
+  if (UpdateTable(table, functions.Property) ||
     table->GetLastError().find("ScalarOpacityUnitDistance") == std::string::npos)
   {
     ++failures;

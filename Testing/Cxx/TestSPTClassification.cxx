@@ -233,6 +233,61 @@ std::vector<Tetrahedron> MakeTetrahedra()
   return tetrahedra;
 }
 
+// A tetrahedron's projected outline and the triangles emitted for it, in NDC.
+struct ScreenGeometry
+{
+  std::vector<glm::vec2> Hull;
+  float HullArea = 0.0f;
+  std::vector<std::array<glm::vec2, 3>> Triangles;
+};
+
+// The triangles cover the outline's area, with as many non-empty as the class asks.
+int CheckArea(const Tetrahedron& t, const ScreenGeometry& screen)
+{
+  int failures = 0;
+  float area = 0.0f;
+  int nonEmpty = 0;
+  for (const std::array<glm::vec2, 3>& s : screen.Triangles)
+  {
+    const float a = std::abs(0.5f * Cross2(s[0], s[1], s[2]));
+    area += a;
+    nonEmpty += a > 1.0e-5f * screen.HullArea;
+  }
+  if (std::abs(area - screen.HullArea) > 1.0e-4f * screen.HullArea + 1.0e-7f)
+  {
+    std::cerr << t.Name << ": triangles cover " << area << ", the outline " << screen.HullArea
+              << "\n";
+    ++failures;
+  }
+  if (t.ExpectedTriangles && nonEmpty != t.ExpectedTriangles)
+  {
+    std::cerr << t.Name << ": " << nonEmpty << " non-empty triangles, expected "
+              << t.ExpectedTriangles << "\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// Weights of q in every non-empty triangle; true if q is too close to any edge to call.
+bool Weights(const ScreenGeometry& screen, glm::vec2 q, std::vector<glm::vec3>& weights)
+{
+  weights.assign(screen.Triangles.size(), glm::vec3(-1.0f));
+  bool ambiguous = false;
+  for (size_t i = 0; i < screen.Triangles.size(); ++i)
+  {
+    const std::array<glm::vec2, 3>& s = screen.Triangles[i];
+    const float whole = Cross2(s[0], s[1], s[2]);
+    if (std::abs(whole) > 1.0e-5f * screen.HullArea)
+    {
+      weights[i] =
+        glm::vec3(Cross2(q, s[1], s[2]), Cross2(s[0], q, s[2]), Cross2(s[0], s[1], q)) / whole;
+      ambiguous = ambiguous ||
+        std::abs(std::min(weights[i].x, std::min(weights[i].y, weights[i].z))) < 1.0e-4f;
+    }
+  }
+  return ambiguous;
+}
+
 class Checker
 {
 public:
@@ -241,12 +296,6 @@ public:
   {
     this->Projection = parallel ? glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 1.0f, 20.0f)
                                 : glm::perspective(glm::radians(40.0f), 1.0f, 1.0f, 20.0f);
-  }
-
-  glm::vec2 Project(glm::vec3 p) const
-  {
-    const glm::vec4 clip = this->Projection * glm::vec4(p, 1.0f);
-    return glm::vec2(clip) / clip.w;
   }
 
   // The view ray through an NDC point.
@@ -264,52 +313,50 @@ public:
 
   bool Parallel;
   glm::mat4 Projection;
+
+private:
+  ScreenGeometry Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const;
+  int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
+    const ScreenGeometry& screen, glm::vec2 q, float scale) const;
+  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec3 w, glm::vec2 q) const;
+  const char* ProjectionName() const { return this->Parallel ? " (parallel)" : " (perspective)"; }
 };
+
+ScreenGeometry Checker::Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const
+{
+  ScreenGeometry screen;
+  std::array<glm::vec2, 4> projected;
+  for (int v = 0; v < 4; ++v)
+  {
+    const glm::vec4 clip = this->Projection * glm::vec4(t.Points[v], 1.0f);
+    projected[v] = glm::vec2(clip) / clip.w;
+  }
+  screen.Hull = Hull(projected);
+  for (size_t i = 1; i + 1 < screen.Hull.size(); ++i)
+  {
+    screen.HullArea += 0.5f * Cross2(screen.Hull[0], screen.Hull[i], screen.Hull[i + 1]);
+  }
+  screen.Triangles.resize(vertices.size() / 3);
+  for (size_t i = 0; i < screen.Triangles.size(); ++i)
+  {
+    for (int v = 0; v < 3; ++v)
+    {
+      screen.Triangles[i][v] =
+        glm::vec2(vertices[3 * i + v].Position) / vertices[3 * i + v].Position.w;
+    }
+  }
+  return screen;
+}
 
 int Checker::Check(
   const Tetrahedron& t, const std::vector<Captured>& vertices, std::mt19937& random) const
 {
-  int failures = 0;
-  std::array<glm::vec2, 4> projected;
-  for (int v = 0; v < 4; ++v)
-  {
-    projected[v] = this->Project(t.Points[v]);
-  }
-  const std::vector<glm::vec2> hull = Hull(projected);
-  float hullArea = 0.0f;
-  for (size_t i = 1; i + 1 < hull.size(); ++i)
-  {
-    hullArea += 0.5f * Cross2(hull[0], hull[i], hull[i + 1]);
-  }
-  const size_t triangleCount = vertices.size() / 3;
-  std::vector<std::array<glm::vec2, 3>> screen(triangleCount);
-  float area = 0.0f;
-  int nonEmpty = 0;
-  for (size_t i = 0; i < triangleCount; ++i)
-  {
-    for (int v = 0; v < 3; ++v)
-    {
-      screen[i][v] = glm::vec2(vertices[3 * i + v].Position) / vertices[3 * i + v].Position.w;
-    }
-    const float a = std::abs(0.5f * Cross2(screen[i][0], screen[i][1], screen[i][2]));
-    area += a;
-    nonEmpty += a > 1.0e-5f * hullArea;
-  }
-  if (std::abs(area - hullArea) > 1.0e-4f * hullArea + 1.0e-7f)
-  {
-    std::cerr << t.Name << ": triangles cover " << area << ", the outline " << hullArea << "\n";
-    ++failures;
-  }
-  if (t.ExpectedTriangles && nonEmpty != t.ExpectedTriangles)
-  {
-    std::cerr << t.Name << ": " << nonEmpty << " non-empty triangles, expected "
-              << t.ExpectedTriangles << "\n";
-    ++failures;
-  }
+  const ScreenGeometry screen = this->Screen(t, vertices);
+  int failures = CheckArea(t, screen);
 
   // Sample the outline's bounding box: coverage and the interpolated segment.
   glm::vec2 lo(1.0e30f), hi(-1.0e30f);
-  for (const glm::vec2& p : hull)
+  for (const glm::vec2& p : screen.Hull)
   {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
@@ -319,82 +366,174 @@ int Checker::Check(
   for (int n = 0; n < 60; ++n)
   {
     const glm::vec2 q(ux(random), uy(random));
-    const float margin = InsideMargin(hull, q);
-    if (std::abs(margin) < 1.0e-3f * scale)
-    {
-      continue; // too close to the outline to call
-    }
-    // Barycentric weights of q in every non-empty triangle; a point too close to any edge,
-    // inner ones included, cannot be called.
-    std::vector<glm::vec3> weights(triangleCount, glm::vec3(-1.0f));
-    bool ambiguous = false;
-    for (size_t i = 0; i < triangleCount; ++i)
-    {
-      const std::array<glm::vec2, 3>& s = screen[i];
-      const float whole = Cross2(s[0], s[1], s[2]);
-      if (std::abs(whole) > 1.0e-5f * hullArea)
-      {
-        weights[i] =
-          glm::vec3(Cross2(q, s[1], s[2]), Cross2(s[0], q, s[2]), Cross2(s[0], s[1], q)) / whole;
-        ambiguous = ambiguous ||
-          std::abs(std::min(weights[i].x, std::min(weights[i].y, weights[i].z))) < 1.0e-4f;
-      }
-    }
-    if (ambiguous)
+    failures += this->CheckPoint(t, vertices, screen, q, scale);
+  }
+  return failures;
+}
+
+// A point inside the outline lies in exactly one triangle, a point outside in none.
+int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
+  const ScreenGeometry& screen, glm::vec2 q, float scale) const
+{
+  const float margin = InsideMargin(screen.Hull, q);
+  if (std::abs(margin) < 1.0e-3f * scale)
+  {
+    return 0; // too close to the outline to call
+  }
+  std::vector<glm::vec3> weights;
+  if (Weights(screen, q, weights))
+  {
+    return 0;
+  }
+  int failures = 0;
+  int containing = 0;
+  for (size_t i = 0; i < weights.size(); ++i)
+  {
+    const glm::vec3 w = weights[i];
+    if (std::min(w.x, std::min(w.y, w.z)) < 0.0f)
     {
       continue;
     }
-    int containing = 0;
-    for (size_t i = 0; i < triangleCount; ++i)
+    ++containing;
+    failures += this->CheckSegment(t, &vertices[3 * i], w, q);
+  }
+  const int expected = margin > 0.0f ? 1 : 0;
+  if (containing != expected)
+  {
+    std::cerr << t.Name << this->ProjectionName() << ": point (" << q.x << ", " << q.y << ") "
+              << (expected ? "inside" : "outside") << " the outline lies in " << containing
+              << " triangles\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// What the fragment shader reconstructs at q is the exact entry and exit of the view ray.
+int Checker::CheckSegment(
+  const Tetrahedron& t, const Captured* triangle, glm::vec3 w, glm::vec2 q) const
+{
+  glm::vec4 front(0.0f), back(0.0f);
+  glm::vec2 scalars(0.0f);
+  for (int v = 0; v < 3; ++v)
+  {
+    front += w[v] * triangle[v].FrontOverW;
+    back += w[v] * triangle[v].BackOverW;
+    scalars += w[v] * triangle[v].ScalarsOverW;
+  }
+  const glm::vec3 frontPoint = glm::vec3(front) / front.w;
+  const glm::vec3 backPoint = glm::vec3(back) / back.w;
+  glm::vec3 origin, direction, exactFront, exactBack;
+  float exactFrontScalar, exactBackScalar;
+  this->Ray(q, origin, direction);
+  if (!ExactSegment(t, origin, direction, exactFront, exactBack, exactFrontScalar, exactBackScalar))
+  {
+    return 0; // grazing ray
+  }
+  const float tolerance = 2.0e-3f;
+  const float thickness = glm::distance(frontPoint, backPoint);
+  const float exactThickness = glm::distance(exactFront, exactBack);
+  if (glm::distance(frontPoint, exactFront) > tolerance ||
+    glm::distance(backPoint, exactBack) > tolerance ||
+    std::abs(thickness - exactThickness) > tolerance ||
+    std::abs(scalars.x / front.w - exactFrontScalar) > tolerance ||
+    std::abs(scalars.y / back.w - exactBackScalar) > tolerance)
+  {
+    std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
+              << "): thickness " << thickness << " vs exact " << exactThickness << ", scalars "
+              << scalars.x / front.w << " " << scalars.y / back.w << " vs exact "
+              << exactFrontScalar << " " << exactBackScalar << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+// The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
+GLuint LinkProgram(GLuint vs, GLuint gs)
+{
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, gs);
+  const char* varyings[] = { "gl_Position", "frontVCOverW", "backVCOverW", "scalarsOverW" };
+  glTransformFeedbackVaryings(program, 4, varyings, GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(program);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (!linked)
+  {
+    char log[4096];
+    glGetProgramInfoLog(program, sizeof(log), nullptr, log);
+    std::cerr << "Link failed:\n" << log << "\n";
+    return 0;
+  }
+  return program;
+}
+
+// Four vertices per tetrahedron in, up to four triangles each out.
+void UploadTetrahedra(
+  GLuint program, const std::vector<Tetrahedron>& tetrahedra, GLuint vao, const GLuint buffers[3])
+{
+  std::vector<float> points, scalars;
+  for (const Tetrahedron& t : tetrahedra)
+  {
+    for (int v = 0; v < 4; ++v)
     {
-      const glm::vec3 w = weights[i];
-      if (std::min(w.x, std::min(w.y, w.z)) < 0.0f)
-      {
-        continue;
-      }
-      ++containing;
-      // What the fragment shader reconstructs from the noperspective outputs.
-      glm::vec4 front(0.0f), back(0.0f);
-      glm::vec2 scalars(0.0f);
-      for (int v = 0; v < 3; ++v)
-      {
-        front += w[v] * vertices[3 * i + v].FrontOverW;
-        back += w[v] * vertices[3 * i + v].BackOverW;
-        scalars += w[v] * vertices[3 * i + v].ScalarsOverW;
-      }
-      const glm::vec3 frontPoint = glm::vec3(front) / front.w;
-      const glm::vec3 backPoint = glm::vec3(back) / back.w;
-      glm::vec3 origin, direction, exactFront, exactBack;
-      float exactFrontScalar, exactBackScalar;
-      this->Ray(q, origin, direction);
-      if (!ExactSegment(
-            t, origin, direction, exactFront, exactBack, exactFrontScalar, exactBackScalar))
-      {
-        continue; // grazing ray
-      }
-      const float tolerance = 2.0e-3f;
-      const float thickness = glm::distance(frontPoint, backPoint);
-      const float exactThickness = glm::distance(exactFront, exactBack);
-      if (glm::distance(frontPoint, exactFront) > tolerance ||
-        glm::distance(backPoint, exactBack) > tolerance ||
-        std::abs(thickness - exactThickness) > tolerance ||
-        std::abs(scalars.x / front.w - exactFrontScalar) > tolerance ||
-        std::abs(scalars.y / back.w - exactBackScalar) > tolerance)
-      {
-        std::cerr << t.Name << (this->Parallel ? " (parallel)" : " (perspective)") << " at (" << q.x
-                  << ", " << q.y << "): thickness " << thickness << " vs exact " << exactThickness
-                  << ", scalars " << scalars.x / front.w << " " << scalars.y / back.w
-                  << " vs exact " << exactFrontScalar << " " << exactBackScalar << "\n";
-        ++failures;
-      }
+      points.insert(points.end(), { t.Points[v].x, t.Points[v].y, t.Points[v].z });
+      scalars.push_back(t.Scalars[v]);
     }
-    const int expected = margin > 0.0f ? 1 : 0;
-    if (containing != expected)
+  }
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, points.size() * sizeof(float), points.data(), GL_STATIC_DRAW);
+  GLint location = glGetAttribLocation(program, "vertexMC");
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
+  glBufferData(GL_ARRAY_BUFFER, scalars.size() * sizeof(float), scalars.data(), GL_STATIC_DRAW);
+  location = glGetAttribLocation(program, "scalarTF");
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  const size_t capacity = tetrahedra.size() * 4 * 3; // at most four triangles each
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
+}
+
+// The n-th tetrahedron drawn alone, so that its triangles are known to be its own.
+std::vector<Captured> CaptureTriangles(GLuint query, size_t n)
+{
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+  glBeginTransformFeedback(GL_TRIANGLES);
+  glDrawArrays(GL_LINES_ADJACENCY, static_cast<GLint>(4 * n), 4);
+  glEndTransformFeedback();
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  glDisable(GL_RASTERIZER_DISCARD);
+  GLuint written = 0;
+  glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
+  std::vector<Captured> captured(3 * written);
+  glGetBufferSubData(
+    GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.size() * sizeof(Captured), captured.data());
+  return captured;
+}
+
+// Every tetrahedron in one projection, until the failures (counted on from those given) pass 20.
+int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>& tetrahedra,
+  bool parallel, std::mt19937& random, int failures)
+{
+  Checker checker(parallel);
+  glUseProgram(program);
+  const glm::mat4 identity(1.0f);
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
+  glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
+  for (size_t n = 0; n < tetrahedra.size(); ++n)
+  {
+    failures += checker.Check(tetrahedra[n], CaptureTriangles(query, n), random);
+    if (failures > 20)
     {
-      std::cerr << t.Name << (this->Parallel ? " (parallel)" : " (perspective)") << ": point ("
-                << q.x << ", " << q.y << ") " << (expected ? "inside" : "outside")
-                << " the outline lies in " << containing << " triangles\n";
-      ++failures;
+      break;
     }
   }
   return failures;
@@ -419,89 +558,24 @@ int TestSPTClassification(int, char*[])
 
   GLuint vs = Compile(GL_VERTEX_SHADER, ReadShader("vtkSPTTetrahedraVS.glsl"));
   GLuint gs = Compile(GL_GEOMETRY_SHADER, ReadShader("vtkSPTTetrahedraGS.glsl"));
-  if (!vs || !gs)
+  const GLuint program = vs && gs ? LinkProgram(vs, gs) : 0;
+  if (!program)
   {
-    return EXIT_FAILURE;
-  }
-  GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, gs);
-  const char* varyings[] = { "gl_Position", "frontVCOverW", "backVCOverW", "scalarsOverW" };
-  glTransformFeedbackVaryings(program, 4, varyings, GL_INTERLEAVED_ATTRIBS);
-  glLinkProgram(program);
-  GLint linked = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  if (!linked)
-  {
-    char log[4096];
-    glGetProgramInfoLog(program, sizeof(log), nullptr, log);
-    std::cerr << "Link failed:\n" << log << "\n";
     return EXIT_FAILURE;
   }
 
   const std::vector<Tetrahedron> tetrahedra = MakeTetrahedra();
-  std::vector<float> points, scalars;
-  for (const Tetrahedron& t : tetrahedra)
-  {
-    for (int v = 0; v < 4; ++v)
-    {
-      points.insert(points.end(), { t.Points[v].x, t.Points[v].y, t.Points[v].z });
-      scalars.push_back(t.Scalars[v]);
-    }
-  }
   GLuint vao, buffers[3], query;
   glGenVertexArrays(1, &vao);
-  glBindVertexArray(vao);
   glGenBuffers(3, buffers);
   glGenQueries(1, &query);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, points.size() * sizeof(float), points.data(), GL_STATIC_DRAW);
-  GLint location = glGetAttribLocation(program, "vertexMC");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ARRAY_BUFFER, scalars.size() * sizeof(float), scalars.data(), GL_STATIC_DRAW);
-  location = glGetAttribLocation(program, "scalarTF");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-  const size_t capacity = tetrahedra.size() * 4 * 3; // at most four triangles each
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
-  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
+  UploadTetrahedra(program, tetrahedra, vao, buffers);
 
   int failures = 0;
   std::mt19937 random(11);
   for (bool parallel : { false, true })
   {
-    Checker checker(parallel);
-    glUseProgram(program);
-    const glm::mat4 identity(1.0f);
-    glUniformMatrix4fv(
-      glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
-    glUniformMatrix4fv(
-      glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
-    glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
-    // One draw per tetrahedron, so that its triangles are known to be its own.
-    for (size_t n = 0; n < tetrahedra.size(); ++n)
-    {
-      glEnable(GL_RASTERIZER_DISCARD);
-      glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
-      glBeginTransformFeedback(GL_TRIANGLES);
-      glDrawArrays(GL_LINES_ADJACENCY, static_cast<GLint>(4 * n), 4);
-      glEndTransformFeedback();
-      glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-      glDisable(GL_RASTERIZER_DISCARD);
-      GLuint written = 0;
-      glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
-      std::vector<Captured> captured(3 * written);
-      glGetBufferSubData(
-        GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.size() * sizeof(Captured), captured.data());
-      failures += checker.Check(tetrahedra[n], captured, random);
-      if (failures > 20)
-      {
-        break;
-      }
-    }
+    failures = CheckProjection(program, query, tetrahedra, parallel, random, failures);
   }
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
