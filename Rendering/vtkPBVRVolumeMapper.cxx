@@ -19,9 +19,9 @@
 #include "vtkBatchedVertexArray.h"
 #include "vtkEnsembleBuffer.h"
 #include "vtkPBVRParticleGenerator.h"
-#include "vtkPreIntegrationTable.h"
 #include "vtkSavedGLState.h"
 #include "vtkTetrahedralMesh.h"
+#include "vtkTransferFunctionSamples.h"
 #include "vtkVolumeViewMatrices.h"
 
 #include "vtkHashRandom.h"
@@ -108,14 +108,9 @@ public:
   vtkNew<vtkPBVRParticleGenerator> Generator;
   vtkVolumeViewMatrices Transforms;
 
-  // The transfer functions, sampled over the mesh's scalar range.
-  std::vector<double> Color;       // RGB
-  std::vector<double> Attenuation; // per data unit
-  double SampledRange[2] = { 0.0, 0.0 };
-  vtkVolumeProperty* SampledProperty = nullptr; // identity only, never dereferenced
-  vtkTimeStamp SampleTime;
-  vtkTimeStamp OpacityChangeTime;
-  vtkTimeStamp ColorChangeTime;
+  // The transfer functions, sampled over the mesh's scalar range. Only a change of the opacity
+  // calls for new particles; colors are looked up when drawn.
+  vtkNew<vtkTransferFunctionSamples> Samples;
   vtkTimeStamp ColorUploadTime;
   vtkSmartPointer<vtkTextureObject> ColorTexture;
 
@@ -133,7 +128,6 @@ public:
   vtkBatchedVertexArray VertexArray;
   size_t UploadedBytes = 0;
 
-  bool SampleTransferFunctions(vtkVolumeProperty* property, std::string& error);
   vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
   void UpdateMeshRadius();
   double SmallestFootprint(int passWidth, int passHeight) const;
@@ -145,44 +139,10 @@ public:
   void DrawSet(vtkShaderProgram* program, int set);
 };
 
-bool vtkPBVRVolumeMapper::vtkInternals::SampleTransferFunctions(
-  vtkVolumeProperty* property, std::string& error)
-{
-  const double* range = this->Mesh->GetScalarRange();
-  if (property == this->SampledProperty && this->SampleTime > property->GetMTime() &&
-    range[0] == this->SampledRange[0] && range[1] == this->SampledRange[1])
-  {
-    return true;
-  }
-  std::vector<double> color, attenuation;
-  if (!vtkPreIntegrationTable::SampleTransferFunctions(
-        property, range, TransferFunctionSamples, color, attenuation, error))
-  {
-    this->SampledProperty = nullptr;
-    return false;
-  }
-  // Only a change of the opacity calls for new particles; colors are looked up when drawn.
-  if (attenuation != this->Attenuation)
-  {
-    this->Attenuation.swap(attenuation);
-    this->OpacityChangeTime.Modified();
-  }
-  if (color != this->Color)
-  {
-    this->Color.swap(color);
-    this->ColorChangeTime.Modified();
-  }
-  this->SampledProperty = property;
-  this->SampledRange[0] = range[0];
-  this->SampledRange[1] = range[1];
-  this->SampleTime.Modified();
-  return true;
-}
-
 vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRenderWindow* renWin)
 {
   if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
-    this->ColorUploadTime > this->ColorChangeTime)
+    this->ColorUploadTime > this->Samples->GetColorTime())
   {
     return this->ColorTexture;
   }
@@ -195,7 +155,7 @@ vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRe
   {
     for (int c = 0; c < 3; ++c)
     {
-      rgba[4 * i + c] = static_cast<float>(this->Color[3 * i + c]);
+      rgba[4 * i + c] = static_cast<float>(this->Samples->GetColor()[3 * i + c]);
     }
   }
   vtkTextureObject* texture = this->ColorTexture;
@@ -274,7 +234,7 @@ bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
   settings.Seed = wanted.Seed;
   settings.SamplingMode = wanted.SamplingMode;
   settings.MaximumParticles = wanted.MaximumParticles;
-  std::vector<double> attenuation(this->Attenuation);
+  std::vector<double> attenuation(this->Samples->GetAttenuation());
   for (double& tau : attenuation)
   {
     tau *= this->Mesh->GetScale(); // per normalized model unit
@@ -425,7 +385,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
 
   ParticleKey wanted;
   wanted.MeshBuild = internals.Mesh->GetBuildTime();
-  wanted.OpacityChange = internals.OpacityChangeTime.GetMTime();
+  wanted.OpacityChange = internals.Samples->GetAttenuationTime();
   wanted.Seed = this->Seed;
   wanted.SamplingMode = this->SamplingMode;
   wanted.MaximumParticles = ParticlesInMemory(this->MaximumParticleMemory);
@@ -480,11 +440,10 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     internals.ReleaseParticles();
     return;
   }
-  vtkVolumeProperty* property = vol->GetProperty();
-  std::string error;
-  if (!internals.SampleTransferFunctions(property, error))
+  if (!internals.Samples->Update(
+        vol->GetProperty(), this->GetMesh()->GetScalarRange(), TransferFunctionSamples))
   {
-    vtkErrorMacro(<< error);
+    vtkErrorMacro(<< internals.Samples->GetLastError());
     return;
   }
 

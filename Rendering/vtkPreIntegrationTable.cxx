@@ -1,9 +1,7 @@
 #include "vtkPreIntegrationTable.h"
 
-#include "vtkColorTransferFunction.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
@@ -42,50 +40,6 @@ double vtkPreIntegrationTable::GetLength(int k) const
   return this->MaxLength * t * t;
 }
 
-bool vtkPreIntegrationTable::SampleTransferFunctions(vtkVolumeProperty* property,
-  const double scalarRange[2], int samples, std::vector<double>& color,
-  std::vector<double>& attenuation, std::string& error)
-{
-  const double unitDistance = property->GetScalarOpacityUnitDistance(0);
-  if (!(unitDistance > 0.0) || !std::isfinite(unitDistance))
-  {
-    std::ostringstream reason;
-    reason << "ScalarOpacityUnitDistance of the volume property is " << unitDistance
-           << "; it must be a positive, finite distance.";
-    error = reason.str();
-    return false;
-  }
-  const int n = samples;
-  std::vector<double> opacity(n);
-  property->GetScalarOpacity(0)->GetTable(scalarRange[0], scalarRange[1], n, opacity.data());
-  color.assign(3 * n, 0.0);
-  if (property->GetColorChannels(0) == 1)
-  {
-    std::vector<double> gray(n);
-    property->GetGrayTransferFunction(0)->GetTable(scalarRange[0], scalarRange[1], n, gray.data());
-    for (int i = 0; i < n; ++i)
-    {
-      std::fill_n(&color[3 * i], 3, gray[i]);
-    }
-  }
-  else
-  {
-    property->GetRGBTransferFunction(0)->GetTable(scalarRange[0], scalarRange[1], n, color.data());
-  }
-  attenuation.resize(n);
-  for (int i = 0; i < n; ++i)
-  {
-    const double o = std::isfinite(opacity[i]) ? std::max(opacity[i], 0.0) : 0.0;
-    attenuation[i] = o / unitDistance;
-    for (int c = 0; c < 3; ++c)
-    {
-      double& value = color[3 * i + c];
-      value = std::isfinite(value) ? std::min(std::max(value, 0.0), 1.0) : 0.0;
-    }
-  }
-  return true;
-}
-
 bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double scalarRange[2],
   double maxLength, int scalarResolution, int lengthResolution)
 {
@@ -106,17 +60,17 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   // the table is integrated again only when the samples or the axes differ.
   const int resolution = std::max(2, scalarResolution);
   const int samples = TransferFunctionSamplesPerCell * (resolution - 1) + 1;
-  std::vector<double> color;
-  std::vector<double> attenuation;
   this->LastProperty = nullptr;
-  if (!vtkPreIntegrationTable::SampleTransferFunctions(
-        property, scalarRange, samples, color, attenuation, this->LastError))
+  if (!this->Samples->Update(property, scalarRange, samples))
   {
+    this->LastError = this->Samples->GetLastError();
     return false;
   }
+  const vtkMTimeType sampled =
+    std::max(this->Samples->GetColorTime(), this->Samples->GetAttenuationTime());
   const bool sameAxes =
     this->HasAxes(scalarRange, maxLength, resolution, std::max(2, lengthResolution));
-  if (sameAxes && !this->Table.empty() && color == this->Color && attenuation == this->Attenuation)
+  if (sameAxes && !this->Table.empty() && sampled <= this->IntegratedSamples)
   {
     this->LastProperty = property;
     this->CheckTime.Modified();
@@ -127,9 +81,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   this->MaxLength = maxLength;
   this->ScalarResolution = resolution;
   this->LengthResolution = std::max(2, lengthResolution);
-  this->TransferFunctionSamples = samples;
-  this->Color.swap(color);
-  this->Attenuation.swap(attenuation);
+  this->IntegratedSamples = sampled;
 
   ++this->IntegrationCount;
   std::vector<float> table = this->IntegrateTable();
@@ -179,15 +131,17 @@ void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out
   const double fineFront = double(front) * TransferFunctionSamplesPerCell;
   const double fineBack = double(back) * TransferFunctionSamplesPerCell;
   std::vector<double> tau(steps), color(3 * steps);
+  const std::vector<double>& attenuation = this->Samples->GetAttenuation();
+  const std::vector<double>& colors = this->Samples->GetColor();
   for (int m = 0; m < steps; ++m)
   {
     const double x = fineFront + (fineBack - fineFront) * (m + 0.5) / steps;
-    const int i0 = std::min(int(x), this->TransferFunctionSamples - 2);
+    const int i0 = std::min(int(x), this->Samples->GetNumberOfSamples() - 2);
     const double w = x - i0;
-    tau[m] = (1.0 - w) * this->Attenuation[i0] + w * this->Attenuation[i0 + 1];
+    tau[m] = (1.0 - w) * attenuation[i0] + w * attenuation[i0 + 1];
     for (int c = 0; c < 3; ++c)
     {
-      color[3 * m + c] = (1.0 - w) * this->Color[3 * i0 + c] + w * this->Color[3 * i0 + 3 + c];
+      color[3 * m + c] = (1.0 - w) * colors[3 * i0 + c] + w * colors[3 * i0 + 3 + c];
     }
   }
 

@@ -20,9 +20,11 @@
 #define vtkPreIntegrationTable_h
 
 #include "SPTRenderingModule.h" // For export macro
+#include "vtkNew.h"             // For the samples
 #include "vtkObject.h"
-#include "vtkSmartPointer.h" // For the texture
-#include "vtkTimeStamp.h"    // For the build time
+#include "vtkSmartPointer.h"            // For the texture
+#include "vtkTimeStamp.h"               // For the build time
+#include "vtkTransferFunctionSamples.h" // For the samples
 
 #include <string> // For the error
 #include <vector> // For the table
@@ -50,16 +52,6 @@ public:
   bool Update(vtkVolumeProperty* property, const double scalarRange[2], double maxLength,
     int scalarResolution, int lengthResolution);
   const std::string& GetLastError() const { return this->LastError; }
-
-  /**
-   * The optical model in samples: the first component's color (RGB, clamped to [0, 1]) and
-   * attenuation (opacity / unit distance, per data unit) at `samples` evenly spaced scalars
-   * from scalarRange[0] to scalarRange[1]. Every mapper of the module samples the transfer
-   * functions here, so that all of them render the same model. Returns false, with the reason
-   * in `error`, when the unit distance is not a positive, finite distance.
-   */
-  static bool SampleTransferFunctions(vtkVolumeProperty* property, const double scalarRange[2],
-    int samples, std::vector<double>& color, std::vector<double>& attenuation, std::string& error);
 
   /**
    * When the contents of the table last changed.
@@ -130,10 +122,10 @@ private:
   double ScalarRange[2] = { 0.0, 0.0 };
   double MaxLength = 0.0;
 
-  // Color and attenuation (opacity / unit distance) sampled finely over the scalar range.
-  int TransferFunctionSamples = 0;
-  std::vector<double> Color;       // RGB
-  std::vector<double> Attenuation; // per world unit
+  // Color and attenuation (opacity / unit distance) sampled finely over the scalar range, and
+  // when those the table holds changed last.
+  vtkNew<vtkTransferFunctionSamples> Samples;
+  vtkMTimeType IntegratedSamples = 0;
 
   std::vector<float> Table;
   std::string LastError;
