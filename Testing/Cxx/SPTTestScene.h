@@ -9,6 +9,7 @@
 #ifndef SPTTestScene_h
 #define SPTTestScene_h
 
+#include "vtkAbstractVolumeMapper.h"
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
@@ -89,6 +90,29 @@ inline vtkSmartPointer<vtkUnstructuredGrid> MakeShell()
   shell->GetPointData()->ShallowCopy(grid->GetPointData());
   shell->GetCellData()->ShallowCopy(grid->GetCellData());
   return shell;
+}
+
+// A volume of the mapper with the property. A scaleY other than 0 transforms it as the right
+// viewport shows it: rotated by 30 degrees about z and scaled by (1, scaleY, 1.3).
+inline vtkSmartPointer<vtkVolume> MakeVolume(
+  vtkAbstractVolumeMapper* mapper, vtkVolumeProperty* property, double scaleY = 0.0)
+{
+  auto volume = vtkSmartPointer<vtkVolume>::New();
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  if (scaleY != 0.0)
+  {
+    volume->RotateZ(30.0);
+    volume->SetScale(1.0, scaleY, 1.3);
+  }
+  return volume;
+}
+
+// The mapper renders the shell's cell scalar.
+inline void SelectCellField(vtkAbstractVolumeMapper* mapper)
+{
+  mapper->SetScalarModeToUseCellFieldData();
+  mapper->SelectScalarArray("cellField");
 }
 
 inline vtkSmartPointer<vtkVolumeProperty> MakeProperty()

@@ -23,18 +23,12 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
   vtkNew<vtkHAVSVolumeMapper> leftMapper;
   leftMapper->SetInputData(shell);
   leftMapper->SetKBufferSize(6);
-  vtkNew<vtkVolume> leftVolume;
-  leftVolume->SetMapper(leftMapper);
-  leftVolume->SetProperty(property);
+  vtkSmartPointer<vtkVolume> leftVolume = MakeVolume(leftMapper, property);
 
   vtkNew<vtkHAVSVolumeMapper> rightMapper;
   rightMapper->SetInputData(shell);
   rightMapper->SetKBufferSize(2);
-  vtkNew<vtkVolume> rightVolume;
-  rightVolume->SetMapper(rightMapper);
-  rightVolume->SetProperty(property);
-  rightVolume->RotateZ(30.0);
-  rightVolume->SetScale(1.0, -0.7, 1.3);
+  vtkSmartPointer<vtkVolume> rightVolume = MakeVolume(rightMapper, property, -0.7);
 
   TwoViewports scene(400, 200, leftVolume, rightVolume);
   int failures = scene.Render();

@@ -94,16 +94,25 @@ std::vector<Particle> Decode(const vtkPBVRParticleGenerator* generator)
 constexpr double Volume = 1.0 / 6.0;
 constexpr double Footprint = 1.0e-3;
 
+// Generation settings with the tests' footprint: `sets` sets, `seed`, at most `maximum`
+// particles.
+vtkPBVRParticleGenerator::Settings MakeSettings(
+  int sets, unsigned int seed, size_t maximum = 10000000)
+{
+  vtkPBVRParticleGenerator::Settings settings;
+  settings.Footprint = Footprint;
+  settings.Sets = sets;
+  settings.Seed = seed;
+  settings.MaximumParticles = maximum;
+  return settings;
+}
+
 void TestConstantDensity(vtkTetrahedralMesh* mesh)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = Footprint;
-  settings.Sets = 1000;
-  settings.Seed = 7;
-  settings.MaximumParticles = 10000000;
+  vtkPBVRParticleGenerator::Settings settings = MakeSettings(1000, 7);
   const double tau = 2.0;
   Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "constant density: generation succeeds");
@@ -154,11 +163,7 @@ void TestRejection(vtkTetrahedralMesh* mesh)
   const double scalars[4] = { 0.0, 0.0, 0.0, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = Footprint;
-  settings.Sets = 500;
-  settings.Seed = 11;
-  settings.MaximumParticles = 10000000;
+  vtkPBVRParticleGenerator::Settings settings = MakeSettings(500, 11);
   // tau(s) = 2 s; s is Beta(1, 3) in the cell: E[s] = 1/4, E[s^2] = 1/10.
   Check(generator->Generate(mesh, Sample([](double s) { return 2.0 * s; }), settings),
     "ramp: generation succeeds");
@@ -202,11 +207,8 @@ void TestCellAverageRounding(vtkTetrahedralMesh* mesh)
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = Footprint;
-  settings.Sets = 2000;
+  vtkPBVRParticleGenerator::Settings settings = MakeSettings(2000, 0);
   settings.SamplingMode = vtkPBVRParticleGenerator::CELL_AVERAGE;
-  settings.MaximumParticles = 10000000;
   const double tau = 2.5 * Footprint / Volume; // 2.5 particles per set
   Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "cell average: succeeds");
@@ -229,11 +231,7 @@ void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh)
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   const std::vector<double> samples = Sample([](double s) { return 1.0 + s; });
   vtkNew<vtkPBVRParticleGenerator> first, second;
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = Footprint;
-  settings.Sets = 16;
-  settings.Seed = 3;
-  settings.MaximumParticles = 1000000;
+  vtkPBVRParticleGenerator::Settings settings = MakeSettings(16, 3, 1000000);
   first->Generate(mesh, samples, settings);
   second->Generate(mesh, samples, settings);
   Check(first->GetParticles() == second->GetParticles() && first->GetNumberOfParticles() > 0,

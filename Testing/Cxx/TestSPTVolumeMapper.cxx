@@ -21,21 +21,14 @@ int TestSPTVolumeMapper(int argc, char* argv[])
   pointMapper->SetInputData(shell);
   pointMapper->SetRepetitionLevel(64);
   pointMapper->SetSeed(1);
-  vtkNew<vtkVolume> pointVolume;
-  pointVolume->SetMapper(pointMapper);
-  pointVolume->SetProperty(property);
+  vtkSmartPointer<vtkVolume> pointVolume = MakeVolume(pointMapper, property);
 
   vtkNew<vtkSPTVolumeMapper> cellMapper;
   cellMapper->SetInputData(shell);
-  cellMapper->SetScalarModeToUseCellFieldData();
-  cellMapper->SelectScalarArray("cellField");
+  SelectCellField(cellMapper);
   cellMapper->SetRepetitionLevel(64);
   cellMapper->SetSeed(2);
-  vtkNew<vtkVolume> cellVolume;
-  cellVolume->SetMapper(cellMapper);
-  cellVolume->SetProperty(property);
-  cellVolume->RotateZ(30.0);
-  cellVolume->SetScale(1.0, 0.7, 1.3);
+  vtkSmartPointer<vtkVolume> cellVolume = MakeVolume(cellMapper, property, 0.7);
 
   TwoViewports scene(400, 200, pointVolume, cellVolume);
   int failures = scene.Render();

@@ -11,9 +11,7 @@ level give the noise and the bias against the reference (spt.statistics). The te
 - SubpixelLevel 2 averages 2x2 subpixels; opaque geometry hides and cuts the volume;
 - with a steep transfer function, exact in-cell density (rejection) keeps the thin features
   that the papers' cell-average density loses.
-Statistical tolerances are four standard errors of the estimates, estimated from the pixels.
-The reference is the project's exact ray caster (spt.raycast); where an opaque plane cuts the
-volume, VTK's ray caster.
+Tolerances and references are those of test_spt_statistics.
 """
 
 import math
