@@ -43,6 +43,10 @@ constexpr int TransferFunctionSamples = 4096;
 // Particles made for a cross-section S serve views that need S to 2 S (the surplus is thinned
 // when drawn); beyond that, or below S, they are made again.
 constexpr double LargestFootprintRatio = 2.0;
+// Particles are generated for no nearer depth than this fraction of the data's bounding radius
+// (in view units): with the camera inside the data or close to it, nearer particles are drawn
+// as larger points, with the same cross-section, instead of being generated without bound.
+constexpr double NearestGenerationDepth = 0.25;
 // After a failed generation, a view must need particles this much larger to try again.
 constexpr double RetryFootprintRatio = 1.25;
 // Draw calls stay far below GLsizei's range.
@@ -130,13 +134,19 @@ public:
 
   vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
   void UpdateMeshRadius();
-  double SmallestFootprint(int passWidth, int passHeight) const;
+  double SmallestFootprint(int passWidth, int passHeight, bool atGenerationDepth = true) const;
+  // The side of the largest point a particle of this view is drawn as, in pixels (1 when the
+  // particles were made for the nearest visible depth), and the guard band around the pass
+  // that keeps the points whose centres lie outside it.
+  double LargestPointSize = 1.0;
+  int GuardBand = 0;
+  void PlacePoints(int passWidth, int passHeight);
   bool Generate(const ParticleKey& wanted);
   bool Upload();
   void ReleaseParticles();
   void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
     vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel);
-  void DrawSet(vtkShaderProgram* program, int set);
+  void DrawSet(vtkOpenGLState* ostate, vtkShaderProgram* program, int set);
 };
 
 vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRenderWindow* renWin)
@@ -190,7 +200,8 @@ void vtkPBVRVolumeMapper::vtkInternals::UpdateMeshRadius()
   this->RadiusBuild = this->Mesh->GetBuildTime();
 }
 
-double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int passHeight) const
+double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(
+  int passWidth, int passHeight, bool atGenerationDepth) const
 {
   // The cross-section of one pass pixel at clip w, in normalized view units, is
   // 4 w^2 / (P00 P11 width height), perspective and parallel alike; per unit length of a
@@ -212,8 +223,13 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int p
   double cosine = 1.0;
   if (!t.ParallelProjection)
   {
-    // Nothing nearer than the near plane, n = P23 / (P22 - 1), is drawn.
+    // Nothing nearer than the near plane, n = P23 / (P22 - 1), is drawn, and nothing nearer
+    // than the generation's nearest depth needs particles of its own size.
     nearestW = std::max(nearestW, p[2][3] / (p[2][2] - 1.0));
+    if (atGenerationDepth)
+    {
+      nearestW = std::max(nearestW, NearestGenerationDepth * wGradient * radius);
+    }
     const double tanX = (1.0 + std::abs(p[0][2])) / std::abs(p[0][0]);
     const double tanY = (1.0 + std::abs(p[1][2])) / std::abs(p[1][1]);
     cosine = 1.0 / std::sqrt(1.0 + tanX * tanX + tanY * tanY);
@@ -223,6 +239,21 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(int passWidth, int p
   // In model units: volumes scale by |det|, ray lengths by at most the largest singular value.
   const double volumeRatio = std::abs(vtkMath::Determinant3x3(t.ViewToModelLinear));
   return areaVC * volumeRatio / LargestSingularValue(t.ViewToModelLinear);
+}
+
+void vtkPBVRVolumeMapper::vtkInternals::PlacePoints(int passWidth, int passHeight)
+{
+  // A particle's point covers generated / own cross-section pixels; the nearest visible one
+  // has the smallest cross-section.
+  const double nearest = this->SmallestFootprint(passWidth, passHeight, false);
+  const double side = std::sqrt(this->Generated.Footprint / nearest);
+  float range[2] = { 1.0f, 1.0f };
+  glGetFloatv(GL_POINT_SIZE_RANGE, range);
+  this->LargestPointSize =
+    std::isfinite(side) ? std::min(std::max(side, 1.0), double(range[1])) : double(range[1]);
+  // OpenGL clips a point by its centre: a point up to half its side outside the pass still
+  // covers pixels of it. A wider viewport, with the projection shrunk to match, keeps those.
+  this->GuardBand = this->LargestPointSize > 1.0 ? int(std::ceil(0.5 * this->LargestPointSize)) : 0;
 }
 
 bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
@@ -267,6 +298,12 @@ void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
     static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
   program->SetUniformf("pixelAreaFactor", pixelArea);
   program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
+  program->SetUniformf("largestPointSize", static_cast<float>(this->LargestPointSize));
+  const int width = this->Ensemble->GetPassWidth();
+  const int height = this->Ensemble->GetPassHeight();
+  const float clipScale[2] = { float(width) / float(width + 2 * this->GuardBand),
+    float(height) / float(height + 2 * this->GuardBand) };
+  program->SetUniform2f("clipScale", clipScale);
   program->SetUniformf("generatedFootprint", static_cast<float>(this->Generated.Footprint));
   program->SetUniformi("seed", static_cast<int>(seed));
   program->SetUniformi("colorTable", colors->GetTextureUnit());
@@ -275,7 +312,8 @@ void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
   program->SetUniformi("subpixelLevel", subpixelLevel);
 }
 
-void vtkPBVRVolumeMapper::vtkInternals::DrawSet(vtkShaderProgram* program, int set)
+void vtkPBVRVolumeMapper::vtkInternals::DrawSet(
+  vtkOpenGLState* ostate, vtkShaderProgram* program, int set)
 {
   const vtkIdType first = this->Generator->GetSetOffset(set);
   const vtkIdType end = this->Generator->GetSetOffset(set + 1);
@@ -286,6 +324,10 @@ void vtkPBVRVolumeMapper::vtkInternals::DrawSet(vtkShaderProgram* program, int s
   this->VertexArray.Bind(program,
     { { "particleMC", this->ParticleBuffer, vtkPBVRParticleGenerator::BytesPerParticle,
       VTK_UNSIGNED_SHORT, 4, true } });
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  const int band = this->GuardBand;
+  ostate->vtkglViewport(-band, -band, this->Ensemble->GetPassWidth() + 2 * band,
+    this->Ensemble->GetPassHeight() + 2 * band);
   vtkBatchedVertexArray::DrawArrays(GL_POINTS, first, end - first, MaxParticlesPerDraw);
   this->VertexArray.Release();
 }
@@ -508,6 +550,11 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y, int first, int count)
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LESS);
   ostate->vtkglPointSize(1.0f);
+  // Particles nearer than the depth they were generated for are drawn larger (the vertex
+  // shader sets their size).
+  vtkOpenGLState::ScopedglEnableDisable programPointSize(ostate, GL_PROGRAM_POINT_SIZE);
+  ostate->vtkglEnable(GL_PROGRAM_POINT_SIZE);
+  internals.PlacePoints(ensemble->GetPassWidth(), ensemble->GetPassHeight());
   this->StartTiming();
   for (int set = first; set < first + count; ++set)
   {
@@ -518,7 +565,7 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y, int first, int count)
     {
       internals.SetUniforms(program, colors, sceneDepth, this->Seed, this->SubpixelLevel);
     }
-    internals.DrawSet(program, set);
+    internals.DrawSet(ostate, program, set);
     ensemble->EndPass();
   }
   this->AddRepetitions(count, 1, this->StopTiming());

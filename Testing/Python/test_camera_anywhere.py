@@ -1,8 +1,9 @@
-"""SPT with the camera anywhere: outside the mesh, with the near plane cutting it, inside it in
-perspective and in parallel projection, and exactly on a vertex, an edge or a face plane.
+"""SPT and PBVR with the camera anywhere: outside the mesh, with the near plane cutting it,
+inside it in perspective and in parallel projection, and exactly on a vertex, an edge or a face
+plane.
 
 The exact reference (spt.raycast) starts every ray at the near plane, as the mappers do. The
-tests check that SPT's error against it with the camera inside is no larger than with the
+tests check that each mapper's error against it with the camera inside is no larger than with the
 camera outside at the same repetitions (within four standard errors of the noise, measured
 from two seeds), that the images are volumes without holes, and that degenerate cameras give
 no NaN and no crash. VTK's projected tetrahedra are measured on the same cameras as a
@@ -48,9 +49,20 @@ def _render(name, mapper, dolly, parallel=False):
     return image, camera
 
 
+#: The stochastic mappers, by name, for a seed.
+MAPPERS = {
+    "spt": lambda seed: render.spt_mapper(REPETITIONS, seed=seed),
+    "pbvr": lambda seed: render.pbvr_mapper(REPETITIONS, seed=seed),
+}
+
+
 @lru_cache(maxsize=None)
+def _image(method, name, dolly, seed=1, parallel=False):
+    return _render(name, MAPPERS[method](seed), dolly, parallel)
+
+
 def _spt(name, dolly, seed=1, parallel=False):
-    return _render(name, render.spt_mapper(REPETITIONS, seed=seed), dolly, parallel)
+    return _image("spt", name, dolly, seed, parallel)
 
 
 @lru_cache(maxsize=None)
@@ -60,36 +72,41 @@ def _reference(name, dolly, parallel=False):
     return raycast.render(s.grid, s.property, camera, (SIZE, SIZE))
 
 
-def _error_and_noise(name, dolly, parallel=False):
-    first, _ = _spt(name, dolly, 1, parallel)
-    second, _ = _spt(name, dolly, 2, parallel)
+def _error_and_noise(name, dolly, parallel=False, method="spt"):
+    first, _ = _image(method, name, dolly, 1, parallel)
+    second, _ = _image(method, name, dolly, 2, parallel)
     reference = _reference(name, dolly, parallel)
     estimate = statistics.estimate(first, second, reference, REPETITIONS)
     return metrics.rmse(first, reference), estimate
 
 
+@pytest.mark.parametrize("method", MAPPERS)
 @pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
-def test_inside_is_as_close_to_the_reference_as_outside(name, camera, have_display):
-    outside, _ = _error_and_noise(name, CAMERAS["outside"])
-    error, estimate = _error_and_noise(name, CAMERAS[camera])
-    image, _ = _spt(name, CAMERAS[camera])
+def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera, have_display):
+    outside, outside_estimate = _error_and_noise(name, CAMERAS["outside"], method=method)
+    error, estimate = _error_and_noise(name, CAMERAS[camera], method=method)
+    image, _ = _image(method, name, CAMERAS[camera])
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
     assert error <= outside + tolerance, (
         f"{camera}: {error:.4f} against {outside:.4f} outside (tolerance {tolerance:.4f})")
     # Unbiased: what is left once the noise is taken out is the small floor of the outside view.
     assert estimate.bias <= max(2.0 * outside, 0.004), f"bias {estimate.bias:.4f}"
+    bias2_tolerance = Z_NOISE * np.hypot(estimate.bias2_error, outside_estimate.bias2_error)
+    assert estimate.bias2 <= max(outside_estimate.bias2, 0.0) + bias2_tolerance, (
+        f"squared bias {estimate.bias2:.2e} against {outside_estimate.bias2:.2e} outside")
 
 
 #: Standard errors allowed for the noise of one render.
 Z_NOISE = 4.0
 
 
+@pytest.mark.parametrize("method", MAPPERS)
 @pytest.mark.parametrize("name", SCENES)
-def test_inside_in_parallel_projection(name, have_display):
-    outside, _ = _error_and_noise(name, CAMERAS["outside"], parallel=True)
-    error, estimate = _error_and_noise(name, CAMERAS["inside"], parallel=True)
+def test_inside_in_parallel_projection(method, name, have_display):
+    outside, _ = _error_and_noise(name, CAMERAS["outside"], True, method)
+    error, estimate = _error_and_noise(name, CAMERAS["inside"], True, method)
     tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
     assert error <= outside + tolerance, f"{error:.4f} against {outside:.4f} outside"
 
