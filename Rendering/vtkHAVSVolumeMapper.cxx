@@ -1,5 +1,6 @@
 #include "vtkHAVSVolumeMapper.h"
 
+#include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -16,6 +17,7 @@
 #include "vtkGPUFrameTimer.h"
 #include "vtkHAVSFaceBuffers.h"
 #include "vtkHAVSKBuffer.h"
+#include "vtkHAVSNearCap.h"
 #include "vtkPreIntegrationTable.h"
 #include "vtkSavedGLState.h"
 #include "vtkTetrahedralMesh.h"
@@ -33,6 +35,7 @@ class vtkHAVSVolumeMapper::vtkInternals
 {
 public:
   vtkNew<vtkHAVSFaceBuffers> Faces;
+  vtkHAVSNearCap NearCap;
   vtkNew<vtkPreIntegrationTable> Table;
   vtkNew<vtkHAVSKBuffer> KBuffer;
   vtkVolumeViewMatrices Matrices;
@@ -51,6 +54,7 @@ public:
   void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
   bool DrawFaces(vtkTextureObject* table, int width, int height);
   bool DrawFlush(vtkTextureObject* table);
+  bool DrawNearCap(vtkShaderProgram* program, int frontFace);
   void ReleaseGraphicsResources(vtkWindow* window, bool current);
 };
 
@@ -111,10 +115,38 @@ bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(vtkTextureObject* table, int w
   // view mirrors space or front faces wind clockwise.
   program->SetUniformi(
     "exitIsFrontFacing", (frontFace == GL_CW) != this->Matrices.Mirrored ? 1 : 0);
+  if (!this->DrawNearCap(program, frontFace))
+  {
+    return false;
+  }
   this->Faces->Bind(program);
   this->Faces->Draw();
   this->Faces->Unbind();
   this->KBuffer->EndPass();
+  return true;
+}
+
+bool vtkHAVSVolumeMapper::vtkInternals::DrawNearCap(vtkShaderProgram* program, int frontFace)
+{
+  // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
+  // first, as faces where the rays enter the mesh, which the shader tells by their facing.
+  double modelToClip[4][4];
+  vtkMatrix4x4::Multiply4x4(
+    &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
+  const bool exitIsFrontFacing = (frontFace == GL_CW) != this->Matrices.Mirrored;
+  const bool counterClockwise = !exitIsFrontFacing == (frontFace == GL_CCW);
+  if (!this->NearCap.Build(this->Mesh, this->Faces->GetVertices(), this->Faces->GetVertexScalars(),
+        modelToClip, vtkHAVSFaceBuffers::BoundaryScalarOffset, counterClockwise))
+  {
+    return true;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthClamp(ostate, GL_DEPTH_CLAMP);
+  ostate->vtkglEnable(GL_DEPTH_CLAMP); // the cut lies on the near plane
+  if (!this->NearCap.Draw(program))
+  {
+    vtkGenericWarningMacro("Could not upload the near plane's cut through the mesh.");
+  }
   return true;
 }
 
@@ -143,6 +175,7 @@ void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* wind
   this->Faces->ReleaseGraphicsResources(window);
   this->Table->ReleaseGraphicsResources(window);
   this->KBuffer->ReleaseGraphicsResources(window);
+  this->NearCap.ReleaseGraphicsResources();
   this->Flush.reset();
   this->FlushSource.clear();
   this->Timer.Release(current);
@@ -178,7 +211,8 @@ vtkIdType vtkHAVSVolumeMapper::GetGPUMemorySize()
 {
   const vtkInternals& internals = *this->Internals;
   return static_cast<vtkIdType>(internals.Faces->GetGPUMemorySize() +
-    internals.Table->GetGPUMemorySize() + internals.KBuffer->GetGPUMemorySize());
+    internals.Table->GetGPUMemorySize() + internals.KBuffer->GetGPUMemorySize() +
+    internals.NearCap.GetGPUMemorySize());
 }
 
 bool vtkHAVSVolumeMapper::PrepareInput(vtkRenderer* ren, vtkVolume* vol)

@@ -33,8 +33,12 @@
  * SetKBufferSynchronization() for how that read-modify-write is kept in primitive order.
  *
  * Opaque geometry drawn before the volume hides what lies behind it (the segment that reaches
- * into it ends at the last face in front of it). The camera must be outside the volume. Cell
- * scalars are not supported (HAVS interpolates point scalars over faces).
+ * into it ends at the last face in front of it). The camera may be anywhere: where the near
+ * plane cuts the mesh, the cut (computed on the CPU from the tetrahedra that straddle the near
+ * plane, in frames where it cuts the mesh's bounds) enters the k-buffer first, as faces where
+ * the rays enter the mesh, so the segment from the near plane to the first face is composited
+ * too (vtkHAVSNearCap). Cell scalars are not supported (HAVS interpolates point scalars over
+ * faces).
  *
  * @sa
  * vtkSPTVolumeMapper vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper

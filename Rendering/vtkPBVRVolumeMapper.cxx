@@ -43,9 +43,8 @@ constexpr int TransferFunctionSamples = 4096;
 // Particles made for a cross-section S serve views that need S to 2 S (the surplus is thinned
 // when drawn); beyond that, or below S, they are made again.
 constexpr double LargestFootprintRatio = 2.0;
-// Particles are generated for no nearer depth than this fraction of the data's bounding radius
-// (in view units): with the camera inside the data or close to it, nearer particles are drawn
-// as larger points, with the same cross-section, instead of being generated without bound.
+// Particles are made for no nearer depth than this fraction of the data's bounding radius:
+// nearer ones (the camera inside or close to the data) are drawn as larger points.
 constexpr double NearestGenerationDepth = 0.25;
 // After a failed generation, a view must need particles this much larger to try again.
 constexpr double RetryFootprintRatio = 1.25;
@@ -135,9 +134,8 @@ public:
   vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
   void UpdateMeshRadius();
   double SmallestFootprint(int passWidth, int passHeight, bool atGenerationDepth = true) const;
-  // The side of the largest point a particle of this view is drawn as, in pixels (1 when the
-  // particles were made for the nearest visible depth), and the guard band around the pass
-  // that keeps the points whose centres lie outside it.
+  // The side of the largest point drawn (pixels), and the guard band that keeps the points
+  // centred outside the pass (see PlacePoints()).
   double LargestPointSize = 1.0;
   int GuardBand = 0;
   void PlacePoints(int passWidth, int passHeight);

@@ -1,6 +1,6 @@
-"""SPT and PBVR with the camera anywhere: outside the mesh, with the near plane cutting it,
-inside it in perspective and in parallel projection, and exactly on a vertex, an edge or a face
-plane.
+"""SPT, PBVR and HAVS-like with the camera anywhere: outside the mesh, with the near plane
+cutting it, inside it in perspective and in parallel projection, and exactly on a vertex, an
+edge or a face plane.
 
 The exact reference (spt.raycast) starts every ray at the near plane, as the mappers do. The
 tests check that each mapper's error against it with the camera inside is no larger than with the
@@ -116,6 +116,32 @@ def test_no_holes_with_the_camera_inside(name, have_display):
     """No pixel of the footprint is empty where the reference has alpha above 0.05."""
     image, _ = _spt(name, CAMERAS["inside"])
     reference = _reference(name, CAMERAS["inside"])
+    holes = (reference[..., 3] > 0.05) & (image[..., 3] == 0.0)
+    assert not holes.any(), f"{int(holes.sum())} empty pixels"
+
+
+@lru_cache(maxsize=None)
+def _havs(name, dolly, parallel=False):
+    return _render(name, render.havs_mapper(6), dolly, parallel)[0]
+
+
+#: HAVS-like is deterministic but approximate: its visibility order by face centroids is least
+#: accurate close to the eye, where faces are large against their distance. Without the
+#: segment from the near plane to the first face its error grows 3 to 4 times on the default
+#: mesh (measured); a factor of 2 separates the two.
+HAVS_INSIDE_FACTOR = 2.0
+
+
+@pytest.mark.parametrize("parallel", [False, True], ids=["perspective", "parallel"])
+@pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
+def test_havs_inside_is_as_close_to_the_reference_as_outside(camera, parallel, have_display):
+    outside = metrics.rmse(_havs("default", CAMERAS["outside"], parallel),
+                           _reference("default", CAMERAS["outside"], parallel))
+    image = _havs("default", CAMERAS[camera], parallel)
+    reference = _reference("default", CAMERAS[camera], parallel)
+    error = metrics.rmse(image, reference)
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert error <= HAVS_INSIDE_FACTOR * outside, f"{error:.4f} against {outside:.4f} outside"
     holes = (reference[..., 3] > 0.05) & (image[..., 3] == 0.0)
     assert not holes.any(), f"{int(holes.sum())} empty pixels"
 
