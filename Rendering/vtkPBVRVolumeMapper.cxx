@@ -43,9 +43,9 @@ constexpr int TransferFunctionSamples = 4096;
 // Particles made for a cross-section S serve views that need S to 2 S (the surplus is thinned
 // when drawn); beyond that, or below S, they are made again.
 constexpr double LargestFootprintRatio = 2.0;
-// Particles are made for no nearer depth than this fraction of the data's bounding radius:
+// Particles are made for no nearer depth than this multiple of the data's bounding radius:
 // nearer ones (the camera inside or close to the data) are drawn as larger points.
-constexpr double NearestGenerationDepth = 0.25;
+constexpr double NearestGenerationDepth = 1.0;
 // After a failed generation, a view must need particles this much larger to try again.
 constexpr double RetryFootprintRatio = 1.25;
 // Draw calls stay far below GLsizei's range.

@@ -28,14 +28,13 @@
  * for the smallest cross-section over the data's bounding sphere (its nearest point) and each
  * is drawn with probability S_generated / S(its own depth), which thins the particles exactly
  * to the density its depth needs. The camera may be anywhere, inside the data too: nothing is
- * generated for a depth nearer than a quarter of the data's bounding radius (or the near
- * plane), and a particle nearer than that is drawn as a square point of S_generated / S(its
- * depth) pixels, which covers the same expected share of the pixels. The particles are
- * regenerated only when the data, the
- * opacity transfer function, the seed or the sampling mode change, when a view needs smaller
- * particles than they were made for, or when it needs particles more than twice as large
- * (too many particles would be thrown away); also when RepetitionLevel grows beyond the sets
- * that were generated (fewer repetitions draw fewer of the sets).
+ * generated for a depth nearer than the data's bounding radius (or the near plane), and a
+ * particle nearer than that is drawn as a square point of S_generated / S(its depth) pixels,
+ * which covers the same expected share of the pixels. The particles are regenerated only
+ * when the data, the opacity transfer function, the seed or the sampling mode change, when a
+ * view needs smaller particles than they were made for, or when it needs particles more than
+ * twice as large (too many particles would be thrown away); also when RepetitionLevel grows
+ * beyond the sets that were generated (fewer repetitions draw fewer of the sets).
  *
  * RepetitionLevel independent particle sets are drawn, each opaque with the depth test into
  * the same float ensemble buffer as SPT, and averaged; the noise falls as

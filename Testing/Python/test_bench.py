@@ -135,6 +135,22 @@ def test_a_small_run_writes_results_plots_and_report(tmp_path):
     assert "## Image size" in report and (tmp_path / "image.png").stat().st_size > 0
 
 
+def test_the_camera_section_compares_inside_with_outside(tmp_path, have_display):
+    settings = dataclasses.replace(bench.Settings.quick(), camera_size=48)
+    results = bench.run(tmp_path, ["camera"], settings)
+    rows = results["camera"]["rows"]
+    cameras = ("outside", "near plane cutting", "inside", "deep inside")
+    methods = ("pt", "havs6", "spt-visibility", "pbvr")
+    assert [(r["method"], r["camera"]) for r in rows] == [(m, c) for m in methods
+                                                          for c in cameras]
+    for row in rows:
+        assert row["seconds"] > 0 and np.isfinite(row["rmse"])
+        assert row["rmse"] < 0.3, f"{row['method']} {row['camera']}: not the volume"
+        if row["camera"] == "outside":
+            assert row["ratio_to_outside"] == 1.0
+    assert "## The camera anywhere" in (tmp_path / "bench.md").read_text()
+
+
 @pytest.mark.parametrize("arguments, message", [
     (("bench", "--sections", "cells,nosuch"), "unknown section"),
     (("bench", "--sections", ","), "unknown section"),

@@ -222,6 +222,20 @@ def host_section(host: Sequence[Entry]) -> List[str]:
                     h["worker_seconds_per_frame"]] for h in host])]
 
 
+def camera_section(camera: Dict[str, object]) -> List[str]:
+    """Frame time and error with the camera outside, cutting and inside the mesh."""
+    if not camera:
+        return []
+    return ["## The camera anywhere", "",
+            f"{camera['size']} x {camera['size']}, the stochastic methods at "
+            f"{camera['repetitions']} repetitions; best of {camera['frames']} frames; the "
+            "camera dollies from the framed view into the mesh. Ratio: the frame time over "
+            "the same method's with the camera outside.", "",
+            table(["scene", "method", "camera", "dolly", "frame [s]", "ratio", "RMSE"],
+                  [[r["scene"], r["label"], r["camera"], r["dolly"], r["seconds"],
+                    r["ratio_to_outside"], r["rmse"]] for r in camera["rows"]]), ""]
+
+
 def large_section(large: Dict[str, object]) -> List[str]:
     """The paper's large case against the models' prediction."""
     if not large:
@@ -248,6 +262,7 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
              "frames after a warm-up frame, with the GPU finished; every ratio is taken within "
              "this run. Generated meshes: " + results["shape"] + ".", ""]
     lines += race_section(results.get("race"))
+    lines += camera_section(results.get("camera"))
     lines += cells_section(results)
     lines += sweep_sections(entries)
     lines += models_section(results)

@@ -11,7 +11,7 @@ from typing import Dict, List, Optional, Sequence
 
 from .. import render
 from ..progress import Progress
-from . import host, quality, race, sweeps
+from . import camera, host, quality, race, sweeps
 from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene
 from .models import memory_models, predict_large, time_models
@@ -52,6 +52,7 @@ def steps(settings: Settings, section: str) -> int:
     swept = len(sweeps.wanted(settings, sweeps.REPETITION_METHODS))
     return {
         "race": race.steps(settings),
+        "camera": camera.steps(settings),
         "cells": len(settings.cells) * methods,
         "repetitions": swept * len(settings.repetitions),
         "subpixels": swept * len(settings.subpixels),
@@ -72,7 +73,7 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
         e for e in previous.get("entries", [])
         if e.get("sweep") not in sections or not settings.wants(e.get("method", ""))]
     progress = Progress(sum(steps(settings, s) for s in sections), "bench")
-    measured = {key: previous.get(key) for key in ("race", "host", "large")}
+    measured = {key: previous.get(key) for key in ("race", "camera", "host", "large")}
     for section in sections:
         if section in SWEEPS:
             entries += SWEEPS[section](settings, progress)
@@ -80,6 +81,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
             entries += quality.quality(settings, progress, output)
         elif section == "race":
             measured["race"] = race.race(settings, progress, output / "race")
+        elif section == "camera":
+            measured["camera"] = camera.camera_section(settings, progress)
         elif section == "host":
             measured["host"] = host.host_time(settings, progress)
         else:
