@@ -1,6 +1,6 @@
 #include "vtkGPUFrameTimer.h"
 
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
 
 bool vtkGPUFrameTimer::Start()
 {

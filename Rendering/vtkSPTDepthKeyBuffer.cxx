@@ -2,8 +2,8 @@
 
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
 

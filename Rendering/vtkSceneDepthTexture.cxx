@@ -4,8 +4,8 @@
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 vtkStandardNewMacro(vtkSceneDepthTexture);
 

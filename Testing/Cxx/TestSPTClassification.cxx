@@ -10,7 +10,7 @@
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
