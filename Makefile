@@ -20,7 +20,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # for the modules this project uses.
 PACKAGES := cmake ninja-build g++ make \
 	paraview paraview-dev python3-paraview \
-	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libpng-dev libjpeg-dev libtiff-dev \
+	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libegl-dev libpng-dev libjpeg-dev libtiff-dev \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	libtet1.5-dev libglm-dev \

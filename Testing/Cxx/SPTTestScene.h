@@ -167,7 +167,11 @@ inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0
 class TwoViewports
 {
 public:
-  TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume)
+  // The scene in `window`, by default a new vtkRenderWindow (X, GLX).
+  TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume,
+    vtkRenderWindow* window = nullptr)
+    : Window(
+        window ? vtkSmartPointer<vtkRenderWindow>(window) : vtkSmartPointer<vtkRenderWindow>::New())
   {
     this->Window->SetSize(width, height);
     this->Window->SetMultiSamples(0);
@@ -192,7 +196,11 @@ public:
     this->Right->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
     this->Right->ResetCamera();
     this->Window->AddRenderer(this->Right);
-    this->Interactor->SetRenderWindow(this->Window);
+    if (!window)
+    {
+      // An X interactor: a window given by the test (EGL) has no X window for one.
+      this->Interactor->SetRenderWindow(this->Window);
+    }
   }
 
   // Render; a failure for an OpenGL error.
@@ -227,7 +235,7 @@ public:
   int CompareWithBaseline(int argc, char* argv[])
   {
     const int result = vtkRegressionTestImage(this->Window);
-    if (result == vtkRegressionTester::DO_INTERACTOR)
+    if (result == vtkRegressionTester::DO_INTERACTOR && this->Interactor->GetRenderWindow())
     {
       this->Interactor->Start();
     }
@@ -239,7 +247,7 @@ public:
     return (result != vtkRegressionTester::FAILED && failures == 0) ? EXIT_SUCCESS : EXIT_FAILURE;
   }
 
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window;
   vtkNew<vtkRenderer> Left;
   vtkNew<vtkRenderer> Right;
 
