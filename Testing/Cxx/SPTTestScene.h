@@ -35,6 +35,8 @@
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "SPTTestWindow.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -167,11 +169,10 @@ inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0
 class TwoViewports
 {
 public:
-  // The scene in `window`, by default a new vtkRenderWindow (X, GLX).
+  // The scene in `window`, by default the tests' window (SPTTestWindow.h: X, else EGL).
   TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume,
     vtkRenderWindow* window = nullptr)
-    : Window(
-        window ? vtkSmartPointer<vtkRenderWindow>(window) : vtkSmartPointer<vtkRenderWindow>::New())
+    : Window(window ? vtkSmartPointer<vtkRenderWindow>(window) : SPTTestWindow::New())
   {
     this->Window->SetSize(width, height);
     this->Window->SetMultiSamples(0);
@@ -196,9 +197,9 @@ public:
     this->Right->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
     this->Right->ResetCamera();
     this->Window->AddRenderer(this->Right);
-    if (!window)
+    if (!this->Window->IsA("vtkSPTEGLRenderWindow"))
     {
-      // An X interactor: a window given by the test (EGL) has no X window for one.
+      // An X interactor (for -I): the EGL window has no X window for one.
       this->Interactor->SetRenderWindow(this->Window);
     }
   }

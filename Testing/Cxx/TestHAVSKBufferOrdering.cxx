@@ -44,6 +44,8 @@
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "SPTTestWindow.h"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -432,7 +434,7 @@ struct GPUScene
     this->Window->Render(); // creates the context, for Offers()
   }
 
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = SPTTestWindow::New();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkHAVSVolumeMapper> Mapper;
   vtkSmartPointer<vtkVolumeProperty> Property;

@@ -29,6 +29,8 @@
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
 
+#include "SPTTestWindow.h"
+
 #include <cmath>
 #include <iostream>
 #include <limits>
@@ -241,7 +243,7 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
 int TestRandomMeshes(int, char*[])
 {
   constexpr int Seeds = 60;
-  vtkNew<vtkRenderWindow> window;
+  vtkSmartPointer<vtkRenderWindow> window = SPTTestWindow::New();
   window->SetSize(32, 32);
   window->SetMultiSamples(0);
   window->SetAlphaBitPlanes(1);

@@ -8,9 +8,13 @@
 //   reconstructs them) are the exact entry and exit of the view ray through the tetrahedron.
 
 #include "vtkNew.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkSPTOpenGL.h"
+
+#include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -542,7 +546,7 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
 
 int TestSPTClassification(int, char*[])
 {
-  vtkNew<vtkRenderWindow> window;
+  vtkSmartPointer<vtkRenderWindow> window = SPTTestWindow::New();
   window->SetOffScreenRendering(1);
   window->SetSize(16, 16);
   vtkNew<vtkRenderer> renderer;
@@ -571,6 +575,11 @@ int TestSPTClassification(int, char*[])
   glGenQueries(1, &query);
   UploadTetrahedra(program, tetrahedra, vao, buffers);
 
+  // Draw with the window's own framebuffer bound: a window without X (EGL) has no complete
+  // default framebuffer, and drawing would raise GL_INVALID_FRAMEBUFFER_OPERATION even with
+  // the rasterizer off.
+  context->GetState()->PushFramebufferBindings();
+  context->GetRenderFramebuffer()->Bind();
   int failures = 0;
   std::mt19937 random(11);
   for (bool parallel : { false, true })
@@ -583,6 +592,7 @@ int TestSPTClassification(int, char*[])
     std::cerr << "OpenGL error " << error << "\n";
     ++failures;
   }
+  context->GetState()->PopFramebufferBindings();
   glUseProgram(0);
   glBindVertexArray(0);
   glDeleteQueries(1, &query);
