@@ -4,7 +4,12 @@
 #ifndef SPTTestWindow_h
 #define SPTTestWindow_h
 
+#include "vtkNew.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
 #include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
 #include "vtkSPTEGLRenderWindow.h"
 #include "vtkSmartPointer.h"
 
@@ -26,6 +31,45 @@ inline vtkSmartPointer<vtkRenderWindow> New()
   }
   return vtkSmartPointer<vtkSPTEGLRenderWindow>::New();
 }
+
+// For tests that make OpenGL calls of their own: a rendered window's context, current, with
+// VTK's render framebuffer bound. A window without X (EGL) has no complete default
+// framebuffer: drawing there raises GL_INVALID_FRAMEBUFFER_OPERATION even with the
+// rasterizer off. The previous bindings are restored when it goes. Context is null when the
+// window is not an OpenGL one.
+class RawContext
+{
+public:
+  explicit RawContext(int size)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Window->Render();
+    this->Context = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
+    if (this->Context)
+    {
+      this->Context->MakeCurrent();
+      this->Context->GetState()->PushFramebufferBindings();
+      this->Context->GetRenderFramebuffer()->Bind();
+    }
+  }
+  ~RawContext()
+  {
+    if (this->Context)
+    {
+      this->Context->GetState()->PopFramebufferBindings();
+    }
+  }
+  RawContext(const RawContext&) = delete;
+  RawContext& operator=(const RawContext&) = delete;
+
+  vtkOpenGLRenderWindow* Context = nullptr;
+
+private:
+  vtkSmartPointer<vtkRenderWindow> Window = New();
+  vtkNew<vtkRenderer> Renderer;
+};
 }
 
 #endif
