@@ -1,6 +1,7 @@
 #include "vtkSPTEGLRenderWindow.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSPTOpenGL.h"
@@ -207,7 +208,9 @@ bool vtkSPTEGLRenderWindow::vtkInternals::CreateContext(EGLDisplay display)
   if (this->Context == EGL_NO_CONTEXT)
   {
     this->Error = "the driver could not make an OpenGL 3.2 core profile context (" +
-      EGLErrorText() + "); VTK needs OpenGL 3.2 or later";
+      EGLErrorText() +
+      "); VTK needs OpenGL 3.2 or later. Use a driver that offers it (Mesa's llvmpipe offers "
+      "4.5), and check that MESA_GL_VERSION_OVERRIDE, if set, does not ask for less";
     return false;
   }
   this->Display = display;
@@ -447,26 +450,57 @@ void vtkSPTEGLRenderWindow::OpenGLInitContext()
 }
 
 //------------------------------------------------------------------------------
+bool vtkSPTEGLRenderWindow::QueryRenderFramebuffer(
+  unsigned int attachment, int count, const unsigned int* names, int* values)
+{
+  if (!this->Initialized || !this->RenderFramebuffer ||
+    this->RenderFramebuffer->GetFBOIndex() == 0 || !this->IsCurrent())
+  {
+    return false;
+  }
+  vtkOpenGLState* state = this->GetState();
+  state->PushDrawFramebufferBinding();
+  this->RenderFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  GLint type = GL_NONE;
+  glGetFramebufferAttachmentParameteriv(
+    GL_DRAW_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+  for (int i = 0; i < count && type != GL_NONE; ++i)
+  {
+    GLint value = 0;
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, attachment, names[i], &value);
+    values[i] = value;
+  }
+  state->PopDrawFramebufferBinding();
+  return type != GL_NONE;
+}
+
+//------------------------------------------------------------------------------
 int vtkSPTEGLRenderWindow::GetColorBufferSizes(int* rgba)
 {
   if (!rgba)
   {
     return 0;
   }
-  GLint framebuffer = 0;
-  if (this->Initialized && this->IsCurrent())
-  {
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
-  }
-  if (framebuffer != 0)
-  {
-    return this->Superclass::GetColorBufferSizes(rgba);
-  }
+  // What VTK's own framebuffers have, until the render framebuffer exists to tell.
+  int sizes[4] = { 8, 8, 8, 8 };
+  const unsigned int names[4] = { GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE,
+    GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE, GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE,
+    GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE };
+  this->QueryRenderFramebuffer(GL_COLOR_ATTACHMENT0, 4, names, sizes);
   for (int i = 0; i < 4; ++i)
   {
-    rgba[i] = 8;
+    rgba[i] = sizes[i];
   }
-  return 32;
+  return rgba[0] + rgba[1] + rgba[2] + rgba[3];
+}
+
+//------------------------------------------------------------------------------
+int vtkSPTEGLRenderWindow::GetDepthBufferSize()
+{
+  int bits = 24; // As VTK answers before it has a context.
+  const unsigned int name = GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE;
+  this->QueryRenderFramebuffer(GL_DEPTH_ATTACHMENT, 1, &name, &bits);
+  return bits;
 }
 
 //------------------------------------------------------------------------------

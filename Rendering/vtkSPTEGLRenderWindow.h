@@ -82,11 +82,15 @@ public:
    */
   int SupportsOpenGL() override;
 
+  ///@{
   /**
-   * The color bits of the bound draw framebuffer. The context has no default framebuffer:
-   * while none of VTK's is bound, those of VTK's own framebuffers (8 bits per channel).
+   * The color and depth bits of the window: those of VTK's render framebuffer, which is what
+   * the window draws into (the context has no default framebuffer, and querying it is an
+   * OpenGL error); before VTK made it, 8 bits per color channel and 24 depth bits.
    */
   int GetColorBufferSizes(int* rgba) override;
+  int GetDepthBufferSize() override;
+  ///@}
 
   /**
    * Release VTK's graphics resources of this window, then its EGL context.
@@ -122,6 +126,10 @@ private:
   void operator=(const vtkSPTEGLRenderWindow&) = delete;
 
   void DestroyContext();
+  /// Query `count` parameters (`names`) of an attachment of VTK's render framebuffer into
+  /// `values`; false, leaving them, before that framebuffer exists or without the attachment.
+  bool QueryRenderFramebuffer(
+    unsigned int attachment, int count, const unsigned int* names, int* values);
 
   struct vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -244,10 +244,16 @@ MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
 
 def new_render_window() -> vtkRenderWindow:
     """A render window for this process: VTK's own (X, GLX) when there is an X display, else
-    the EGL window, which needs no X server (``spt.vtkSPTEGLRenderWindow``)."""
+    the EGL window, which needs no X server (``spt.vtkSPTEGLRenderWindow``). Without X, a
+    RuntimeError names what is missing when EGL gives no OpenGL 3.2 context: nothing could
+    be drawn, and VTK would read back uninitialized pixels."""
     if os.environ.get("DISPLAY"):
         return vtkRenderWindow()
-    return vtkSPTEGLRenderWindow()
+    window = vtkSPTEGLRenderWindow()
+    if not window.SupportsOpenGL():
+        raise RuntimeError("no DISPLAY, and no OpenGL through EGL either: "
+                           + window.GetOpenGLSupportMessage())
+    return window
 
 
 def make_window(width: int, height: int) -> Tuple[vtkRenderWindow, vtkRenderer]:
