@@ -88,9 +88,9 @@ private:
 };
 
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
-VTKOpenGLAPIProc LoadEGLSymbol(void*, const char* name)
+vtkOpenGLRenderWindow::VTKOpenGLAPIProc LoadEGLSymbol(void*, const char* name)
 {
-  return reinterpret_cast<VTKOpenGLAPIProc>(eglGetProcAddress(name));
+  return reinterpret_cast<vtkOpenGLRenderWindow::VTKOpenGLAPIProc>(eglGetProcAddress(name));
 }
 #endif
 }
