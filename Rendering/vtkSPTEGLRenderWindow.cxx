@@ -15,7 +15,6 @@
 #include <mutex>
 #include <sstream>
 #include <string>
-#include <vector>
 
 vtkStandardNewMacro(vtkSPTEGLRenderWindow);
 
