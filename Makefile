@@ -1,6 +1,7 @@
 # Quick start on a fresh Debian 12 machine (as root, or with sudo):
 #   make demo   install what is missing, build, install, and render the default data set
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
+#   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -20,7 +21,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # for the modules this project uses.
 PACKAGES := cmake ninja-build g++ make \
 	paraview paraview-dev python3-paraview \
-	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libpng-dev libjpeg-dev libtiff-dev \
+	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libegl-dev libpng-dev libjpeg-dev libtiff-dev \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	libtet1.5-dev libglm-dev \
@@ -28,7 +29,7 @@ PACKAGES := cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test sanitize lint clean
+.PHONY: all deps configure build install demo test test-egl sanitize lint clean
 
 all: build
 
@@ -62,6 +63,14 @@ demo: install
 
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) ctest --output-on-failure --timeout 1500
+
+# The whole suite once more without X: no Xvfb and no DISPLAY, so that every window is the EGL
+# window (vtkSPTEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
+# windows are GLX only) and the comparison of an EGL image with an X one.
+test-egl: install
+	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
+	  ctest --output-on-failure --timeout 1500; status=$$?; \
+	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;

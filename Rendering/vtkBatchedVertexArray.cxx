@@ -2,8 +2,8 @@
 
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLVertexArrayObject.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
-#include "vtk_glew.h"
 
 #include <algorithm>
 #include <cstdint>

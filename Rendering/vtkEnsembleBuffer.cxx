@@ -6,9 +6,9 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"

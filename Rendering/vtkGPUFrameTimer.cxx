@@ -1,9 +1,15 @@
 #include "vtkGPUFrameTimer.h"
 
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
 
 bool vtkGPUFrameTimer::Start()
 {
+  // Timer queries are OpenGL 3.3 (GL_ARB_timer_query); without them the time is unknown.
+  if (!this->Query && !vtkSPTOpenGL::HasVersion(3, 3) &&
+    !vtkSPTOpenGL::HasExtension("GL_ARB_timer_query"))
+  {
+    return false;
+  }
   // GL_TIME_ELAPSED queries do not nest: leave the time unknown inside someone else's.
   GLint activeQuery = 0;
   glGetQueryiv(GL_TIME_ELAPSED, GL_CURRENT_QUERY, &activeQuery);

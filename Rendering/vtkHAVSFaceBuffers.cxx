@@ -3,8 +3,8 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
-#include "vtk_glew.h"
 
 #include "vtkTetrahedralMesh.h"
 

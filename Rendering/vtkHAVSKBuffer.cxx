@@ -6,16 +6,15 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"
 
 #include "vtkEnsembleAccumulateFS.h"
 
-#include <cstring>
 #include <sstream>
 
 namespace
@@ -39,17 +38,7 @@ vtkHAVSKBuffer::~vtkHAVSKBuffer() = default;
 
 bool vtkHAVSKBuffer::HasExtension(const char* name)
 {
-  GLint count = 0;
-  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
-  for (GLint i = 0; i < count; ++i)
-  {
-    const char* extension = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, i));
-    if (extension && std::strcmp(extension, name) == 0)
-    {
-      return true;
-    }
-  }
-  return false;
+  return vtkSPTOpenGL::HasExtension(name);
 }
 
 std::string vtkHAVSKBuffer::GetShaderDefinitions() const

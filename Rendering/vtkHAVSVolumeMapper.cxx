@@ -8,11 +8,11 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
 
 #include "vtkGPUFrameTimer.h"
 #include "vtkHAVSFaceBuffers.h"

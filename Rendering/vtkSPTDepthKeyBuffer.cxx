@@ -2,8 +2,8 @@
 
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
 
@@ -18,8 +18,10 @@ bool vtkSPTDepthKeyBuffer::IsSupported(vtkOpenGLRenderWindow* renWin)
     return false;
   }
   renWin->MakeCurrent();
-  const bool imageLoadStore = GLEW_VERSION_4_2 || GLEW_ARB_shader_image_load_store;
-  const bool clearTexture = GLEW_VERSION_4_4 || GLEW_ARB_clear_texture;
+  const bool imageLoadStore =
+    vtkSPTOpenGL::HasVersion(4, 2) || vtkSPTOpenGL::HasExtension("GL_ARB_shader_image_load_store");
+  const bool clearTexture =
+    vtkSPTOpenGL::HasVersion(4, 4) || vtkSPTOpenGL::HasExtension("GL_ARB_clear_texture");
   return imageLoadStore && clearTexture;
 }
 

@@ -4,9 +4,9 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include "vtkEnsembleBuffer.h"
 #include "vtkPreIntegrationTable.h"

@@ -3,9 +3,9 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include "vtkBatchedVertexArray.h"
 #include "vtkTetrahedralMesh.h"

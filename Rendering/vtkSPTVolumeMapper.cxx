@@ -8,10 +8,10 @@
 #include "vtkOpenGLState.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
 
 #include "vtkEnsembleBuffer.h"
 #include "vtkPreIntegrationTable.h"

@@ -1,6 +1,6 @@
 #include "vtkSavedGLState.h"
 
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
 
 vtkSavedGLState::vtkSavedGLState(vtkOpenGLState* state)
   : State(state)

@@ -4,8 +4,8 @@
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 vtkStandardNewMacro(vtkSceneDepthTexture);
 
@@ -17,6 +17,13 @@ int vtkSceneDepthTexture::QueryFormat(int* hasDepth)
 {
   GLint readFramebuffer = 0;
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &readFramebuffer);
+  if (glCheckFramebufferStatus(GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  {
+    // Nothing to read depth from: an incomplete framebuffer, or no default framebuffer at
+    // all (a context without a surface, as vtkSPTEGLRenderWindow's, outside VTK's own).
+    *hasDepth = 0;
+    return vtkTextureObject::Float32;
+  }
   const GLenum attachment = readFramebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
   GLint objectType = GL_NONE;
   glGetFramebufferAttachmentParameteriv(

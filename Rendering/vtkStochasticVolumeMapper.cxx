@@ -5,10 +5,10 @@
 #include "vtkNew.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtk_glew.h"
 
 #include "vtkEnsembleBuffer.h"
 #include "vtkGPUFrameTimer.h"

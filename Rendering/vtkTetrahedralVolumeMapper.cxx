@@ -7,11 +7,13 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "vtkSPTOpenGL.h"
 #include "vtkTetrahedralMesh.h"
 #include "vtkVolumeViewMatrices.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 vtkTetrahedralVolumeMapper::vtkTetrahedralVolumeMapper()
   : Mesh(vtkSmartPointer<vtkTetrahedralMesh>::New())
@@ -56,10 +58,39 @@ bool vtkTetrahedralVolumeMapper::BeginFrame(vtkRenderer* ren, RenderTarget& targ
   }
   if (this->Context && this->Context != target.Window)
   {
+    // Releasing makes the other window's context current (vtkTextureObject does): this
+    // frame's context is made current again by CheckContext(), before anything is created.
     this->ReleaseGraphicsResources(this->Context);
   }
   this->Context = target.Window;
-  return true;
+  return this->CheckContext(target.Window);
+}
+
+bool vtkTetrahedralVolumeMapper::CheckContext(vtkOpenGLRenderWindow* window)
+{
+  // The mappers' shaders are GLSL 1.50 with geometry shaders: OpenGL 3.2 core, which is also
+  // VTK's minimum (VTK 9.2 itself accepts 3.1). A context VTK could not initialize reports 0.0.
+  window->MakeCurrent();
+  int major = 0, minor = 0;
+  vtkSPTOpenGL::GetVersion(major, minor);
+  if (major > 3 || (major == 3 && minor >= 2))
+  {
+    return true;
+  }
+  if (window->GetContextCreationTime() != this->ReportedContextError)
+  {
+    this->ReportedContextError = window->GetContextCreationTime();
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    vtkErrorMacro(<< this->GetClassName() << " needs OpenGL 3.2 or later (core profile, "
+                  << "geometry shaders); this context is "
+                  << (major > 0 ? "OpenGL " + std::to_string(major) + "." + std::to_string(minor)
+                                : std::string("not a usable OpenGL context"))
+                  << " (" << (renderer ? renderer : "no renderer") << ", " << window->GetClassName()
+                  << "). Update the graphics driver, or use Mesa's llvmpipe (Debian: "
+                     "libgl1-mesa-dri; OpenGL 4.5); without X, render in vtkSPTEGLRenderWindow. "
+                     "Nothing is drawn.");
+  }
+  return false;
 }
 
 bool vtkTetrahedralVolumeMapper::PrepareMesh(vtkVolume* vol, bool cellScalars)

@@ -25,6 +25,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkStructuredGrid.h"
@@ -33,7 +34,8 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtk_glew.h"
+
+#include "SPTTestWindow.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -167,7 +169,10 @@ inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0
 class TwoViewports
 {
 public:
-  TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume)
+  // The scene in `window`, by default the tests' window (SPTTestWindow.h: X, else EGL).
+  TwoViewports(int width, int height, vtkVolume* leftVolume, vtkVolume* rightVolume,
+    vtkRenderWindow* window = nullptr)
+    : Window(window ? vtkSmartPointer<vtkRenderWindow>(window) : SPTTestWindow::New())
   {
     this->Window->SetSize(width, height);
     this->Window->SetMultiSamples(0);
@@ -192,7 +197,11 @@ public:
     this->Right->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
     this->Right->ResetCamera();
     this->Window->AddRenderer(this->Right);
-    this->Interactor->SetRenderWindow(this->Window);
+    if (!this->Window->IsA("vtkSPTEGLRenderWindow"))
+    {
+      // An X interactor (for -I): the EGL window has no X window for one.
+      this->Interactor->SetRenderWindow(this->Window);
+    }
   }
 
   // Render; a failure for an OpenGL error.
@@ -227,7 +236,7 @@ public:
   int CompareWithBaseline(int argc, char* argv[])
   {
     const int result = vtkRegressionTestImage(this->Window);
-    if (result == vtkRegressionTester::DO_INTERACTOR)
+    if (result == vtkRegressionTester::DO_INTERACTOR && this->Interactor->GetRenderWindow())
     {
       this->Interactor->Start();
     }
@@ -239,7 +248,7 @@ public:
     return (result != vtkRegressionTester::FAILED && failures == 0) ? EXIT_SUCCESS : EXIT_FAILURE;
   }
 
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window;
   vtkNew<vtkRenderer> Left;
   vtkNew<vtkRenderer> Right;
 

@@ -36,13 +36,15 @@
 #include "vtkPoints.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkTesting.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtk_glew.h"
+
+#include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -432,7 +434,7 @@ struct GPUScene
     this->Window->Render(); // creates the context, for Offers()
   }
 
-  vtkNew<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderWindow> Window = SPTTestWindow::New();
   vtkNew<vtkRenderer> Renderer;
   vtkNew<vtkHAVSVolumeMapper> Mapper;
   vtkSmartPointer<vtkVolumeProperty> Property;

@@ -22,12 +22,14 @@
 #include "vtkPoints.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
-#include "vtk_glew.h"
+
+#include "SPTTestWindow.h"
 
 #include <cmath>
 #include <iostream>
@@ -241,7 +243,7 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
 int TestRandomMeshes(int, char*[])
 {
   constexpr int Seeds = 60;
-  vtkNew<vtkRenderWindow> window;
+  vtkSmartPointer<vtkRenderWindow> window = SPTTestWindow::New();
   window->SetSize(32, 32);
   window->SetMultiSamples(0);
   window->SetAlphaBitPlanes(1);

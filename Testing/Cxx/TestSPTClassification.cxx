@@ -7,10 +7,9 @@
 // - at every point, the interpolated front and back points and scalars (as the fragment shader
 //   reconstructs them) are the exact entry and exit of the view ray through the tetrahedron.
 
-#include "vtkNew.h"
-#include "vtkOpenGLRenderWindow.h"
-#include "vtkRenderer.h"
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
+
+#include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -542,19 +541,12 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
 
 int TestSPTClassification(int, char*[])
 {
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(16, 16);
-  vtkNew<vtkRenderer> renderer;
-  window->AddRenderer(renderer);
-  window->Render();
-  vtkOpenGLRenderWindow* context = vtkOpenGLRenderWindow::SafeDownCast(window);
-  if (!context)
+  SPTTestWindow::RawContext raw(16);
+  if (!raw.Context)
   {
     std::cerr << "Needs an OpenGL render window.\n";
     return 125;
   }
-  context->MakeCurrent();
 
   GLuint vs = Compile(GL_VERTEX_SHADER, ReadShader("vtkSPTTetrahedraVS.glsl"));
   GLuint gs = Compile(GL_GEOMETRY_SHADER, ReadShader("vtkSPTTetrahedraGS.glsl"));

@@ -37,7 +37,6 @@ def window_with(mapper, size: int, name: str = "default"):
 def render_at_still_rate(window) -> None:
     """Render as a vtkRenderWindowInteractor does once interaction ends: at its still update
     rate."""
-    interactor = vtk.vtkRenderWindowInteractor()
-    interactor.SetRenderWindow(window)
+    interactor = vtk.vtkRenderWindowInteractor()  # Not attached: the window may have no X.
     window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
     window.Render()

@@ -20,8 +20,9 @@ SCREEN = "1280x1024"
 
 
 @pytest.fixture(scope="module")
-def session(tmp_path_factory):
-    """One GUI session; its output directory."""
+def session(have_x_display, tmp_path_factory):
+    """One GUI session; its output directory. It starts an Xvfb of its own, but only where X
+    is available at all (have_x_display): the run without X starts no X server."""
     if not shutil.which("xvfb-run"):
         pytest.skip("xvfb-run (package xvfb) is not installed")
     directory = tmp_path_factory.mktemp("gui")

@@ -21,7 +21,7 @@ REPETITIONS = 16
 
 
 @pytest.fixture(scope="module")
-def session(have_display, tmp_path_factory):
+def session(have_x_display, tmp_path_factory):
     directory = tmp_path_factory.mktemp("interactive")
     mesh = pvs.write_mesh(directory / "mesh.vtk")
     pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "interactive_renders.py",

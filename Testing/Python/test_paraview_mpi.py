@@ -131,13 +131,13 @@ def render_set(pieces, preload, directory, representation, prefix, other_seed=Tr
 
 
 @pytest.fixture(scope="module")
-def images(have_display, pieces, preload, tmp_path_factory):
+def images(have_x_display, pieces, preload, tmp_path_factory):
     """SPT."""
     return render_set(pieces, preload, tmp_path_factory.mktemp("mpi"), SPT, "")
 
 
 @pytest.fixture(scope="module")
-def havs_images(have_display, pieces, preload, tmp_path_factory):
+def havs_images(have_x_display, pieces, preload, tmp_path_factory):
     """HAVS-like. The 1-rank image is of the mesh as one file: the two interleaved pieces read
     on one rank are appended with their shared points apart, so every face between them is two
     boundary faces to HAVS, with twice the fragments per ray for the k-buffer to sort (measured:
@@ -150,7 +150,7 @@ def havs_images(have_display, pieces, preload, tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def pbvr_images(have_display, pieces, preload, tmp_path_factory):
+def pbvr_images(have_x_display, pieces, preload, tmp_path_factory):
     return render_set(pieces, preload, tmp_path_factory.mktemp("mpi_pbvr"), PBVR, "pbvr_")
 
 

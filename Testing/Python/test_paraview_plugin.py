@@ -66,7 +66,7 @@ def read_report(output):
 
 
 @pytest.fixture(scope="module")
-def rendered(have_display, mesh, tmp_path_factory):
+def rendered(have_x_display, mesh, tmp_path_factory):
     """pvpython on its own, for each method: LoadPlugin, show the mesh as the method's
     representation type, set its settings by name, screenshot, and the same scene drawn by a
     plain VTK pipeline (--plain)."""
@@ -193,7 +193,7 @@ def test_pvserver_with_a_pvpython_client_over_loopback(rendered, mesh, tmp_path,
     assert np.abs(remote - local).max() <= 2.0 / 255.0
 
 
-def test_installed_plugin_is_found_by_pv_plugin_path(have_display, mesh, tmp_path):
+def test_installed_plugin_is_found_by_pv_plugin_path(have_x_display, mesh, tmp_path):
     """After `make install`: PV_PLUGIN_PATH=PREFIX/lib/paraview-5.11/plugins loads the
     installed plugin at start-up, with the installed libraries (checked when the Makefile ran
     the install: SPT_TEST_INSTALLED=1)."""

@@ -197,12 +197,8 @@ def test_unit_distance_zero_is_a_clear_error(have_display):
 def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
     """The ensemble is cleared every frame, also for a viewport away from the window's origin
     (the renderer's scissor box must not keep the clear from reaching it)."""
-    window = vtk.vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(2 * SIZE[0], SIZE[1])
-    renderer = vtk.vtkRenderer()
+    window, renderer = render.make_window(2 * SIZE[0], SIZE[1])
     renderer.SetViewport(0.5, 0.0, 1.0, 1.0)
-    window.AddRenderer(renderer)
     mapper = render.spt_mapper(8, seed=1)
     mapper.SetInputData(data.make_default_mesh())
     volume = vtk.vtkVolume()

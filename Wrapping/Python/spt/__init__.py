@@ -7,6 +7,7 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     baseline = spt.vtkHAVSVolumeMapper() # sorted baseline: HAVS (Callahan et al. 2005)
     particles = spt.vtkPBVRVolumeMapper() # sorting-free baseline: particles (PBVR)
     mesher = spt.vtkTetGenMesher()        # closed triangulated surface -> tetrahedra (TetGen)
+    window = spt.vtkSPTEGLRenderWindow()  # a render window without X (EGL)
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
 generated drill and torus meshes at any size, cached on disk), ``spt.render``
@@ -17,11 +18,14 @@ generated drill and torus meshes at any size, cached on disk), ``spt.render``
 # The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.
 from vtkmodules import vtkCommonExecutionModel as _vtkCommonExecutionModel  # noqa: F401
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
+from vtkmodules import vtkRenderingOpenGL2 as _vtkRenderingOpenGL2  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
 
 from .SPTMeshing import vtkTetGenMesher
-from .SPTRendering import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTVolumeMapper
+from .SPTRendering import (vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTEGLRenderWindow,
+                           vtkSPTVolumeMapper)
 
 __all__ = [
-    "vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTVolumeMapper", "vtkTetGenMesher"]
+    "vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTEGLRenderWindow", "vtkSPTVolumeMapper",
+    "vtkTetGenMesher"]
 __version__ = "0.1.0"

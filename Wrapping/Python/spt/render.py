@@ -9,6 +9,7 @@ back is the volume's own premultiplied RGBA.
 from __future__ import annotations
 
 import dataclasses
+import os
 import time
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
@@ -38,7 +39,8 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics, raycast
-from .SPTRendering import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTVolumeMapper
+from .SPTRendering import (vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTEGLRenderWindow,
+                           vtkSPTVolumeMapper)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -240,9 +242,24 @@ MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
 }
 
 
+def new_render_window() -> vtkRenderWindow:
+    """A render window for this process: VTK's own (X, GLX) when there is an X display, else
+    the EGL window, which needs no X server (``spt.vtkSPTEGLRenderWindow``). Without X, a
+    RuntimeError names what is missing when EGL gives no OpenGL 3.2 context: nothing could
+    be drawn, and VTK would read back uninitialized pixels."""
+    if os.environ.get("DISPLAY"):
+        return vtkRenderWindow()
+    window = vtkSPTEGLRenderWindow()
+    if not window.SupportsOpenGL():
+        raise RuntimeError("no DISPLAY, and no OpenGL through EGL either: "
+                           + window.GetOpenGLSupportMessage())
+    return window
+
+
 def make_window(width: int, height: int) -> Tuple[vtkRenderWindow, vtkRenderer]:
-    """An off-screen window with alpha planes and a transparent black background."""
-    window = vtkRenderWindow()
+    """An off-screen window with alpha planes and a transparent black background: with X, or
+    through EGL when there is no X display (:func:`new_render_window`)."""
+    window = new_render_window()
     window.SetOffScreenRendering(1)
     window.SetAlphaBitPlanes(1)
     window.SetMultiSamples(0)

@@ -1,0 +1,70 @@
+/**
+ * @file    vtkSPTOpenGL.h
+ * @brief   the OpenGL loader header of the VTK this project is built against
+ *
+ * VTK 9.4 replaced GLEW (vtk_glew.h, modules VTK::glew and VTK::opengl) with glad (vtk_glad.h,
+ * module VTK::glad). The project's sources include this header for the OpenGL declarations;
+ * the CMake code links the matching modules (SPT_VTK_OPENGL_LOADER in the root CMakeLists.txt).
+ * The capability queries below ask the current context itself, so they read the same with
+ * either loader (GLEW's GLEW_VERSION_x_y and glad's GLAD_GL_VERSION_x_y differ).
+ *
+ * Private header of the SPT module and its tests; not installed.
+ */
+
+#ifndef vtkSPTOpenGL_h
+#define vtkSPTOpenGL_h
+
+#include "vtkVersionMacros.h" // For VTK_VERSION_NUMBER
+
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
+#include "vtk_glad.h" // For the OpenGL declarations (glad)
+#else
+#include "vtk_glew.h" // For the OpenGL declarations (GLEW)
+#endif
+
+#include <cstring> // For std::strcmp
+
+namespace vtkSPTOpenGL
+{
+/// The current context's OpenGL version (GL_MAJOR_VERSION and GL_MINOR_VERSION), as major and
+/// minor; 0.0 when the context does not tell (OpenGL 2 and older).
+inline void GetVersion(int& major, int& minor)
+{
+  GLint values[2] = { 0, 0 };
+  glGetIntegerv(GL_MAJOR_VERSION, &values[0]);
+  glGetIntegerv(GL_MINOR_VERSION, &values[1]);
+  if (glGetError() != GL_NO_ERROR)
+  {
+    values[0] = values[1] = 0;
+  }
+  major = values[0];
+  minor = values[1];
+}
+
+/// Whether the current context is OpenGL major.minor or later.
+inline bool HasVersion(int major, int minor)
+{
+  int contextMajor = 0, contextMinor = 0;
+  GetVersion(contextMajor, contextMinor);
+  return contextMajor > major || (contextMajor == major && contextMinor >= minor);
+}
+
+/// Whether the current context lists the extension (GL_EXTENSIONS, one by one: core profile).
+inline bool HasExtension(const char* name)
+{
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+  {
+    const char* extension = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, i));
+    if (extension && std::strcmp(extension, name) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
+#endif
+// VTK-HeaderTest-Exclude: vtkSPTOpenGL.h

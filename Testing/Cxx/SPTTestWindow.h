@@ -1,0 +1,75 @@
+// The render window of the C++ tests: VTK's own (X, GLX) when there is an X display, else
+// vtkSPTEGLRenderWindow, so that the whole suite also runs without X.
+
+#ifndef SPTTestWindow_h
+#define SPTTestWindow_h
+
+#include "vtkNew.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSPTEGLRenderWindow.h"
+#include "vtkSmartPointer.h"
+
+#include <cstdlib>
+
+namespace SPTTestWindow
+{
+inline bool HasXDisplay()
+{
+  const char* display = std::getenv("DISPLAY");
+  return display && *display;
+}
+
+inline vtkSmartPointer<vtkRenderWindow> New()
+{
+  if (HasXDisplay())
+  {
+    return vtkSmartPointer<vtkRenderWindow>::New();
+  }
+  return vtkSmartPointer<vtkSPTEGLRenderWindow>::New();
+}
+
+// For tests that make OpenGL calls of their own: a rendered window's context, current, with
+// VTK's render framebuffer bound. A window without X (EGL) has no complete default
+// framebuffer: drawing there raises GL_INVALID_FRAMEBUFFER_OPERATION even with the
+// rasterizer off. The previous bindings are restored when it goes. Context is null when the
+// window is not an OpenGL one.
+class RawContext
+{
+public:
+  explicit RawContext(int size)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(size, size);
+    this->Window->AddRenderer(this->Renderer);
+    this->Window->Render();
+    this->Context = vtkOpenGLRenderWindow::SafeDownCast(this->Window);
+    if (this->Context)
+    {
+      this->Context->MakeCurrent();
+      this->Context->GetState()->PushFramebufferBindings();
+      this->Context->GetRenderFramebuffer()->Bind();
+    }
+  }
+  ~RawContext()
+  {
+    if (this->Context)
+    {
+      this->Context->GetState()->PopFramebufferBindings();
+    }
+  }
+  RawContext(const RawContext&) = delete;
+  RawContext& operator=(const RawContext&) = delete;
+
+  vtkOpenGLRenderWindow* Context = nullptr;
+
+private:
+  vtkSmartPointer<vtkRenderWindow> Window = New();
+  vtkNew<vtkRenderer> Renderer;
+};
+}
+
+#endif

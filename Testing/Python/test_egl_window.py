@@ -1,0 +1,126 @@
+"""Rendering without X: spt.vtkSPTEGLRenderWindow, and its automatic choice when there is no
+DISPLAY. The renders without X run in a child process whose environment has no DISPLAY; the
+image is compared with the same scene rendered through X when this process has a display, and
+with the exact reference (spt.raycast) in any case.
+"""
+
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import spt
+from spt import data, metrics, render
+
+SIZE = 96
+LEVEL = 64
+
+# The child: the default mesh through SPT in render.make_window's window, with no DISPLAY.
+CHILD = """
+import json, sys
+import numpy as np
+from spt import data, render
+window, _ = render.make_window(8, 8)
+grid = data.make_default_mesh()
+image = render.render(grid, data.default_transfer_function(grid),
+                      render.spt_mapper({level}, seed=1), size=({size}, {size})).image
+np.save(sys.argv[1], image)
+window.Render()
+print(json.dumps({{"class": window.GetClassName(), "platform": window.GetPlatformName()}}))
+"""
+
+
+def run_without_display(code: str, *arguments: str) -> subprocess.CompletedProcess:
+    """Python ``code`` in a child process with the package under test and no DISPLAY."""
+    env = {key: value for key, value in os.environ.items() if key != "DISPLAY"}
+    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
+    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
+    return subprocess.run([sys.executable, "-c", code, *arguments], capture_output=True,
+                          text=True, env=env, check=False, timeout=600)
+
+
+@pytest.fixture(scope="module")
+def without_x(tmp_path_factory):
+    """The child's image and what it reported of its window."""
+    path = tmp_path_factory.mktemp("egl") / "image.npy"
+    result = run_without_display(CHILD.format(level=LEVEL, size=SIZE), str(path))
+    assert result.returncode == 0, result.stderr
+    return np.load(path), json.loads(result.stdout.strip().splitlines()[-1]), result.stderr
+
+
+def test_without_display_the_egl_window_is_chosen_and_prints_nothing(without_x):
+    _, window, stderr = without_x
+    assert window == {"class": "vtkSPTEGLRenderWindow", "platform": "surfaceless"} or \
+        window == {"class": "vtkSPTEGLRenderWindow", "platform": "device"}
+    # No spurious message (GLEW's "could not be initialized" among them): nothing at all.
+    assert stderr == ""
+
+
+def test_without_display_the_image_is_the_volume(without_x):
+    image, _, _ = without_x
+    grid = data.make_default_mesh()
+    prop = data.default_transfer_function(grid)
+    covered = (image[..., 3] > 0.05).mean()
+    assert 0.05 < covered < 0.95
+    exact = render.reference(grid, prop, size=(SIZE, SIZE)).image
+    assert metrics.rmse(image, exact) < 0.05
+
+
+def test_without_display_the_image_is_the_one_x_renders(without_x):
+    if not os.environ.get("DISPLAY"):
+        pytest.skip("no X display to render the same scene through X (GLX)")
+    image, _, _ = without_x
+    grid = data.make_default_mesh()
+    with_x = render.render(grid, data.default_transfer_function(grid),
+                           render.spt_mapper(LEVEL, seed=1), size=(SIZE, SIZE)).image
+    # The same driver (Mesa) draws both, with the same seed: the same image up to rounding.
+    assert np.abs(image - with_x).max() <= 2.0 / 255.0
+
+
+def test_settings_and_print_self():
+    window = spt.vtkSPTEGLRenderWindow()
+    assert window.GetDeviceIndex() == -1
+    window.SetDeviceIndex(100)
+    assert window.GetDeviceIndex() == 63
+    window.SetDeviceIndex(-5)
+    assert window.GetDeviceIndex() == -1
+    assert window.GetPlatformName() == ""
+    assert "DeviceIndex: -1" in str(window)
+
+
+BAD_DEVICE = """
+from spt import vtkSPTEGLRenderWindow
+window = vtkSPTEGLRenderWindow()
+window.SetDeviceIndex(63)
+window.Render()
+print("supported", window.SupportsOpenGL())
+"""
+
+
+def test_a_missing_device_is_a_clear_error_not_a_crash():
+    result = run_without_display(BAD_DEVICE)
+    assert result.returncode == 0, result.stderr
+    assert "supported 0" in result.stdout
+    assert "EGL device 63 does not exist" in result.stderr
+
+
+X_INTERACTOR = """
+import vtk
+from spt import vtkSPTEGLRenderWindow
+window = vtkSPTEGLRenderWindow()
+interactor = vtk.vtkRenderWindowInteractor()
+interactor.SetRenderWindow(window)
+window.Render()
+print("rendered", window.GetInteractor() is None)
+"""
+
+
+def test_an_x_interactor_is_refused_clearly():
+    result = run_without_display(X_INTERACTOR)
+    assert result.returncode == 0, result.stderr
+    assert "rendered True" in result.stdout
+    assert "cannot drive a window without X" in result.stderr
