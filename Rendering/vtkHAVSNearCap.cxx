@@ -3,7 +3,7 @@
 #include "vtkOpenGLBufferObject.h"
 #include "vtkShaderProgram.h"
 #include "vtkTetrahedralMesh.h"
-#include "vtk_glew.h"
+#include "vtkSPTOpenGL.h"
 
 #include <algorithm>
 #include <utility>

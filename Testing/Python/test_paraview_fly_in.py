@@ -24,7 +24,7 @@ def mesh(tmp_path_factory):
 
 
 @pytest.mark.parametrize("method", REPRESENTATIONS)
-def test_flying_into_the_volume_leaves_no_holes(have_display, mesh, tmp_path, method):
+def test_flying_into_the_volume_leaves_no_holes(have_x_display, mesh, tmp_path, method):
     pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "fly_in.py", "--data", mesh,
              "--plugin", pvs.plugin_path(), "--output-dir", tmp_path,
              "--representation", REPRESENTATIONS[method],
