@@ -1,9 +1,9 @@
 #include "vtkHAVSNearCap.h"
 
 #include "vtkOpenGLBufferObject.h"
+#include "vtkSPTOpenGL.h"
 #include "vtkShaderProgram.h"
 #include "vtkTetrahedralMesh.h"
-#include "vtkSPTOpenGL.h"
 
 #include <algorithm>
 #include <utility>
