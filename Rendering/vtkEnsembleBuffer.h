@@ -115,6 +115,10 @@ public:
    * The scene depth texture, the size of one pass in samples, and the subpixel level.
    */
   vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
+  /// The sum of the repetitions and the coverage (float RGBA, one texel per sample); the
+  /// coverage is allocated by the first BeginCoveragePass().
+  vtkTextureObject* GetSumTexture() { return this->Sum; }
+  vtkTextureObject* GetCoverageTexture() { return this->Coverage; }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
   int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   int GetSubpixelLevel() const { return this->SubpixelLevel; }
