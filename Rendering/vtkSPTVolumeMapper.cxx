@@ -97,6 +97,9 @@ vtkStandardNewMacro(vtkSPTVolumeMapper);
 vtkSPTVolumeMapper::vtkSPTVolumeMapper()
   : Internals(new vtkInternals)
 {
+  // The random numbers follow the global cell ids where the input has them, so that any
+  // split of a data set into pieces (ranks, or one process) draws the same image.
+  this->GetMesh()->SetUseGlobalIds(true);
 }
 
 vtkSPTVolumeMapper::~vtkSPTVolumeMapper() = default;
@@ -326,7 +329,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.SubpixelLevel = this->SubpixelLevel;
   settings.Seed = this->Seed;
   settings.OpaqueScene = HasOpaqueScene(ren);
-
+  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
+    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
   ostate->PushFramebufferBindings();
   const bool started =
     plan.First > 0 || internals.StartAccumulation(this, target, this->TargetError > 0.0);
@@ -352,7 +356,6 @@ void vtkSPTVolumeMapper::SetController(vtkMultiProcessController* controller)
   if (controller != this->Internals->Reduction->GetController())
   {
     this->Internals->Reduction->SetController(controller);
-    this->GetMesh()->SetUseGlobalIds(controller != nullptr);
     if (!controller)
     {
       this->GetMesh()->SetSharedFrame(nullptr, nullptr);
@@ -554,6 +557,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   if (drawn && reduced && reduction->GetController()->GetLocalProcessId() == 0)
   {
     ensemble->Resolve(target.X, target.Y, self->RepetitionLevel, self->ExactCoverage != 0);
+    ensemble->MarkFootprint(target.X, target.Y);
   }
   vtkOpenGLCheckErrorMacro("failed after Render");
 }

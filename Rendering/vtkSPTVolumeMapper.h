@@ -176,9 +176,12 @@ public:
    * default): this process renders alone. With a controller, every process renders and its
    * image combines with the others' by reductions through the controller (a global minimum
    * of the scene depth and of the depth keys, a sum of colors and coverage); rank 0 resolves
-   * the image of the whole over its own scene, and the other ranks draw nothing of the volume.
-   * The random numbers follow the cells' global ids (the input's cell-data GlobalIds), so the
-   * image is that of one process rendering the whole with the same seed. Every process must
+   * the image of the whole over its own scene, and the other ranks draw nothing of the volume;
+   * rank 0 also marks the volume's pixels at the near plane of its depth buffer, so that a
+   * depth compositor (ParaView's IceT) keeps them.
+   * The random numbers follow the cells' global ids (the input's cell-data GlobalIds, which
+   * the mapper uses with or without a controller whenever the input has them), so the image
+   * is that of one process rendering the whole with the same seed. Every process must
    * render every frame, with the same settings, image size and scalars (an array of the same
    * name and number of components); otherwise rank 0 reports the first rank that differs and
    * nothing is drawn. Each frame draws RepetitionLevel repetitions: AutoAdjustRepetitions,

@@ -2,7 +2,11 @@
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkSPTVolumeMapper.h"
 #include "vtkTetrahedralVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
@@ -43,6 +47,45 @@ vtkAbstractVolumeMapper* vtkSPTVolumeRepresentation::GetVolumeMapper()
 
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
+
+//------------------------------------------------------------------------------
+vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool parallel = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper) && controller &&
+    controller->GetNumberOfProcesses() > 1;
+  return parallel ? controller : nullptr;
+}
+
+//------------------------------------------------------------------------------
+int vtkSPTVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  vtkMultiProcessController* controller = this->ParallelController();
+  if (request == vtkPVView::REQUEST_UPDATE() && controller)
+  {
+    // Each rank draws its own piece as it is: the data is left where it is, and the ranks'
+    // images are not composited in visibility order.
+    vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 0);
+  }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    // Only when every rank renders (distributed rendering); otherwise the data is delivered
+    // to the rank that renders, which draws it alone.
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    const bool distributed = view && view->GetUseDistributedRenderingForRender();
+    if (auto* mapper = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
+    {
+      mapper->SetController(distributed ? controller : nullptr);
+    }
+  }
+  return 1;
+}
 
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::UpdateMapperParameters()
