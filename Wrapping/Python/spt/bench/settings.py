@@ -6,7 +6,8 @@ import dataclasses
 from typing import Optional, Tuple
 
 #: The sections of a full run, in the order they run. The race is the headline.
-SECTIONS = ("race", "cells", "repetitions", "subpixels", "image", "quality", "host", "large")
+SECTIONS = ("race", "cells", "repetitions", "subpixels", "image", "quality", "host", "large",
+            "parallel")
 
 #: The race's scenes: the real data sets and the generated drill at three sizes.
 RACE_SCENES = ("spx", "torus", "bluntfin", "post", "drill-0.2M", "drill-1M", "drill-3M")
@@ -43,6 +44,11 @@ class Settings:
     race_scenes: Tuple[str, ...] = RACE_SCENES
     race_size: int = 256
     race_max_repetitions: int = 256       # the cap of L in the race: 1, 2, 4, ... up to it
+    # SPT on several MPI ranks, each with an interleaved piece (see spt.bench.parallel)
+    parallel_scenes: Tuple[str, ...] = ("drill-1M", "post")
+    parallel_ranks: Tuple[int, ...] = (1, 2, 4)
+    parallel_size: int = 256
+    parallel_repetitions: int = 16
     # run the sections for these methods only, keeping the other methods' earlier results
     only_methods: Optional[Tuple[str, ...]] = None
 
@@ -57,4 +63,6 @@ class Settings:
                         sizes=(128, 256), frames=2, quality_datasets=("spx",),
                         quality_size=128, quality_levels=(4, 16), host_cells=(10_000, 30_000),
                         large_cells=100_000, large_size=256, large_repetitions=16,
-                        race_scenes=("default",), race_size=128, race_max_repetitions=16)
+                        race_scenes=("default",), race_size=128, race_max_repetitions=16,
+                        parallel_scenes=("default",), parallel_ranks=(1, 2),
+                        parallel_size=128)
