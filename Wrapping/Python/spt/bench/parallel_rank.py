@@ -65,9 +65,11 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     from .parallel import interleaved_piece
     from .race import race_scene
 
+    # The whole scene first: VTK's parallel-aware readers (PLOT3D) read only a part of the
+    # data on each rank once a global controller is set.
+    scene = race_scene(arguments.scene)
     mpi = controller()
     rank, ranks = mpi.GetLocalProcessId(), mpi.GetNumberOfProcesses()
-    scene = race_scene(arguments.scene)
     piece = interleaved_piece(scene.grid, rank, ranks)
     mapper = render.spt_mapper(arguments.repetitions)
     mapper.SetController(mpi)
