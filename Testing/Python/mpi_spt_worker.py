@@ -25,6 +25,8 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--other-seed-on", type=int, default=-1,
                         help="this rank renders with seed 7")
     parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
+    parser.add_argument("--opaque-on", type=int, default=-1,
+                        help="this rank draws an opaque black sphere in the middle of the mesh")
     parser.add_argument("--frames", type=int, default=2)
     return parser.parse_args()
 
@@ -65,6 +67,28 @@ def piece_of(grid, rank: int, ranks: int, arguments: argparse.Namespace):
     return piece
 
 
+def black_sphere(bounds):
+    """An opaque black sphere in the middle of ``bounds``: it hides and cuts the volume, and
+    adds nothing to the color over a black background."""
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+
+    sphere = vtkSphereSource()
+    sphere.SetCenter([(bounds[2 * a] + bounds[2 * a + 1]) / 2.0 for a in range(3)])
+    sphere.SetRadius(0.25 * min(bounds[2 * a + 1] - bounds[2 * a] for a in range(3)))
+    sphere.SetThetaResolution(48)
+    sphere.SetPhiResolution(48)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(sphere.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(0.0, 0.0, 0.0)
+    actor.GetProperty().SetAmbient(0.0)
+    actor.GetProperty().SetDiffuse(0.0)
+    actor.GetProperty().SetSpecular(0.0)
+    return actor
+
+
 def main() -> None:
     arguments = parse()
     from spt import render, scenes
@@ -81,6 +105,8 @@ def main() -> None:
         mapper.SetController(controller)
     window, renderer = render.make_window(arguments.size, arguments.size)
     render.add_volume(renderer, piece, scene.property, mapper)
+    if rank == arguments.opaque_on:
+        renderer.AddActor(black_sphere(grid.GetBounds()))
     render.place_camera(renderer, grid.GetBounds(), scene.view)
     images = []
     for _ in range(arguments.frames):

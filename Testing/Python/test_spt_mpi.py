@@ -128,6 +128,19 @@ def test_an_empty_piece_takes_part(have_display, tmp_path):
     assert 0.2 * reference[..., 3].mean() < alpha < 0.9 * reference[..., 3].mean()
 
 
+def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path, renders):
+    """An opaque black sphere drawn by rank 1 only cuts and hides rank 0's piece too (the
+    scene depth is a global minimum): over black, the 2-rank image's color is the 1-rank
+    image's with the sphere. (Rank 0 shows the volume over its own background, so the sphere's
+    alpha is not in its image.)"""
+    one, _, _ = run(tmp_path / "sphere1.npy", 1, "--opaque-on", "0")
+    two, _, errors = run(tmp_path / "sphere2.npy", 2, "--opaque-on", "1")
+    assert "ERR" not in errors, errors
+    assert largest_difference(one[0][..., :3], two[0][..., :3]) <= 1.0
+    without, _, _ = renders[2]
+    assert largest_difference(without[0][..., :3], two[0][..., :3]) > 32.0
+
+
 @pytest.mark.parametrize("options, message", [
     (("--other-array-on", "1"), "Rank 1 renders the point array 'another name' of 1 "
                                 "component(s), but rank 0 renders the point array 'field'"),
