@@ -229,12 +229,32 @@ bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys)
   return true;
 }
 
-bool vtkSPTParallelReduction::ReduceSums(const std::vector<vtkTextureObject*>& textures)
+bool vtkSPTParallelReduction::ReduceNothingKept(size_t keys)
+{
+  const std::vector<unsigned int> local(keys, 0xFFFFFFFFu);
+  std::vector<unsigned int> global(keys);
+  this->Bytes += keys * sizeof(unsigned int);
+  return this->Controller->AllReduce(
+           local.data(), global.data(), vtkIdType(keys), vtkCommunicator::MIN_OP) != 0;
+}
+
+bool vtkSPTParallelReduction::AllSucceeded(bool ok)
+{
+  const int local = ok ? 1 : 0;
+  int global = 0;
+  return this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::MIN_OP) && global == 1;
+}
+
+bool vtkSPTParallelReduction::ReduceSums(
+  const std::vector<vtkTextureObject*>& textures, size_t texels)
 {
   const bool root = this->Controller->GetLocalProcessId() == 0;
   for (vtkTextureObject* texture : textures)
   {
-    const std::vector<float> local = ReadTexture(texture, GL_RGBA, 4);
+    const bool allocated = texture->GetHandle() != 0 &&
+      size_t(texture->GetWidth()) * size_t(texture->GetHeight()) == texels;
+    const std::vector<float> local =
+      allocated ? ReadTexture(texture, GL_RGBA, 4) : std::vector<float>(4 * texels, 0.0f);
     std::vector<float> global(local.size());
     if (!this->Controller->Reduce(
           local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::SUM_OP, 0))
@@ -242,7 +262,7 @@ bool vtkSPTParallelReduction::ReduceSums(const std::vector<vtkTextureObject*>& t
       return false;
     }
     this->Bytes += local.size() * sizeof(float);
-    if (root)
+    if (root && allocated)
     {
       WriteTexture(texture, GL_RGBA, global);
     }

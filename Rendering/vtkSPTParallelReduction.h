@@ -86,8 +86,17 @@ public:
   /// The global minimum of the depth keys, on every rank. Collective.
   bool ReduceKeys(vtkSPTDepthKeyBuffer* keys);
 
-  /// The global sums of float RGBA textures, written on rank 0 only. Collective.
-  bool ReduceSums(const std::vector<vtkTextureObject*>& textures);
+  /**
+   * The global sums of float RGBA textures of `texels` texels each, written on rank 0 only;
+   * a texture of another size (not allocated after a failure) adds zeros. Collective.
+   */
+  bool ReduceSums(const std::vector<vtkTextureObject*>& textures, size_t texels);
+
+  /// This rank's part of a key reduction it could not draw: `keys` keys of "nothing kept".
+  bool ReduceNothingKept(size_t keys);
+
+  /// Whether `ok` holds on every rank. Collective.
+  bool AllSucceeded(bool ok);
 
   ///@{
   /**

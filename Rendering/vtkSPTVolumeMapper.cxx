@@ -90,6 +90,8 @@ public:
   void DrawParallel(vtkSPTVolumeMapper* self, const RenderTarget& target,
     const std::vector<vtkSPTFrame::Volume>& volumes,
     const vtkSPTParallelReduction::Agreement& agreement);
+  void DrawParallelFrame(vtkSPTVolumeMapper* self, const RenderTarget& target,
+    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
 };
 
 vtkStandardNewMacro(vtkSPTVolumeMapper);
@@ -516,12 +518,8 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
   const vtkSPTParallelReduction::Agreement& agreement)
 {
-  vtkSPTParallelReduction* reduction = this->Reduction;
-  vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkSavedGLState savedState(ostate);
-  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  vtkSavedGLState savedState(target.Window->GetState());
   vtkSPTFrame::Settings settings;
   settings.Estimator = self->Estimator;
   settings.StratifiedSampling = self->StratifiedSampling != 0;
@@ -530,12 +528,28 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
   settings.AlwaysKeys = true; // the keys are what the ranks combine
-  settings.AfterKeys = [reduction](vtkSPTDepthKeyBuffer* keys)
-  { return reduction->ReduceKeys(keys); };
+  this->DrawParallelFrame(self, target, volumes, settings);
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
+  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+  vtkSPTFrame::Settings& settings)
+{
+  vtkSPTParallelReduction* reduction = this->Reduction;
+  vtkOpenGLRenderWindow* renWin = target.Window;
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  int exchanges = 0;
+  settings.AfterKeys = [reduction, &exchanges](vtkSPTDepthKeyBuffer* keys)
+  {
+    ++exchanges;
+    return reduction->ReduceKeys(keys);
+  };
 
   ostate->PushFramebufferBindings();
   ensemble->CaptureSceneDepth(target.X, target.Y);
-  if (agreement.OpaqueScene)
+  if (settings.OpaqueScene)
   {
     reduction->ReduceSceneDepth(ensemble->GetSceneDepthTexture());
   }
@@ -544,20 +558,27 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   ensemble->SetHalves(false);
   ensemble->ClearSum();
   vtkSPTFrame frame(renWin, ensemble, this->DepthKeys, volumes, settings, self);
-  const bool drawn =
+  bool drawn =
     frame.DrawRepetitions(0, self->RepetitionLevel, self->RepetitionsPerPass, self->ExactCoverage);
   ostate->PopFramebufferBindings();
+  // A rank whose frame failed (a shader, a buffer) still takes part in every exchange the
+  // others make, with nothing kept and nothing added; then no rank resolves.
+  const int lanes = std::min(self->RepetitionsPerPass, self->RepetitionLevel);
+  const size_t samples = size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight());
+  for (; exchanges < (self->RepetitionLevel + lanes - 1) / lanes; ++exchanges)
+  {
+    reduction->ReduceNothingKept(samples * size_t(lanes));
+  }
   std::vector<vtkTextureObject*> sums{ ensemble->GetSumTexture() };
   if (self->ExactCoverage)
   {
     sums.push_back(ensemble->GetCoverageTexture());
   }
-  const bool reduced = reduction->ReduceSums(sums);
+  drawn = reduction->ReduceSums(sums, samples) && reduction->AllSucceeded(drawn);
   self->LastRepetitionCount = self->RepetitionLevel;
-  if (drawn && reduced && reduction->GetController()->GetLocalProcessId() == 0)
+  if (drawn && reduction->GetController()->GetLocalProcessId() == 0)
   {
     ensemble->Resolve(target.X, target.Y, self->RepetitionLevel, self->ExactCoverage != 0);
     ensemble->MarkFootprint(target.X, target.Y);
   }
-  vtkOpenGLCheckErrorMacro("failed after Render");
 }
