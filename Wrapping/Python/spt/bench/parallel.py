@@ -109,12 +109,78 @@ def summarize(report: Row, one_rank_image: np.ndarray) -> Row:
             "alpha_mean": float(report["image"][..., 3].mean())}
 
 
+def write_pieces(scene: str, ranks: int, directory: pathlib.Path) -> pathlib.Path:
+    """The scene's mesh as ``ranks`` interleaved legacy pieces and their .pvtk index."""
+    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
+
+    from .race import race_scene
+
+    grid = race_scene(scene).grid
+    entries = []
+    for rank in range(ranks):
+        path = directory / f"{scene}-{ranks}.{rank}.vtk"
+        writer = vtkUnstructuredGridWriter()
+        writer.SetFileName(str(path))
+        writer.SetInputData(interleaved_piece(grid, rank, ranks))
+        writer.SetFileTypeToBinary()
+        writer.Write()
+        entries.append(f'  <Piece fileName="{path.name}" />')
+    index = directory / f"{scene}-{ranks}.pvtk"
+    index.write_text('<File version="pvtk-1.0" dataType="vtkUnstructuredGrid" '
+                     f'numberOfPieces="{ranks}" >\n' + "\n".join(entries) + "\n</File>\n")
+    return index
+
+
+def paraview_row(scene: str, ranks: int, representation: str, settings: Settings,
+                 directory: pathlib.Path) -> Row:
+    """One pvbatch run of ``representation`` on ``ranks`` ranks with interleaved pieces."""
+    index = write_pieces(scene, ranks, directory)
+    output = directory / f"{scene}-{ranks}-{representation.replace(' ', '_')}.json"
+    command = mpiexec(ranks) + ["-x", "PV_PLUGIN_PATH"]
+    preload = os.environ.get("SPT_EXPAT_COMPAT_LIBRARY")
+    if preload:  # ParaView's redistribution loses data with Debian 12's expat without it
+        command += ["-x", f"LD_PRELOAD={preload}"]
+    command += [shutil.which("pvbatch") or "pvbatch",
+                str(pathlib.Path(__file__).with_name("pvbatch_frames.py")),
+                "--data", str(index), "--representation", representation,
+                "--output", str(output), "--size", str(settings.parallel_size),
+                "--frames", str(settings.frames)]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
+                            check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+    report = json.loads(output.read_text())
+    return {"scene": scene, "ranks": ranks, "representation": representation,
+            "read_wall_seconds": report["read_seconds"],
+            "first_wall_seconds": report["frames"][0],
+            "later_wall_seconds": median(report["frames"][1:]) if len(report["frames"]) > 1
+            else float("nan")}
+
+
+def paraview_rows(settings: Settings, progress: Progress, output: pathlib.Path) -> List[Row]:
+    """pvbatch with the plugin (PV_PLUGIN_PATH), each representation at each rank count."""
+    rows: List[Row] = []
+    if not os.environ.get("PV_PLUGIN_PATH") or not shutil.which("pvbatch"):
+        return rows
+    for scene in settings.parallel_scenes:
+        for ranks in settings.parallel_paraview_ranks:
+            for representation in settings.parallel_paraview_representations:
+                rows.append(paraview_row(scene, ranks, representation, settings, output))
+                progress.step(f"pvbatch {scene} {ranks} ranks {representation} "
+                              f"{rows[-1]['first_wall_seconds']:.2f} s")
+    return rows
+
+
 def steps(settings: Settings) -> int:
-    return len(settings.parallel_scenes) * len(settings.parallel_ranks)
+    paraview = len(settings.parallel_paraview_ranks) * len(
+        settings.parallel_paraview_representations)
+    return len(settings.parallel_scenes) * (len(settings.parallel_ranks) + paraview)
 
 
-def parallel(settings: Settings, progress: Progress, output: pathlib.Path) -> List[Row]:
-    """Every scene at every rank count; the first count is the reference image."""
+def parallel(settings: Settings, progress: Progress, output: pathlib.Path) -> Dict[str, object]:
+    """Every scene at every rank count (the first count's image is the reference), then
+    pvbatch's first and later frames of SPT without redistribution and of the methods that
+    redistribute."""
     output.mkdir(parents=True, exist_ok=True)
     rows: List[Row] = []
     for scene in settings.parallel_scenes:
@@ -126,4 +192,4 @@ def parallel(settings: Settings, progress: Progress, output: pathlib.Path) -> Li
             rows.append(summarize(report, reference))
             progress.step(f"parallel {scene} {ranks} ranks "
                           f"{rows[-1]['later_wall_seconds']:.2f} s")
-    return rows
+    return {"vtk": rows, "paraview": paraview_rows(settings, progress, output)}

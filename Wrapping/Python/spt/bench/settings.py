@@ -49,6 +49,10 @@ class Settings:
     parallel_ranks: Tuple[int, ...] = (1, 2, 4)
     parallel_size: int = 256
     parallel_repetitions: int = 16
+    # pvbatch with the plugin: SPT (no redistribution) against methods ParaView redistributes
+    parallel_paraview_ranks: Tuple[int, ...] = (1, 4)
+    parallel_paraview_representations: Tuple[str, ...] = ("Volume (SPT)", "Volume (HAVS-like)",
+                                                          "Volume")
     # run the sections for these methods only, keeping the other methods' earlier results
     only_methods: Optional[Tuple[str, ...]] = None
 
@@ -65,4 +69,4 @@ class Settings:
                         large_cells=100_000, large_size=256, large_repetitions=16,
                         race_scenes=("default",), race_size=128, race_max_repetitions=16,
                         parallel_scenes=("default",), parallel_ranks=(1, 2),
-                        parallel_size=128)
+                        parallel_size=128, parallel_paraview_ranks=(2,))
