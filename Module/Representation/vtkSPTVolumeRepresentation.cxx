@@ -78,7 +78,11 @@ int vtkSPTVolumeRepresentation::ProcessViewRequest(
     // Only when every rank renders (distributed rendering); otherwise the data is delivered
     // to the rank that renders, which draws it alone.
     auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
-    const bool distributed = view && view->GetUseDistributedRenderingForRender();
+    const bool lod =
+      inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
+    const bool distributed = view &&
+      (lod ? view->GetUseDistributedRenderingForLODRender()
+           : view->GetUseDistributedRenderingForRender());
     if (auto* mapper = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
     {
       mapper->SetController(distributed ? controller : nullptr);
