@@ -1,13 +1,18 @@
 #include "vtkSPTVolumeRepresentation.h"
 
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkSPTVolumeMapper.h"
 #include "vtkTetrahedralVolumeMapper.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkVolumeProperty.h"
 
 vtkStandardNewMacro(vtkSPTVolumeRepresentation);
@@ -58,6 +63,37 @@ vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
 }
 
 //------------------------------------------------------------------------------
+void vtkSPTVolumeRepresentation::KeepEmptyPieceDrawn(vtkSPTVolumeMapper* mapper)
+{
+  // ParaView's volume does not call its mapper when the piece lacks the selected array, as an
+  // empty piece may; every rank's mapper must take part in the reductions, so such a piece is
+  // replaced by an empty grid that has the array.
+  vtkDataSet* input = mapper->GetDataSetInput();
+  const char* name = mapper->GetArrayName();
+  int cellFlag = 0;
+  if (!input || input->GetNumberOfCells() > 0 || !name || !name[0] ||
+    vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(), mapper->GetArrayAccessMode(),
+      mapper->GetArrayId(), name, cellFlag))
+  {
+    return;
+  }
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName(name);
+  vtkNew<vtkUnstructuredGrid> empty;
+  empty->SetPoints(vtkNew<vtkPoints>());
+  empty->Allocate(0);
+  if (mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA)
+  {
+    empty->GetCellData()->AddArray(scalars);
+  }
+  else
+  {
+    empty->GetPointData()->AddArray(scalars);
+  }
+  mapper->SetInputDataObject(empty);
+}
+
+//------------------------------------------------------------------------------
 int vtkSPTVolumeRepresentation::ProcessViewRequest(
   vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
 {
@@ -86,6 +122,10 @@ int vtkSPTVolumeRepresentation::ProcessViewRequest(
     if (auto* mapper = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
     {
       mapper->SetController(distributed ? controller : nullptr);
+      if (distributed && controller)
+      {
+        this->KeepEmptyPieceDrawn(mapper);
+      }
     }
   }
   return 1;

@@ -37,6 +37,7 @@
 
 class vtkAbstractVolumeMapper;
 class vtkMultiProcessController;
+class vtkSPTVolumeMapper;
 
 class SPTPARAVIEWREPRESENTATION_EXPORT vtkSPTVolumeRepresentation
   : public vtkUnstructuredGridVolumeRepresentation
@@ -83,6 +84,8 @@ private:
 
   // The processes SPT combines across, or null when it draws alone.
   vtkMultiProcessController* ParallelController();
+  // An empty piece without the selected array replaced by an empty grid with it.
+  static void KeepEmptyPieceDrawn(vtkSPTVolumeMapper* mapper);
 
   vtkSmartPointer<vtkAbstractVolumeMapper> VolumeMapper;
 };

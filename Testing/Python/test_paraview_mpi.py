@@ -229,6 +229,17 @@ def test_spt_draws_the_pieces_as_read(images):
     assert extent_ratio.min() > 0.95, extent_ratio
 
 
+def test_spt_rank_with_an_empty_piece_takes_part(images, preload, tmp_path):
+    """Rank 1 reads an empty piece (no cells, no arrays): its mapper still takes part in the
+    reductions (no hang, the run has a timeout) and the image is the 1-rank image."""
+    index = pvs.write_pieces(
+        tmp_path, lambda grid: [np.arange(grid.GetNumberOfCells()), np.array([], dtype=int)])
+    two, report = render(index, tmp_path / "empty_rank.png", ranks=2, preload=preload)
+    one, _ = images["one_rank"]
+    assert report["ranks"] == 2 and report["tetrahedra"] == 48000
+    assert levels(one, two)["max_levels"] <= 1
+
+
 @pytest.mark.parametrize("method", [HAVS, PBVR])
 def test_data_is_read_distributed_and_redistributed(request, method):
     """Each rank reads one piece; for rendering, ParaView moves cells so that rank 0 holds a
