@@ -63,19 +63,26 @@ vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
 }
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::KeepEmptyPieceDrawn(vtkSPTVolumeMapper* mapper)
+void vtkSPTVolumeRepresentation::KeepPieceDrawn(
+  vtkSPTVolumeMapper* mapper, vtkMultiProcessController* controller)
 {
   // ParaView's volume does not call its mapper when the piece lacks the selected array, as an
   // empty piece may; every rank's mapper must take part in the reductions, so such a piece is
-  // replaced by an empty grid that has the array.
+  // replaced by an empty grid that has the array (with an error if it had cells).
   vtkDataSet* input = mapper->GetDataSetInput();
   const char* name = mapper->GetArrayName();
   int cellFlag = 0;
-  if (!input || input->GetNumberOfCells() > 0 || !name || !name[0] ||
+  if (!input || !name || !name[0] ||
     vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(), mapper->GetArrayAccessMode(),
       mapper->GetArrayId(), name, cellFlag))
   {
     return;
+  }
+  if (input->GetNumberOfCells() > 0)
+  {
+    vtkErrorWithObjectMacro(mapper,
+      "Rank " << controller->GetLocalProcessId() << "'s piece has no array '" << name
+              << "'; it is not drawn.");
   }
   vtkNew<vtkFloatArray> scalars;
   scalars->SetName(name);
@@ -124,7 +131,7 @@ int vtkSPTVolumeRepresentation::ProcessViewRequest(
       mapper->SetController(distributed ? controller : nullptr);
       if (distributed && controller)
       {
-        this->KeepEmptyPieceDrawn(mapper);
+        KeepPieceDrawn(mapper, controller);
       }
     }
   }

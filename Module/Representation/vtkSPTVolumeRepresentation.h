@@ -84,8 +84,9 @@ private:
 
   // The processes SPT combines across, or null when it draws alone.
   vtkMultiProcessController* ParallelController();
-  // An empty piece without the selected array replaced by an empty grid with it.
-  static void KeepEmptyPieceDrawn(vtkSPTVolumeMapper* mapper);
+  // A piece without the selected array replaced by an empty grid with it, so that the
+  // mapper is still called and takes part in the reductions.
+  static void KeepPieceDrawn(vtkSPTVolumeMapper* mapper, vtkMultiProcessController* controller);
 
   vtkSmartPointer<vtkAbstractVolumeMapper> VolumeMapper;
 };

@@ -115,8 +115,9 @@ def render(pieces, output, ranks=1, seed=0, preload=None, extra=(), representati
         command = pvs.mpirun(ranks, command, preload)
     # PV_PLUGIN_PATH makes every rank load the plugin at start-up.
     plugins = pvs.plugin_path().parents[1]
-    pvs.run(command, env=pvs.environment(PV_PLUGIN_PATH=str(plugins)))
+    result = pvs.run(command, env=pvs.environment(PV_PLUGIN_PATH=str(plugins)))
     report = json.loads(output.with_suffix(".rank0.json").read_text())
+    report["stderr"] = result.stderr
     return pvs.read_png(output), report
 
 
@@ -238,6 +239,25 @@ def test_spt_rank_with_an_empty_piece_takes_part(images, preload, tmp_path):
     one, _ = images["one_rank"]
     assert report["ranks"] == 2 and report["tetrahedra"] == 48000
     assert levels(one, two)["max_levels"] <= 1
+
+
+def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, tmp_path):
+    """Rank 1's piece has its array under another name: rank 1 says so, its piece is not
+    drawn, and rank 0's piece is (no hang; the run has a timeout)."""
+    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridReader
+
+    index = pvs.write_pieces(tmp_path, lambda grid: [
+        np.flatnonzero(np.arange(grid.GetNumberOfCells()) % 2 == k) for k in (0, 1)])
+    reader = vtkUnstructuredGridReader()
+    reader.SetFileName(str(tmp_path / "pieces.1.vtk"))
+    reader.Update()
+    reader.GetOutput().GetPointData().GetArray("field").SetName("another name")
+    pvs.write_mesh(tmp_path / "pieces.1.vtk", reader.GetOutput())
+    two, report = render(index, tmp_path / "other_array.png", ranks=2, preload=preload)
+    one, _ = images["one_rank"]
+    assert "Rank 1's piece has no array 'field'; it is not drawn." in report["stderr"]
+    measures = levels(one, two)
+    assert measures["covered_pixels"] > 0.1 and measures["max_levels"] > 8
 
 
 @pytest.mark.parametrize("method", [HAVS, PBVR])
