@@ -14,6 +14,7 @@
 #include "vtkSceneDepthTexture.h"
 
 #include "vtkEnsembleAccumulateFS.h"
+#include "vtkEnsembleFootprintFS.h"
 #include "vtkEnsembleNoiseFS.h"
 #include "vtkEnsembleResolveFS.h"
 
@@ -386,6 +387,38 @@ void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCove
   this->Sum->Deactivate();
 }
 
+void vtkEnsembleBuffer::MarkFootprint(int x, int y)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  if (!this->Footprint)
+  {
+    this->Footprint.reset(
+      new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleFootprintFS, ""));
+  }
+  if (!this->Footprint->Program)
+  {
+    return;
+  }
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglDisable(GL_BLEND);
+  this->Context->GetShaderCache()->ReadyShaderProgram(this->Footprint->Program);
+  this->Sum->Activate();
+  this->Footprint->Program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  this->Footprint->Program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  this->Footprint->Render();
+  this->Sum->Deactivate();
+}
+
 size_t vtkEnsembleBuffer::GetGPUMemorySize() const
 {
   if (!this->Context)
@@ -405,6 +438,7 @@ size_t vtkEnsembleBuffer::GetGPUMemorySize() const
 void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
+  this->Footprint.reset();
   this->AccumulateBoth.reset();
   this->Mean.reset();
   this->NoiseQuad.reset();

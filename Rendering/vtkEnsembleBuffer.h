@@ -110,11 +110,22 @@ public:
    */
   void Resolve(int x, int y, int numberOfPasses, bool exactCoverage = false);
 
+  /**
+   * Write the near plane's depth into the depth buffer bound for drawing wherever the sum
+   * covers a pixel, in the viewport at (x, y), and no color: for a compositor that keeps each
+   * pixel of the nearest process (IceT's z-buffer mode takes far pixels for empty ones).
+   */
+  void MarkFootprint(int x, int y);
+
   ///@{
   /**
    * The scene depth texture, the size of one pass in samples, and the subpixel level.
    */
   vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
+  /// The sum of the repetitions and the coverage (float RGBA, one texel per sample); the
+  /// coverage is allocated by the first BeginCoveragePass().
+  vtkTextureObject* GetSumTexture() { return this->Sum; }
+  vtkTextureObject* GetCoverageTexture() { return this->Coverage; }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
   int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   int GetSubpixelLevel() const { return this->SubpixelLevel; }
@@ -164,6 +175,7 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;
   std::unique_ptr<vtkOpenGLQuadHelper> AccumulateBoth; // to the sum and the second half's
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
+  std::unique_ptr<vtkOpenGLQuadHelper> Footprint;
   std::unique_ptr<vtkOpenGLQuadHelper> NoiseQuad;
 };
 

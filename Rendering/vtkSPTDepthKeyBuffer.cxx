@@ -76,6 +76,31 @@ void vtkSPTDepthKeyBuffer::Barrier()
     GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
+std::vector<unsigned int> vtkSPTDepthKeyBuffer::Read()
+{
+  std::vector<unsigned int> keys(this->GetGPUMemorySize() / 4);
+  if (!keys.empty())
+  {
+    this->Keys->Activate();
+    glGetTexImage(this->Keys->GetTarget(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, keys.data());
+    this->Keys->Deactivate();
+  }
+  return keys;
+}
+
+void vtkSPTDepthKeyBuffer::Write(const std::vector<unsigned int>& keys)
+{
+  if (keys.empty() || keys.size() != this->GetGPUMemorySize() / 4)
+  {
+    return;
+  }
+  this->Keys->Activate();
+  // The texture is layers x width x height (see Prepare()).
+  glTexSubImage3D(this->Keys->GetTarget(), 0, 0, 0, 0, this->Layers, this->Width, this->Height,
+    GL_RED_INTEGER, GL_UNSIGNED_INT, keys.data());
+  this->Keys->Deactivate();
+}
+
 size_t vtkSPTDepthKeyBuffer::GetGPUMemorySize() const
 {
   return this->Context ? size_t(this->Width) * size_t(this->Height) * size_t(this->Layers) * 4 : 0;

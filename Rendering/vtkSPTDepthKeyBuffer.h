@@ -20,6 +20,8 @@
 #include "vtkNew.h"             // For the texture
 #include "vtkObject.h"
 
+#include <vector> // For Read()
+
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
@@ -56,6 +58,15 @@ public:
   void BindImage(int unit);
   static void UnbindImage(int unit);
   static void Barrier();
+
+  ///@{
+  /**
+   * Read every key back to the host (layer by layer, as the shaders index them), and write
+   * keys of the same size back; for reductions across processes.
+   */
+  std::vector<unsigned int> Read();
+  void Write(const std::vector<unsigned int>& keys);
+  ///@}
 
   /**
    * Bytes held on the GPU.

@@ -28,6 +28,7 @@
 #include <climits>
 #include <cmath>
 #include <initializer_list>
+#include <memory>
 #include <string>
 
 namespace
@@ -98,6 +99,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
   common += clippedCells ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
   std::string geometry = vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
 
@@ -169,6 +171,12 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
     this->Window->GetShaderCache()->ReadyShaderProgram(program);
     ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
       volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture() });
+    std::unique_ptr<ScopedTextures> randomIds;
+    if (this->FrameSettings.GlobalIds)
+    {
+      randomIds.reset(new ScopedTextures({ volume.Buffers->GetRandomIdTexture() }));
+      program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
+    }
     SetVolumeUniforms(program, volume);
     program->SetUniformi("repetition", repetition);
     program->SetUniformi("repetitionsInGroup", inGroup);
@@ -184,7 +192,8 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // The programs this render needs, by pass kind and by scalars per cell or per point; the
   // others stay null. Groups draw the coverage with their first key traversal; single passes
   // need a traversal of its own.
-  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
+  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR &&
+    !this->FrameSettings.AlwaysKeys;
   const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
     !single && coverage, !single, single && coverage };
   // A render of fewer repetitions than a group draws only those: the fragment loops are sized
@@ -268,6 +277,14 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
     {
       this->Traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
       vtkSPTDepthKeyBuffer::Barrier();
+      if (this->FrameSettings.AfterKeys)
+      {
+        ok = this->FrameSettings.AfterKeys(this->DepthKeys);
+        vtkSPTDepthKeyBuffer::Barrier();
+      }
+    }
+    if (ok)
+    {
       ensemble->BeginSumPass(halves);
       ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       ostate->vtkglEnable(GL_BLEND);

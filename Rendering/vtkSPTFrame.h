@@ -21,7 +21,8 @@
 
 #include "SPTRenderingModule.h" // For export macro
 
-#include <vector> // For the volumes
+#include <functional> // For the keys' reduction
+#include <vector>     // For the volumes
 
 class vtkObject;
 class vtkOpenGLRenderWindow;
@@ -74,6 +75,13 @@ public:
     int SubpixelLevel = 1;
     unsigned int Seed = 0;
     bool OpaqueScene = false; // opaque geometry was drawn before the volumes
+    /// The random numbers follow the meshes' random ids (vtkSPTMeshBuffers), not the indices.
+    bool GlobalIds = false;
+    /// Draw even one repetition per traversal with depth keys, never the single passes.
+    bool AlwaysKeys = false;
+    /// Called after each key traversal, before the color traversal reads the keys (the ranks
+    /// of a parallel render take their minimum there); false stops the frame.
+    std::function<bool(vtkSPTDepthKeyBuffer*)> AfterKeys;
   };
 
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,

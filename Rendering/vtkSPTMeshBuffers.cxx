@@ -86,6 +86,7 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
       this->PointTexture, renWin, this->PointBuffer, points.size() / 3, 3, VTK_FLOAT, GL_RGB32F) &&
     MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer, tetrahedra.size() / 4, 4,
       VTK_UNSIGNED_INT, GL_RGBA32UI);
+  ok = ok && this->UploadRandomIds(renWin, mesh->GetRandomIds());
   if (!ok)
   {
     vtkErrorMacro("Could not upload " << mesh->GetNumberOfTetrahedra()
@@ -93,9 +94,26 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  this->UploadedBytes =
-    sizeof(float) * (points.size() + scalars.size()) + sizeof(unsigned int) * tetrahedra.size();
+  this->UploadedBytes = sizeof(float) * (points.size() + scalars.size()) +
+    sizeof(unsigned int) * (tetrahedra.size() + mesh->GetRandomIds().size());
   return true;
+}
+
+bool vtkSPTMeshBuffers::UploadRandomIds(
+  vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& randomIds)
+{
+  if (randomIds.empty())
+  {
+    if (this->RandomIdTexture)
+    {
+      this->RandomIdTexture->ReleaseGraphicsResources(renWin);
+      this->RandomIdTexture = nullptr;
+    }
+    return true;
+  }
+  return this->RandomIdBuffer->Upload(randomIds, vtkOpenGLBufferObject::TextureBuffer) &&
+    MakeBufferTexture(this->RandomIdTexture, renWin, this->RandomIdBuffer, randomIds.size(), 1,
+      VTK_UNSIGNED_INT, GL_R32UI);
 }
 
 void vtkSPTMeshBuffers::Bind(vtkShaderProgram* program)
@@ -133,9 +151,10 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   this->PointBuffer->ReleaseGraphicsResources();
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
+  this->RandomIdBuffer->ReleaseGraphicsResources();
   this->VertexArray.ReleaseGraphicsResources();
-  for (vtkSmartPointer<vtkTextureObject>* texture :
-    { &this->ScalarTexture, &this->PointTexture, &this->TetrahedronTexture })
+  for (vtkSmartPointer<vtkTextureObject>* texture : { &this->ScalarTexture, &this->PointTexture,
+         &this->TetrahedronTexture, &this->RandomIdTexture })
   {
     if (*texture)
     {

@@ -61,6 +61,9 @@ public:
   vtkTextureObject* GetTetrahedronTexture() { return this->TetrahedronTexture; }
   vtkTextureObject* GetPointTexture() { return this->PointTexture; }
   vtkTextureObject* GetScalarTexture() { return this->ScalarTexture; }
+  /// The tetrahedra's ids for the random numbers (R32UI), when the mesh numbers them by
+  /// global ids (vtkTetrahedralMesh::GetRandomIds()); else null.
+  vtkTextureObject* GetRandomIdTexture() { return this->RandomIdTexture; }
 
   /**
    * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
@@ -80,6 +83,9 @@ private:
   vtkSPTMeshBuffers(const vtkSPTMeshBuffers&) = delete;
   void operator=(const vtkSPTMeshBuffers&) = delete;
 
+  // The random ids' buffer texture, or none when the mesh has none.
+  bool UploadRandomIds(vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& randomIds);
+
   vtkSmartPointer<vtkTetrahedralMesh> Mesh;
   vtkMTimeType UploadedBuild = 0;
   vtkOpenGLRenderWindow* Context = nullptr;
@@ -87,10 +93,12 @@ private:
   vtkNew<vtkOpenGLBufferObject> PointBuffer;
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
+  vtkNew<vtkOpenGLBufferObject> RandomIdBuffer;
   vtkBatchedVertexArray VertexArray;
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> TetrahedronTexture;
   vtkSmartPointer<vtkTextureObject> PointTexture;
+  vtkSmartPointer<vtkTextureObject> RandomIdTexture;
   size_t UploadedBytes = 0;
 };
 

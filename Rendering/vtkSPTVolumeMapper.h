@@ -44,6 +44,11 @@
  * the renderer draws them all into one set of buffers, with its own sampling settings
  * (RepetitionLevel, Seed, TargetError, ...), and the others draw nothing themselves.
  *
+ * For the same reason, the ranks of a parallel job draw their own pieces of one data set as
+ * they are (any shape, interleaved, with overlapping bounds), with no redistribution and no
+ * compositing in visibility order (SetController()): their depth keys are combined by a
+ * global minimum and their sums by a global sum, and rank 0 resolves the image of the whole.
+ *
  * @sa
  * vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper
  */
@@ -56,6 +61,7 @@
 
 #include <memory> // For the internals
 
+class vtkMultiProcessController;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -163,6 +169,35 @@ public:
    * when none was (TargetError off, fewer than two repetitions, or nothing drawn).
    */
   vtkGetMacro(EstimatedError, double);
+
+  ///@{
+  /**
+   * The processes of a parallel render, each with its own piece of the data set; null (the
+   * default): this process renders alone. With a controller, every process renders and its
+   * image combines with the others' by reductions through the controller (a global minimum
+   * of the scene depth and of the depth keys, a sum of colors and coverage); rank 0 resolves
+   * the image of the whole over its own scene, and the other ranks draw nothing of the volume;
+   * rank 0 also marks the volume's pixels at the near plane of its depth buffer, so that a
+   * depth compositor (ParaView's IceT) keeps them.
+   * The random numbers follow the cells' global ids (the input's cell-data GlobalIds, which
+   * the mapper uses with or without a controller whenever the input has them), so the image
+   * is that of one process rendering the whole with the same seed. Every process must
+   * render every frame, with the same settings, image size and scalars (an array of the same
+   * name and number of components); otherwise rank 0 reports the first rank that differs and
+   * nothing is drawn. Each frame draws RepetitionLevel repetitions: AutoAdjustRepetitions,
+   * ProgressiveRefinement and TargetError are not applied, and one SPT volume per renderer is
+   * combined. Needs image load/store (OpenGL 4.4) on every process.
+   */
+  void SetController(vtkMultiProcessController* controller);
+  vtkMultiProcessController* GetController();
+  ///@}
+
+  /**
+   * The bytes this process contributed to the reductions of the last parallel render (its
+   * share of the scene depth, the depth keys and the sums, and the settings exchanged); 0
+   * without a controller.
+   */
+  vtkIdType GetLastParallelBytes();
 
   /**
    * The bytes this mapper holds on the GPU after the last render: mesh buffers,

@@ -27,6 +27,10 @@ namespace
 {
 // The name of the scalars handed to the split into tetrahedra.
 constexpr const char* SplitScalarsName = "vtkTetrahedralMesh scalars";
+// The name of the global cell ids handed to the split.
+constexpr const char* SplitIdsName = "vtkTetrahedralMesh ids";
+// What the further tetrahedra of a split cell add to its global id (2^32 / golden ratio).
+constexpr unsigned int SplitIdStride = 0x9E3779B9u;
 
 double ScalarOf(vtkDataArray* array, vtkIdType tuple, int component)
 {
@@ -154,12 +158,50 @@ vtkTetrahedralMesh::vtkTetrahedralMesh() = default;
 
 vtkTetrahedralMesh::~vtkTetrahedralMesh() = default;
 
-bool vtkTetrahedralMesh::Fail(const std::string& reason)
+void vtkTetrahedralMesh::SetSharedFrame(const double* bounds, const double* scalarRange)
 {
-  this->LastError = reason;
+  const bool has = bounds && scalarRange;
+  if (has == this->HasSharedFrame &&
+    (!has ||
+      (std::equal(bounds, bounds + 6, this->SharedBounds) &&
+        std::equal(scalarRange, scalarRange + 2, this->SharedScalarRange))))
+  {
+    return;
+  }
+  this->HasSharedFrame = has;
+  if (has)
+  {
+    std::copy(bounds, bounds + 6, this->SharedBounds);
+    std::copy(scalarRange, scalarRange + 2, this->SharedScalarRange);
+  }
+  this->OptionsTime.Modified();
+}
+
+void vtkTetrahedralMesh::SetUseGlobalIds(bool use)
+{
+  if (use != this->UseGlobalIds)
+  {
+    this->UseGlobalIds = use;
+    this->OptionsTime.Modified();
+  }
+}
+
+void vtkTetrahedralMesh::Clear()
+{
   this->Points.clear();
   this->Scalars.clear();
   this->Tetrahedra.clear();
+  this->RandomIds.clear();
+  std::fill(this->DataBounds, this->DataBounds + 6, 0.0);
+  this->DataBounds[1] = this->DataBounds[3] = this->DataBounds[5] = -1.0;
+  this->DataScalarRange[0] = 0.0;
+  this->DataScalarRange[1] = -1.0;
+}
+
+bool vtkTetrahedralMesh::Fail(const std::string& reason)
+{
+  this->LastError = reason;
+  this->Clear();
   this->BuildTime.Modified();
   return false;
 }
@@ -176,7 +218,7 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
     selection.ArrayAccessMode, selection.ArrayId, selection.ArrayName.c_str(), cellFlag);
   if (input == this->LastInput && scalars == this->LastScalars &&
     selection == this->LastSelection && this->BuildTime > input->GetMTime() &&
-    (!scalars || this->BuildTime > scalars->GetMTime()))
+    this->BuildTime > this->OptionsTime && (!scalars || this->BuildTime > scalars->GetMTime()))
   {
     return this->LastError.empty();
   }
@@ -185,13 +227,10 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
   this->LastSelection = selection;
   this->LastError.clear();
   this->SkippedCells = 0;
-
   if (input->GetNumberOfCells() == 0)
   {
     // Nothing to draw is not an error.
-    this->Points.clear();
-    this->Scalars.clear();
-    this->Tetrahedra.clear();
+    this->Clear();
     this->BuildTime.Modified();
     return true;
   }
@@ -205,13 +244,46 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
     return false;
   }
   vtkSmartPointer<vtkDataArray> tetrahedraScalars = scalars;
+  vtkSmartPointer<vtkDataArray> ids =
+    this->UseGlobalIds ? input->GetCellData()->GetGlobalIds() : nullptr;
   vtkSmartPointer<vtkDataSet> tetrahedra =
-    this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1);
+    this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1, ids);
   if (!tetrahedraScalars)
   {
     return this->Fail("The scalars did not survive the split into tetrahedra.");
   }
-  return this->Extract(tetrahedra, tetrahedraScalars, cellFlag == 1, selection.Component);
+  std::vector<vtkIdType> keptCells;
+  if (!this->Extract(tetrahedra, tetrahedraScalars, cellFlag == 1, selection.Component, keptCells))
+  {
+    return false;
+  }
+  this->NumberByGlobalIds(ids, keptCells);
+  return true;
+}
+
+void vtkTetrahedralMesh::NumberByGlobalIds(
+  vtkDataArray* ids, const std::vector<vtkIdType>& keptCells)
+{
+  this->RandomIds.clear();
+  if (!ids || keptCells.empty())
+  {
+    return;
+  }
+  // The tetrahedra of one split cell are consecutive cells of the split, with its id.
+  this->RandomIds.reserve(keptCells.size());
+  size_t k = 0;
+  unsigned int inCell = 0;
+  for (vtkIdType cell = 0; cell <= keptCells.back(); ++cell)
+  {
+    const auto id = static_cast<vtkIdType>(ids->GetComponent(cell, 0));
+    inCell =
+      cell > 0 && id == static_cast<vtkIdType>(ids->GetComponent(cell - 1, 0)) ? inCell + 1 : 0;
+    if (keptCells[k] == cell)
+    {
+      this->RandomIds.push_back(static_cast<unsigned int>(id) + inCell * SplitIdStride);
+      ++k;
+    }
+  }
 }
 
 bool vtkTetrahedralMesh::CheckConnectivity(vtkDataSet* input)
@@ -261,8 +333,8 @@ bool vtkTetrahedralMesh::CheckConnectivity(vtkDataSet* input)
   return true;
 }
 
-vtkSmartPointer<vtkDataSet> vtkTetrahedralMesh::Tetrahedralize(
-  vtkDataSet* input, vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars)
+vtkSmartPointer<vtkDataSet> vtkTetrahedralMesh::Tetrahedralize(vtkDataSet* input,
+  vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars, vtkSmartPointer<vtkDataArray>& ids)
 {
   vtkUnstructuredGrid* grid = vtkUnstructuredGrid::SafeDownCast(input);
   if (grid)
@@ -284,6 +356,13 @@ vtkSmartPointer<vtkDataSet> vtkTetrahedralMesh::Tetrahedralize(
   shared->SetName(SplitScalarsName);
   (cellScalars ? static_cast<vtkFieldData*>(bare->GetCellData()) : bare->GetPointData())
     ->AddArray(shared);
+  if (ids)
+  {
+    auto sharedIds = vtk::TakeSmartPointer(ids->NewInstance());
+    sharedIds->ShallowCopy(ids);
+    sharedIds->SetName(SplitIdsName);
+    bare->GetCellData()->AddArray(sharedIds);
+  }
   vtkNew<vtkDataSetTriangleFilter> triangulate;
   triangulate->SetInputData(bare);
   triangulate->TetrahedraOnlyOn();
@@ -294,11 +373,12 @@ vtkSmartPointer<vtkDataSet> vtkTetrahedralMesh::Tetrahedralize(
   vtkFieldData* attributes = cellScalars ? static_cast<vtkFieldData*>(output->GetCellData())
                                          : static_cast<vtkFieldData*>(output->GetPointData());
   scalars = attributes->GetArray(SplitScalarsName);
+  ids = ids ? output->GetCellData()->GetArray(SplitIdsName) : nullptr;
   return output;
 }
 
-bool vtkTetrahedralMesh::Extract(
-  vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars, int component)
+bool vtkTetrahedralMesh::Extract(vtkDataSet* tetrahedra, vtkDataArray* scalars, bool cellScalars,
+  int component, std::vector<vtkIdType>& keptCells)
 {
   const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
   if (numberOfPoints > vtkIdType(std::numeric_limits<unsigned int>::max()))
@@ -312,6 +392,13 @@ bool vtkTetrahedralMesh::Extract(
   double bounds[6];
   const std::vector<double> coordinates = FiniteCoordinates(tetrahedra, pointIsValid, bounds);
   const std::vector<double> values = ScalarValues(scalars, component, this->ScalarRange);
+  std::copy(bounds, bounds + 6, this->DataBounds);
+  std::copy(this->ScalarRange, this->ScalarRange + 2, this->DataScalarRange);
+  if (this->HasSharedFrame)
+  {
+    std::copy(this->SharedBounds, this->SharedBounds + 6, bounds);
+    std::copy(this->SharedScalarRange, this->SharedScalarRange + 2, this->ScalarRange);
+  }
   this->Normalize(coordinates, bounds);
 
   this->Scalars.clear();
@@ -325,7 +412,7 @@ bool vtkTetrahedralMesh::Extract(
       this->Scalars[i] = pointIsValid[i] ? ToTable(values[i], this->ScalarRange) : 0.0f;
     }
   }
-  if (!this->ExtractTetrahedra(tetrahedra, values, pointIsValid))
+  if (!this->ExtractTetrahedra(tetrahedra, values, pointIsValid, keptCells))
   {
     return false;
   }
@@ -359,8 +446,9 @@ void vtkTetrahedralMesh::Normalize(const std::vector<double>& coordinates, const
   }
 }
 
-bool vtkTetrahedralMesh::ExtractTetrahedra(
-  vtkDataSet* tetrahedra, const std::vector<double>& values, const std::vector<char>& pointIsValid)
+bool vtkTetrahedralMesh::ExtractTetrahedra(vtkDataSet* tetrahedra,
+  const std::vector<double>& values, const std::vector<char>& pointIsValid,
+  std::vector<vtkIdType>& keptCells)
 {
   const vtkIdType numberOfPoints = tetrahedra->GetNumberOfPoints();
   const vtkIdType numberOfValues = vtkIdType(values.size());
@@ -397,6 +485,7 @@ bool vtkTetrahedralMesh::ExtractTetrahedra(
       continue;
     }
     this->AddTetrahedron(ids);
+    keptCells.push_back(cell);
     if (this->CellScalars)
     {
       this->Scalars.push_back(ToTable(values[cell], this->ScalarRange));

@@ -1,9 +1,18 @@
 #include "vtkSPTVolumeRepresentation.h"
 
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkSPTVolumeMapper.h"
 #include "vtkTetrahedralVolumeMapper.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkVolumeProperty.h"
 
 vtkStandardNewMacro(vtkSPTVolumeRepresentation);
@@ -43,6 +52,91 @@ vtkAbstractVolumeMapper* vtkSPTVolumeRepresentation::GetVolumeMapper()
 
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
+
+//------------------------------------------------------------------------------
+vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool parallel = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper) && controller &&
+    controller->GetNumberOfProcesses() > 1;
+  return parallel ? controller : nullptr;
+}
+
+//------------------------------------------------------------------------------
+void vtkSPTVolumeRepresentation::KeepPieceDrawn(
+  vtkSPTVolumeMapper* mapper, vtkMultiProcessController* controller)
+{
+  // ParaView's volume does not call its mapper when the piece lacks the selected array, as an
+  // empty piece may; every rank's mapper must take part in the reductions, so such a piece is
+  // replaced by an empty grid that has the array (with an error if it had cells).
+  vtkDataSet* input = mapper->GetDataSetInput();
+  const char* name = mapper->GetArrayName();
+  int cellFlag = 0;
+  if (!input || !name || !name[0] ||
+    vtkAbstractMapper::GetScalars(input, mapper->GetScalarMode(), mapper->GetArrayAccessMode(),
+      mapper->GetArrayId(), name, cellFlag))
+  {
+    return;
+  }
+  if (input->GetNumberOfCells() > 0)
+  {
+    vtkErrorWithObjectMacro(mapper,
+      "Rank " << controller->GetLocalProcessId() << "'s piece has no array '" << name
+              << "'; it is not drawn.");
+  }
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetName(name);
+  vtkNew<vtkUnstructuredGrid> empty;
+  empty->SetPoints(vtkNew<vtkPoints>());
+  empty->Allocate(0);
+  if (mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA)
+  {
+    empty->GetCellData()->AddArray(scalars);
+  }
+  else
+  {
+    empty->GetPointData()->AddArray(scalars);
+  }
+  mapper->SetInputDataObject(empty);
+}
+
+//------------------------------------------------------------------------------
+int vtkSPTVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  vtkMultiProcessController* controller = this->ParallelController();
+  if (request == vtkPVView::REQUEST_UPDATE() && controller)
+  {
+    // Each rank draws its own piece as it is: the data is left where it is, and the ranks'
+    // images are not composited in visibility order.
+    vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 0);
+  }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    // Only when every rank renders (distributed rendering); otherwise the data is delivered
+    // to the rank that renders, which draws it alone.
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    const bool lod =
+      inInfo->Has(vtkPVRenderView::USE_LOD()) && inInfo->Get(vtkPVRenderView::USE_LOD()) != 0;
+    const bool distributed = view &&
+      (lod ? view->GetUseDistributedRenderingForLODRender()
+           : view->GetUseDistributedRenderingForRender());
+    if (auto* mapper = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
+    {
+      mapper->SetController(distributed ? controller : nullptr);
+      if (distributed && controller)
+      {
+        KeepPieceDrawn(mapper, controller);
+      }
+    }
+  }
+  return 1;
+}
 
 //------------------------------------------------------------------------------
 void vtkSPTVolumeRepresentation::UpdateMapperParameters()

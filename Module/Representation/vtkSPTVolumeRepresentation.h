@@ -11,8 +11,14 @@
  * Everything else is vtkUnstructuredGridVolumeRepresentation's: the split into tetrahedra, the
  * translucent-surface LOD, and, under MPI, the request for ordered compositing, for which
  * vtkPVRenderView redistributes the data into spatially disjoint pieces and composites the
- * pieces' premultiplied images in visibility order. That suits every mapper that renders its
- * own piece as a premultiplied image over a transparent background, as SPT does.
+ * pieces' premultiplied images in visibility order. The sorted mappers (HAVS-like) and PBVR
+ * keep that.
+ *
+ * vtkSPTVolumeMapper needs neither: under MPI with distributed rendering, this representation
+ * asks for no redistribution and no ordered compositing, and hands the mapper the processes'
+ * controller, so that each rank draws its own piece as it is and the ranks combine by
+ * reductions; rank 0 resolves the image and marks its pixels in the depth buffer, and IceT's
+ * depth compositing keeps them.
  *
  * The inherited volume-mapper selection (SetActiveVolumeMapper(), the "SelectMapper" property
  * of ParaView's "Volume" representation) is ignored: this representation always draws with its
@@ -30,6 +36,8 @@
 #include "vtkUnstructuredGridVolumeRepresentation.h"
 
 class vtkAbstractVolumeMapper;
+class vtkMultiProcessController;
+class vtkSPTVolumeMapper;
 
 class SPTPARAVIEWREPRESENTATION_EXPORT vtkSPTVolumeRepresentation
   : public vtkUnstructuredGridVolumeRepresentation
@@ -53,6 +61,13 @@ public:
    */
   void SetActiveVolumeMapper(const char* name) override;
 
+  /**
+   * The superclass's requests, except for vtkSPTVolumeMapper under MPI: no redistribution and
+   * no ordered compositing, and the mapper's controller set for distributed renders.
+   */
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+
 protected:
   vtkSPTVolumeRepresentation();
   ~vtkSPTVolumeRepresentation() override;
@@ -66,6 +81,12 @@ protected:
 private:
   vtkSPTVolumeRepresentation(const vtkSPTVolumeRepresentation&) = delete;
   void operator=(const vtkSPTVolumeRepresentation&) = delete;
+
+  // The processes SPT combines across, or null when it draws alone.
+  vtkMultiProcessController* ParallelController();
+  // A piece without the selected array replaced by an empty grid with it, so that the
+  // mapper is still called and takes part in the reductions.
+  static void KeepPieceDrawn(vtkSPTVolumeMapper* mapper, vtkMultiProcessController* controller);
 
   vtkSmartPointer<vtkAbstractVolumeMapper> VolumeMapper;
 };

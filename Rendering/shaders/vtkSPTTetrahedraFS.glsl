@@ -38,6 +38,9 @@ uniform samplerBuffer points;
 uniform samplerBuffer scalars;
 
 uniform int cellIdOffset; // where this volume's cell ids start among the frame's volumes
+#ifdef SPT_GLOBAL_IDS
+uniform usamplerBuffer randomIds; // per tetrahedron: the id from the input's global cell id
+#endif
 uniform int repetition; // first repetition of this pass; bit patterns of unsigned values:
 uniform int seed;       // VTK sets int uniforms only
 uniform int stratumCount;  // stratified sampling: the repetitions from stratumOrigin on form
@@ -218,7 +221,11 @@ vec4 opticalDepthTerms(vec4 color)
 // The id of this fragment's cell among the frame's volumes, which its random numbers follow.
 uint cellId()
 {
+#ifdef SPT_GLOBAL_IDS
+  return texelFetch(randomIds, tetrahedronId).r + uint(cellIdOffset);
+#else
   return uint(tetrahedronId) + uint(cellIdOffset);
+#endif
 }
 
 // The depth key of a segment for the atomic minimum: the depth in 24 bits (as a depth buffer

@@ -156,12 +156,18 @@ def cell_centers(grid) -> np.ndarray:
 def write_pieces(directory: pathlib.Path, cells_of_piece) -> pathlib.Path:
     """The default mesh split into pieces by ``cells_of_piece(grid) -> [cell ids of each
     piece]``, as pieces.N.vtk and a pieces.pvtk that ParaView's legacy reader hands out one
-    piece per rank."""
-    from vtkmodules.vtkCommonCore import vtkIdList
+    piece per rank. Each cell keeps its id in the whole as its global id (cell data
+    GlobalIds), which SPT's random numbers follow."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdList
     from vtkmodules.vtkFiltersCore import vtkExtractCells
     from spt import data
 
     grid = data.make_default_mesh()
+    global_ids = numpy_to_vtk(np.arange(grid.GetNumberOfCells()), deep=True,
+                              array_type=VTK_ID_TYPE)
+    global_ids.SetName("GlobalIds")
+    grid.GetCellData().SetGlobalIds(global_ids)
     pieces = cells_of_piece(grid)
     entries = []
     for index, ids in enumerate(pieces):

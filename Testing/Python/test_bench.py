@@ -6,6 +6,7 @@ import dataclasses
 import io
 import json
 import math
+import shutil
 import subprocess
 import sys
 
@@ -194,3 +195,21 @@ def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
     assert result["at_most"] and result["spt"] == "spt-visibility"
     assert result["spt_repetitions"] == 4
     assert result["spt_seconds"] == pytest.approx(0.04)
+
+
+def test_the_parallel_section_runs_ranks_with_the_same_image(have_display, tmp_path):
+    """SPT on 1 and 2 MPI ranks with interleaved pieces: the same image, and the bytes each
+    rank moves per frame (4 bytes per sample and repetition, 32 per sample for the sums)."""
+    probe = "from mpi4py import MPI\nfrom vtkmodules.vtkParallelMPI import vtkMPIController\n"
+    if not shutil.which("mpiexec") or subprocess.run(
+            [sys.executable, "-c", probe], capture_output=True, check=False).returncode:
+        pytest.skip("mpiexec, mpi4py or VTK's vtkParallelMPI is missing")
+    settings = dataclasses.replace(bench.Settings.quick(), frames=2, parallel_size=64,
+                                   parallel_paraview_ranks=())
+    results = bench.run(tmp_path, ["parallel"], settings)
+    rows = results["parallel"]["vtk"]
+    assert [r["ranks"] for r in rows] == [1, 2]
+    assert all(r["max_levels_from_one_rank"] == 0.0 and r["alpha_mean"] > 0.01 for r in rows)
+    assert all(64 * 64 * (4 * 16 + 32) <= r["bytes_per_frame_per_rank"] < 64 * 64 * 100
+               for r in rows)
+    assert "## Parallel" in (tmp_path / "bench.md").read_text()

@@ -161,7 +161,7 @@ def _add_bench(commands) -> None:
     bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
     bench.add_argument("--sections", type=_sections, default=None,
                        help="comma-separated sections to run (default: all): "
-                            "race,cells,repetitions,subpixels,image,quality,host,large")
+                            "race,cells,repetitions,subpixels,image,quality,host,large,parallel")
     bench.add_argument("--shape", choices=("drill", "torus", "helix"), default="drill",
                        help="generated mesh of the sweeps (default drill)")
     bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,

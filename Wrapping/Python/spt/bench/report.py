@@ -3,6 +3,7 @@ models, the crossovers, time to quality, host time and the large case."""
 
 from __future__ import annotations
 
+import os
 import pathlib
 from typing import Dict, Iterable, List, Sequence
 
@@ -254,6 +255,49 @@ def large_section(large: Dict[str, object]) -> List[str]:
             f"{large.get('predicted_memory', nan) / 2 ** 20:.0f} MiB.", ""]
 
 
+def paraview_parallel_table(rows: Sequence[Entry]) -> List[str]:
+    """pvbatch: SPT without redistribution against the methods ParaView redistributes."""
+    if not rows:
+        return []
+    return ["pvbatch with the plugin on the same interleaved pieces, wall seconds on rank 0: "
+            "reading, the first render (ParaView's redistribution, where the representation "
+            "asks for it, and the frame; SPT asks for none) and later renders (the camera "
+            "turned). \"Volume\" is ParaView's own, VTK's projected tetrahedra.", "",
+            table(["scene", "ranks", "representation", "reading [s]", "first render [s]",
+                   "later renders [s]"],
+                  [[r["scene"], r["ranks"], r["representation"], r["read_wall_seconds"],
+                    r["first_wall_seconds"], r["later_wall_seconds"]] for r in rows]), ""]
+
+
+def parallel_section(measured) -> List[str]:
+    """SPT on several MPI ranks, each with an interleaved piece, no redistribution."""
+    if not measured:
+        return []
+    # Results of the first version of the section are a list of the VTK rows.
+    rows = measured.get("vtk", []) if isinstance(measured, dict) else measured
+    paraview = measured.get("paraview", []) if isinstance(measured, dict) else []
+    mib = 2.0 ** 20
+    return ["## Parallel: ranks with interleaved pieces, no redistribution", "",
+            f"The ranks share this machine's {os.cpu_count()} cores, so more ranks than cores "
+            "shows the cost of the reductions and of oversubscription, not a speed-up. Times "
+            "are the slowest rank's: process CPU time (all threads, the software rasterizer's "
+            "too) and wall time of the first frame (the mesh prepared, the ranks' settings "
+            "agreed) and of later frames (median). Bytes: what each rank puts into the "
+            "reductions per frame. Memory per rank: peak resident size (it includes making "
+            "the whole scene before keeping the piece), the piece, the GPU buffers.", "",
+            table(["scene", "cells", "ranks", "first CPU [s]", "later CPU [s]",
+                   "first wall [s]", "later wall [s]", "MiB moved per rank", "peak RSS [MiB]",
+                   "piece [MiB]", "GPU [MiB]", "max diff. to 1 rank [levels]"],
+                  [[r["scene"], r["cells"], r["ranks"], r["first_cpu_seconds"],
+                    r["later_cpu_seconds"], r["first_wall_seconds"], r["later_wall_seconds"],
+                    r["bytes_per_frame_per_rank"] / mib,
+                    " / ".join(f"{b / mib:.0f}" for b in r["peak_rss_bytes"]),
+                    " / ".join(f"{b / mib:.1f}" for b in r["piece_bytes"]),
+                    " / ".join(f"{b / mib:.1f}" for b in r["gpu_bytes"]),
+                    r["max_levels_from_one_rank"]] for r in rows]), ""] + \
+        paraview_parallel_table(paraview)
+
+
 def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     """Write ``bench.md`` into ``output``; returns its text."""
     entries = results["entries"]
@@ -270,6 +314,7 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     lines += quality_section(entries)
     lines += host_section(results.get("host", []))
     lines += large_section(results.get("large"))
+    lines += parallel_section(results.get("parallel"))
     text = "\n".join(lines)
     (output / "bench.md").write_text(text)
     return text

@@ -11,7 +11,7 @@ from typing import Dict, List, Optional, Sequence
 
 from .. import render
 from ..progress import Progress
-from . import camera, host, quality, race, sweeps
+from . import camera, host, parallel, quality, race, sweeps
 from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene
 from .models import memory_models, predict_large, time_models
@@ -60,6 +60,7 @@ def steps(settings: Settings, section: str) -> int:
         "quality": quality.steps(settings),
         "host": len(settings.host_cells),
         "large": 1,
+        "parallel": parallel.steps(settings),
     }[section]
 
 
@@ -73,7 +74,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
         e for e in previous.get("entries", [])
         if e.get("sweep") not in sections or not settings.wants(e.get("method", ""))]
     progress = Progress(sum(steps(settings, s) for s in sections), "bench")
-    measured = {key: previous.get(key) for key in ("race", "camera", "host", "large")}
+    measured = {key: previous.get(key)
+                for key in ("race", "camera", "host", "large", "parallel")}
     for section in sections:
         if section in SWEEPS:
             entries += SWEEPS[section](settings, progress)
@@ -85,6 +87,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
             measured["camera"] = camera.camera_section(settings, progress)
         elif section == "host":
             measured["host"] = host.host_time(settings, progress)
+        elif section == "parallel":
+            measured["parallel"] = parallel.parallel(settings, progress, output / "parallel")
         else:
             measured["large"] = large_case(settings, progress)
     measured["entries"] = entries

@@ -7,7 +7,7 @@ from typing import Optional, Tuple
 
 #: The sections of a full run, in the order they run. The race is the headline.
 SECTIONS = ("race", "camera", "cells", "repetitions", "subpixels", "image", "quality", "host",
-            "large")
+            "large", "parallel")
 
 #: The race's scenes: the real data sets and the generated drill at three sizes.
 RACE_SCENES = ("spx", "torus", "bluntfin", "post", "drill-0.2M", "drill-1M", "drill-3M")
@@ -47,6 +47,15 @@ class Settings:
     camera_scenes: Tuple[str, ...] = ("default", "bluntfin")
     camera_size: int = 256
     camera_repetitions: int = 16
+    # SPT on several MPI ranks, each with an interleaved piece (see spt.bench.parallel)
+    parallel_scenes: Tuple[str, ...] = ("drill-1M", "post")
+    parallel_ranks: Tuple[int, ...] = (1, 2, 4)
+    parallel_size: int = 256
+    parallel_repetitions: int = 16
+    # pvbatch with the plugin: SPT (no redistribution) against methods ParaView redistributes
+    parallel_paraview_ranks: Tuple[int, ...] = (1, 4)
+    parallel_paraview_representations: Tuple[str, ...] = ("Volume (SPT)", "Volume (HAVS-like)",
+                                                          "Volume")
     # run the sections for these methods only, keeping the other methods' earlier results
     only_methods: Optional[Tuple[str, ...]] = None
 
@@ -62,4 +71,6 @@ class Settings:
                         quality_size=128, quality_levels=(4, 16), host_cells=(10_000, 30_000),
                         large_cells=100_000, large_size=256, large_repetitions=16,
                         race_scenes=("default",), race_size=128, race_max_repetitions=16,
-                        camera_scenes=("default",), camera_size=64, camera_repetitions=4)
+                        camera_scenes=("default",), camera_size=64, camera_repetitions=4,
+                        parallel_scenes=("default",), parallel_ranks=(1, 2),
+                        parallel_size=128, parallel_paraview_ranks=(2,))

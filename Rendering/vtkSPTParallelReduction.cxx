@@ -1,0 +1,278 @@
+#include "vtkSPTParallelReduction.h"
+
+#include "vtkCommunicator.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkSPTOpenGL.h"
+#include "vtkTextureObject.h"
+
+#include "vtkSPTDepthKeyBuffer.h"
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+
+namespace
+{
+// The fields of a rank's record, before its settings.
+enum Field
+{
+  Ready,
+  HasCells,
+  Components,
+  CellScalars,
+  GlobalIds,
+  OpaqueScene,
+  Bounds,
+  ScalarRange = Bounds + 6,
+  MaxEdgeLength = ScalarRange + 2,
+  FirstSetting
+};
+
+// The array names are exchanged cut to this length.
+constexpr int NameLength = 128;
+
+std::vector<double> Record(
+  const vtkSPTParallelReduction::Settings& settings, const vtkSPTParallelReduction::Piece& piece)
+{
+  std::vector<double> record(FirstSetting + settings.size());
+  record[Ready] = piece.Ready;
+  record[HasCells] = piece.HasCells;
+  record[Components] = piece.Components;
+  record[CellScalars] = piece.CellScalars;
+  record[GlobalIds] = piece.GlobalIds;
+  record[OpaqueScene] = piece.OpaqueScene;
+  std::copy(piece.Bounds, piece.Bounds + 6, &record[Bounds]);
+  std::copy(piece.ScalarRange, piece.ScalarRange + 2, &record[ScalarRange]);
+  record[MaxEdgeLength] = piece.MaxEdgeLength;
+  for (size_t i = 0; i < settings.size(); ++i)
+  {
+    record[FirstSetting + i] = settings[i].second;
+  }
+  return record;
+}
+
+// The union of the pieces of the agreed records.
+vtkSPTParallelReduction::Agreement Union(const std::vector<double>& records, size_t size, int ranks)
+{
+  vtkSPTParallelReduction::Agreement agreement;
+  bool first = true;
+  agreement.GlobalIds = true;
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* record = &records[r * size];
+    agreement.OpaqueScene = agreement.OpaqueScene || record[OpaqueScene] != 0.0;
+    if (record[HasCells] == 0.0)
+    {
+      continue;
+    }
+    agreement.AnyCells = true;
+    agreement.GlobalIds = agreement.GlobalIds && record[GlobalIds] != 0.0;
+    agreement.MaxEdgeLength = std::max(agreement.MaxEdgeLength, record[MaxEdgeLength]);
+    for (int i = 0; i < 8; ++i)
+    {
+      const double value = record[Bounds + i]; // the bounds, then the range: min, max pairs
+      double& target = i < 6 ? agreement.Bounds[i] : agreement.ScalarRange[i - 6];
+      target = first ? value : (i % 2 == 0 ? std::min(target, value) : std::max(target, value));
+    }
+    first = false;
+  }
+  agreement.GlobalIds = agreement.GlobalIds && agreement.AnyCells;
+  return agreement;
+}
+
+std::vector<float> ReadTexture(vtkTextureObject* texture, unsigned int format, int components)
+{
+  std::vector<float> values(
+    size_t(texture->GetWidth()) * size_t(texture->GetHeight()) * size_t(components));
+  texture->Activate();
+  glGetTexImage(texture->GetTarget(), 0, format, GL_FLOAT, values.data());
+  texture->Deactivate();
+  return values;
+}
+
+void WriteTexture(vtkTextureObject* texture, unsigned int format, const std::vector<float>& values)
+{
+  texture->Activate();
+  glTexSubImage2D(texture->GetTarget(), 0, 0, 0, static_cast<GLsizei>(texture->GetWidth()),
+    static_cast<GLsizei>(texture->GetHeight()), format, GL_FLOAT, values.data());
+  texture->Deactivate();
+}
+}
+
+vtkStandardNewMacro(vtkSPTParallelReduction);
+
+vtkSPTParallelReduction::vtkSPTParallelReduction() = default;
+
+vtkSPTParallelReduction::~vtkSPTParallelReduction()
+{
+  this->SetController(nullptr);
+}
+
+void vtkSPTParallelReduction::SetController(vtkMultiProcessController* controller)
+{
+  if (controller != this->Controller)
+  {
+    vtkMultiProcessController* old = this->Controller;
+    this->Controller = controller;
+    if (controller)
+    {
+      controller->Register(this);
+    }
+    if (old)
+    {
+      old->UnRegister(this);
+    }
+    this->Modified();
+  }
+}
+
+bool vtkSPTParallelReduction::Agree(
+  const Settings& settings, const Piece& piece, Agreement& agreement, std::string& error)
+{
+  vtkMultiProcessController* controller = this->Controller;
+  const int ranks = controller->GetNumberOfProcesses();
+  const std::vector<double> record = Record(settings, piece);
+  std::vector<double> records(record.size() * ranks);
+  std::vector<char> name(NameLength, '\0');
+  std::strncpy(name.data(), piece.ArrayName.c_str(), NameLength - 1);
+  std::vector<char> names(name.size() * ranks);
+  if (!controller->AllGather(record.data(), records.data(), vtkIdType(record.size())) ||
+    !controller->AllGather(name.data(), names.data(), vtkIdType(name.size())))
+  {
+    error = "The ranks could not exchange their settings.";
+    return false;
+  }
+  this->Bytes += (record.size() * sizeof(double) + name.size()) * size_t(ranks);
+  error = Compare(settings, records, names, ranks);
+  if (!error.empty())
+  {
+    return false;
+  }
+  agreement = Union(records, record.size(), ranks);
+  return true;
+}
+
+std::string vtkSPTParallelReduction::Compare(const Settings& settings,
+  const std::vector<double>& records, const std::vector<char>& names, int ranks)
+{
+  const size_t size = FirstSetting + settings.size();
+  std::ostringstream reason;
+  int reference = -1; // the first rank with cells: the others' scalars must be its
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* record = &records[r * size];
+    if (record[Ready] == 0.0)
+    {
+      reason << "Rank " << r << " could not prepare its piece (see its own error)";
+      return reason.str();
+    }
+    for (size_t i = 0; i < settings.size(); ++i)
+    {
+      if (record[FirstSetting + i] != records[FirstSetting + i])
+      {
+        reason << "Rank " << r << " has " << settings[i].first << " " << record[FirstSetting + i]
+               << " but rank 0 has " << records[FirstSetting + i];
+        return reason.str();
+      }
+    }
+    if (record[HasCells] == 0.0)
+    {
+      continue;
+    }
+    if (reference < 0)
+    {
+      reference = r;
+      continue;
+    }
+    const double* first = &records[reference * size];
+    const std::string name(&names[r * NameLength]);
+    const std::string firstName(&names[reference * NameLength]);
+    if (name != firstName || record[Components] != first[Components] ||
+      record[CellScalars] != first[CellScalars])
+    {
+      reason << "Rank " << r << " renders the " << (record[CellScalars] ? "cell" : "point")
+             << " array '" << name << "' of " << record[Components] << " component(s), but rank "
+             << reference << " renders the " << (first[CellScalars] ? "cell" : "point")
+             << " array '" << firstName << "' of " << first[Components] << " component(s)";
+      return reason.str();
+    }
+  }
+  return std::string();
+}
+
+bool vtkSPTParallelReduction::ReduceSceneDepth(vtkTextureObject* depth)
+{
+  std::vector<float> local = ReadTexture(depth, GL_DEPTH_COMPONENT, 1);
+  std::vector<float> global(local.size());
+  if (!this->Controller->AllReduce(
+        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::MIN_OP))
+  {
+    return false;
+  }
+  this->Bytes += local.size() * sizeof(float);
+  WriteTexture(depth, GL_DEPTH_COMPONENT, global);
+  return true;
+}
+
+bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys)
+{
+  const std::vector<unsigned int> local = keys->Read();
+  std::vector<unsigned int> global(local.size());
+  if (!this->Controller->AllReduce(
+        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::MIN_OP))
+  {
+    return false;
+  }
+  this->Bytes += local.size() * sizeof(unsigned int);
+  keys->Write(global);
+  return true;
+}
+
+bool vtkSPTParallelReduction::ReduceNothingKept(size_t keys)
+{
+  const std::vector<unsigned int> local(keys, 0xFFFFFFFFu);
+  std::vector<unsigned int> global(keys);
+  this->Bytes += keys * sizeof(unsigned int);
+  return this->Controller->AllReduce(
+           local.data(), global.data(), vtkIdType(keys), vtkCommunicator::MIN_OP) != 0;
+}
+
+bool vtkSPTParallelReduction::AllSucceeded(bool ok)
+{
+  const int local = ok ? 1 : 0;
+  int global = 0;
+  return this->Controller->AllReduce(&local, &global, 1, vtkCommunicator::MIN_OP) && global == 1;
+}
+
+bool vtkSPTParallelReduction::ReduceSums(
+  const std::vector<vtkTextureObject*>& textures, size_t texels)
+{
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+  for (vtkTextureObject* texture : textures)
+  {
+    const bool allocated = texture->GetHandle() != 0 &&
+      size_t(texture->GetWidth()) * size_t(texture->GetHeight()) == texels;
+    const std::vector<float> local =
+      allocated ? ReadTexture(texture, GL_RGBA, 4) : std::vector<float>(4 * texels, 0.0f);
+    std::vector<float> global(local.size());
+    if (!this->Controller->Reduce(
+          local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::SUM_OP, 0))
+    {
+      return false;
+    }
+    this->Bytes += local.size() * sizeof(float);
+    if (root && allocated)
+    {
+      WriteTexture(texture, GL_RGBA, global);
+    }
+  }
+  return true;
+}
+
+void vtkSPTParallelReduction::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "Bytes: " << this->Bytes << "\n";
+}

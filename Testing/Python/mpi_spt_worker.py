@@ -1,0 +1,124 @@
+"""One rank of a plain VTK MPI program rendering the default scene with vtkSPTVolumeMapper:
+every rank makes the default mesh, keeps the cells whose id modulo the number of ranks is its
+rank (interleaved pieces, each spanning the whole mesh), numbers them by their ids in the whole
+(GlobalIds), and renders its piece with the mapper's controller set. Rank 0 writes the image.
+
+Run by test_spt_mpi.py under mpiexec; ``--serial`` renders the whole mesh with no controller.
+"""
+
+import argparse
+import json
+import pathlib
+
+import numpy as np
+
+
+def parse() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--output", type=pathlib.Path, required=True)
+    parser.add_argument("--size", type=int, default=128)
+    parser.add_argument("--repetitions", type=int, default=16)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--serial", action="store_true", help="no MPI, no controller")
+    parser.add_argument("--other-array-on", type=int, default=-1,
+                        help="this rank renders an array of another name")
+    parser.add_argument("--other-seed-on", type=int, default=-1,
+                        help="this rank renders with seed 7")
+    parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
+    parser.add_argument("--opaque-on", type=int, default=-1,
+                        help="this rank draws an opaque black sphere in the middle of the mesh")
+    parser.add_argument("--frames", type=int, default=2)
+    return parser.parse_args()
+
+
+def controller_or_none(serial: bool):
+    if serial:
+        return None
+    from mpi4py import MPI  # noqa: F401  (initializes MPI for VTK's controller)
+    from vtkmodules.vtkParallelCore import vtkMultiProcessController
+    from vtkmodules.vtkParallelMPI import vtkMPIController
+
+    controller = vtkMPIController()
+    controller.Initialize()
+    vtkMultiProcessController.SetGlobalController(controller)
+    return controller
+
+
+def piece_of(grid, rank: int, ranks: int, arguments: argparse.Namespace):
+    """The cells of ``grid`` whose id is ``rank`` modulo ``ranks``, with their global ids."""
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdList
+    from vtkmodules.vtkFiltersCore import vtkExtractCells
+
+    ids = numpy_to_vtk(np.arange(grid.GetNumberOfCells()), deep=True, array_type=VTK_ID_TYPE)
+    ids.SetName("GlobalIds")
+    grid.GetCellData().SetGlobalIds(ids)
+    keep = vtkIdList()
+    if rank != arguments.empty_rank:
+        for cell in range(rank, grid.GetNumberOfCells(), ranks):
+            keep.InsertNextId(cell)
+    extract = vtkExtractCells()
+    extract.SetInputData(grid)
+    extract.SetCellList(keep)
+    extract.Update()
+    piece = extract.GetOutput()
+    if rank == arguments.other_array_on:
+        piece.GetPointData().GetScalars().SetName("another name")
+    return piece
+
+
+def black_sphere(bounds):
+    """An opaque black sphere in the middle of ``bounds``: it hides and cuts the volume, and
+    adds nothing to the color over a black background."""
+    from vtkmodules.vtkFiltersSources import vtkSphereSource
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+
+    sphere = vtkSphereSource()
+    sphere.SetCenter([(bounds[2 * a] + bounds[2 * a + 1]) / 2.0 for a in range(3)])
+    sphere.SetRadius(0.25 * min(bounds[2 * a + 1] - bounds[2 * a] for a in range(3)))
+    sphere.SetThetaResolution(48)
+    sphere.SetPhiResolution(48)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(sphere.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(0.0, 0.0, 0.0)
+    actor.GetProperty().SetAmbient(0.0)
+    actor.GetProperty().SetDiffuse(0.0)
+    actor.GetProperty().SetSpecular(0.0)
+    return actor
+
+
+def main() -> None:
+    arguments = parse()
+    from spt import render, scenes
+
+    controller = controller_or_none(arguments.serial)
+    rank = controller.GetLocalProcessId() if controller else 0
+    ranks = controller.GetNumberOfProcesses() if controller else 1
+    scene = scenes.scene("default")
+    grid = scene.grid
+    piece = grid if controller is None else piece_of(grid, rank, ranks, arguments)
+    seed = 7 if rank == arguments.other_seed_on else arguments.seed
+    mapper = render.spt_mapper(arguments.repetitions, seed=seed)
+    if controller is not None:
+        mapper.SetController(controller)
+    window, renderer = render.make_window(arguments.size, arguments.size)
+    render.add_volume(renderer, piece, scene.property, mapper)
+    if rank == arguments.opaque_on:
+        renderer.AddActor(black_sphere(grid.GetBounds()))
+    render.place_camera(renderer, grid.GetBounds(), scene.view)
+    images = []
+    for _ in range(arguments.frames):
+        window.Render()
+        images.append(render.read_rgba(window))
+    if rank == 0:
+        np.save(arguments.output, np.stack(images))
+        report = {"ranks": ranks, "cells": piece.GetNumberOfCells(),
+                  "bytes": mapper.GetLastParallelBytes()}
+        arguments.output.with_suffix(".json").write_text(json.dumps(report))
+    window.Finalize()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,154 @@
+"""vtkSPTVolumeMapper in a plain VTK MPI program (vtkMPIController, no ParaView): each rank
+renders an interleaved piece of the default mesh (cells by id modulo the number of ranks, each
+piece spanning the whole mesh) with no redistribution; the ranks combine their depth keys by a
+global minimum and their sums by a global sum, and rank 0 resolves.
+
+The random numbers follow the cells' global ids, so with the same seed the 2-rank image is the
+1-rank image, and that is the image of one process with no controller (the default mesh is all
+tetrahedra, numbered as its cells). The images are compared at 8 bits: at most one level apart
+(the reductions add the same float terms in another order, which may move a sum by an ulp and a
+pixel across a rounding boundary; measured: identical).
+
+Ranks that disagree (another scalar array, another seed) give one error naming the rank and
+draw nothing, without a hang (each run has a timeout).
+"""
+
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import scene_support
+from spt import metrics
+
+WORKER = pathlib.Path(__file__).resolve().parent / "mpi_spt_worker.py"
+SIZE = 128
+REPETITIONS = 16
+TIMEOUT = 300  # seconds; a hang fails the test instead of blocking it
+#: One 8-bit level.
+LEVEL = 1.0 / 255.0
+#: The RMSE (over the footprint) of a 16-repetition SPT image of the default scene from the
+#: exact reference is about 0.0024; an image missing a piece is off by more than 0.02.
+REFERENCE_RMSE = 0.008
+
+
+def mpiexec():
+    path = shutil.which("mpiexec")
+    if not path:
+        pytest.skip("mpiexec (OpenMPI) is not installed")
+    probe = ("from mpi4py import MPI\n"
+             "from vtkmodules.vtkParallelMPI import vtkMPIController\n")
+    if subprocess.run([sys.executable, "-c", probe], capture_output=True,
+                      check=False).returncode != 0:
+        pytest.skip("mpi4py or VTK's vtkParallelMPI is not importable")
+    command = [path, "--oversubscribe"]
+    if os.geteuid() == 0:
+        command.append("--allow-run-as-root")
+    for variable in ("PYTHONPATH", "DISPLAY", "SPT_DATA_DIR"):
+        if variable in os.environ:
+            command += ["-x", variable]
+    return command
+
+
+def run(output: pathlib.Path, ranks: int, *options: str):
+    """Render with ``ranks`` ranks (0: no MPI, no controller); the frames rank 0 read back,
+    its report, and the stderr of every rank."""
+    command = [sys.executable, str(WORKER), "--output", str(output), "--size", str(SIZE),
+               "--repetitions", str(REPETITIONS), *options]
+    if ranks > 0:
+        command = mpiexec() + ["-n", str(ranks)] + command
+    else:
+        command.append("--serial")
+    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
+                            check=False)
+    assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-4000:]
+    report = json.loads(output.with_suffix(".json").read_text())
+    return np.load(output), report, result.stderr
+
+
+@pytest.fixture(scope="module")
+def renders(have_display, tmp_path_factory):
+    directory = tmp_path_factory.mktemp("spt_mpi")
+    return {ranks: run(directory / f"ranks{ranks}.npy", ranks) for ranks in (0, 1, 2)}
+
+
+def largest_difference(a: np.ndarray, b: np.ndarray) -> float:
+    """The largest difference of two images at 8 bits, in levels."""
+    return float(np.abs(metrics.to_uint8(a).astype(int) - metrics.to_uint8(b).astype(int)).max())
+
+
+def test_two_ranks_equal_one_rank(renders):
+    one, report_one, _ = renders[1]
+    two, report_two, errors = renders[2]
+    assert report_one["ranks"] == 1 and report_two["ranks"] == 2
+    assert report_two["cells"] == 24000  # rank 0's piece: every other cell
+    assert largest_difference(one[0], two[0]) <= 1.0
+    assert "ERR" not in errors, errors
+
+
+def test_one_rank_equals_no_controller(renders):
+    serial, _, _ = renders[0]
+    one, _, _ = renders[1]
+    assert largest_difference(serial[0], one[0]) <= 1.0
+
+
+def test_later_frames_equal_the_first(renders):
+    two, _, _ = renders[2]
+    assert largest_difference(two[0], two[1]) == 0.0
+
+
+def test_image_is_the_volume(renders):
+    """Not black, and as close to the exact reference as one process's image."""
+    two, _, _ = renders[2]
+    reference = scene_support.reference("default", SIZE)
+    assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
+    assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
+
+
+def test_bytes_moved(renders):
+    """Per frame, each rank reduces the keys (4 bytes per sample and repetition), the sums
+    and coverage (2 x 16 bytes per sample), and a small record."""
+    _, report, _ = renders[2]
+    samples = SIZE * SIZE
+    expected = samples * (4 * REPETITIONS + 32)
+    assert expected <= report["bytes"] <= expected + 4096
+
+
+def test_an_empty_piece_takes_part(have_display, tmp_path):
+    """Rank 1 has no cells: rank 0's half of the mesh is drawn, with no error."""
+    images, _, errors = run(tmp_path / "empty.npy", 2, "--empty-rank", "1")
+    assert "ERR" not in errors, errors
+    alpha = images[0][..., 3].mean()
+    reference = scene_support.reference("default", SIZE)
+    assert 0.2 * reference[..., 3].mean() < alpha < 0.9 * reference[..., 3].mean()
+
+
+def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path, renders):
+    """An opaque black sphere drawn by rank 1 only cuts and hides rank 0's piece too (the
+    scene depth is a global minimum): over black, the 2-rank image's color is the 1-rank
+    image's with the sphere. (Rank 0 shows the volume over its own background, so the sphere's
+    alpha is not in its image.)"""
+    one, _, _ = run(tmp_path / "sphere1.npy", 1, "--opaque-on", "0")
+    two, _, errors = run(tmp_path / "sphere2.npy", 2, "--opaque-on", "1")
+    assert "ERR" not in errors, errors
+    assert largest_difference(one[0][..., :3], two[0][..., :3]) <= 1.0
+    without, _, _ = renders[2]
+    assert largest_difference(without[0][..., :3], two[0][..., :3]) > 32.0
+
+
+@pytest.mark.parametrize("options, message", [
+    (("--other-array-on", "1"), "Rank 1 renders the point array 'another name' of 1 "
+                                "component(s), but rank 0 renders the point array 'field'"),
+    (("--other-seed-on", "1"), "Rank 1 has Seed 7 but rank 0 has 0"),
+])
+def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, message):
+    images, _, errors = run(tmp_path / "differ.npy", 2, *options)
+    assert errors.count(message) == 1, errors
+    assert errors.count("ERR") == 1, errors
+    assert "nothing is drawn on any rank" in errors
+    assert images[..., 3].max() == 0.0
