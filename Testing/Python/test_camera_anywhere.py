@@ -132,13 +132,15 @@ def _havs(name, dolly, parallel=False):
 HAVS_INSIDE_FACTOR = 2.0
 
 
+@pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("parallel", [False, True], ids=["perspective", "parallel"])
 @pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
-def test_havs_inside_is_as_close_to_the_reference_as_outside(camera, parallel, have_display):
-    outside = metrics.rmse(_havs("default", CAMERAS["outside"], parallel),
-                           _reference("default", CAMERAS["outside"], parallel))
-    image = _havs("default", CAMERAS[camera], parallel)
-    reference = _reference("default", CAMERAS[camera], parallel)
+def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, parallel,
+                                                             have_display):
+    outside = metrics.rmse(_havs(name, CAMERAS["outside"], parallel),
+                           _reference(name, CAMERAS["outside"], parallel))
+    image = _havs(name, CAMERAS[camera], parallel)
+    reference = _reference(name, CAMERAS[camera], parallel)
     error = metrics.rmse(image, reference)
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert error <= HAVS_INSIDE_FACTOR * outside, f"{error:.4f} against {outside:.4f} outside"
@@ -155,7 +157,8 @@ def _camera_on(point, direction):
 
 
 @pytest.mark.parametrize("where", ["vertex", "edge", "face"])
-def test_camera_exactly_on_the_mesh_gives_no_nan(where, have_display):
+@pytest.mark.parametrize("method", ["spt", "pbvr", "havs"])
+def test_camera_exactly_on_the_mesh_gives_no_nan(method, where, have_display):
     s = scene("default")
     points = s.grid.GetPoints()
     cell = s.grid.GetCell(s.grid.GetNumberOfCells() // 2)
@@ -166,7 +169,8 @@ def test_camera_exactly_on_the_mesh_gives_no_nan(where, have_display):
     direction = corners[3] - corners[:3].mean(axis=0)
     direction /= np.linalg.norm(direction)
     window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, render.spt_mapper(4, seed=1))
+    mapper = render.havs_mapper(6) if method == "havs" else MAPPERS[method](1)
+    render.add_volume(renderer, s.grid, s.property, mapper)
     renderer.SetActiveCamera(_camera_on(spot, direction))
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
     window.Render()
