@@ -44,29 +44,6 @@ def controller_or_none(serial: bool):
     return controller
 
 
-def piece_of(grid, rank: int, ranks: int, arguments: argparse.Namespace):
-    """The cells of ``grid`` whose id is ``rank`` modulo ``ranks``, with their global ids."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdList
-    from vtkmodules.vtkFiltersCore import vtkExtractCells
-
-    ids = numpy_to_vtk(np.arange(grid.GetNumberOfCells()), deep=True, array_type=VTK_ID_TYPE)
-    ids.SetName("GlobalIds")
-    grid.GetCellData().SetGlobalIds(ids)
-    keep = vtkIdList()
-    if rank != arguments.empty_rank:
-        for cell in range(rank, grid.GetNumberOfCells(), ranks):
-            keep.InsertNextId(cell)
-    extract = vtkExtractCells()
-    extract.SetInputData(grid)
-    extract.SetCellList(keep)
-    extract.Update()
-    piece = extract.GetOutput()
-    if rank == arguments.other_array_on:
-        piece.GetPointData().GetScalars().SetName("another name")
-    return piece
-
-
 def black_sphere(bounds):
     """An opaque black sphere in the middle of ``bounds``: it hides and cuts the volume, and
     adds nothing to the color over a black background."""
@@ -91,14 +68,18 @@ def black_sphere(bounds):
 
 def main() -> None:
     arguments = parse()
-    from spt import render, scenes
+    from spt import meshes, render, scenes
 
     controller = controller_or_none(arguments.serial)
     rank = controller.GetLocalProcessId() if controller else 0
     ranks = controller.GetNumberOfProcesses() if controller else 1
     scene = scenes.scene("default")
     grid = scene.grid
-    piece = grid if controller is None else piece_of(grid, rank, ranks, arguments)
+    piece = grid
+    if controller is not None:
+        piece = meshes.interleaved_piece(grid, rank, ranks, empty=rank == arguments.empty_rank)
+        if rank == arguments.other_array_on:
+            piece.GetPointData().GetScalars().SetName("another name")
     seed = 7 if rank == arguments.other_seed_on else arguments.seed
     mapper = render.spt_mapper(arguments.repetitions, seed=seed)
     if controller is not None:

@@ -495,3 +495,26 @@ def cell_array(cells: np.ndarray) -> vtkCellArray:
     result = vtkCellArray()
     result.SetData(offsets, connectivity)
     return result
+
+
+def interleaved_piece(grid: vtkUnstructuredGrid, rank: int, ranks: int,
+                      empty: bool = False) -> vtkUnstructuredGrid:
+    """The piece of ``grid`` that rank ``rank`` of ``ranks`` draws when the cells are dealt
+    out in turn: the cells whose id is ``rank`` modulo ``ranks`` (none if ``empty``), with
+    their ids in the whole as global ids. ``grid`` is not modified."""
+    from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdList
+    from vtkmodules.vtkFiltersCore import vtkExtractCells
+
+    whole = vtkUnstructuredGrid()
+    whole.ShallowCopy(grid)
+    ids = numpy_to_vtk(np.arange(grid.GetNumberOfCells()), deep=True, array_type=VTK_ID_TYPE)
+    ids.SetName("GlobalIds")
+    whole.GetCellData().SetGlobalIds(ids)
+    keep = vtkIdList()
+    for cell in range(rank, 0 if empty else grid.GetNumberOfCells(), ranks):
+        keep.InsertNextId(cell)
+    extract = vtkExtractCells()
+    extract.SetInputData(whole)
+    extract.SetCellList(keep)
+    extract.Update()
+    return extract.GetOutput()

@@ -28,31 +28,12 @@ from typing import Dict, List
 
 import numpy as np
 
+from ..meshes import interleaved_piece
 from ..progress import Progress
 from .settings import Settings
 
 Row = Dict[str, object]
 TIMEOUT = 3600  # seconds per run
-
-
-def interleaved_piece(grid, rank: int, ranks: int):
-    """The cells of ``grid`` whose id is ``rank`` modulo ``ranks``, with their ids in the
-    whole as global ids."""
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonCore import VTK_ID_TYPE, vtkIdList
-    from vtkmodules.vtkFiltersCore import vtkExtractCells
-
-    ids = numpy_to_vtk(np.arange(grid.GetNumberOfCells()), deep=True, array_type=VTK_ID_TYPE)
-    ids.SetName("GlobalIds")
-    grid.GetCellData().SetGlobalIds(ids)
-    keep = vtkIdList()
-    for cell in range(rank, grid.GetNumberOfCells(), ranks):
-        keep.InsertNextId(cell)
-    extract = vtkExtractCells()
-    extract.SetInputData(grid)
-    extract.SetCellList(keep)
-    extract.Update()
-    return extract.GetOutput()
 
 
 def mpiexec(ranks: int) -> List[str]:

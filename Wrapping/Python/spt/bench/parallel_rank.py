@@ -62,7 +62,7 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     from mpi4py import MPI
 
     from .. import render
-    from .parallel import interleaved_piece
+    from ..meshes import interleaved_piece
     from .race import race_scene
 
     # The whole scene first: VTK's parallel-aware readers (PLOT3D) read only a part of the
