@@ -117,6 +117,30 @@ inline void SelectCellField(vtkAbstractVolumeMapper* mapper)
   mapper->SelectScalarArray("cellField");
 }
 
+// The baseline scene's two volumes of one stochastic mapper class, at 64 repetitions: the
+// shell by its point scalar (seed 1) and, transformed, by its cell scalar (seed 2).
+template <class Mapper>
+struct ShellVolumes
+{
+  vtkNew<Mapper> PointMapper;
+  vtkNew<Mapper> CellMapper;
+  vtkSmartPointer<vtkVolume> Point;
+  vtkSmartPointer<vtkVolume> Cell;
+
+  ShellVolumes(vtkUnstructuredGrid* shell, vtkVolumeProperty* property)
+  {
+    this->PointMapper->SetInputData(shell);
+    this->PointMapper->SetRepetitionLevel(64);
+    this->PointMapper->SetSeed(1);
+    this->Point = MakeVolume(this->PointMapper, property);
+    this->CellMapper->SetInputData(shell);
+    SelectCellField(this->CellMapper);
+    this->CellMapper->SetRepetitionLevel(64);
+    this->CellMapper->SetSeed(2);
+    this->Cell = MakeVolume(this->CellMapper, property, 0.7);
+  }
+};
+
 inline vtkSmartPointer<vtkVolumeProperty> MakeProperty()
 {
   vtkNew<vtkColorTransferFunction> color;

@@ -45,18 +45,7 @@ int TestSPTEGLRenderWindow(int argc, char* argv[])
   vtkSmartPointer<vtkUnstructuredGrid> shell = MakeShell();
   vtkSmartPointer<vtkVolumeProperty> property = MakeProperty();
 
-  vtkNew<vtkSPTVolumeMapper> pointMapper;
-  pointMapper->SetInputData(shell);
-  pointMapper->SetRepetitionLevel(64);
-  pointMapper->SetSeed(1);
-  vtkSmartPointer<vtkVolume> pointVolume = MakeVolume(pointMapper, property);
-
-  vtkNew<vtkSPTVolumeMapper> cellMapper;
-  cellMapper->SetInputData(shell);
-  SelectCellField(cellMapper);
-  cellMapper->SetRepetitionLevel(64);
-  cellMapper->SetSeed(2);
-  vtkSmartPointer<vtkVolume> cellVolume = MakeVolume(cellMapper, property, 0.7);
+  ShellVolumes<vtkSPTVolumeMapper> volumes(shell, property);
 
   vtkNew<vtkSPTEGLRenderWindow> window;
   const char* device = std::getenv("SPT_EGL_DEVICE_INDEX");
@@ -64,7 +53,7 @@ int TestSPTEGLRenderWindow(int argc, char* argv[])
   {
     window->SetDeviceIndex(std::atoi(device));
   }
-  TwoViewports scene(400, 200, pointVolume, cellVolume, window);
+  TwoViewports scene(400, 200, volumes.Point, volumes.Cell, window);
   int failures = scene.Render();
   failures += CheckContext(window, device != nullptr);
   failures += scene.CheckCovered(Capture(scene.Window), 4000);

@@ -17,26 +17,15 @@ int TestSPTVolumeMapper(int argc, char* argv[])
   const vtkIdType inputCells = shell->GetNumberOfCells();
   vtkSmartPointer<vtkVolumeProperty> property = MakeProperty();
 
-  vtkNew<vtkSPTVolumeMapper> pointMapper;
-  pointMapper->SetInputData(shell);
-  pointMapper->SetRepetitionLevel(64);
-  pointMapper->SetSeed(1);
-  vtkSmartPointer<vtkVolume> pointVolume = MakeVolume(pointMapper, property);
+  ShellVolumes<vtkSPTVolumeMapper> volumes(shell, property);
 
-  vtkNew<vtkSPTVolumeMapper> cellMapper;
-  cellMapper->SetInputData(shell);
-  SelectCellField(cellMapper);
-  cellMapper->SetRepetitionLevel(64);
-  cellMapper->SetSeed(2);
-  vtkSmartPointer<vtkVolume> cellVolume = MakeVolume(cellMapper, property, 0.7);
-
-  TwoViewports scene(400, 200, pointVolume, cellVolume);
+  TwoViewports scene(400, 200, volumes.Point, volumes.Cell);
   int failures = scene.Render();
   failures += scene.CheckCovered(Capture(scene.Window), 4000);
-  const vtkIdType tetrahedra = pointMapper->GetNumberOfTetrahedra();
+  const vtkIdType tetrahedra = volumes.PointMapper->GetNumberOfTetrahedra();
   if (shell->GetMTime() != inputTime || shell->GetNumberOfCells() != inputCells ||
     tetrahedra < 5 * inputCells || tetrahedra > 6 * inputCells ||
-    cellMapper->GetNumberOfTetrahedra() != tetrahedra)
+    volumes.CellMapper->GetNumberOfTetrahedra() != tetrahedra)
   {
     std::cerr << "The input was modified, or its hexahedra not split into 5 or 6 tetrahedra each ("
               << tetrahedra << " tetrahedra for " << inputCells << " hexahedra).\n";
