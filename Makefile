@@ -13,18 +13,24 @@ PREFIX ?= /usr/local
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
-VTK_DIR := /usr/lib/x86_64-linux-gnu/cmake/paraview-5.11/vtk
+# The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
+# is installed (a recursive variable: evaluated when a recipe runs, after deps).
+VTK_DIR ?= $(lastword $(shell ls -d /usr/lib/*/cmake/paraview-*/vtk 2>/dev/null | sort -V))
 XVFB := xvfb-run -a -s "-screen 0 1280x1024x24 -noreset"
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-# ParaView 5.11 brings the VTK 9.2 SDK; the -dev packages are what its CMake package looks for
-# for the modules this project uses.
-PACKAGES := cmake ninja-build g++ make \
+# ParaView brings the VTK SDK (Debian 12: ParaView 5.11, VTK 9.2; Debian 13: ParaView 5.13,
+# VTK 9.3); the -dev packages are what its CMake package looks for for the modules this project
+# uses. Every name is the same on Debian 12 and 13 but TetGen's, which carries its version:
+# the newest libtetX.Y-dev that apt knows.
+TETGEN_PACKAGE = $(or $(lastword $(shell apt-cache pkgnames libtet 2>/dev/null \
+	| grep -E '^libtet[0-9.]+-dev$$' | sort -V)),libtet1.5-dev)
+PACKAGES = cmake ninja-build g++ make \
 	paraview paraview-dev python3-paraview \
 	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libegl-dev libpng-dev libjpeg-dev libtiff-dev \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
-	libtet1.5-dev libglm-dev \
+	$(TETGEN_PACKAGE) libglm-dev \
 	python3-numpy python3-matplotlib python3-pytest \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
