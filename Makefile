@@ -2,6 +2,8 @@
 #   make demo   install what is missing, build, install, and render the default data set
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
+#   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
+#               (.ci/debian13; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -35,7 +37,7 @@ PACKAGES = cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test test-egl sanitize lint clean
+.PHONY: all deps configure build install demo test test-egl test-debian13 sanitize lint clean
 
 all: build
 
@@ -77,6 +79,14 @@ test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
 	  ctest --output-on-failure --timeout 1500; status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
+
+# `make test` on Debian 13 in a root file system made with debootstrap (needs root and
+# debootstrap): the base system, apt's packages and the build directory are kept in
+# DEBIAN13_CACHE between runs; see .ci/debian13.
+DEBIAN13_CACHE ?= /var/cache/spt/debian13
+test-debian13:
+	$(SUDO) env SPT_DEBIAN13_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
+	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian13
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
