@@ -50,6 +50,8 @@ deps:
 	  $(SUDO) apt-get update -q && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
 	else echo "All packages present."; fi
+	@# Debian 13: ParaView's CMake files name its Python modules without their suffix.
+	@for d in /usr/lib/*/cmake/paraview-*; do CMake/link-vtk-python-modules "$$d"; done
 
 configure: deps
 	cmake -S . -B $(BUILD) -G Ninja \
