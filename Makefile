@@ -2,6 +2,8 @@
 #   make demo   install what is missing, build, install, and render the default data set
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
+#   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
+#               (.ci/debian13; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -13,23 +15,29 @@ PREFIX ?= /usr/local
 BUILD ?= build
 JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
-VTK_DIR := /usr/lib/x86_64-linux-gnu/cmake/paraview-5.11/vtk
+# The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
+# is installed (a recursive variable: evaluated when a recipe runs, after deps).
+VTK_DIR ?= $(lastword $(shell ls -d /usr/lib/*/cmake/paraview-*/vtk 2>/dev/null | sort -V))
 XVFB := xvfb-run -a -s "-screen 0 1280x1024x24 -noreset"
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
-# ParaView 5.11 brings the VTK 9.2 SDK; the -dev packages are what its CMake package looks for
-# for the modules this project uses.
-PACKAGES := cmake ninja-build g++ make \
+# ParaView brings the VTK SDK (Debian 12: ParaView 5.11, VTK 9.2; Debian 13: ParaView 5.13,
+# VTK 9.3); the -dev packages are what its CMake package looks for for the modules this project
+# uses. Every name is the same on Debian 12 and 13 but TetGen's, which carries its version:
+# the newest libtetX.Y-dev that apt knows.
+TETGEN_PACKAGE = $(or $(lastword $(shell apt-cache pkgnames libtet 2>/dev/null \
+	| grep -E '^libtet[0-9.]+-dev$$' | sort -V)),libtet1.5-dev)
+PACKAGES = cmake ninja-build g++ make \
 	paraview paraview-dev python3-paraview \
 	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libegl-dev libpng-dev libjpeg-dev libtiff-dev \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
-	libtet1.5-dev libglm-dev \
+	$(TETGEN_PACKAGE) libglm-dev \
 	python3-numpy python3-matplotlib python3-pytest \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test test-egl sanitize lint clean
+.PHONY: all deps configure build install demo test test-egl test-debian13 sanitize lint clean
 
 all: build
 
@@ -42,6 +50,8 @@ deps:
 	  $(SUDO) apt-get update -q && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
 	else echo "All packages present."; fi
+	@# Debian 13: ParaView's CMake files name its Python modules without their suffix.
+	@for d in /usr/lib/*/cmake/paraview-*; do CMake/link-vtk-python-modules "$$d"; done
 
 configure: deps
 	cmake -S . -B $(BUILD) -G Ninja \
@@ -71,6 +81,14 @@ test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
 	  ctest --output-on-failure --timeout 1500; status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
+
+# `make test` on Debian 13 in a root file system made with debootstrap (needs root and
+# debootstrap): the base system, apt's packages and the build directory are kept in
+# DEBIAN13_CACHE between runs; see .ci/debian13.
+DEBIAN13_CACHE ?= /var/cache/spt/debian13
+test-debian13:
+	$(SUDO) env SPT_DEBIAN13_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
+	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian13
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;

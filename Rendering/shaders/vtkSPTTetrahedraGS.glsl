@@ -28,9 +28,9 @@ layout(triangle_strip, max_vertices = 7) out;
 #endif
 
 in vec3 positionVCVSOutput[];
-in vec4 positionDCVSOutput[];
 in float scalarVSOutput[];
 
+uniform mat4 VCDCMatrix;     // view -> clip
 uniform int primitiveOffset; // index of the first tetrahedron of this draw call
 uniform vec4 eyeVC;          // the eye in homogeneous view coordinates: (0, 0, 0, 1) in
                              // perspective, the point at infinity (0, 0, 1, 0) in parallel
@@ -47,9 +47,16 @@ flat out int clippedCell; // 1: the fragment stage computes the segment from the
 #endif
 
 vec3 vertexVC[4];
-vec4 vertexDC[4];
 vec2 vertexNDC[4];
 float vertexScalar[4];
+
+// A vertex's clip coordinates, from its view coordinates. Not kept in an array: Mesa 25's
+// llvmpipe (LLVM 19) reads wrong values, or crashes, when a geometry shader indexes an array of
+// vec4 (an input or its own) with a variable; arrays of vec3, vec2 and float read right.
+vec4 vertexDC(int i)
+{
+  return VCDCMatrix * vec4(vertexVC[i], 1.0);
+}
 
 // The thick point: its front and back points (view and clip coordinates) and scalars.
 vec3 thickFrontVC;
@@ -102,7 +109,7 @@ void emitExitFaces()
     }
     for (int corner = 0; corner < 3; ++corner)
     {
-      gl_Position = vertexDC[(k + 1 + corner) % 4];
+      gl_Position = vertexDC((k + 1 + corner) % 4);
       frontVCOverW = vec4(0.0);
       backVCOverW = vec4(0.0);
       scalarsOverW = vec2(0.0);
@@ -118,7 +125,7 @@ void emitExitFaces()
 // An outline vertex: the tetrahedron has zero thickness there.
 void emitOutline(int i)
 {
-  emitPoint(vertexVC[i], vertexDC[i], vertexScalar[i], vertexVC[i], vertexDC[i], vertexScalar[i]);
+  emitPoint(vertexVC[i], vertexDC(i), vertexScalar[i], vertexVC[i], vertexDC(i), vertexScalar[i]);
 }
 
 void emitThick()
@@ -149,12 +156,12 @@ void emitClass1(int i, vec3 screenWeights)
   int l = (i + 3) % 4;
   // Screen-space barycentric weights become perspective-correct ones through 1/w; clip
   // coordinates are linear in view coordinates, so the same weights give the clip point.
-  vec3 weights = screenWeights / vec3(vertexDC[j].w, vertexDC[k].w, vertexDC[l].w);
+  vec3 weights = screenWeights / vec3(vertexDC(j).w, vertexDC(k).w, vertexDC(l).w);
   weights /= weights.x + weights.y + weights.z;
   vec3 faceVC = weights.x * vertexVC[j] + weights.y * vertexVC[k] + weights.z * vertexVC[l];
-  vec4 faceDC = weights.x * vertexDC[j] + weights.y * vertexDC[k] + weights.z * vertexDC[l];
+  vec4 faceDC = weights.x * vertexDC(j) + weights.y * vertexDC(k) + weights.z * vertexDC(l);
   float faceScalar = dot(weights, vec3(vertexScalar[j], vertexScalar[k], vertexScalar[l]));
-  setThick(vertexVC[i], vertexDC[i], vertexScalar[i], faceVC, faceDC, faceScalar);
+  setThick(vertexVC[i], vertexDC(i), vertexScalar[i], faceVC, faceDC, faceScalar);
   // The fan (thick; j, k, l) as the strip k, j, thick, l, k.
   emitOutline(k);
   emitOutline(j);
@@ -168,11 +175,11 @@ void emitClass1(int i, vec3 screenWeights)
 void emitClass2(int a, int b, int c, int d, float u, float v)
 {
   // Screen-space parameters on an edge become view-space ones through the clip w.
-  float t = u * vertexDC[a].w / (u * vertexDC[a].w + (1.0 - u) * vertexDC[b].w);
-  float s = v * vertexDC[c].w / (v * vertexDC[c].w + (1.0 - v) * vertexDC[d].w);
-  setThick(mix(vertexVC[a], vertexVC[b], t), mix(vertexDC[a], vertexDC[b], t),
+  float t = u * vertexDC(a).w / (u * vertexDC(a).w + (1.0 - u) * vertexDC(b).w);
+  float s = v * vertexDC(c).w / (v * vertexDC(c).w + (1.0 - v) * vertexDC(d).w);
+  setThick(mix(vertexVC[a], vertexVC[b], t), mix(vertexDC(a), vertexDC(b), t),
     mix(vertexScalar[a], vertexScalar[b], t), mix(vertexVC[c], vertexVC[d], s),
-    mix(vertexDC[c], vertexDC[d], s), mix(vertexScalar[c], vertexScalar[d], s));
+    mix(vertexDC(c), vertexDC(d), s), mix(vertexScalar[c], vertexScalar[d], s));
   // The outline alternates between the diagonals: a, c, b, d. The fan (thick; a, c, b, d) as
   // the strip a, c, thick, b, thick, d, a (its fourth triangle has no area).
   emitOutline(a);
@@ -261,8 +268,7 @@ void main()
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
-    vertexDC[i] = positionDCVSOutput[i];
-    vec4 p = vertexDC[i];
+    vec4 p = vertexDC(i);
     beyond += ivec4(p.z < -p.w, p.x < -p.w, p.x > p.w, p.y < -p.w || p.y > p.w);
   }
   if (any(equal(beyond.xyz, ivec3(4))))
@@ -278,7 +284,7 @@ void main()
   }
   for (int i = 0; i < 4; ++i)
   {
-    vertexNDC[i] = vertexDC[i].xy / vertexDC[i].w;
+    vertexNDC[i] = vertexDC(i).xy / vertexDC(i).w;
 #ifdef SPT_CELL_SCALARS
     vertexScalar[i] = texelFetch(cellScalars, primitiveOffset + gl_PrimitiveIDIn).r;
 #else
