@@ -22,6 +22,7 @@
 #include "vtkSPTPassSingleFS.h"
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
+#include "vtkSPTTetrahedraPointsVS.h"
 #include "vtkSPTTetrahedraVS.h"
 
 #include <algorithm>
@@ -86,10 +87,53 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
   {
     this->ClipPlanesCut = this->ClipPlanesCut || volume.Matrices->ClipPlanesCutBounds;
   }
+  this->ChooseSmallCells();
+}
+
+void vtkSPTFrame::ChooseSmallCells()
+{
+  // The cells drawn as points are about SmallCellSize pixels across at the depth of the mesh's
+  // centre, and no point may exceed the largest size OpenGL draws, wherever it lies.
+  GLfloat pointSizes[2] = { 1.0f, 1.0f };
+  glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
+  const double halfSize[2] = { 0.5 * this->Ensemble->GetPassWidth(),
+    0.5 * this->Ensemble->GetPassHeight() };
+  this->SmallCellLengths.clear();
+  for (const Volume& volume : this->Volumes)
+  {
+    const double* bound = volume.Matrices->NDCPerLength;
+    const double* typical = volume.Matrices->TypicalNDCPerLength;
+    const double largestPixels = std::max(bound[0] * halfSize[0], bound[1] * halfSize[1]);
+    const double typicalPixels = std::max(typical[0] * halfSize[0], typical[1] * halfSize[1]);
+    const double length = largestPixels > 0.0 && typicalPixels > 0.0
+      ? std::min(
+          this->FrameSettings.SmallCellSize / typicalPixels, (pointSizes[1] - 1.0) / largestPixels)
+      : 0.0;
+    // Negative: no cell is drawn as a point.
+    this->SmallCellLengths.push_back(length > 0.0 ? float(length) : -1.0f);
+  }
+}
+
+vtkIdType vtkSPTFrame::GetPointCellCount(size_t volume) const
+{
+  return this->Volumes[volume].Buffers->CountCellsNoLongerThan(this->SmallCellLengths[volume]);
+}
+
+bool vtkSPTFrame::Draws(size_t volume, bool points) const
+{
+  const float* range = this->Volumes[volume].Buffers->GetLongestEdgeRange();
+  const float smallest = this->SmallCellLengths[volume];
+  return points ? range[0] <= smallest : range[1] > smallest;
+}
+
+vtkShaderProgram*& vtkSPTFrame::ProgramOf(PassKind kind, size_t volume, bool points)
+{
+  const bool cellScalars = this->Volumes[volume].Buffers->GetMesh()->GetCellScalars();
+  return this->Programs[static_cast<int>(kind)][cellScalars ? 1 : 0][points ? 1 : 0];
 }
 
 vtkShaderProgram* vtkSPTFrame::ReadyProgram(
-  bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves)
+  bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
@@ -97,10 +141,13 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   // only while one cuts some volume's bounds: a fragment stage pays for its branches),
   // and the scene depth (only when opaque geometry was drawn).
   std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
-  common += clippedCells ? "#define SPT_CLIPPED_CELLS\n" : "";
+  common += points ? "#define SPT_POINT_SPRITES\n" : "";
+  common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
-  std::string geometry = vtkSPTTetrahedraGS;
+  std::string vertex = points ? vtkSPTTetrahedraPointsVS : vtkSPTTetrahedraVS;
+  std::string geometry = points ? "" : vtkSPTTetrahedraGS;
+  vtkShaderProgram::Substitute(vertex, "//SPT::Defines::Dec", common);
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
 
   std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
@@ -126,7 +173,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkHashRandom);
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
   return this->Window->GetShaderCache()->ReadyShaderProgram(
-    vtkSPTTetrahedraVS, fragment.c_str(), geometry.c_str());
+    vertex.c_str(), fragment.c_str(), geometry.c_str());
 }
 
 bool vtkSPTFrame::ReadyPrograms(
@@ -135,26 +182,32 @@ bool vtkSPTFrame::ReadyPrograms(
   // Each call has uniforms of its own (first, count, halves).
   for (auto& byScalars : this->Programs)
   {
-    byScalars[0] = byScalars[1] = nullptr;
+    for (auto& byPrimitive : byScalars)
+    {
+      byPrimitive[0] = byPrimitive[1] = nullptr;
+    }
   }
   for (int k = 0; k < NumberOfPassKinds; ++k)
   {
-    for (const Volume& volume : this->Volumes)
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
     {
-      const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
-      vtkShaderProgram*& program = this->Programs[k][cellScalars ? 1 : 0];
-      if (!needed[k] || program)
+      for (const bool points : { false, true })
       {
-        continue;
+        const PassKind kind = static_cast<PassKind>(k);
+        vtkShaderProgram*& program = this->ProgramOf(kind, v, points);
+        if (!needed[k] || !this->Draws(v, points) || program)
+        {
+          continue;
+        }
+        program = this->ReadyProgram(this->Volumes[v].Buffers->GetMesh()->GetCellScalars(),
+          this->ClipPlanesCut, points, kind, lanes, halves);
+        if (!program)
+        {
+          vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
+          return false;
+        }
+        this->SetFrameUniforms(program, first, count, halves);
       }
-      program = this->ReadyProgram(
-        cellScalars, this->ClipPlanesCut, static_cast<PassKind>(k), lanes, halves);
-      if (!program)
-      {
-        vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
-        return false;
-      }
-      this->SetFrameUniforms(program, first, count, halves);
     }
   }
   return true;
@@ -162,26 +215,57 @@ bool vtkSPTFrame::ReadyPrograms(
 
 void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
 {
-  for (const Volume& volume : this->Volumes)
+  for (size_t v = 0; v < this->Volumes.size(); ++v)
   {
-    // The ensemble's accumulation binds its own program between passes; uniforms go to the
-    // bound program.
-    vtkShaderProgram* program =
-      this->Programs[static_cast<int>(kind)][volume.Buffers->GetMesh()->GetCellScalars() ? 1 : 0];
-    this->Window->GetShaderCache()->ReadyShaderProgram(program);
-    ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
-      volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture() });
-    std::unique_ptr<ScopedTextures> randomIds;
-    if (this->FrameSettings.GlobalIds)
+    const Volume& volume = this->Volumes[v];
+    // Points for the small cells first, then triangles for the others.
+    for (const bool points : { true, false })
     {
-      randomIds.reset(new ScopedTextures({ volume.Buffers->GetRandomIdTexture() }));
-      program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
+      if (!this->Draws(v, points))
+      {
+        continue;
+      }
+      // The ensemble's accumulation binds its own program between passes; uniforms go to the
+      // bound program.
+      vtkShaderProgram* program = this->ProgramOf(kind, v, points);
+      this->Window->GetShaderCache()->ReadyShaderProgram(program);
+      ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
+        volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture(),
+        volume.Buffers->GetLongestEdgeTexture() });
+      std::unique_ptr<ScopedTextures> randomIds;
+      if (this->FrameSettings.GlobalIds)
+      {
+        randomIds.reset(new ScopedTextures({ volume.Buffers->GetRandomIdTexture() }));
+        program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
+      }
+      SetVolumeUniforms(program, volume);
+      // The cells no longer than this are drawn as points, the others as triangles; negative
+      // where no cell is drawn as a point.
+      program->SetUniformf(
+        "smallCellLength", this->Draws(v, true) ? this->SmallCellLengths[v] : -1.0f);
+      program->SetUniformi("repetition", repetition);
+      program->SetUniformi("repetitionsInGroup", inGroup);
+      this->DrawTetrahedra(
+        volume, program, points, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
     }
-    SetVolumeUniforms(program, volume);
-    program->SetUniformi("repetition", repetition);
-    program->SetUniformi("repetitionsInGroup", inGroup);
+  }
+}
+
+void vtkSPTFrame::DrawTetrahedra(
+  const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType count)
+{
+  program->SetUniformi("longestEdges", volume.Buffers->GetLongestEdgeTexture()->GetTextureUnit());
+  if (points)
+  {
+    vtkOpenGLState* ostate = this->Window->GetState();
+    ostate->vtkglEnable(GL_PROGRAM_POINT_SIZE);
+    volume.Buffers->DrawPoints(program, 0, count);
+    ostate->vtkglDisable(GL_PROGRAM_POINT_SIZE);
+  }
+  else
+  {
     volume.Buffers->Bind(program);
-    volume.Buffers->Draw(program, 0, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
+    volume.Buffers->Draw(program, 0, count);
     volume.Buffers->Unbind();
   }
 }

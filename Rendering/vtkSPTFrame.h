@@ -21,6 +21,9 @@
 
 #include "SPTRenderingModule.h" // For export macro
 
+#include "vtkType.h" // For vtkIdType
+
+#include <cstddef>    // For size_t
 #include <functional> // For the keys' reduction
 #include <vector>     // For the volumes
 
@@ -72,6 +75,8 @@ public:
   {
     int Estimator = VISIBILITY_ESTIMATOR;
     bool StratifiedSampling = true;
+    /// Cells at most this many pixels across on the screen are drawn as points (0: none).
+    double SmallCellSize = 0.0;
     int SubpixelLevel = 1;
     unsigned int Seed = 0;
     bool OpaqueScene = false; // opaque geometry was drawn before the volumes
@@ -112,14 +117,19 @@ public:
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
     double target, TargetState& state);
 
+  /// How many tetrahedra of a volume the traversals draw as points.
+  vtkIdType GetPointCellCount(size_t volume) const;
+
 private:
   vtkShaderProgram* ReadyProgram(
-    bool cellScalars, bool clippedCells, PassKind kind, int lanes, bool halves);
+    bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves);
   // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars.
   bool ReadyPrograms(
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
   // One traversal of every volume with the program of that pass kind.
   void Traverse(PassKind kind, int repetition, int inGroup);
+  void DrawTetrahedra(
+    const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType count);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
@@ -132,8 +142,19 @@ private:
   Settings FrameSettings;
   vtkObject* Reporter;
   bool ClipPlanesCut = false; // a clipping plane cuts the bounds of some volume
-  // The programs of this frame, by pass kind and by scalars per point (0) or per cell (1).
-  vtkShaderProgram* Programs[NumberOfPassKinds][2] = {};
+  // Per volume: its tetrahedra whose longest edge is at most this long (normalized units;
+  // negative: none) are drawn as one point each, whose fragments clip their rays by the cell's
+  // face planes (vtkSPTTetrahedraPointsVS.glsl); the others as the triangles of their
+  // projection. Both stages compare the same stored length with the same uniform, so each
+  // cell is drawn exactly once.
+  std::vector<float> SmallCellLengths;
+  void ChooseSmallCells();
+  // Whether a traversal of the volume has cells to draw as points (or as triangles).
+  bool Draws(size_t volume, bool points) const;
+  // The programs of this frame, by pass kind, by scalars per point (0) or per cell (1), and by
+  // primitive: the projection's triangles (0) or one point per tetrahedron (1).
+  vtkShaderProgram* Programs[NumberOfPassKinds][2][2] = {};
+  vtkShaderProgram*& ProgramOf(PassKind kind, size_t volume, bool points);
 };
 
 #endif

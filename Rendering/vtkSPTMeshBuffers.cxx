@@ -11,11 +11,45 @@
 #include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace
 {
 // Draw calls are split so that their index counts stay far below GLsizei's range.
 constexpr vtkIdType MaxTetrahedraPerDraw = vtkIdType(1) << 22;
+
+// The most texels a buffer texture of this context holds.
+size_t MaxBufferTexels()
+{
+  GLint texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+  return static_cast<size_t>(std::max(texels, 0));
+}
+
+// The longest edge of each tetrahedron (normalized units).
+std::vector<float> LongestEdges(const vtkTetrahedralMesh* mesh)
+{
+  const std::vector<float>& points = mesh->GetPoints();
+  const std::vector<unsigned int>& tetrahedra = mesh->GetTetrahedra();
+  std::vector<float> longest(tetrahedra.size() / 4);
+  for (size_t t = 0; t < longest.size(); ++t)
+  {
+    const unsigned int* ids = &tetrahedra[4 * t];
+    float squared = 0.0f;
+    for (int i = 0; i < 4; ++i)
+    {
+      for (int j = i + 1; j < 4; ++j)
+      {
+        const float* a = &points[3 * ids[i]];
+        const float* b = &points[3 * ids[j]];
+        const float d[3] = { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+        squared = std::max(squared, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      }
+    }
+    longest[t] = std::sqrt(squared);
+  }
+  return longest;
+}
 
 // A buffer texture of `texels` texels of `components` values over `buffer`.
 bool MakeBufferTexture(vtkSmartPointer<vtkTextureObject>& texture, vtkOpenGLRenderWindow* renWin,
@@ -53,7 +87,8 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
   this->Mesh = mesh;
   this->UploadedBuild = mesh->GetBuildTime();
   this->UploadedBytes = 0;
-  this->VertexArray.ForgetLayout();
+  this->VertexArray.ForgetLayout(); // the buffers are uploaded anew
+  this->PointVertexArray.ForgetLayout();
   const std::vector<float>& points = mesh->GetPoints();
   const std::vector<float>& scalars = mesh->GetScalars();
   const std::vector<unsigned int>& tetrahedra = mesh->GetTetrahedra();
@@ -61,10 +96,9 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
   {
     return true;
   }
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
   const size_t texels = std::max(scalars.size(), tetrahedra.size() / 4);
-  if (texels > static_cast<size_t>(maxTexels))
+  const size_t maxTexels = MaxBufferTexels();
+  if (texels > maxTexels)
   {
     vtkErrorMacro("The mesh has " << texels
                                   << " tetrahedra or points; this OpenGL context holds at most "
@@ -86,7 +120,8 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
       this->PointTexture, renWin, this->PointBuffer, points.size() / 3, 3, VTK_FLOAT, GL_RGB32F) &&
     MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer, tetrahedra.size() / 4, 4,
       VTK_UNSIGNED_INT, GL_RGBA32UI);
-  ok = ok && this->UploadRandomIds(renWin, mesh->GetRandomIds());
+  ok = ok && this->UploadLongestEdges(renWin, mesh) &&
+    this->UploadRandomIds(renWin, mesh->GetRandomIds());
   if (!ok)
   {
     vtkErrorMacro("Could not upload " << mesh->GetNumberOfTetrahedra()
@@ -94,9 +129,23 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  this->UploadedBytes = sizeof(float) * (points.size() + scalars.size()) +
+  this->UploadedBytes = sizeof(float) * (points.size() + scalars.size() + tetrahedra.size() / 4) +
     sizeof(unsigned int) * (tetrahedra.size() + mesh->GetRandomIds().size());
   return true;
+}
+
+bool vtkSPTMeshBuffers::UploadLongestEdges(
+  vtkOpenGLRenderWindow* renWin, const vtkTetrahedralMesh* mesh)
+{
+  // Each cell's longest edge, by which the frame chooses how to draw it.
+  const std::vector<float> longest = LongestEdges(mesh);
+  this->SortedLongestEdges = longest;
+  std::sort(this->SortedLongestEdges.begin(), this->SortedLongestEdges.end());
+  this->LongestEdgeRange[0] = this->SortedLongestEdges.front();
+  this->LongestEdgeRange[1] = this->SortedLongestEdges.back();
+  return this->LongestEdgeBuffer->Upload(longest, vtkOpenGLBufferObject::TextureBuffer) &&
+    MakeBufferTexture(this->LongestEdgeTexture, renWin, this->LongestEdgeBuffer, longest.size(), 1,
+      VTK_FLOAT, GL_R32F);
 }
 
 bool vtkSPTMeshBuffers::UploadRandomIds(
@@ -146,15 +195,33 @@ void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdTy
     { program->SetUniformi("primitiveOffset", static_cast<int>(begin)); });
 }
 
+vtkIdType vtkSPTMeshBuffers::CountCellsNoLongerThan(float length) const
+{
+  return std::upper_bound(
+           this->SortedLongestEdges.begin(), this->SortedLongestEdges.end(), length) -
+    this->SortedLongestEdges.begin();
+}
+
+void vtkSPTMeshBuffers::DrawPoints(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
+{
+  const vtkIdType end =
+    std::min(first + count, this->Mesh ? this->Mesh->GetNumberOfTetrahedra() : 0);
+  this->PointVertexArray.Bind(program, {});
+  vtkBatchedVertexArray::DrawArrays(GL_POINTS, first, end - first, MaxTetrahedraPerDraw);
+  this->PointVertexArray.Release();
+}
+
 void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->PointBuffer->ReleaseGraphicsResources();
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
   this->RandomIdBuffer->ReleaseGraphicsResources();
+  this->LongestEdgeBuffer->ReleaseGraphicsResources();
   this->VertexArray.ReleaseGraphicsResources();
+  this->PointVertexArray.ReleaseGraphicsResources();
   for (vtkSmartPointer<vtkTextureObject>* texture : { &this->ScalarTexture, &this->PointTexture,
-         &this->TetrahedronTexture, &this->RandomIdTexture })
+         &this->TetrahedronTexture, &this->RandomIdTexture, &this->LongestEdgeTexture })
   {
     if (*texture)
     {
@@ -164,6 +231,7 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->Context = nullptr;
   this->Mesh = nullptr;
+  this->SortedLongestEdges.clear();
   this->UploadedBuild = 0;
   this->UploadedBytes = 0;
 }

@@ -22,6 +22,8 @@
 #include "vtkTextureObject.h" // For GetScalarTexture()
 #include "vtkTimeStamp.h"     // For the upload time
 
+#include <vector> // For the sorted lengths
+
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
@@ -64,6 +66,11 @@ public:
   /// The tetrahedra's ids for the random numbers (R32UI), when the mesh numbers them by
   /// global ids (vtkTetrahedralMesh::GetRandomIds()); else null.
   vtkTextureObject* GetRandomIdTexture() { return this->RandomIdTexture; }
+  /// Each tetrahedron's longest edge (R32F, normalized units), and their range.
+  vtkTextureObject* GetLongestEdgeTexture() { return this->LongestEdgeTexture; }
+  const float* GetLongestEdgeRange() const { return this->LongestEdgeRange; }
+  /// How many tetrahedra have no edge longer than `length` (normalized units).
+  vtkIdType CountCellsNoLongerThan(float length) const;
 
   /**
    * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
@@ -71,6 +78,12 @@ public:
    * tetrahedron's index.
    */
   void Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
+  /**
+   * Draw tetrahedra [first, first + count) as one GL_POINTS vertex each, with no vertex
+   * attributes: the vertex stage reads the cell through the buffer textures, and gl_VertexID
+   * is the tetrahedron's index.
+   */
+  void DrawPoints(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
 
   size_t GetGPUMemorySize() const { return this->UploadedBytes; }
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -83,6 +96,9 @@ private:
   vtkSPTMeshBuffers(const vtkSPTMeshBuffers&) = delete;
   void operator=(const vtkSPTMeshBuffers&) = delete;
 
+  // The longest edges' buffer texture, and their sorted copy.
+  bool UploadLongestEdges(vtkOpenGLRenderWindow* renWin, const vtkTetrahedralMesh* mesh);
+
   // The random ids' buffer texture, or none when the mesh has none.
   bool UploadRandomIds(vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& randomIds);
 
@@ -94,11 +110,16 @@ private:
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
   vtkNew<vtkOpenGLBufferObject> RandomIdBuffer;
+  vtkNew<vtkOpenGLBufferObject> LongestEdgeBuffer;
   vtkBatchedVertexArray VertexArray;
+  vtkBatchedVertexArray PointVertexArray; // no attributes: the points read buffer textures
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> TetrahedronTexture;
   vtkSmartPointer<vtkTextureObject> PointTexture;
   vtkSmartPointer<vtkTextureObject> RandomIdTexture;
+  vtkSmartPointer<vtkTextureObject> LongestEdgeTexture;
+  float LongestEdgeRange[2] = { 0.0f, 0.0f };
+  std::vector<float> SortedLongestEdges; // on the CPU, to count the cells drawn as points
   size_t UploadedBytes = 0;
 };
 

@@ -53,6 +53,9 @@ public:
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
   // Prepare every shared volume that can be drawn; false when none can.
+  // What the mappers of the frame report of its render.
+  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
+    const vtkSPTFrame& frame) const;
   static bool CollectVolumes(vtkRenderer* ren,
     const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
@@ -192,6 +195,17 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   return signature;
 }
 
+void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
+  const std::vector<vtkSPTVolumeMapper*>& mappers, const vtkSPTFrame& frame) const
+{
+  for (size_t v = 0; v < mappers.size(); ++v)
+  {
+    mappers[v]->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+    mappers[v]->LastRepetitionCount = self->GetAccumulatedRepetitions();
+    mappers[v]->LastPointCellCount = frame.GetPointCellCount(v);
+  }
+}
+
 bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren,
   const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
   std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers)
@@ -328,6 +342,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.Estimator = SURVIVOR_ESTIMATOR;
   }
   settings.StratifiedSampling = this->StratifiedSampling != 0;
+  settings.SmallCellSize = this->SmallCellSize;
   settings.SubpixelLevel = this->SubpixelLevel;
   settings.Seed = this->Seed;
   settings.OpaqueScene = HasOpaqueScene(ren);
@@ -343,11 +358,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  for (vtkSPTVolumeMapper* mapper : mappers)
-  {
-    mapper->EstimatedError = this->TargetError > 0.0 ? internals.Target.Estimate : -1.0;
-    mapper->LastRepetitionCount = this->GetAccumulatedRepetitions();
-  }
+  internals.Report(this, mappers, frame);
   ensemble->Resolve(target.X, target.Y, this->GetAccumulatedRepetitions(),
     this->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");
@@ -391,6 +402,8 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
+  os << indent << "SmallCellSize: " << this->SmallCellSize << "\n";
+  os << indent << "LastPointCellCount: " << this->LastPointCellCount << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
   os << indent
@@ -430,9 +443,9 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
   }
   const bool atomics = target.Window && vtkSPTDepthKeyBuffer::IsSupported(target.Window);
   return { { "RepetitionLevel", self->RepetitionLevel },
-    { "RepetitionsPerPass", self->RepetitionsPerPass }, { "Seed", self->Seed },
-    { "SubpixelLevel", self->SubpixelLevel }, { "Estimator", self->Estimator },
-    { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
+    { "RepetitionsPerPass", self->RepetitionsPerPass }, { "SmallCellSize", self->SmallCellSize },
+    { "Seed", self->Seed }, { "SubpixelLevel", self->SubpixelLevel },
+    { "Estimator", self->Estimator }, { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
     { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
     { "PreIntegrationScalarResolution", self->PreIntegrationScalarResolution },
     { "PreIntegrationThicknessResolution", self->PreIntegrationThicknessResolution },
@@ -523,6 +536,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   vtkSPTFrame::Settings settings;
   settings.Estimator = self->Estimator;
   settings.StratifiedSampling = self->StratifiedSampling != 0;
+  settings.SmallCellSize = self->SmallCellSize;
   settings.SubpixelLevel = self->SubpixelLevel;
   settings.Seed = self->Seed;
   settings.OpaqueScene = agreement.OpaqueScene;
@@ -560,6 +574,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   vtkSPTFrame frame(renWin, ensemble, this->DepthKeys, volumes, settings, self);
   bool drawn =
     frame.DrawRepetitions(0, self->RepetitionLevel, self->RepetitionsPerPass, self->ExactCoverage);
+  self->LastPointCellCount = volumes.empty() ? 0 : frame.GetPointCellCount(0);
   ostate->PopFramebufferBindings();
   // A rank whose frame failed (a shader, a buffer) still takes part in every exchange the
   // others make, with nothing kept and nothing added; then no rank resolves.

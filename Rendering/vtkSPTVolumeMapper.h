@@ -93,6 +93,28 @@ public:
 
   ///@{
   /**
+   * How tetrahedra are drawn. Each one whose projection is at most SmallCellSize pixels across
+   * (bounded on the CPU from its longest edge and the view) is drawn as one point, a square
+   * over its projection, whose fragments clip their own view rays by the cell's four face
+   * planes; the others are split into the three or four triangles of their projection by a
+   * geometry shader, as in the paper. The image is the same either way (the two may differ
+   * only for samples on a shared edge). A point is one primitive to set up against three or
+   * four, with no geometry stage, but its square also covers samples that miss the cell, so
+   * it pays where cells are small on the screen: a million cells at 256 x 256 draw 1.5x as
+   * fast on llvmpipe. Points are used only where the mesh's bounds lie wholly in front of the
+   * near plane. 0 draws every cell as triangles. Range 0 to 64 pixels, default 8.
+   */
+  vtkSetClampMacro(SmallCellSize, double, 0.0, 64.0);
+  vtkGetMacro(SmallCellSize, double);
+  ///@}
+
+  /**
+   * How many tetrahedra the last render drew as points (see SmallCellSize).
+   */
+  vtkGetMacro(LastPointCellCount, vtkIdType);
+
+  ///@{
+  /**
    * Stratified keep-or-discard thresholds: within the RepetitionLevel repetitions of an image,
    * each fragment's thresholds visit the RepetitionLevel strata of [0, 1) once each, in an
    * order of its own, instead of being independent. The expectation is the same; a segment's
@@ -220,6 +242,8 @@ protected:
   ~vtkSPTVolumeMapper() override;
 
   int RepetitionsPerPass = 16;
+  double SmallCellSize = 8.0;
+  vtkIdType LastPointCellCount = 0;
   vtkTypeBool StratifiedSampling = 1;
   int Estimator = VISIBILITY_ESTIMATOR;
   vtkTypeBool ExactCoverage = 1;

@@ -57,13 +57,23 @@ void ToRowMajor(vtkMatrix4x4* matrix, double elements[4][4])
   }
 }
 
-// A corner of the bounding box beyond the near plane (or behind the eye) or a side plane has
-// clip z < -w, |x| > w or |y| > w; the box is convex, so without such a corner no cell
-// reaches there.
-bool ClipPlanesCut(
+// Where the corners of the bounding box fall in clip space. A corner beyond the near plane (or
+// behind the eye) or a side plane has clip z < -w, |x| > w or |y| > w; the box is convex, so
+// without such a corner no cell reaches there. In front of the near plane, the projections of
+// the corners bound those of every point in the box.
+struct BoundsInClipSpace
+{
+  bool Cut = false;                    // some corner lies beyond a clipping plane
+  bool NearCut = false;                // some corner lies beyond the near plane or behind the eye
+  double NearestW = 0.0;               // the smallest clip w of the corners
+  double LargestNDC[2] = { 0.0, 0.0 }; // the largest |x / w| and |y / w| of the corners
+};
+
+BoundsInClipSpace ProjectBounds(
   const double bounds[6], const double modelToView[4][4], const double viewToClip[4][4])
 {
-  bool cut = false;
+  BoundsInClipSpace result;
+  result.NearestW = VTK_DOUBLE_MAX;
   for (int corner = 0; corner < 8; ++corner)
   {
     const double point[4] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
@@ -79,11 +89,69 @@ bool ClipPlanesCut(
       clip[i] = viewToClip[i][0] * view[0] + viewToClip[i][1] * view[1] +
         viewToClip[i][2] * view[2] + viewToClip[i][3] * view[3];
     }
-    const bool inside =
-      clip[2] >= -clip[3] && std::abs(clip[0]) <= clip[3] && std::abs(clip[1]) <= clip[3];
-    cut = cut || !inside;
+    const bool nearCut = !(clip[2] >= -clip[3] && clip[3] > 0.0);
+    const bool inside = !nearCut && std::abs(clip[0]) <= clip[3] && std::abs(clip[1]) <= clip[3];
+    result.Cut = result.Cut || !inside;
+    result.NearCut = result.NearCut || nearCut;
+    result.NearestW = std::min(result.NearestW, clip[3]);
+    for (int i = 0; i < 2 && !nearCut; ++i)
+    {
+      result.LargestNDC[i] = std::max(result.LargestNDC[i], std::abs(clip[i] / clip[3]));
+    }
   }
-  return cut;
+  return result;
+}
+
+// The largest factor by which the linear part of model -> view stretches a length (its largest
+// singular value).
+double LargestStretch(const double modelToView[4][4])
+{
+  double a[3][3], ata[3][3], values[3], vectors[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      a[i][j] = modelToView[i][j];
+    }
+  }
+  vtkMath::Transpose3x3(a, ata);
+  vtkMath::Multiply3x3(ata, a, ata);
+  double* rows[3] = { ata[0], ata[1], ata[2] };
+  double* vectorRows[3] = { vectors[0], vectors[1], vectors[2] };
+  vtkMath::Jacobi(rows, values, vectorRows);
+  return std::sqrt(std::max(values[0], 0.0));
+}
+
+// For points a and b in front of the near plane, with |x / w| <= m at b:
+// |x_a / w_a - x_b / w_b| <= (|x_a - x_b| + m |w_a - w_b|) / min(w_a, w_b), and the clip
+// differences are at most the rows' norms times the view distance |a - b|, itself at most the
+// largest stretch of model -> view times the model distance. The typical extent is that of a
+// segment across the view at the depth of the bounds' centre.
+void ScreenLengths(const BoundsInClipSpace& box, const double bounds[6],
+  const double modelToView[4][4], const double viewToClip[4][4], double bound[2], double typical[2])
+{
+  bound[0] = bound[1] = typical[0] = typical[1] = 0.0;
+  if (box.NearCut || !(box.NearestW > 0.0))
+  {
+    return;
+  }
+  const double stretch = LargestStretch(modelToView);
+  const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+    0.5 * (bounds[4] + bounds[5]) };
+  double centerW = viewToClip[3][3];
+  for (int j = 0; j < 3; ++j)
+  {
+    const double view = vtkMath::Dot(modelToView[j], center) + modelToView[j][3];
+    centerW += viewToClip[3][j] * view;
+  }
+  centerW = std::max(centerW, box.NearestW);
+  const double wRow = vtkMath::Norm(viewToClip[3]);
+  for (int i = 0; i < 2; ++i)
+  {
+    const double row = vtkMath::Norm(viewToClip[i]);
+    bound[i] = stretch * (row + box.LargestNDC[i] * wRow) / box.NearestW;
+    typical[i] = stretch * row / centerW;
+  }
 }
 }
 
@@ -124,8 +192,11 @@ void vtkVolumeViewMatrices::Compute(
     }
   }
   this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
-  this->ClipPlanesCutBounds =
-    ClipPlanesCut(mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip);
+  const BoundsInClipSpace box =
+    ProjectBounds(mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip);
+  this->ClipPlanesCutBounds = box.Cut;
+  ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
+    this->NDCPerLength, this->TypicalNDCPerLength);
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)
   {

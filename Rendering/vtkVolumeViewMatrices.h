@@ -37,6 +37,13 @@ struct SPTRENDERING_EXPORT vtkVolumeViewMatrices
   /// Whether a clipping plane (near or side) cuts the mesh's bounding box, as with the camera
   /// inside or close to the mesh or a view zoomed into it: then some tetrahedra may be cut.
   bool ClipPlanesCutBounds = false;
+  /// An upper bound of the x and y extents, in normalized device coordinates, of the
+  /// projection of a segment of unit length (normalized model units) that lies within the
+  /// mesh's bounds; zero when the near plane cuts the bounds (no bound then).
+  double NDCPerLength[2] = { 0.0, 0.0 };
+  /// The same for a segment across the view at the depth of the bounds' centre: the typical
+  /// extent rather than a bound (zero when the near plane cuts the bounds).
+  double TypicalNDCPerLength[2] = { 0.0, 0.0 };
   /// Whether model -> view mirrors space (negative determinant), which swaps the facing of
   /// triangles on the screen.
   bool Mirrored = false;

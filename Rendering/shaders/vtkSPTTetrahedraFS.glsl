@@ -8,12 +8,18 @@
 // and opacity, and draws the keep-or-discard thresholds; the main() of the pass, appended at
 // the end, decides what the fragment writes (vtkSPTPass*FS.glsl).
 
+#ifdef SPT_POINT_SPRITES
+flat in int tetrahedronId;
+flat in vec4 facePlaneNDC[4]; // see vtkSPTTetrahedraPointsVS.glsl
+flat in vec4 scalarPlaneNDC;
+#else
 noperspective in vec4 frontVCOverW;
 noperspective in vec4 backVCOverW;
 noperspective in vec2 scalarsOverW;
 flat in int tetrahedronId;
 #ifdef SPT_CLIPPED_CELLS
 flat in int clippedCell;
+#endif
 #endif
 
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
@@ -82,14 +88,93 @@ void sampleRay(out vec3 origin, out vec3 direction)
   direction = farVC.xyz / farVC.w - origin;
 }
 
-// The ray enters the cell at the last of the entry faces' planes and leaves it at the first of
-// the exit faces'. facePlane[k] is the outward plane of the face opposite vertex k, scaled so
-// that the vertex is at -1. False for a flat tetrahedron, which holds no volume.
-bool clipRayByCell(vec3 vertexVC[4], vec3 origin, vec3 direction, out vec4 facePlane[4],
-  out float enter, out float leave)
+// The parameters where the ray enters and leaves the cell of these outward face planes: it
+// enters at the last of the entry faces' planes and leaves at the first of the exit faces'.
+void clipRayByPlanes(vec4 facePlane[4], vec3 origin, vec3 direction, out float enter,
+  out float leave)
 {
   enter = 0.0;
   leave = 1.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    float approach = dot(facePlane[k].xyz, direction);
+    float t = -dot(facePlane[k], vec4(origin, 1.0)) / approach;
+    if (approach < 0.0)
+    {
+      enter = max(enter, t);
+    }
+    else if (approach > 0.0)
+    {
+      leave = min(leave, t);
+    }
+  }
+}
+
+// The segment of the ray from `enter` to `leave`, the scalars at its ends interpolated with
+// the cell's barycentric weights (minus the face planes' values).
+void rayCellSegment(vec4 facePlane[4], vec4 vertexScalar, vec3 origin, vec3 direction,
+  float enter, float leave, out Segment segment)
+{
+  segment.frontVC = origin + enter * direction;
+  segment.backVC = origin + leave * direction;
+  vec4 front = vec4(segment.frontVC, 1.0);
+  vec4 back = vec4(segment.backVC, 1.0);
+  vec4 frontWeights = -vec4(dot(facePlane[0], front), dot(facePlane[1], front),
+    dot(facePlane[2], front), dot(facePlane[3], front));
+  vec4 backWeights = -vec4(dot(facePlane[0], back), dot(facePlane[1], back),
+    dot(facePlane[2], back), dot(facePlane[3], back));
+  segment.frontScalar = dot(vertexScalar, frontWeights);
+  segment.backScalar = dot(vertexScalar, backWeights);
+  vec4 frontDC = VCDCMatrix * front;
+  segment.frontDepth = clamp(0.5 * frontDC.z / frontDC.w + 0.5, 0.0, 1.0);
+}
+#endif
+
+#ifdef SPT_POINT_SPRITES
+// The segment of this fragment's ray through the point's tetrahedron, clipped in normalized
+// device coordinates, where the ray is a line along z: each face plane bounds z from one side.
+// False when the ray misses the cell (the point's square is larger than the cell's projection).
+bool pointSegment(out Segment segment)
+{
+  vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
+  float enter = -1.0;
+  float leave = 1.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    float atZero = dot(facePlaneNDC[k].xyw, vec3(ndc, 1.0));
+    float slope = facePlaneNDC[k].z;
+    float bound = -atZero / slope;
+    enter = slope < 0.0 ? max(enter, bound) : enter;
+    leave = slope > 0.0 ? min(leave, bound) : leave;
+    if (slope == 0.0 && atZero > 0.0)
+    {
+      return false;
+    }
+  }
+  if (enter >= leave)
+  {
+    return false;
+  }
+  vec4 front = vec4(ndc, enter, 1.0);
+  vec4 back = vec4(ndc, leave, 1.0);
+  vec4 frontVC = DCVCMatrix * front;
+  vec4 backVC = DCVCMatrix * back;
+  segment.frontVC = frontVC.xyz / frontVC.w;
+  segment.backVC = backVC.xyz / backVC.w;
+  segment.frontScalar = -dot(scalarPlaneNDC, front) / frontVC.w;
+  segment.backScalar = -dot(scalarPlaneNDC, back) / backVC.w;
+  segment.frontDepth = 0.5 * enter + 0.5;
+  return true;
+}
+#endif
+
+#ifdef SPT_CLIPPED_CELLS
+
+// The outward face planes of a tetrahedron (view coordinates): facePlane[k] is the plane of the
+// face opposite vertex k, scaled so that the vertex is at -1. False for a flat tetrahedron,
+// which holds no volume.
+bool cellFacePlanes(vec3 vertexVC[4], out vec4 facePlane[4])
+{
   for (int k = 0; k < 4; ++k)
   {
     vec3 a = vertexVC[(k + 1) % 4];
@@ -101,23 +186,12 @@ bool clipRayByCell(vec3 vertexVC[4], vec3 origin, vec3 direction, out vec4 faceP
     }
     normal /= -towardsOpposite;
     facePlane[k] = vec4(normal, -dot(normal, a));
-    float approach = dot(normal, direction);
-    float t = -dot(facePlane[k], vec4(origin, 1.0)) / approach;
-    if (approach < 0.0)
-    {
-      enter = max(enter, t);
-    }
-    else if (approach > 0.0)
-    {
-      leave = min(leave, t);
-    }
   }
   return true;
 }
 
 // The segment of a cell that a clipping plane cuts, between the near plane and the cell's
-// exit. The scalars at both ends are interpolated with the barycentric weights of the cell.
-// False when the ray misses the cell.
+// exit. False when the ray misses the cell.
 bool cellSegment(out Segment segment)
 {
   vec3 origin;
@@ -125,7 +199,7 @@ bool cellSegment(out Segment segment)
   sampleRay(origin, direction);
   uvec4 ids = texelFetch(tetrahedra, tetrahedronId);
   vec3 vertexVC[4];
-  float vertexScalar[4];
+  vec4 vertexScalar;
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = (MCVCMatrix * vec4(texelFetch(points, int(ids[i])).xyz, 1.0)).xyz;
@@ -134,24 +208,16 @@ bool cellSegment(out Segment segment)
   vec4 facePlane[4];
   float enter;
   float leave;
-  if (!clipRayByCell(vertexVC, origin, direction, facePlane, enter, leave) || enter >= leave)
+  if (!cellFacePlanes(vertexVC, facePlane))
   {
     return false;
   }
-  segment.frontVC = origin + enter * direction;
-  segment.backVC = origin + leave * direction;
-  // The barycentric weight of vertex k is -(its face's plane at the point).
-  vec4 front = vec4(segment.frontVC, 1.0);
-  vec4 back = vec4(segment.backVC, 1.0);
-  segment.frontScalar = 0.0;
-  segment.backScalar = 0.0;
-  for (int k = 0; k < 4; ++k)
+  clipRayByPlanes(facePlane, origin, direction, enter, leave);
+  if (enter >= leave)
   {
-    segment.frontScalar -= vertexScalar[k] * dot(facePlane[k], front);
-    segment.backScalar -= vertexScalar[k] * dot(facePlane[k], back);
+    return false;
   }
-  vec4 frontDC = VCDCMatrix * front;
-  segment.frontDepth = clamp(0.5 * frontDC.z / frontDC.w + 0.5, 0.0, 1.0);
+  rayCellSegment(facePlane, vertexScalar, origin, direction, enter, leave, segment);
   return true;
 }
 #endif
@@ -160,6 +226,12 @@ bool cellSegment(out Segment segment)
 // nothing of it is visible.
 bool visibleSegment(out Segment segment)
 {
+#if defined(SPT_POINT_SPRITES)
+  if (!pointSegment(segment))
+  {
+    return false;
+  }
+#else
 #ifdef SPT_CLIPPED_CELLS
   if (clippedCell != 0)
   {
@@ -177,6 +249,7 @@ bool visibleSegment(out Segment segment)
     segment.backScalar = scalarsOverW.y / backVCOverW.w;
     segment.frontDepth = gl_FragCoord.z;
   }
+#endif
 
 #ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
