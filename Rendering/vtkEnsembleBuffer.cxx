@@ -76,6 +76,8 @@ void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
   ok = ok && this->PassFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   this->SumFramebuffer->Bind();
   this->SumFramebuffer->AddColorAttachment(0, this->Sum);
+  // The passes' depth is free while the sums are drawn: SPT's color traversal tests against it.
+  this->SumFramebuffer->AddDepthAttachment(this->PassDepth);
   this->SumFramebuffer->ActivateDrawBuffers(1);
   ok = ok && this->SumFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   ostate->PopFramebufferBindings();
@@ -197,6 +199,7 @@ bool vtkEnsembleBuffer::SetHalves(bool halves)
   {
     this->HalvesFramebuffer->AddColorAttachment(0, this->Sum);
     this->HalvesFramebuffer->AddColorAttachment(1, this->SecondHalf);
+    this->HalvesFramebuffer->AddDepthAttachment(this->PassDepth);
     this->HalvesFramebuffer->ActivateDrawBuffers(2);
     ok = this->HalvesFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
   }

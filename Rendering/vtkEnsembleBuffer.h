@@ -75,7 +75,8 @@ public:
   /**
    * Bind the sum itself for drawing, with the viewport set to it and the scissor test off, for
    * a caller that adds its fragments straight into the sum (additive blending, set by the
-   * caller). Bracketed like BeginPass().
+   * caller). Bracketed like BeginPass(). The passes' depth buffer is attached too, for a
+   * caller that tests against a depth of its own (the depth test is the caller's).
    */
   void BeginSumPass(bool halves = false);
 

@@ -1,9 +1,14 @@
 #include "vtkSPTDepthKeyBuffer.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
 #include "vtkSPTOpenGL.h"
+#include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
+
+#include "vtkSPTFarthestSurvivorFS.h"
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
 
@@ -76,6 +81,27 @@ void vtkSPTDepthKeyBuffer::Barrier()
     GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
+bool vtkSPTDepthKeyBuffer::WriteFarthestSurvivorDepth(int unit, int repetitions)
+{
+  if (!this->FarthestSurvivor)
+  {
+    this->FarthestSurvivor.reset(
+      new vtkOpenGLQuadHelper(this->Context, nullptr, vtkSPTFarthestSurvivorFS, ""));
+  }
+  vtkShaderProgram* program = this->FarthestSurvivor->Program;
+  if (!program)
+  {
+    return false;
+  }
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  program->SetUniformi("depthKeys", unit);
+  program->SetUniformi("repetitionsInGroup", repetitions);
+  const float passSize[2] = { static_cast<float>(this->Width), static_cast<float>(this->Height) };
+  program->SetUniform2f("passSize", passSize);
+  this->FarthestSurvivor->Render();
+  return true;
+}
+
 std::vector<unsigned int> vtkSPTDepthKeyBuffer::Read()
 {
   std::vector<unsigned int> keys(this->GetGPUMemorySize() / 4);
@@ -112,6 +138,7 @@ void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->Keys->ReleaseGraphicsResources(window);
   }
+  this->FarthestSurvivor.reset();
   this->Context = nullptr;
   this->Width = this->Height = this->Layers = 0;
 }

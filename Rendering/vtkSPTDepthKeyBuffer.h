@@ -20,8 +20,10 @@
 #include "vtkNew.h"             // For the texture
 #include "vtkObject.h"
 
+#include <memory> // For the quad
 #include <vector> // For Read()
 
+class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkTextureObject;
 class vtkWindow;
@@ -59,6 +61,15 @@ public:
   static void UnbindImage(int unit);
   static void Barrier();
 
+  /**
+   * Write into the bound framebuffer's depth, per sample, a depth no nearer than the nearest
+   * survivor of each of the first `repetitions` layers (the far plane where one kept nothing),
+   * with the keys bound as image unit `unit`. The caller sets the depth test to always pass,
+   * the depth mask and the viewport. A traversal that tests against it skips the fragments
+   * behind all the survivors before shading them. False if the shader does not compile.
+   */
+  bool WriteFarthestSurvivorDepth(int unit, int repetitions);
+
   ///@{
   /**
    * Read every key back to the host (layer by layer, as the shaders index them), and write
@@ -88,6 +99,7 @@ private:
   int Height = 0;
   int Layers = 0;
   vtkNew<vtkTextureObject> Keys;
+  std::unique_ptr<vtkOpenGLQuadHelper> FarthestSurvivor;
 };
 
 #endif

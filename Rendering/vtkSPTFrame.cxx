@@ -98,7 +98,7 @@ void vtkSPTFrame::ChooseSmallCells()
   glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
   const double halfSize[2] = { 0.5 * this->Ensemble->GetPassWidth(),
     0.5 * this->Ensemble->GetPassHeight() };
-  this->SmallCellLengths.clear();
+  this->PointCellCounts.clear();
   for (const Volume& volume : this->Volumes)
   {
     const double* bound = volume.Matrices->NDCPerLength;
@@ -108,22 +108,21 @@ void vtkSPTFrame::ChooseSmallCells()
     const double length = largestPixels > 0.0 && typicalPixels > 0.0
       ? std::min(
           this->FrameSettings.SmallCellSize / typicalPixels, (pointSizes[1] - 1.0) / largestPixels)
-      : 0.0;
-    // Negative: no cell is drawn as a point.
-    this->SmallCellLengths.push_back(length > 0.0 ? float(length) : -1.0f);
+      : -1.0;
+    this->PointCellCounts.push_back(volume.Buffers->CountSmallCells(length));
   }
 }
 
 vtkIdType vtkSPTFrame::GetPointCellCount(size_t volume) const
 {
-  return this->Volumes[volume].Buffers->CountCellsNoLongerThan(this->SmallCellLengths[volume]);
+  return this->PointCellCounts[volume];
 }
 
 bool vtkSPTFrame::Draws(size_t volume, bool points) const
 {
-  const float* range = this->Volumes[volume].Buffers->GetLongestEdgeRange();
-  const float smallest = this->SmallCellLengths[volume];
-  return points ? range[0] <= smallest : range[1] > smallest;
+  const vtkIdType pointCells = this->PointCellCounts[volume];
+  return points ? pointCells > 0
+                : pointCells < this->Volumes[volume].Buffers->GetMesh()->GetNumberOfTetrahedra();
 }
 
 vtkShaderProgram*& vtkSPTFrame::ProgramOf(PassKind kind, size_t volume, bool points)
@@ -231,7 +230,7 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
       this->Window->GetShaderCache()->ReadyShaderProgram(program);
       ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
         volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture(),
-        volume.Buffers->GetLongestEdgeTexture() });
+        volume.Buffers->GetMeshIndexTexture() });
       std::unique_ptr<ScopedTextures> randomIds;
       if (this->FrameSettings.GlobalIds)
       {
@@ -239,33 +238,29 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
         program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
       }
       SetVolumeUniforms(program, volume);
-      // The cells no longer than this are drawn as points, the others as triangles; negative
-      // where no cell is drawn as a point.
-      program->SetUniformf(
-        "smallCellLength", this->Draws(v, true) ? this->SmallCellLengths[v] : -1.0f);
       program->SetUniformi("repetition", repetition);
       program->SetUniformi("repetitionsInGroup", inGroup);
-      this->DrawTetrahedra(
-        volume, program, points, volume.Buffers->GetMesh()->GetNumberOfTetrahedra());
+      this->DrawTetrahedra(volume, program, points, this->PointCellCounts[v]);
     }
   }
 }
 
 void vtkSPTFrame::DrawTetrahedra(
-  const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType count)
+  const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells)
 {
-  program->SetUniformi("longestEdges", volume.Buffers->GetLongestEdgeTexture()->GetTextureUnit());
+  program->SetUniformi("meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
   if (points)
   {
     vtkOpenGLState* ostate = this->Window->GetState();
     ostate->vtkglEnable(GL_PROGRAM_POINT_SIZE);
-    volume.Buffers->DrawPoints(program, 0, count);
+    volume.Buffers->DrawPoints(program, 0, pointCells);
     ostate->vtkglDisable(GL_PROGRAM_POINT_SIZE);
   }
   else
   {
     volume.Buffers->Bind(program);
-    volume.Buffers->Draw(program, 0, count);
+    volume.Buffers->Draw(
+      program, pointCells, volume.Buffers->GetMesh()->GetNumberOfTetrahedra() - pointCells);
     volume.Buffers->Unbind();
   }
 }
@@ -370,10 +365,15 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
     if (ok)
     {
       ensemble->BeginSumPass(halves);
+      const bool culled = this->CullBehindSurvivors(inGroup);
       ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       ostate->vtkglEnable(GL_BLEND);
       this->Traverse(PassKind::Colors, r, inGroup);
       vtkSPTDepthKeyBuffer::Barrier();
+      if (culled)
+      {
+        ostate->vtkglDisable(GL_DEPTH_TEST);
+      }
     }
   }
   vtkSPTDepthKeyBuffer::UnbindImage(DepthKeyImageUnit);
@@ -381,6 +381,31 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDepthMask(GL_TRUE);
   return ok;
+}
+
+bool vtkSPTFrame::CullBehindSurvivors(int inGroup)
+{
+  // Every fragment is rasterized no deeper than its segment's front (a point at its cell's
+  // nearest vertex), but the exit faces of clipped cells lie behind theirs: then no culling.
+  if (this->ClipPlanesCut)
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = this->Window->GetState();
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  if (!this->DepthKeys->WriteFarthestSurvivorDepth(DepthKeyImageUnit, inGroup))
+  {
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+    return false;
+  }
+  vtkSPTDepthKeyBuffer::Barrier();
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  ostate->vtkglDepthMask(GL_FALSE);
+  return true;
 }
 
 int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,

@@ -128,10 +128,15 @@ private:
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
   // One traversal of every volume with the program of that pass kind.
   void Traverse(PassKind kind, int repetition, int inGroup);
+  // Draw the volume's leading pointCells tetrahedra as points, or the others as triangles.
   void DrawTetrahedra(
-    const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType count);
+    const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
+  // Write the farthest survivor of the group's keys into the depth buffer and test the color
+  // traversal against it, so that fragments behind all the survivors are not shaded. False
+  // (and no depth test) where the frame cannot use it.
+  bool CullBehindSurvivors(int inGroup);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 
@@ -142,12 +147,11 @@ private:
   Settings FrameSettings;
   vtkObject* Reporter;
   bool ClipPlanesCut = false; // a clipping plane cuts the bounds of some volume
-  // Per volume: its tetrahedra whose longest edge is at most this long (normalized units;
-  // negative: none) are drawn as one point each, whose fragments clip their rays by the cell's
-  // face planes (vtkSPTTetrahedraPointsVS.glsl); the others as the triangles of their
-  // projection. Both stages compare the same stored length with the same uniform, so each
-  // cell is drawn exactly once.
-  std::vector<float> SmallCellLengths;
+  // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
+  // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of
+  // vtkSPTMeshBuffers about SmallCellSize pixels across or less; the others are drawn as the
+  // triangles of their projection. Two ranges: each cell is drawn exactly once.
+  std::vector<vtkIdType> PointCellCounts;
   void ChooseSmallCells();
   // Whether a traversal of the volume has cells to draw as points (or as triangles).
   bool Draws(size_t volume, bool points) const;

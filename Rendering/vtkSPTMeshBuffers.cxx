@@ -11,7 +11,9 @@
 #include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <numeric>
 
 namespace
 {
@@ -49,6 +51,16 @@ std::vector<float> LongestEdges(const vtkTetrahedralMesh* mesh)
     longest[t] = std::sqrt(squared);
   }
   return longest;
+}
+
+// The size class of a longest edge `length` above the mesh's smallest edge `smallest`: classes
+// are a factor of sqrt(2) apart, so that a threshold in pixels lands within that factor.
+int SizeClass(float length, float smallest)
+{
+  constexpr int classes = 64;
+  const double ratio = double(length) / smallest;
+  const int c = ratio > 1.0 ? static_cast<int>(2.0 * std::log2(ratio)) : 0;
+  return std::min(c, classes - 1);
 }
 
 // A buffer texture of `texels` texels of `components` values over `buffer`.
@@ -108,20 +120,11 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
   }
   // The scalars are a vertex attribute for point scalars; every buffer is also a buffer
   // texture, for the cells that the fragment stage reads whole.
+  const std::vector<unsigned int> order = this->ClassifyBySize(mesh);
   bool ok = this->PointBuffer->Upload(points, vtkOpenGLBufferObject::ArrayBuffer) &&
-    this->IndexBuffer->Upload(tetrahedra, vtkOpenGLBufferObject::ElementArrayBuffer) &&
-    this->ScalarBuffer->Upload(scalars,
-      mesh->GetCellScalars() ? vtkOpenGLBufferObject::TextureBuffer
-                             : vtkOpenGLBufferObject::ArrayBuffer);
-  ok = ok &&
     MakeBufferTexture(
-      this->ScalarTexture, renWin, this->ScalarBuffer, scalars.size(), 1, VTK_FLOAT, GL_R32F) &&
-    MakeBufferTexture(
-      this->PointTexture, renWin, this->PointBuffer, points.size() / 3, 3, VTK_FLOAT, GL_RGB32F) &&
-    MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer, tetrahedra.size() / 4, 4,
-      VTK_UNSIGNED_INT, GL_RGBA32UI);
-  ok = ok && this->UploadLongestEdges(renWin, mesh) &&
-    this->UploadRandomIds(renWin, mesh->GetRandomIds());
+      this->PointTexture, renWin, this->PointBuffer, points.size() / 3, 3, VTK_FLOAT, GL_RGB32F);
+  ok = ok && this->UploadTetrahedra(renWin, order) && this->UploadRandomIds(renWin, order);
   if (!ok)
   {
     vtkErrorMacro("Could not upload " << mesh->GetNumberOfTetrahedra()
@@ -129,28 +132,81 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  this->UploadedBytes = sizeof(float) * (points.size() + scalars.size() + tetrahedra.size() / 4) +
-    sizeof(unsigned int) * (tetrahedra.size() + mesh->GetRandomIds().size());
+  this->UploadedBytes = sizeof(float) * (points.size() + scalars.size()) +
+    sizeof(unsigned int) * (tetrahedra.size() + order.size() + mesh->GetRandomIds().size());
   return true;
 }
 
-bool vtkSPTMeshBuffers::UploadLongestEdges(
-  vtkOpenGLRenderWindow* renWin, const vtkTetrahedralMesh* mesh)
+std::vector<unsigned int> vtkSPTMeshBuffers::ClassifyBySize(const vtkTetrahedralMesh* mesh)
 {
-  // Each cell's longest edge, by which the frame chooses how to draw it.
+  // A stable counting sort by class: each class keeps the mesh's order.
   const std::vector<float> longest = LongestEdges(mesh);
-  this->SortedLongestEdges = longest;
-  std::sort(this->SortedLongestEdges.begin(), this->SortedLongestEdges.end());
-  this->LongestEdgeRange[0] = this->SortedLongestEdges.front();
-  this->LongestEdgeRange[1] = this->SortedLongestEdges.back();
-  return this->LongestEdgeBuffer->Upload(longest, vtkOpenGLBufferObject::TextureBuffer) &&
-    MakeBufferTexture(this->LongestEdgeTexture, renWin, this->LongestEdgeBuffer, longest.size(), 1,
-      VTK_FLOAT, GL_R32F);
+  float smallest = FLT_MAX; // the smallest positive
+  for (float length : longest)
+  {
+    smallest = length > 0.0f ? std::min(smallest, length) : smallest;
+  }
+  std::vector<vtkIdType> starts(SizeClass(FLT_MAX, smallest) + 2, 0);
+  std::vector<float> classLongest(starts.size() - 1, -1.0f);
+  for (float length : longest)
+  {
+    const int c = SizeClass(length, smallest);
+    ++starts[c + 1];
+    classLongest[c] = std::max(classLongest[c], length);
+  }
+  std::partial_sum(starts.begin(), starts.end(), starts.begin());
+  this->ClassLongestEdges.clear();
+  this->ClassEnds.clear();
+  for (size_t c = 0; c + 1 < starts.size(); ++c)
+  {
+    if (starts[c + 1] > starts[c])
+    {
+      this->ClassLongestEdges.push_back(classLongest[c]);
+      this->ClassEnds.push_back(starts[c + 1]);
+    }
+  }
+  std::vector<unsigned int> order(longest.size());
+  for (size_t t = 0; t < longest.size(); ++t)
+  {
+    order[starts[SizeClass(longest[t], smallest)]++] = static_cast<unsigned int>(t);
+  }
+  return order;
+}
+
+bool vtkSPTMeshBuffers::UploadTetrahedra(
+  vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& order)
+{
+  const std::vector<unsigned int>& tetrahedra = this->Mesh->GetTetrahedra();
+  std::vector<unsigned int> sorted(tetrahedra.size());
+  for (size_t t = 0; t < order.size(); ++t)
+  {
+    std::copy_n(&tetrahedra[4 * size_t(order[t])], 4, &sorted[4 * t]);
+  }
+  // The scalars are a vertex attribute for point scalars; every buffer is also a buffer
+  // texture, for the cells that the fragment stage reads whole.
+  const bool cellScalars = this->Mesh->GetCellScalars();
+  std::vector<float> sortedCellScalars(cellScalars ? order.size() : 0);
+  for (size_t t = 0; t < sortedCellScalars.size(); ++t)
+  {
+    sortedCellScalars[t] = this->Mesh->GetScalars()[order[t]];
+  }
+  const std::vector<float>& scalars = cellScalars ? sortedCellScalars : this->Mesh->GetScalars();
+  return this->IndexBuffer->Upload(sorted, vtkOpenGLBufferObject::ElementArrayBuffer) &&
+    this->ScalarBuffer->Upload(scalars,
+      cellScalars ? vtkOpenGLBufferObject::TextureBuffer : vtkOpenGLBufferObject::ArrayBuffer) &&
+    this->MeshIndexBuffer->Upload(order, vtkOpenGLBufferObject::TextureBuffer) &&
+    MakeBufferTexture(
+      this->ScalarTexture, renWin, this->ScalarBuffer, scalars.size(), 1, VTK_FLOAT, GL_R32F) &&
+    MakeBufferTexture(this->TetrahedronTexture, renWin, this->IndexBuffer, order.size(), 4,
+      VTK_UNSIGNED_INT, GL_RGBA32UI) &&
+    MakeBufferTexture(this->MeshIndexTexture, renWin, this->MeshIndexBuffer, order.size(), 1,
+      VTK_UNSIGNED_INT, GL_R32UI);
 }
 
 bool vtkSPTMeshBuffers::UploadRandomIds(
-  vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& randomIds)
+  vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& order)
 {
+  const std::vector<unsigned int>& randomIds = this->Mesh->GetRandomIds();
   if (randomIds.empty())
   {
     if (this->RandomIdTexture)
@@ -160,8 +216,13 @@ bool vtkSPTMeshBuffers::UploadRandomIds(
     }
     return true;
   }
-  return this->RandomIdBuffer->Upload(randomIds, vtkOpenGLBufferObject::TextureBuffer) &&
-    MakeBufferTexture(this->RandomIdTexture, renWin, this->RandomIdBuffer, randomIds.size(), 1,
+  std::vector<unsigned int> sorted(order.size());
+  for (size_t t = 0; t < order.size(); ++t)
+  {
+    sorted[t] = randomIds[order[t]];
+  }
+  return this->RandomIdBuffer->Upload(sorted, vtkOpenGLBufferObject::TextureBuffer) &&
+    MakeBufferTexture(this->RandomIdTexture, renWin, this->RandomIdBuffer, sorted.size(), 1,
       VTK_UNSIGNED_INT, GL_R32UI);
 }
 
@@ -195,11 +256,12 @@ void vtkSPTMeshBuffers::Draw(vtkShaderProgram* program, vtkIdType first, vtkIdTy
     { program->SetUniformi("primitiveOffset", static_cast<int>(begin)); });
 }
 
-vtkIdType vtkSPTMeshBuffers::CountCellsNoLongerThan(float length) const
+vtkIdType vtkSPTMeshBuffers::CountSmallCells(double length) const
 {
-  return std::upper_bound(
-           this->SortedLongestEdges.begin(), this->SortedLongestEdges.end(), length) -
-    this->SortedLongestEdges.begin();
+  const size_t classes =
+    std::upper_bound(this->ClassLongestEdges.begin(), this->ClassLongestEdges.end(), length) -
+    this->ClassLongestEdges.begin();
+  return classes > 0 ? this->ClassEnds[classes - 1] : 0;
 }
 
 void vtkSPTMeshBuffers::DrawPoints(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
@@ -217,11 +279,11 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   this->ScalarBuffer->ReleaseGraphicsResources();
   this->IndexBuffer->ReleaseGraphicsResources();
   this->RandomIdBuffer->ReleaseGraphicsResources();
-  this->LongestEdgeBuffer->ReleaseGraphicsResources();
+  this->MeshIndexBuffer->ReleaseGraphicsResources();
   this->VertexArray.ReleaseGraphicsResources();
   this->PointVertexArray.ReleaseGraphicsResources();
   for (vtkSmartPointer<vtkTextureObject>* texture : { &this->ScalarTexture, &this->PointTexture,
-         &this->TetrahedronTexture, &this->RandomIdTexture, &this->LongestEdgeTexture })
+         &this->TetrahedronTexture, &this->RandomIdTexture, &this->MeshIndexTexture })
   {
     if (*texture)
     {
@@ -231,7 +293,8 @@ void vtkSPTMeshBuffers::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->Context = nullptr;
   this->Mesh = nullptr;
-  this->SortedLongestEdges.clear();
+  this->ClassLongestEdges.clear();
+  this->ClassEnds.clear();
   this->UploadedBuild = 0;
   this->UploadedBytes = 0;
 }

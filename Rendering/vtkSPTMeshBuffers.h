@@ -8,6 +8,12 @@
  * (the tetrahedra cut by a clipping plane, and cell scalars). A draw of millions of tetrahedra is
  * split into batches that stay within GL's limits.
  *
+ * The tetrahedra are uploaded in classes of size: by their longest edge, a factor of sqrt(2)
+ * apart, smallest first, each class in the mesh's order (which keeps the locality of the
+ * input's numbering). So the cells no longer than a length are a leading range, which a frame
+ * draws as points, and the rest one more range (vtkSPTFrame); each draw touches only its cells.
+ * GetMeshIndexTexture() keeps each uploaded cell's index in the mesh, for its random numbers.
+ *
  * Private helper of vtkSPTVolumeMapper; not wrapped.
  */
 
@@ -22,7 +28,7 @@
 #include "vtkTextureObject.h" // For GetScalarTexture()
 #include "vtkTimeStamp.h"     // For the upload time
 
-#include <vector> // For the sorted lengths
+#include <vector> // For the classes of size
 
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
@@ -66,11 +72,11 @@ public:
   /// The tetrahedra's ids for the random numbers (R32UI), when the mesh numbers them by
   /// global ids (vtkTetrahedralMesh::GetRandomIds()); else null.
   vtkTextureObject* GetRandomIdTexture() { return this->RandomIdTexture; }
-  /// Each tetrahedron's longest edge (R32F, normalized units), and their range.
-  vtkTextureObject* GetLongestEdgeTexture() { return this->LongestEdgeTexture; }
-  const float* GetLongestEdgeRange() const { return this->LongestEdgeRange; }
-  /// How many tetrahedra have no edge longer than `length` (normalized units).
-  vtkIdType CountCellsNoLongerThan(float length) const;
+  /// Each uploaded tetrahedron's index in the mesh (R32UI).
+  vtkTextureObject* GetMeshIndexTexture() { return this->MeshIndexTexture; }
+  /// How many of the leading uploaded tetrahedra, whole classes of size, have no edge longer
+  /// than `length` (normalized units); zero for a negative length.
+  vtkIdType CountSmallCells(double length) const;
 
   /**
    * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
@@ -96,11 +102,13 @@ private:
   vtkSPTMeshBuffers(const vtkSPTMeshBuffers&) = delete;
   void operator=(const vtkSPTMeshBuffers&) = delete;
 
-  // The longest edges' buffer texture, and their sorted copy.
-  bool UploadLongestEdges(vtkOpenGLRenderWindow* renWin, const vtkTetrahedralMesh* mesh);
+  // The order of the upload: the mesh's tetrahedra by class of size (and the classes).
+  std::vector<unsigned int> ClassifyBySize(const vtkTetrahedralMesh* mesh);
+  // The tetrahedra (with their cell scalars) in classes of size, and their indices in the mesh.
+  bool UploadTetrahedra(vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& order);
 
   // The random ids' buffer texture, or none when the mesh has none.
-  bool UploadRandomIds(vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& randomIds);
+  bool UploadRandomIds(vtkOpenGLRenderWindow* renWin, const std::vector<unsigned int>& order);
 
   vtkSmartPointer<vtkTetrahedralMesh> Mesh;
   vtkMTimeType UploadedBuild = 0;
@@ -110,16 +118,17 @@ private:
   vtkNew<vtkOpenGLBufferObject> ScalarBuffer;
   vtkNew<vtkOpenGLBufferObject> IndexBuffer;
   vtkNew<vtkOpenGLBufferObject> RandomIdBuffer;
-  vtkNew<vtkOpenGLBufferObject> LongestEdgeBuffer;
+  vtkNew<vtkOpenGLBufferObject> MeshIndexBuffer;
   vtkBatchedVertexArray VertexArray;
   vtkBatchedVertexArray PointVertexArray; // no attributes: the points read buffer textures
   vtkSmartPointer<vtkTextureObject> ScalarTexture;
   vtkSmartPointer<vtkTextureObject> TetrahedronTexture;
   vtkSmartPointer<vtkTextureObject> PointTexture;
   vtkSmartPointer<vtkTextureObject> RandomIdTexture;
-  vtkSmartPointer<vtkTextureObject> LongestEdgeTexture;
-  float LongestEdgeRange[2] = { 0.0f, 0.0f };
-  std::vector<float> SortedLongestEdges; // on the CPU, to count the cells drawn as points
+  vtkSmartPointer<vtkTextureObject> MeshIndexTexture;
+  // Per class of size, smallest first: its longest edge, and where its cells end.
+  std::vector<float> ClassLongestEdges;
+  std::vector<vtkIdType> ClassEnds;
   size_t UploadedBytes = 0;
 };
 

@@ -11,6 +11,9 @@
 // secondHalfStart on add also goes to the second half's sum (the second draw buffer). Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
 // none is discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
+// Where the frame writes the farthest survivor's depth first (vtkSPTFarthestSurvivorFS.glsl),
+// the fragments behind it are rejected before they are shaded; otherwise the depth test is off.
+layout(early_fragment_tests) in;
 uniform int secondHalfStart; // the first repetition of the second half
 
 void main()

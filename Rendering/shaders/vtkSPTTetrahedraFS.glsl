@@ -46,6 +46,8 @@ uniform samplerBuffer scalars;
 uniform int cellIdOffset; // where this volume's cell ids start among the frame's volumes
 #ifdef SPT_GLOBAL_IDS
 uniform usamplerBuffer randomIds; // per tetrahedron: the id from the input's global cell id
+#else
+uniform usamplerBuffer meshIndices; // per tetrahedron drawn: its index in the mesh
 #endif
 uniform int repetition; // first repetition of this pass; bit patterns of unsigned values:
 uniform int seed;       // VTK sets int uniforms only
@@ -297,7 +299,7 @@ uint cellId()
 #ifdef SPT_GLOBAL_IDS
   return texelFetch(randomIds, tetrahedronId).r + uint(cellIdOffset);
 #else
-  return uint(tetrahedronId) + uint(cellIdOffset);
+  return texelFetch(meshIndices, tetrahedronId).r + uint(cellIdOffset);
 #endif
 }
 

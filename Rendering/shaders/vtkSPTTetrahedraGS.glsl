@@ -37,8 +37,6 @@ uniform vec4 eyeVC;          // the eye in homogeneous view coordinates: (0, 0, 
 #ifdef SPT_CELL_SCALARS
 uniform samplerBuffer cellScalars;
 #endif
-uniform samplerBuffer longestEdges; // per tetrahedron
-uniform float smallCellLength;      // cells no longer are drawn as points (negative: none)
 
 noperspective out vec4 frontVCOverW; // (front point, 1) / w_front
 noperspective out vec4 backVCOverW;  // (back point, 1) / w_back
@@ -264,10 +262,6 @@ void emitBestClass2()
 
 void main()
 {
-  if (texelFetch(longestEdges, primitiveOffset + gl_PrimitiveIDIn).r <= smallCellLength)
-  {
-    return; // drawn as a point (vtkSPTTetrahedraPointsVS.glsl)
-  }
   // Clip space puts a point outside the view volume's near and side planes at z < -w,
   // |x| > w or |y| > w (a point behind the eye too); count the vertices beyond each plane.
   ivec4 beyond = ivec4(0);

@@ -8,9 +8,9 @@
 //
 // Where tetrahedra cover few pixels each (about a million at 256 x 256), a point is one
 // primitive to set up and rasterize against the three or four triangles of the projected
-// outline, and it needs no geometry stage. Only the cells whose longest edge is at most
-// smallCellLength are drawn so (vtkSPTFrame: their squares stay small on the screen, and the
-// mesh's bounds lie in front of the near plane); the geometry stage draws the others.
+// outline, and it needs no geometry stage. Only the leading classes of size are drawn so
+// (vtkSPTMeshBuffers, vtkSPTFrame: their squares stay small on the screen, and the mesh's bounds
+// lie in front of the near plane); the geometry stage draws the others.
 
 uniform mat4 MCVCMatrix; // model -> view, in the mesh's normalized units
 uniform mat4 VCDCMatrix; // view -> clip
@@ -19,8 +19,6 @@ uniform vec2 passSizeInPixels;
 uniform usamplerBuffer tetrahedra; // four point ids per tetrahedron
 uniform samplerBuffer points;      // model coordinates
 uniform samplerBuffer scalars;     // per point, or per tetrahedron (SPT_CELL_SCALARS)
-uniform samplerBuffer longestEdges; // per tetrahedron
-uniform float smallCellLength;      // the longest edge of the cells drawn as points
 
 flat out int tetrahedronId;
 // The cell's face planes as functions of normalized device coordinates (x, y, z, 1): the
@@ -73,12 +71,15 @@ void main()
   vec2 low = max(min(min(p0, p1), min(p2, p3)), vec2(-1.0));
   vec2 high = min(max(max(p0, p1), max(p2, p3)), vec2(1.0));
   vec2 extent = (high - low) * 0.5 * passSizeInPixels;
-  // A larger cell is drawn as triangles (vtkSPTTetrahedraGS.glsl), a flat one holds no volume,
-  // and one outside the viewport shows nothing: their points go beyond the far plane.
-  bool hidden = texelFetch(longestEdges, gl_VertexID).r > smallCellLength ||
-    dot(cross(v1 - v0, v2 - v0), v3 - v0) == 0.0 || any(lessThan(high, low));
+  // A flat cell holds no volume, and one outside the viewport shows nothing: their points go
+  // beyond the far plane.
+  bool hidden = dot(cross(v1 - v0, v2 - v0), v3 - v0) == 0.0 || any(lessThan(high, low));
   // A margin of a twentieth of a pixel covers the rounding of the square's edges; the fragment
   // stage decides which samples the cell covers.
   gl_PointSize = max(extent.x, extent.y) + 0.05;
-  gl_Position = hidden ? vec4(0.0, 0.0, 2.0, 1.0) : vec4(0.5 * (low + high), 0.0, 1.0);
+  // The depth of the cell's nearest vertex, which no fragment of the cell lies in front of: the
+  // color traversal's early depth test compares it with the farthest survivor.
+  float nearest = min(min(c0.z / c0.w, c1.z / c1.w), min(c2.z / c2.w, c3.z / c3.w));
+  gl_Position =
+    hidden ? vec4(0.0, 0.0, 2.0, 1.0) : vec4(0.5 * (low + high), clamp(nearest, -1.0, 1.0), 1.0);
 }

@@ -527,8 +527,6 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
   glUniformMatrix4fv(
     glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
   glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
-  // No cell is drawn as a point: the geometry stage draws them all.
-  glUniform1f(glGetUniformLocation(program, "smallCellLength"), -1.0f);
   for (size_t n = 0; n < tetrahedra.size(); ++n)
   {
     failures += checker.Check(tetrahedra[n], CaptureTriangles(query, n), random);
