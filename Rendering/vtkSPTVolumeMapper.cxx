@@ -29,6 +29,22 @@
 #include <string>
 #include <vector>
 
+namespace
+{
+// Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
+// repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer. A traversal
+// of many repetitions costs little more than one of a single repetition, so at the sizes where
+// memory allows, a frame of 64 repetitions is one pair of traversals instead of four.
+int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble)
+{
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const int fits = static_cast<int>(std::min<size_t>(budget / (4 * samples), 64));
+  return std::min(asked, std::max(fits, 16));
+}
+}
+
 class vtkSPTVolumeMapper::vtkInternals
 {
 public:
@@ -246,7 +262,7 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     settings.Estimator = SURVIVOR_ESTIMATOR;
     return 1;
   }
-  return self->RepetitionsPerPass;
+  return RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
@@ -572,13 +588,13 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   ensemble->SetHalves(false);
   ensemble->ClearSum();
   vtkSPTFrame frame(renWin, ensemble, this->DepthKeys, volumes, settings, self);
-  bool drawn =
-    frame.DrawRepetitions(0, self->RepetitionLevel, self->RepetitionsPerPass, self->ExactCoverage);
+  const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble);
+  bool drawn = frame.DrawRepetitions(0, self->RepetitionLevel, perPass, self->ExactCoverage);
   self->LastPointCellCount = volumes.empty() ? 0 : frame.GetPointCellCount(0);
   ostate->PopFramebufferBindings();
   // A rank whose frame failed (a shader, a buffer) still takes part in every exchange the
   // others make, with nothing kept and nothing added; then no rank resolves.
-  const int lanes = std::min(self->RepetitionsPerPass, self->RepetitionLevel);
+  const int lanes = std::min(perPass, self->RepetitionLevel);
   const size_t samples = size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight());
   for (; exchanges < (self->RepetitionLevel + lanes - 1) / lanes; ++exchanges)
   {

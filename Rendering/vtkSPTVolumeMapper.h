@@ -80,12 +80,14 @@ public:
    * traversal and a color traversal). N > 1 makes N keep-or-discard decisions per fragment and
    * finds each repetition's nearest survivor with image atomics (two traversals for N
    * repetitions), which gives the same image as N single passes with the same random numbers,
-   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Needs
+   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Where
+   * those keys would pass 128 MiB (64 repetitions at 256 x 256 take 16 MiB), fewer are drawn per
+   * traversal, but never fewer than 16. Needs
    * OpenGL 4.4 (image load/store, clear texture); without it the mapper falls back to 1 and to the
    * survivor estimator. With AutoAdjustRepetitions, the time allotted is spent in whole
    * traversals of RepetitionsPerPass repetitions while one fits, else in the cheapest frame
    * there is: the paper's single passes (one traversal per repetition, the survivor estimator,
-   * no exact coverage; unbiased too). Range 1 to 64, default 16.
+   * no exact coverage; unbiased too). Range 1 to 64, default 64.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
   vtkGetMacro(RepetitionsPerPass, int);
@@ -243,7 +245,7 @@ protected:
   vtkSPTVolumeMapper();
   ~vtkSPTVolumeMapper() override;
 
-  int RepetitionsPerPass = 16;
+  int RepetitionsPerPass = 64;
   double SmallCellSize = 8.0;
   vtkIdType LastPointCellCount = 0;
   vtkTypeBool StratifiedSampling = 1;
