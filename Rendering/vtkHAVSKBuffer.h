@@ -15,6 +15,11 @@
  * - FRAMEBUFFER_FETCH: the targets are color attachments read as inout outputs
  *   (GL_EXT_shader_framebuffer_fetch, the coherent variant): guaranteed by the extension,
  *   which orders the reads and writes of one sample in primitive order, as blending does.
+ *   A pass must not read a target that it never changes while it writes another: Mesa's
+ *   llvmpipe (22.3 and 25.0 measured) then writes zero to that target instead of keeping
+ *   it, whether the shader leaves the output alone or writes back the value it read. The
+ *   flush pass with one entry per pixel would be such a pass (it composites nothing, and
+ *   Mesa 25 compiles it to one that never changes the color); it is not drawn.
  * - RASTERIZATION_ORDER: image load/store without synchronization. Correct only where the
  *   rasterizer shades the fragments of a pixel one at a time in primitive order, as Mesa's
  *   llvmpipe does (one thread per screen tile runs the tile's binned primitives in submission
@@ -104,11 +109,13 @@ public:
 
   ///@{
   /**
-   * Size of the targets, and how many there are (the color, then entry pairs).
+   * Size of the targets, how many there are (the color, then entry pairs), and how many
+   * (scalar, distance) entries they hold per pixel.
    */
   int GetWidth() const { return this->Width; }
   int GetHeight() const { return this->Height; }
   int GetNumberOfTargets() const { return 1 + this->KBufferSize / 2; }
+  int GetNumberOfEntries() const { return this->KBufferSize - 1; }
   ///@}
 
   /**

@@ -152,6 +152,13 @@ bool vtkHAVSVolumeMapper::vtkInternals::DrawNearCap(vtkShaderProgram* program, i
 
 bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
 {
+  if (this->KBuffer->GetNumberOfEntries() < 2)
+  {
+    // One entry is no segment: the flush would composite nothing and only empty the entries,
+    // which the next frame's Clear() does. (Drawn anyway, it would also lose the color on
+    // llvmpipe: see FRAMEBUFFER_FETCH in vtkHAVSKBuffer.h.)
+    return true;
+  }
   const std::string source = this->Source(vtkHAVSFlushFS);
   if (!this->Flush || source != this->FlushSource)
   {

@@ -13,7 +13,9 @@
 // swapped, or every fourth fragment's update lost, as in a read-modify-write race) differs
 // clearly from the GPU image, and the test checks that it does.
 //
-// Two meshes, k = 2 and k = 6, and every synchronization mode that the context has:
+// Two meshes, every k-buffer size from 2 to 6 (k = 2 keeps one entry per pixel and draws no
+// flush pass; an odd k leaves half of the last target unused), and every synchronization mode
+// that the context has:
 // a soup of 40 overlapping random tetrahedra (every face on the boundary, fragments far from
 // sorted) and a jittered block of tetrahedra with a slot cut out (non-convex, gaps).
 
@@ -544,7 +546,7 @@ int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, 
   GPUScene gpu(grid, unitDistance);
   const CPUScene cpu(grid, gpu);
   cpu.Print(name);
-  for (int k : { 2, 6 })
+  for (int k = 2; k <= 6; ++k)
   {
     gpu.Mapper->SetKBufferSize(k);
     const Simulations simulated = cpu.Simulate(k);
