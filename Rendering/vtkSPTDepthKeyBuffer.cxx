@@ -8,7 +8,9 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
-#include "vtkSPTFarthestSurvivorFS.h"
+#include "vtkSPTSurvivorsFS.h"
+
+#include <string>
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
 
@@ -81,14 +83,20 @@ void vtkSPTDepthKeyBuffer::Barrier()
     GL_FRAMEBUFFER_BARRIER_BIT);
 }
 
-bool vtkSPTDepthKeyBuffer::WriteFarthestSurvivorDepth(int unit, int repetitions)
+bool vtkSPTDepthKeyBuffer::PrepareSurvivors(
+  int unit, int repetitions, int secondHalfFrom, bool sortKeys)
 {
-  if (!this->FarthestSurvivor)
+  std::unique_ptr<vtkOpenGLQuadHelper>& helper = this->Survivors[sortKeys ? 1 : 0];
+  if (!helper)
   {
-    this->FarthestSurvivor.reset(
-      new vtkOpenGLQuadHelper(this->Context, nullptr, vtkSPTFarthestSurvivorFS, ""));
+    // The layers are the most repetitions a group holds: the size of the sort's array.
+    std::string source = vtkSPTSurvivorsFS;
+    vtkShaderProgram::Substitute(source, "//SPT::Survivors::Dec",
+      std::string(sortKeys ? "#define SPT_SORT_KEYS\n" : "") + "#define SPT_REPETITIONS_PER_PASS " +
+        std::to_string(this->Layers));
+    helper.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
   }
-  vtkShaderProgram* program = this->FarthestSurvivor->Program;
+  vtkShaderProgram* program = helper->Program;
   if (!program)
   {
     return false;
@@ -96,9 +104,10 @@ bool vtkSPTDepthKeyBuffer::WriteFarthestSurvivorDepth(int unit, int repetitions)
   this->Context->GetShaderCache()->ReadyShaderProgram(program);
   program->SetUniformi("depthKeys", unit);
   program->SetUniformi("repetitionsInGroup", repetitions);
+  program->SetUniformi("secondHalfFrom", secondHalfFrom);
   const float passSize[2] = { static_cast<float>(this->Width), static_cast<float>(this->Height) };
   program->SetUniform2f("passSize", passSize);
-  this->FarthestSurvivor->Render();
+  helper->Render();
   return true;
 }
 
@@ -138,7 +147,8 @@ void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
   {
     this->Keys->ReleaseGraphicsResources(window);
   }
-  this->FarthestSurvivor.reset();
+  this->Survivors[0].reset();
+  this->Survivors[1].reset();
   this->Context = nullptr;
   this->Width = this->Height = this->Layers = 0;
 }

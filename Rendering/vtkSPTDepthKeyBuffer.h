@@ -62,13 +62,18 @@ public:
   static void Barrier();
 
   /**
-   * Write into the bound framebuffer's depth, per sample, a depth no nearer than the nearest
-   * survivor of each of the first `repetitions` layers (the far plane where one kept nothing),
-   * with the keys bound as image unit `unit`. The caller sets the depth test to always pass,
-   * the depth mask and the viewport. A traversal that tests against it skips the fragments
-   * behind all the survivors before shading them. False if the shader does not compile.
+   * One full-screen pass over the keys bound as image unit `unit`, between a group's keys
+   * traversal and its color traversal, for the first `repetitions` layers:
+   * - with `sortKeys`, sort each sample's keys in increasing order, layers [0, secondHalfFrom)
+   *   and [secondHalfFrom, repetitions) apart (a color traversal that only counts the
+   *   survivors behind a fragment then needs log2(repetitions) loads, not one per layer);
+   * - write into the bound framebuffer's depth, per sample, a depth no nearer than the nearest
+   *   survivor of each layer (the far plane where one kept nothing). A traversal that tests
+   *   against it skips the fragments behind all the survivors before shading them. The caller
+   *   sets the depth test and mask, or disables the test when it wants no depth.
+   * False if the shader does not compile.
    */
-  bool WriteFarthestSurvivorDepth(int unit, int repetitions);
+  bool PrepareSurvivors(int unit, int repetitions, int secondHalfFrom, bool sortKeys);
 
   ///@{
   /**
@@ -99,7 +104,7 @@ private:
   int Height = 0;
   int Layers = 0;
   vtkNew<vtkTextureObject> Keys;
-  std::unique_ptr<vtkOpenGLQuadHelper> FarthestSurvivor;
+  std::unique_ptr<vtkOpenGLQuadHelper> Survivors[2]; // by sortKeys
 };
 
 #endif

@@ -365,7 +365,9 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
     if (ok)
     {
       ensemble->BeginSumPass(halves);
-      const bool culled = this->CullBehindSurvivors(inGroup);
+      // The repetitions from first + count / 2 on form the second half.
+      const int secondHalfFrom = halves ? std::max(first + count / 2 - r, 0) : inGroup;
+      const bool culled = this->PrepareSurvivors(inGroup, secondHalfFrom);
       ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
       ostate->vtkglEnable(GL_BLEND);
       this->Traverse(PassKind::Colors, r, inGroup);
@@ -383,26 +385,35 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   return ok;
 }
 
-bool vtkSPTFrame::CullBehindSurvivors(int inGroup)
+bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
 {
-  // Every fragment is rasterized no deeper than its segment's front (a point at its cell's
-  // nearest vertex), but the exit faces of clipped cells lie behind theirs: then no culling.
-  if (this->ClipPlanesCut)
+  // The visibility estimator counts the survivors behind each fragment: sorted keys make that
+  // a binary search. Every fragment is rasterized no deeper than its segment's front (a point
+  // at its cell's nearest vertex), but the exit faces of clipped cells lie behind theirs: then
+  // no culling.
+  const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
+  const bool cull = !this->ClipPlanesCut;
+  if (!sortKeys && !cull)
   {
     return false;
   }
   vtkOpenGLState* ostate = this->Window->GetState();
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  if (!this->DepthKeys->WriteFarthestSurvivorDepth(DepthKeyImageUnit, inGroup))
+  if (cull)
+  {
+    ostate->vtkglEnable(GL_DEPTH_TEST);
+    ostate->vtkglDepthFunc(GL_ALWAYS);
+    ostate->vtkglDepthMask(GL_TRUE);
+  }
+  const bool done =
+    this->DepthKeys->PrepareSurvivors(DepthKeyImageUnit, inGroup, secondHalfFrom, sortKeys);
+  vtkSPTDepthKeyBuffer::Barrier();
+  if (!cull || !done)
   {
     ostate->vtkglDisable(GL_DEPTH_TEST);
     return false;
   }
-  vtkSPTDepthKeyBuffer::Barrier();
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);
   return true;

@@ -133,10 +133,11 @@ private:
     const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
-  // Write the farthest survivor of the group's keys into the depth buffer and test the color
-  // traversal against it, so that fragments behind all the survivors are not shaded. False
-  // (and no depth test) where the frame cannot use it.
-  bool CullBehindSurvivors(int inGroup);
+  // Between a group's keys and colors: sort each half's keys for the visibility estimator,
+  // and write the farthest survivor into the depth buffer and test the color traversal
+  // against it, so that fragments behind all the survivors are not shaded. False (and no
+  // depth test) where the frame cannot cull.
+  bool PrepareSurvivors(int inGroup, int secondHalfFrom);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 

@@ -8,13 +8,37 @@
 // - otherwise (the survivor estimator), its color written opaque once for each repetition
 //   whose survivor it is.
 // With SPT_SECOND_HALF (the ensemble's noise is estimated), what the repetitions from
-// secondHalfStart on add also goes to the second half's sum (the second draw buffer). Which repetitions it adds to follows from the depth keys alone, so a fragment that adds to
-// none is discarded before its pre-integrated color is looked up.
+// secondHalfStart on add also goes to the second half's sum (the second draw buffer). Which
+// repetitions it adds to follows from the depth keys alone, so a fragment that adds to none is
+// discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
-// Where the frame writes the farthest survivor's depth first (vtkSPTFarthestSurvivorFS.glsl),
+// Where the frame writes the farthest survivor's depth first (vtkSPTSurvivorsFS.glsl),
 // the fragments behind it are rejected before they are shaded; otherwise the depth test is off.
 layout(early_fragment_tests) in;
 uniform int secondHalfStart; // the first repetition of the second half
+
+#ifdef SPT_VISIBILITY_WEIGHTED
+// How many of the sorted keys [begin, end) of the pixel are not in front of this key: the
+// length of the tail from the first that is not below it (binary search).
+int survivorsNotInFront(uint key, ivec2 pixel, int begin, int end)
+{
+  int low = begin;
+  int high = end;
+  while (low < high)
+  {
+    int middle = (low + high) / 2;
+    if (imageLoad(depthKeys, ivec3(middle, pixel)).r < key)
+    {
+      low = middle + 1;
+    }
+    else
+    {
+      high = middle;
+    }
+  }
+  return end - low;
+}
+#endif
 
 void main()
 {
@@ -27,14 +51,11 @@ void main()
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
 #ifdef SPT_VISIBILITY_WEIGHTED
-  int count = 0;
-  int inSecondHalf = 0;
-  for (int r = 0; r < lanes; ++r)
-  {
-    int visible = key <= imageLoad(depthKeys, ivec3(r, pixel)).r ? 1 : 0;
-    count += visible;
-    inSecondHalf += repetition + r >= secondHalfStart ? visible : 0;
-  }
+  // Each half's keys are sorted (vtkSPTSurvivorsFS.glsl): the survivors not in front of the
+  // fragment are the tail of each half.
+  int split = clamp(secondHalfStart - repetition, 0, lanes);
+  int inSecondHalf = survivorsNotInFront(key, pixel, split, lanes);
+  int count = survivorsNotInFront(key, pixel, 0, split) + inSecondHalf;
   if (count == 0)
   {
     discard;

@@ -5,6 +5,36 @@
 // otherwise the color mask is off.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 
+// Repetition `lane` of the group keeps the fragment. A kept fragment behind the nearest
+// survivor so far changes nothing: a plain load spares it the atomic read-modify-write.
+void keep(int lane, uint key, ivec2 pixel)
+{
+  if (key < imageLoad(depthKeys, ivec3(lane, pixel)).r)
+  {
+    imageAtomicMin(depthKeys, ivec3(lane, pixel), key);
+  }
+}
+
+// The group's repetitions that keep the fragment, found from the strata below its opacity:
+// the same repetitions as testing each one, at a cost that follows alpha, not the group.
+void keepByStrata(float alpha, uint key, ivec2 pixel, int lanes)
+{
+  uint first = uint(repetition);
+  uint n = uint(stratumCount);
+  uint local = first - uint(stratumOrigin);
+  for (uint block = local / n; block * n < local + uint(lanes); ++block)
+  {
+    for (uint stratum = 0u; strataBelow(stratum, alpha); ++stratum)
+    {
+      uint r;
+      if (keptRepetition(block, stratum, alpha, r) && r - first < uint(lanes))
+      {
+        keep(int(r - first), key, pixel);
+      }
+    }
+  }
+}
+
 void main()
 {
   Segment segment;
@@ -15,14 +45,19 @@ void main()
   vec4 color = preIntegrated(segment);
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  for (int r = 0; r < min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS); ++r)
+  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+  if (fewStrataKeep(color.a, repetition, lanes))
   {
-    // A kept fragment behind the nearest survivor so far changes nothing: a plain load
-    // spares it the atomic read-modify-write.
-    if (threshold(uint(repetition + r)) < color.a &&
-      key < imageLoad(depthKeys, ivec3(r, pixel)).r)
+    keepByStrata(color.a, key, pixel, lanes);
+  }
+  else
+  {
+    for (int r = 0; r < lanes; ++r)
     {
-      imageAtomicMin(depthKeys, ivec3(r, pixel), key);
+      if (threshold(uint(repetition + r)) < color.a)
+      {
+        keep(r, key, pixel);
+      }
     }
   }
 #ifdef SPT_WRITE_COVERAGE

@@ -337,29 +337,74 @@ uint permute(uint index, uint n, uint key)
   return index;
 }
 
+// The inverse of permute(): the index that permute() sends to `place`. Each step of the
+// bijection undone in reverse order (the multipliers' inverses modulo 2^32; a xorshift by at
+// least half the bits is its own inverse), walked back until it lands in range.
+uint unpermute(uint place, uint n, uint key)
+{
+  uint mask = uint(stratumMask);
+  uint shift = uint(stratumShift);
+  uint index = place;
+  do
+  {
+    index = (index - key) & mask;
+    index ^= index >> shift;
+    index = (index * 0xf95384bfu) & mask;
+    index ^= (key >> 16u) & mask;
+    index ^= index >> shift;
+    index = (index * 0x3e779615u) & mask;
+    index ^= key & mask;
+  } while (index >= n);
+  return index;
+}
+
 // The keep-or-discard threshold of this fragment for repetition r: uniform in [0, 1), from a
 // hash of the pixel, the tetrahedron, r and the seed. Stratified: within each block of
 // stratumCount repetitions, every (pixel, tetrahedron) visits each of the stratumCount strata
 // once, in its own random order, so its kept count is alpha * stratumCount to within one.
 //
-// A fragment asks for its repetitions in increasing order, so the hashes are reused: one 4D
-// hash gives the random bits of four consecutive repetitions, and the order of the strata
-// is hashed once per block. threshold(r) stays a function of r alone, so one repetition per
-// pass and many per pass draw the same image.
+// A fragment asks for its repetitions mostly in increasing order, so the hashes are reused:
+// one 4D hash gives the random bits of four consecutive repetitions, and the order of the
+// strata is hashed once per block. threshold(r) stays a function of r alone, so one
+// repetition per pass and many per pass draw the same image.
 uint hashGroup = 0xFFFFFFFFu;
 uvec4 hashBits;
 uint orderBlock = 0xFFFFFFFFu;
 uint orderKey;
 
-float threshold(uint r)
+// The random bits of repetition r.
+uint thresholdBits(uint r)
 {
-  uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
   if ((r >> 2u) != hashGroup)
   {
     hashGroup = r >> 2u;
+    uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
     hashBits = pcg4d(uvec4(cell, hashGroup ^ (uint(seed) * 0x9E3779B9u)));
   }
-  uint bits = hashBits[r & 3u];
+  return hashBits[r & 3u];
+}
+
+// The key of the order of the strata in a block (counted from stratumOrigin).
+uint strataOrderKey(uint block)
+{
+  if (block != orderBlock)
+  {
+    orderBlock = block;
+    uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
+    orderKey = pcg4d(uvec4(cell, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu))).x;
+  }
+  return orderKey;
+}
+
+// The threshold of a repetition in the given stratum of n, jittered by its random bits.
+float stratumThreshold(uint stratum, uint bits, uint n)
+{
+  return (float(stratum) + unitFloat(bits)) / float(n);
+}
+
+float threshold(uint r)
+{
+  uint bits = thresholdBits(r);
   if (stratumCount <= 0)
   {
     return unitFloat(bits);
@@ -367,13 +412,40 @@ float threshold(uint r)
   uint n = uint(stratumCount);
   uint local = r - uint(stratumOrigin);
   uint block = local / n;
-  if (block != orderBlock)
+  uint stratum = permute(local - block * n, n, strataOrderKey(block));
+  return stratumThreshold(stratum, bits, n);
+}
+
+// Whether the repetitions of a group that keep a fragment of this opacity are cheaper to find
+// stratum by stratum (keptRepetition()) than by testing every repetition: with stratified
+// thresholds, only the strata below alpha can keep it, about alpha * stratumCount per block
+// the group touches.
+bool fewStrataKeep(float alpha, int first, int lanes)
+{
+  if (stratumCount <= 0)
   {
-    orderBlock = block;
-    orderKey = pcg4d(uvec4(cell, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu))).x;
+    return false;
   }
-  uint stratum = permute(local - block * n, n, orderKey);
-  return (float(stratum) + unitFloat(bits)) / float(n);
+  int n = stratumCount;
+  int local = first - stratumOrigin;
+  int blocks = (local + lanes - 1) / n - local / n + 1;
+  return 2.0 * alpha * float(n * blocks) < float(lanes);
+}
+
+// The repetition that visits a stratum of a block in this fragment's order, and whether it
+// keeps a fragment of this opacity: exactly threshold(r) < alpha, found from the stratum.
+// Strata are visited from 0 up; none from the first whose threshold cannot be below alpha.
+bool strataBelow(uint stratum, float alpha)
+{
+  uint n = uint(stratumCount);
+  return stratum < n && stratumThreshold(stratum, 0u, n) < alpha;
+}
+
+bool keptRepetition(uint block, uint stratum, float alpha, out uint r)
+{
+  uint n = uint(stratumCount);
+  r = uint(stratumOrigin) + block * n + unpermute(stratum, n, strataOrderKey(block));
+  return stratumThreshold(stratum, thresholdBits(r), n) < alpha;
 }
 
 //SPT::Pass::Impl
