@@ -270,9 +270,11 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   vtkOpenGLState* ostate = this->Window->GetState();
   // The programs this render needs, by pass kind and by scalars per cell or per point; the
   // others stay null. Groups draw the coverage with their first key traversal; single passes
-  // need a traversal of its own.
-  const bool single = perPass == 1 && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR &&
-    !this->FrameSettings.AlwaysKeys;
+  // need a traversal of its own. The survivor estimator draws one repetition at a time (one
+  // per pass, or a render of one) as the paper does: the depth test finds the survivor in one
+  // traversal, where keys would take two.
+  const bool single = std::min(perPass, count) == 1 &&
+    this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR && !this->FrameSettings.AlwaysKeys;
   const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
     !single && coverage, !single, single && coverage };
   // A render of fewer repetitions than a group draws only those: the fragment loops are sized
@@ -432,8 +434,11 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
     return 0; // the image meets the target (or shows nothing)
   }
   int drawn = 0;
-  int half =
-    state.HalfCount == 0 ? 1 : RepetitionsToTarget(state.HalfCount, state.Estimate, target);
+  // The first estimate comes from a few repetitions per half: a traversal of a whole group
+  // costs little more than one of two repetitions, and the estimate from one per half is
+  // itself noisy. After it, each step aims at the target.
+  int half = state.HalfCount == 0 ? std::max(1, std::min({ perPass, count, 256 }) / 32)
+                                  : RepetitionsToTarget(state.HalfCount, state.Estimate, target);
   while (count - drawn >= 2)
   {
     half = std::min(half, (count - drawn) / 2);

@@ -34,13 +34,13 @@ namespace
 // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
 // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer. A traversal
 // of many repetitions costs little more than one of a single repetition, so at the sizes where
-// memory allows, a frame of 64 repetitions is one pair of traversals instead of four.
+// memory allows, a frame of 256 repetitions is one pair of traversals instead of sixteen.
 int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble)
 {
   constexpr size_t budget = size_t(128) << 20;
   const size_t samples =
     std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
-  const int fits = static_cast<int>(std::min<size_t>(budget / (4 * samples), 64));
+  const int fits = static_cast<int>(std::min<size_t>(budget / (4 * samples), 256));
   return std::min(asked, std::max(fits, 16));
 }
 }

@@ -76,20 +76,23 @@ public:
   ///@{
   /**
    * Repetitions drawn per traversal of the geometry. 1 draws each repetition as its own pass,
-   * as in the paper (with the survivor estimator; the visibility estimator always takes a key
-   * traversal and a color traversal). N > 1 makes N keep-or-discard decisions per fragment and
-   * finds each repetition's nearest survivor with image atomics (two traversals for N
-   * repetitions), which gives the same image as N single passes with the same random numbers,
-   * for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when that is smaller). Where
-   * those keys would pass 128 MiB (64 repetitions at 256 x 256 take 16 MiB), fewer are drawn per
-   * traversal, but never fewer than 16. Needs
-   * OpenGL 4.4 (image load/store, clear texture); without it the mapper falls back to 1 and to the
-   * survivor estimator. With AutoAdjustRepetitions, the time allotted is spent in whole
-   * traversals of RepetitionsPerPass repetitions while one fits, else in the cheapest frame
-   * there is: the paper's single passes (one traversal per repetition, the survivor estimator,
-   * no exact coverage; unbiased too). Range 1 to 64, default 64.
+   * as in the paper (with the survivor estimator, as does a render of one repetition; the
+   * visibility estimator always takes a key traversal and a color traversal). N > 1 makes N
+   * keep-or-discard decisions per fragment and finds each repetition's nearest survivor with image
+   * atomics (two traversals for N repetitions), which gives the same image as N single passes with
+   * the same random numbers, for 4 x N bytes per sample of GPU memory (4 x RepetitionLevel when
+   * that is smaller). A fragment's work grows with its opacity times N (only the repetitions that
+   * keep it are visited) and with log2(N) (the visibility estimator counts the survivors behind it
+   * by binary search), so one traversal of many repetitions costs little more than one of a few.
+   * Where the keys would pass 128 MiB (256 repetitions at 256 x 256 take 64 MiB), fewer are
+   * drawn per traversal, but never fewer than 16. Needs OpenGL 4.4 (image load/store, clear
+   * texture); without it the mapper falls back to 1 and to the survivor estimator. With
+   * AutoAdjustRepetitions, the time allotted is spent in whole traversals of RepetitionsPerPass
+   * repetitions while one fits, else in the cheapest frame there is: the paper's single passes
+   * (one traversal per repetition, the survivor estimator, no exact coverage; unbiased too).
+   * Range 1 to 256, default 256.
    */
-  vtkSetClampMacro(RepetitionsPerPass, int, 1, 64);
+  vtkSetClampMacro(RepetitionsPerPass, int, 1, 256);
   vtkGetMacro(RepetitionsPerPass, int);
   ///@}
 
@@ -245,7 +248,7 @@ protected:
   vtkSPTVolumeMapper();
   ~vtkSPTVolumeMapper() override;
 
-  int RepetitionsPerPass = 64;
+  int RepetitionsPerPass = 256;
   double SmallCellSize = 8.0;
   vtkIdType LastPointCellCount = 0;
   vtkTypeBool StratifiedSampling = 1;

@@ -23,22 +23,44 @@ uniform int secondHalfFrom; // the first repetition of the group in the second h
 uniform vec2 passSize; // pixels
 
 #ifdef SPT_SORT_KEYS
-uint keys[SPT_REPETITIONS_PER_PASS];
+// Two buffers of the group's keys for a bottom-up merge sort, which reads one and writes the
+// other: keys[0, N) and keys[N, 2N). (GLSL 1.50 has no arrays of arrays.)
+const int N = SPT_REPETITIONS_PER_PASS;
+uint keys[2 * N];
 
-// Insertion sort of keys[begin, end): short runs (at most 64), mostly nearly sorted.
-void sortKeys(int begin, int end)
+// Merge the sorted runs of `width` keys in [begin, end) of buffer `from` into the other one.
+void mergeRuns(int from, int begin, int end, int width)
 {
-  for (int i = begin + 1; i < end; ++i)
+  int source = from * N;
+  int target = (1 - from) * N;
+  for (int left = begin; left < end; left += 2 * width)
   {
-    uint key = keys[i];
-    int j = i - 1;
-    while (j >= begin && keys[j] > key)
+    int middle = min(left + width, end);
+    int right = min(left + 2 * width, end);
+    int i = left;
+    int j = middle;
+    for (int k = left; k < right; ++k)
     {
-      keys[j + 1] = keys[j];
-      --j;
+      uint a = keys[source + min(i, middle - 1)];
+      uint b = keys[source + min(j, right - 1)];
+      bool first = j >= right || (i < middle && a <= b);
+      keys[target + k] = first ? a : b;
+      i += first ? 1 : 0;
+      j += first ? 0 : 1;
     }
-    keys[j + 1] = key;
   }
+}
+
+// Sort keys[begin, end) of buffer 0, n log2(n) steps; the buffer that holds the result.
+int sortKeys(int begin, int end)
+{
+  int from = 0;
+  for (int width = 1; width < end - begin; width *= 2)
+  {
+    mergeRuns(from, begin, end, width);
+    from = 1 - from;
+  }
+  return from;
 }
 #endif
 
@@ -57,11 +79,11 @@ void main()
   }
 #ifdef SPT_SORT_KEYS
   int split = clamp(secondHalfFrom, 0, lanes);
-  sortKeys(0, split);
-  sortKeys(split, lanes);
+  int firstHalf = sortKeys(0, split) * N;
+  int secondHalf = sortKeys(split, lanes) * N;
   for (int r = 0; r < lanes; ++r)
   {
-    imageStore(depthKeys, ivec3(r, pixel), uvec4(keys[r]));
+    imageStore(depthKeys, ivec3(r, pixel), uvec4(keys[(r < split ? firstHalf : secondHalf) + r]));
   }
 #endif
   // A key holds the depth in its upper 24 bits, rounded down; the next two steps up cover the

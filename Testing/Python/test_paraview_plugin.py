@@ -32,7 +32,7 @@ SETTINGS = {
     SPT: {"TargetError": TARGET_ERROR, "RepetitionLevel": REPETITIONS, "SubpixelLevel": 1,
           "Seed": SEED,
           "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64,
-          "RepetitionsPerPass": 64, "StratifiedSampling": 1, "Estimator": 1,
+          "RepetitionsPerPass": 256, "StratifiedSampling": 1, "Estimator": 1,
           "ExactCoverage": 1, "ProgressiveRefinement": 0,
           "AutoAdjustRepetitions": 1},
     HAVS: {"KBufferSize": 4, "KBufferSynchronization": 0,
