@@ -61,16 +61,15 @@ public:
 private:
   std::vector<vtkTextureObject*> Textures;
 };
+}
 
-// The repetitions to add to each half for the noise to fall from `estimate` to `target`, if it
-// falls as one over the square root of the repetitions (stratified sampling does better, so
-// this rarely falls short): at least one, at most 16 times what each half holds.
-int RepetitionsToTarget(int half, double estimate, double target)
+int vtkSPTFrame::RepetitionsToTarget(int half, double estimate, double target)
 {
+  // The noise falls as one over the square root of the repetitions, or faster (stratified
+  // sampling), so this rarely falls short.
   const double ratio = estimate / target;
   const double more = std::ceil(half * (ratio * ratio - 1.0));
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
-}
 }
 
 vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,

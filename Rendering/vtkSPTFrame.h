@@ -117,6 +117,13 @@ public:
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
     double target, TargetState& state);
 
+  /**
+   * The repetitions to add to each half for the noise to fall from `estimate` to `target`, if
+   * it falls as one over the square root of the repetitions: at least one, at most 16 times
+   * what each half holds (`half`).
+   */
+  static int RepetitionsToTarget(int half, double estimate, double target);
+
   /// How many tetrahedra of a volume the traversals draw as points.
   vtkIdType GetPointCellCount(size_t volume) const;
 

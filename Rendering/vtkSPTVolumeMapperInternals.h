@@ -88,12 +88,19 @@ public:
   bool PrepareSharedPiece(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, const vtkSPTParallelReduction::Agreement& agreement,
     vtkSPTFrame::Volume& out);
-  // Draw every repetition, combine the ranks' keys and sums, and resolve on rank 0.
-  void DrawParallel(vtkSPTVolumeMapper* self, const RenderTarget& target,
-    const std::vector<vtkSPTFrame::Volume>& volumes,
+  // Plan the frame with the other ranks, draw it, combine the ranks' keys and sums, and
+  // resolve on rank 0.
+  void DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
+    const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
     const vtkSPTParallelReduction::Agreement& agreement);
   void DrawParallelFrame(vtkSPTVolumeMapper* self, const RenderTarget& target,
-    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
+    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings,
+    const FramePlan& plan);
+  // Plan()'s plan, the same on every rank: rank 0's signature need not match the others', so
+  // the ranks continue an accumulation only if all do, and draw the fewest repetitions any
+  // rank's time budget allows. A collective call.
+  FramePlan PlanParallel(
+    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
 };
 
 #endif

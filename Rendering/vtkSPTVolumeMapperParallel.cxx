@@ -13,14 +13,14 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "vtkSPTParallelFrame.h"
 #include "vtkSavedGLState.h"
 #include "vtkTetrahedralMesh.h"
-#include "vtkTextureObject.h"
 
 #include <algorithm>
 
 // The parallel render of vtkSPTVolumeMapper: this rank's piece, combined with the other
-// ranks' by reductions (vtkSPTParallelReduction).
+// ranks' by reductions (vtkSPTParallelReduction, vtkSPTParallelFrame).
 
 vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiece(
   vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, RenderTarget& target, size_t shared,
@@ -131,11 +131,36 @@ void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
   {
     volumes.clear();
   }
-  this->DrawParallel(self, target, volumes, agreement);
+  this->DrawParallel(self, ren, vol, target, volumes, agreement);
 }
 
-void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
-  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::PlanParallel(
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature)
+{
+  FramePlan plan;
+  plan.PerPass = perPass;
+  const int chosen = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass);
+  int count = chosen;
+  // The fewest repetitions of any rank's budget come with its repetitions per traversal: a
+  // rank that can afford only single passes chooses fewer than one group.
+  int agreed[3] = { self->ContinueAccumulation(std::move(signature), count), chosen, plan.PerPass };
+  if (!this->Reduction->AllMinimum(agreed, 3))
+  {
+    agreed[0] = agreed[1] = 0; // nothing drawn; the frame's last exchange fails too
+  }
+  plan.First = agreed[0];
+  plan.Count = plan.First > 0
+    ? std::min(agreed[1], self->MaximumProgressiveRepetitions - plan.First)
+    : agreed[1];
+  plan.PerPass = agreed[2];
+  plan.Cheapest = plan.PerPass == 1 && self->RepetitionsPerPass > 1;
+  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
+  plan.Coverage = self->ExactCoverage && !coverageDrawn && !plan.Cheapest;
+  return plan;
+}
+
+void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+  vtkVolume* vol, const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
   const vtkSPTParallelReduction::Agreement& agreement)
 {
   vtkOpenGLClearErrorMacro();
@@ -148,59 +173,68 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
   settings.Seed = self->Seed;
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
-  settings.AlwaysKeys = true; // the keys are what the ranks combine
-  this->DrawParallelFrame(self, target, volumes, settings);
+  // Every rank has the same ensemble size, so the same repetitions per traversal.
+  const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
+  const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, { self }, target));
+  if (plan.Cheapest)
+  {
+    settings.Estimator = SURVIVOR_ESTIMATOR; // one repetition per group, with keys
+  }
+  this->DrawParallelFrame(self, target, volumes, settings, plan);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
 void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
   const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
-  vtkSPTFrame::Settings& settings)
+  vtkSPTFrame::Settings& settings, const FramePlan& plan)
 {
   vtkSPTParallelReduction* reduction = this->Reduction;
-  vtkOpenGLRenderWindow* renWin = target.Window;
-  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState* ostate = target.Window->GetState();
   vtkEnsembleBuffer* ensemble = self->GetEnsemble();
-  int exchanges = 0;
-  settings.AfterKeys = [reduction, &exchanges](vtkSPTDepthKeyBuffer* keys)
-  {
-    ++exchanges;
-    return reduction->ReduceKeys(keys);
-  };
-
   ostate->PushFramebufferBindings();
-  ensemble->CaptureSceneDepth(target.X, target.Y);
-  if (settings.OpaqueScene)
+  // Every rank starts a new accumulation or none does (the plan is shared).
+  const bool started =
+    plan.First > 0 || this->StartAccumulation(self, target, self->TargetError > 0.0);
+  if (plan.First == 0 && settings.OpaqueScene)
   {
     reduction->ReduceSceneDepth(ensemble->GetSceneDepthTexture());
   }
-  self->ForgetAccumulation();
-  this->CoverageDrawn = false;
-  ensemble->SetHalves(false);
-  ensemble->ClearSum();
-  vtkSPTFrame frame(renWin, ensemble, this->DepthKeys, volumes, settings, self);
-  const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble);
-  bool drawn = frame.DrawRepetitions(0, self->RepetitionLevel, perPass, self->ExactCoverage);
+  vtkSPTParallelFrame frame(
+    target.Window, ensemble, this->DepthKeys, volumes, settings, self, reduction);
+  if (!started)
+  {
+    frame.Fail();
+  }
+  self->StartTiming();
+  int drawn = 0;
+  if (plan.Count > 0 && self->TargetError > 0.0)
+  {
+    drawn = frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
+      self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), self->TargetError,
+      this->Target);
+  }
+  else if (plan.Count > 0)
+  {
+    frame.Draw(plan.First, plan.Count, plan.PerPass, plan.Coverage, false);
+    drawn = plan.Count;
+  }
+  // A failure on any rank is known to all at a shared decision: then no rank resolves.
+  const bool ok = drawn >= 0 && frame.Finish();
+  const double seconds = self->StopTiming();
   self->LastPointCellCount = volumes.empty() ? 0 : frame.GetPointCellCount(0);
   ostate->PopFramebufferBindings();
-  // A rank whose frame failed (a shader, a buffer) still takes part in every exchange the
-  // others make, with nothing kept and nothing added; then no rank resolves.
-  const int lanes = std::min(perPass, self->RepetitionLevel);
-  const size_t samples = size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight());
-  for (; exchanges < (self->RepetitionLevel + lanes - 1) / lanes; ++exchanges)
+  if (!ok)
   {
-    reduction->ReduceNothingKept(samples * size_t(lanes));
+    self->ForgetAccumulation();
+    return;
   }
-  std::vector<vtkTextureObject*> sums{ ensemble->GetSumTexture() };
-  if (self->ExactCoverage)
+  self->AddRepetitions(drawn, plan.PerPass, seconds);
+  this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
+  self->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+  if (reduction->GetController()->GetLocalProcessId() == 0)
   {
-    sums.push_back(ensemble->GetCoverageTexture());
-  }
-  drawn = reduction->ReduceSums(sums, samples) && reduction->AllSucceeded(drawn);
-  self->LastRepetitionCount = self->RepetitionLevel;
-  if (drawn && reduction->GetController()->GetLocalProcessId() == 0)
-  {
-    ensemble->Resolve(target.X, target.Y, self->RepetitionLevel, self->ExactCoverage != 0);
+    ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
+      self->ExactCoverage && this->CoverageDrawn);
     ensemble->MarkFootprint(target.X, target.Y);
   }
 }
