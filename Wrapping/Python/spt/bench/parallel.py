@@ -146,6 +146,7 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
             "later_wall_seconds": median(report["frames"][1:]) if len(report["frames"]) > 1
             else float("nan"),
             "first_cpu_seconds": report["cpu_frames"][0],
+            "spt_counts": report.get("spt_counts"),
             "later_cpu_seconds": median(report["cpu_frames"][1:])
             if len(report["cpu_frames"]) > 1 else float("nan")}
 

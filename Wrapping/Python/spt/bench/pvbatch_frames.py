@@ -56,6 +56,17 @@ def set_property(display, name, value):
         display.SMProxy.UpdateVTKObjects()
 
 
+def spt_counts(display):
+    """Rank 0's SPT mapper's repetitions and noise estimate of the last render, or None."""
+    import spt  # noqa: F401  (wraps the plugin's mappers as their own classes)
+
+    active = display.GetClientSideObject().GetActiveRepresentation()
+    mapper = active.GetActiveVolumeMapper() if hasattr(active, "GetActiveVolumeMapper") else None
+    if mapper is None or not hasattr(mapper, "GetLastRepetitionCount"):
+        return None
+    return [mapper.GetLastRepetitionCount(), mapper.GetEstimatedError()]
+
+
 def main():
     arguments = parse()
     view = simple.CreateView("RenderView")
@@ -77,7 +88,7 @@ def main():
     for name, value in work.get(arguments.representation, {}).items():
         set_property(display, name, value)
     simple.ResetCamera(view)
-    frames = []
+    frames, counts = [], []
     for frame in range(arguments.frames):
         if frame:
             view.GetActiveCamera().Azimuth(1.0)
@@ -85,12 +96,13 @@ def main():
         simple.Render(view)
         frames.append(time.perf_counter() - begin)
         cpu_seconds.append(time.process_time() - cpu)
+        counts.append(spt_counts(display))
     cpu_seconds = largest_over_ranks(cpu_seconds)
     if vtkProcessModule.GetProcessModule().GetPartitionId() == 0:
         with open(arguments.output, "w") as report:
             json.dump({"representation": arguments.representation, "frames": frames,
                        "read_seconds": read_seconds, "read_cpu_seconds": cpu_seconds[0],
-                       "cpu_frames": cpu_seconds[1:]}, report)
+                       "cpu_frames": cpu_seconds[1:], "spt_counts": counts}, report)
 
 
 main()

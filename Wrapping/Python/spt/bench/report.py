@@ -265,12 +265,19 @@ def paraview_parallel_table(rows: Sequence[Entry]) -> List[str]:
             "SPT asks for none) and later renders (the camera turned), in process CPU time "
             "(the largest over the ranks, all threads) and wall time on rank 0. \"Volume\" is "
             "ParaView's own, VTK's projected tetrahedra.", "",
-            table(["scene", "ranks", "representation", "reading CPU [s]", "first CPU [s]",
-                   "later CPU [s]", "reading wall [s]", "first wall [s]", "later wall [s]"],
-                  [[r["scene"], r["ranks"], r["representation"], r.get("read_cpu_seconds", nan),
-                    r.get("first_cpu_seconds", nan), r.get("later_cpu_seconds", nan),
-                    r["read_wall_seconds"], r["first_wall_seconds"], r["later_wall_seconds"]]
-                   for r in rows]), ""]
+            table(["scene", "ranks", "representation", "SPT reps (estimate)",
+                   "reading CPU [s]", "first CPU [s]", "later CPU [s]", "reading wall [s]",
+                   "first wall [s]", "later wall [s]"],
+                  [[r["scene"], r["ranks"], r["representation"], spt_counts(r),
+                    r.get("read_cpu_seconds", nan), r.get("first_cpu_seconds", nan),
+                    r.get("later_cpu_seconds", nan), r["read_wall_seconds"],
+                    r["first_wall_seconds"], r["later_wall_seconds"]] for r in rows]), ""]
+
+
+def spt_counts(row: Entry) -> str:
+    """SPT's repetitions and estimated noise per render in a pvbatch row, if it has them."""
+    counts = [c for c in row.get("spt_counts") or [] if c]
+    return ", ".join(f"{n} ({e:.4f})" for n, e in counts)
 
 
 def parallel_rows(rows: Sequence[Entry]) -> List[List[object]]:
