@@ -127,6 +127,8 @@ public:
   /// coverage is allocated by the first BeginCoveragePass().
   vtkTextureObject* GetSumTexture() { return this->Sum; }
   vtkTextureObject* GetCoverageTexture() { return this->Coverage; }
+  /// The second half's sum (SetHalves()); the sum holds both halves.
+  vtkTextureObject* GetSecondHalfTexture() { return this->SecondHalf; }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
   int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   int GetSubpixelLevel() const { return this->SubpixelLevel; }

@@ -424,10 +424,24 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
 int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
   double target, TargetState& state)
 {
+  TargetSteps steps;
+  steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
+  { return this->DrawRepetitions(from, repetitions, perPass, withCoverage, halves); };
+  steps.Estimate = [this, exactCoverage](int halfCount, double& estimate)
+  {
+    estimate = this->Ensemble->EstimateNoise(halfCount, exactCoverage);
+    return true;
+  };
+  return StepToTarget(steps, first, count, perPass, coverage, target, state);
+}
+
+int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
+  bool coverage, double target, TargetState& state)
+{
   if (!state.Balanced)
   {
     // A lone repetition went to the first half: its noise is no longer estimated.
-    return this->DrawRepetitions(first, count, perPass, coverage) ? count : -1;
+    return steps.Draw(first, count, coverage, false) ? count : -1;
   }
   if (state.HalfCount > 0 && state.Estimate <= target)
   {
@@ -442,13 +456,16 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
   while (count - drawn >= 2)
   {
     half = std::min(half, (count - drawn) / 2);
-    if (!this->DrawRepetitions(first + drawn, 2 * half, perPass, coverage && drawn == 0, true))
+    if (!steps.Draw(first + drawn, 2 * half, coverage && drawn == 0, true))
     {
       return -1;
     }
     drawn += 2 * half;
     state.HalfCount += half;
-    state.Estimate = this->Ensemble->EstimateNoise(state.HalfCount, exactCoverage);
+    if (!steps.Estimate(state.HalfCount, state.Estimate))
+    {
+      return -1;
+    }
     if (state.Estimate <= target)
     {
       break; // met, or nothing to see (negative)
@@ -458,7 +475,7 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
   if (drawn == 0)
   {
     // Room for one repetition only (the cap or the time budget).
-    if (!this->DrawRepetitions(first, 1, perPass, coverage))
+    if (!steps.Draw(first, 1, coverage, false))
     {
       return -1;
     }

@@ -117,6 +117,25 @@ public:
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
     double target, TargetState& state);
 
+  /// How an error target's steps draw and estimate; each returns false on failure.
+  struct TargetSteps
+  {
+    /// Draw repetitions [first, first + count), as two halves when `halves`.
+    std::function<bool(int first, int count, bool coverage, bool halves)> Draw;
+    /// The noise of the image whose halves hold `halfCount` repetitions each.
+    std::function<bool(int halfCount, double& estimate)> Estimate;
+  };
+
+  /**
+   * The steps of an error target, whoever draws them (one process, or ranks that share each
+   * estimate): the first draws a thirty-second of a group per half (at least one), each later
+   * one as many as the estimate predicts for the target, until the estimate meets it or count
+   * is drawn. Where only one repetition fits, it is drawn alone and the halves are no longer
+   * balanced (no estimate). Returns how many were drawn, or -1 on failure.
+   */
+  static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
+    bool coverage, double target, TargetState& state);
+
   /// How many tetrahedra of a volume the traversals draw as points.
   vtkIdType GetPointCellCount(size_t volume) const;
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 namespace
@@ -262,12 +263,36 @@ bool vtkSPTParallelReduction::ReduceSums(
       return false;
     }
     this->Bytes += local.size() * sizeof(float);
-    if (root && allocated)
+    if (allocated)
     {
-      WriteTexture(texture, GL_RGBA, global);
+      WriteTexture(texture, GL_RGBA, root ? global : std::vector<float>(local.size(), 0.0f));
     }
   }
   return true;
+}
+
+bool vtkSPTParallelReduction::AllMinimum(int* values, int count)
+{
+  const std::vector<int> local(values, values + count);
+  this->Bytes += local.size() * sizeof(int);
+  return this->Controller->AllReduce(
+           local.data(), values, vtkIdType(count), vtkCommunicator::MIN_OP) != 0;
+}
+
+bool vtkSPTParallelReduction::ShareEstimate(bool ok, double& estimate)
+{
+  // One minimum: of the success flags, and of rank 0's estimate against the others' infinity.
+  const bool root = this->Controller->GetLocalProcessId() == 0;
+  const double local[2] = { ok ? 1.0 : 0.0,
+    root ? estimate : std::numeric_limits<double>::infinity() };
+  double global[2] = { 0.0, 0.0 };
+  this->Bytes += sizeof(local);
+  if (!this->Controller->AllReduce(local, global, 2, vtkCommunicator::MIN_OP))
+  {
+    return false;
+  }
+  estimate = global[1];
+  return global[0] == 1.0;
 }
 
 void vtkSPTParallelReduction::PrintSelf(ostream& os, vtkIndent indent)

@@ -9,7 +9,9 @@
  *   hidden by every rank's geometry;
  * - after each key traversal, the depth keys (per sample and repetition) by a global minimum,
  *   so that every rank's color traversal tests against the survivors of all pieces;
- * - the sums of colors and of coverage by a global sum, to the rank that resolves (0).
+ * - the sums of colors and of coverage by a global sum, to the rank that resolves (0);
+ * - with an error target, after each step of repetitions, the sums of the two halves to rank
+ *   0, whose noise estimate every rank then follows.
  *
  * Before any of this, Agree() exchanges one small record per rank (settings, scalars, bounds)
  * so that every rank takes part in the same collective calls or none does: ranks that differ
@@ -87,10 +89,20 @@ public:
   bool ReduceKeys(vtkSPTDepthKeyBuffer* keys);
 
   /**
-   * The global sums of float RGBA textures of `texels` texels each, written on rank 0 only;
-   * a texture of another size (not allocated after a failure) adds zeros. Collective.
+   * Move float RGBA textures of `texels` texels each to rank 0: rank 0's hold the global sums,
+   * the others' are cleared, so that what any rank adds later is added once when they move
+   * again. A texture of another size (not allocated after a failure) adds zeros. Collective.
    */
   bool ReduceSums(const std::vector<vtkTextureObject*>& textures, size_t texels);
+
+  /// The minimum of each of `count` values over the ranks, on every rank. Collective.
+  bool AllMinimum(int* values, int count);
+
+  /**
+   * Whether `ok` holds on every rank, and rank 0's `estimate` on every rank (the others'
+   * are ignored). Collective.
+   */
+  bool ShareEstimate(bool ok, double& estimate);
 
   /// This rank's part of a key reduction it could not draw: `keys` keys of "nothing kept".
   bool ReduceNothingKept(size_t keys);

@@ -1,4 +1,5 @@
 #include "vtkSPTVolumeMapper.h"
+#include "vtkSPTVolumeMapperInternals.h"
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkDataArray.h"
@@ -29,91 +30,20 @@
 #include <string>
 #include <vector>
 
-namespace
+vtkStandardNewMacro(vtkSPTVolumeMapper);
+
+int vtkSPTVolumeMapper::vtkInternals::RepetitionsPerTraversal(
+  int asked, const vtkEnsembleBuffer* ensemble)
 {
-// Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
-// repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer. A traversal
-// of many repetitions costs little more than one of a single repetition, so at the sizes where
-// memory allows, a frame of 256 repetitions is one pair of traversals instead of sixteen.
-int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble)
-{
+  // A traversal of many repetitions costs little more than one of a single repetition, so at
+  // the sizes where memory allows, a frame of 256 repetitions is one pair of traversals
+  // instead of sixteen.
   constexpr size_t budget = size_t(128) << 20;
   const size_t samples =
     std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
   const int fits = static_cast<int>(std::min<size_t>(budget / (4 * samples), 256));
   return std::min(asked, std::max(fits, 16));
 }
-}
-
-class vtkSPTVolumeMapper::vtkInternals
-{
-public:
-  vtkNew<vtkSPTMeshBuffers> Buffers;
-  vtkNew<vtkPreIntegrationTable> Table;
-  vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
-  vtkVolumeViewMatrices Matrices;
-  vtkNew<vtkSPTParallelReduction> Reduction;
-  bool WarnedNoGlobalIds = false;
-  std::string ParallelError; // reported once, until the ranks agree again
-
-  vtkSPTFrame::TargetState Target; // progress towards TargetError
-  bool WarnedNoImageAtomics = false;
-  bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
-
-  // The visible SPT volumes of the renderer, vol's first when it is not among them.
-  static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
-    vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
-  // Bring a volume's mesh, table and matrices up to date and onto the GPU.
-  static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
-    RenderTarget& target, vtkSPTFrame::Volume& out);
-  static std::vector<double> Signature(
-    vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
-  // Prepare every shared volume that can be drawn; false when none can.
-  // What the mappers of the frame report of its render.
-  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
-    const vtkSPTFrame& frame) const;
-  static bool CollectVolumes(vtkRenderer* ren,
-    const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
-    std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
-
-  // Repetitions per traversal that the context allows, and the estimator with them.
-  int ChooseTraversal(
-    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
-
-  // What one frame draws.
-  struct FramePlan
-  {
-    int First = 0;         // repetitions already accumulated
-    int Count = 0;         // repetitions to add
-    int PerPass = 1;       // repetitions per traversal
-    bool Cheapest = false; // the paper's single passes, when no group fits the budget
-    bool Coverage = false; // draw the exact coverage in this frame
-  };
-  FramePlan Plan(
-    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
-  // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
-  bool StartAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves);
-  // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
-  int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
-
-  // The parallel frame: this rank's piece, combined with the other ranks' by reductions.
-  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, size_t shared);
-  // This rank's settings and piece, for the ranks to agree on; prepares the mesh and ensemble.
-  vtkSPTParallelReduction::Settings DescribePiece(vtkSPTVolumeMapper* self, vtkRenderer* ren,
-    vtkVolume* vol, RenderTarget& target, size_t shared, vtkSPTParallelReduction::Piece& piece);
-  // The piece in the ranks' shared frame, ready to draw; false when it has nothing to draw.
-  bool PrepareSharedPiece(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
-    RenderTarget& target, const vtkSPTParallelReduction::Agreement& agreement,
-    vtkSPTFrame::Volume& out);
-  // Draw every repetition, combine the ranks' keys and sums, and resolve on rank 0.
-  void DrawParallel(vtkSPTVolumeMapper* self, const RenderTarget& target,
-    const std::vector<vtkSPTFrame::Volume>& volumes,
-    const vtkSPTParallelReduction::Agreement& agreement);
-  void DrawParallelFrame(vtkSPTVolumeMapper* self, const RenderTarget& target,
-    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
-};
-
-vtkStandardNewMacro(vtkSPTVolumeMapper);
 
 vtkSPTVolumeMapper::vtkSPTVolumeMapper()
   : Internals(new vtkInternals)
@@ -429,187 +359,4 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Controller: " << this->GetController() << "\n";
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
-}
-
-vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiece(
-  vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, RenderTarget& target, size_t shared,
-  vtkSPTParallelReduction::Piece& piece)
-{
-  piece.OpaqueScene = HasOpaqueScene(ren);
-  piece.Ready = self->BeginFrame(ren, target) && vol->GetProperty() &&
-    self->GetEnsemble()->Prepare(target.Window, target.Width, target.Height, self->SubpixelLevel);
-  vtkTetrahedralMesh* mesh = self->GetMesh();
-  // An empty piece is not an error: the rank draws nothing and still takes part.
-  const bool prepared = piece.Ready && self->PrepareMesh(vol, true);
-  piece.HasCells = prepared;
-  piece.Ready = piece.Ready &&
-    (prepared || (mesh->GetLastError().empty() && mesh->GetNumberOfTetrahedra() == 0));
-  if (piece.HasCells)
-  {
-    int cellFlag = -1;
-    vtkDataArray* scalars = vtkAbstractMapper::GetScalars(self->GetDataSetInput(), self->ScalarMode,
-      self->ArrayAccessMode, self->ArrayId, self->ArrayName, cellFlag);
-    piece.ArrayName = scalars && scalars->GetName() ? scalars->GetName() : "";
-    piece.Components = scalars ? scalars->GetNumberOfComponents() : 0;
-    piece.CellScalars = mesh->GetCellScalars();
-    piece.GlobalIds = !mesh->GetRandomIds().empty();
-    std::copy(mesh->GetDataBounds(), mesh->GetDataBounds() + 6, piece.Bounds);
-    std::copy(mesh->GetDataScalarRange(), mesh->GetDataScalarRange() + 2, piece.ScalarRange);
-    piece.MaxEdgeLength = mesh->GetMaxEdgeLength() * mesh->GetScale();
-  }
-  const bool atomics = target.Window && vtkSPTDepthKeyBuffer::IsSupported(target.Window);
-  return { { "RepetitionLevel", self->RepetitionLevel },
-    { "RepetitionsPerPass", self->RepetitionsPerPass }, { "SmallCellSize", self->SmallCellSize },
-    { "Seed", self->Seed }, { "SubpixelLevel", self->SubpixelLevel },
-    { "Estimator", self->Estimator }, { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
-    { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
-    { "PreIntegrationScalarResolution", self->PreIntegrationScalarResolution },
-    { "PreIntegrationThicknessResolution", self->PreIntegrationThicknessResolution },
-    { "image width", target.Width }, { "image height", target.Height },
-    { "SPT volumes in the renderer", double(shared) },
-    { "image load/store (OpenGL 4.4)", atomics ? 1 : 0 } };
-}
-
-bool vtkSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* self,
-  vtkRenderer* ren, vtkVolume* vol, RenderTarget& target,
-  const vtkSPTParallelReduction::Agreement& agreement, vtkSPTFrame::Volume& out)
-{
-  // Every piece is normalized and mapped to the table as the whole is.
-  vtkTetrahedralMesh* mesh = self->GetMesh();
-  mesh->SetSharedFrame(agreement.Bounds, agreement.ScalarRange);
-  if (!self->PrepareMesh(vol, true) || !self->ComputeMatrices(ren, vol, this->Matrices))
-  {
-    return false;
-  }
-  if (!this->Table->Update(vol->GetProperty(), mesh->GetScalarRange(), agreement.MaxEdgeLength,
-        self->PreIntegrationScalarResolution, self->PreIntegrationThicknessResolution))
-  {
-    vtkErrorWithObjectMacro(self, << this->Table->GetLastError());
-    return false;
-  }
-  if (!this->Buffers->Upload(target.Window, mesh))
-  {
-    return false;
-  }
-  out.Buffers = this->Buffers;
-  out.Table = this->Table;
-  out.TableTexture = this->Table->GetTexture(target.Window);
-  out.Matrices = &this->Matrices;
-  out.MaxThickness = agreement.MaxEdgeLength / mesh->GetScale();
-  return out.TableTexture != nullptr;
-}
-
-void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
-  vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, size_t shared)
-{
-  vtkSPTParallelReduction* reduction = this->Reduction;
-  reduction->ResetBytes();
-  const bool root = reduction->GetController()->GetLocalProcessId() == 0;
-  RenderTarget target;
-  vtkSPTParallelReduction::Piece piece;
-  const auto settings = this->DescribePiece(self, ren, vol, target, shared, piece);
-  vtkSPTParallelReduction::Agreement agreement;
-  std::string error;
-  bool agreed = reduction->Agree(settings, piece, agreement, error);
-  if (agreed && (shared > 1 || settings.back().second == 0.0))
-  {
-    agreed = false;
-    error = shared > 1 ? "Several SPT volumes in one renderer are not combined across ranks"
-                       : "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
-  }
-  if (!agreed)
-  {
-    if (root && error != this->ParallelError)
-    {
-      vtkErrorWithObjectMacro(self, << error << "; nothing is drawn on any rank.");
-    }
-    this->ParallelError = error;
-    return;
-  }
-  this->ParallelError.clear();
-  if (!agreement.GlobalIds && agreement.AnyCells && root && !this->WarnedNoGlobalIds)
-  {
-    vtkWarningWithObjectMacro(self,
-      "The pieces have no global cell ids (cell data GlobalIds): the random numbers follow "
-      "each rank's own cell numbering, so the image is not that of one process.");
-    this->WarnedNoGlobalIds = true;
-  }
-  std::vector<vtkSPTFrame::Volume> volumes(1);
-  // After the agreement, a rank whose piece fails still takes part, drawing nothing.
-  if (!piece.HasCells || !this->PrepareSharedPiece(self, ren, vol, target, agreement, volumes[0]))
-  {
-    volumes.clear();
-  }
-  this->DrawParallel(self, target, volumes, agreement);
-}
-
-void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self,
-  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
-  const vtkSPTParallelReduction::Agreement& agreement)
-{
-  vtkOpenGLClearErrorMacro();
-  vtkSavedGLState savedState(target.Window->GetState());
-  vtkSPTFrame::Settings settings;
-  settings.Estimator = self->Estimator;
-  settings.StratifiedSampling = self->StratifiedSampling != 0;
-  settings.SmallCellSize = self->SmallCellSize;
-  settings.SubpixelLevel = self->SubpixelLevel;
-  settings.Seed = self->Seed;
-  settings.OpaqueScene = agreement.OpaqueScene;
-  settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
-  settings.AlwaysKeys = true; // the keys are what the ranks combine
-  this->DrawParallelFrame(self, target, volumes, settings);
-  vtkOpenGLCheckErrorMacro("failed after Render");
-}
-
-void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
-  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
-  vtkSPTFrame::Settings& settings)
-{
-  vtkSPTParallelReduction* reduction = this->Reduction;
-  vtkOpenGLRenderWindow* renWin = target.Window;
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
-  int exchanges = 0;
-  settings.AfterKeys = [reduction, &exchanges](vtkSPTDepthKeyBuffer* keys)
-  {
-    ++exchanges;
-    return reduction->ReduceKeys(keys);
-  };
-
-  ostate->PushFramebufferBindings();
-  ensemble->CaptureSceneDepth(target.X, target.Y);
-  if (settings.OpaqueScene)
-  {
-    reduction->ReduceSceneDepth(ensemble->GetSceneDepthTexture());
-  }
-  self->ForgetAccumulation();
-  this->CoverageDrawn = false;
-  ensemble->SetHalves(false);
-  ensemble->ClearSum();
-  vtkSPTFrame frame(renWin, ensemble, this->DepthKeys, volumes, settings, self);
-  const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble);
-  bool drawn = frame.DrawRepetitions(0, self->RepetitionLevel, perPass, self->ExactCoverage);
-  self->LastPointCellCount = volumes.empty() ? 0 : frame.GetPointCellCount(0);
-  ostate->PopFramebufferBindings();
-  // A rank whose frame failed (a shader, a buffer) still takes part in every exchange the
-  // others make, with nothing kept and nothing added; then no rank resolves.
-  const int lanes = std::min(perPass, self->RepetitionLevel);
-  const size_t samples = size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight());
-  for (; exchanges < (self->RepetitionLevel + lanes - 1) / lanes; ++exchanges)
-  {
-    reduction->ReduceNothingKept(samples * size_t(lanes));
-  }
-  std::vector<vtkTextureObject*> sums{ ensemble->GetSumTexture() };
-  if (self->ExactCoverage)
-  {
-    sums.push_back(ensemble->GetCoverageTexture());
-  }
-  drawn = reduction->ReduceSums(sums, samples) && reduction->AllSucceeded(drawn);
-  self->LastRepetitionCount = self->RepetitionLevel;
-  if (drawn && reduction->GetController()->GetLocalProcessId() == 0)
-  {
-    ensemble->Resolve(target.X, target.Y, self->RepetitionLevel, self->ExactCoverage != 0);
-    ensemble->MarkFootprint(target.X, target.Y);
-  }
 }

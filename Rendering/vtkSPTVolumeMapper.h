@@ -216,9 +216,11 @@ public:
    * is that of one process rendering the whole with the same seed. Every process must
    * render every frame, with the same settings, image size and scalars (an array of the same
    * name and number of components); otherwise rank 0 reports the first rank that differs and
-   * nothing is drawn. Each frame draws RepetitionLevel repetitions: AutoAdjustRepetitions,
-   * ProgressiveRefinement and TargetError are not applied, and one SPT volume per renderer is
-   * combined. Needs image load/store (OpenGL 4.4) on every process.
+   * nothing is drawn. TargetError, ProgressiveRefinement and AutoAdjustRepetitions apply as in
+   * one process: rank 0 estimates the noise of the whole image (the halves' sums move to it
+   * after each step) and every rank follows its estimate; the ranks continue an accumulation
+   * only if all do, and draw the fewest repetitions any rank's time budget allows. One SPT
+   * volume per renderer is combined. Needs image load/store (OpenGL 4.4) on every process.
    */
   void SetController(vtkMultiProcessController* controller);
   vtkMultiProcessController* GetController();
@@ -226,8 +228,8 @@ public:
 
   /**
    * The bytes this process contributed to the reductions of the last parallel render (its
-   * share of the scene depth, the depth keys and the sums, and the settings exchanged); 0
-   * without a controller.
+   * share of the scene depth, the depth keys, the sums and, with TargetError, the halves' sums
+   * after each step, and the settings and decisions exchanged); 0 without a controller.
    */
   vtkIdType GetLastParallelBytes();
 

@@ -28,6 +28,13 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--opaque-on", type=int, default=-1,
                         help="this rank draws an opaque black sphere in the middle of the mesh")
     parser.add_argument("--frames", type=int, default=2)
+    parser.add_argument("--target-error", type=float, default=None,
+                        help="TargetError; --repetitions is then the cap")
+    parser.add_argument("--progressive", action="store_true",
+                        help="ProgressiveRefinement on: later frames add to the first")
+    parser.add_argument("--update-rate", type=float, default=0.0,
+                        help="AutoAdjustRepetitions on, with this desired update rate (frames "
+                             "per second); each rank's budget is its own measured time")
     return parser.parse_args()
 
 
@@ -81,7 +88,11 @@ def main() -> None:
         if rank == arguments.other_array_on:
             piece.GetPointData().GetScalars().SetName("another name")
     seed = 7 if rank == arguments.other_seed_on else arguments.seed
-    mapper = render.spt_mapper(arguments.repetitions, seed=seed)
+    mapper = render.spt_mapper(arguments.repetitions, seed=seed,
+                               target_error=arguments.target_error)
+    mapper.SetProgressiveRefinement(arguments.progressive)
+    if arguments.update_rate > 0.0:
+        mapper.SetAutoAdjustRepetitions(True)
     if controller is not None:
         mapper.SetController(controller)
     window, renderer = render.make_window(arguments.size, arguments.size)
@@ -89,14 +100,19 @@ def main() -> None:
     if rank == arguments.opaque_on:
         renderer.AddActor(black_sphere(grid.GetBounds()))
     render.place_camera(renderer, grid.GetBounds(), scene.view)
-    images = []
+    if arguments.update_rate > 0.0:
+        window.SetDesiredUpdateRate(arguments.update_rate)
+    images, counts, estimates = [], [], []
     for _ in range(arguments.frames):
         window.Render()
         images.append(render.read_rgba(window))
+        counts.append(mapper.GetLastRepetitionCount())
+        estimates.append(mapper.GetEstimatedError())
     if rank == 0:
         np.save(arguments.output, np.stack(images))
         report = {"ranks": ranks, "cells": piece.GetNumberOfCells(),
-                  "bytes": mapper.GetLastParallelBytes()}
+                  "bytes": mapper.GetLastParallelBytes(), "repetitions": counts,
+                  "estimated_errors": estimates}
         arguments.output.with_suffix(".json").write_text(json.dumps(report))
     window.Finalize()
 

@@ -11,6 +11,11 @@ pixel across a rounding boundary; measured: identical).
 
 Ranks that disagree (another scalar array, another seed) give one error naming the rank and
 draw nothing, without a hang (each run has a timeout).
+
+With an error target (TargetError), rank 0 estimates the noise of the whole image from the
+halves' global sums after each step, and every rank follows it: the ranks draw the repetitions
+one process draws, and the 2-rank image, repetition count and estimate are the 1-rank ones.
+Progressive refinement adds to the whole image, and the time budget is agreed by the ranks.
 """
 
 import json
@@ -35,6 +40,9 @@ LEVEL = 1.0 / 255.0
 #: The RMSE (over the footprint) of a 16-repetition SPT image of the default scene from the
 #: exact reference is about 0.0024; an image missing a piece is off by more than 0.02.
 REFERENCE_RMSE = 0.008
+#: The error target of ParaView's plugin, and its cap on the repetitions.
+TARGET = 0.005
+TARGET_CAP = 256
 
 
 def mpiexec():
@@ -55,11 +63,11 @@ def mpiexec():
     return command
 
 
-def run(output: pathlib.Path, ranks: int, *options: str):
+def run(output: pathlib.Path, ranks: int, *options: str, repetitions: int = REPETITIONS):
     """Render with ``ranks`` ranks (0: no MPI, no controller); the frames rank 0 read back,
     its report, and the stderr of every rank."""
     command = [sys.executable, str(WORKER), "--output", str(output), "--size", str(SIZE),
-               "--repetitions", str(REPETITIONS), *options]
+               "--repetitions", str(repetitions), *options]
     if ranks > 0:
         command = mpiexec() + ["-n", str(ranks)] + command
     else:
@@ -151,4 +159,88 @@ def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, messa
     assert errors.count(message) == 1, errors
     assert errors.count("ERR") == 1, errors
     assert "nothing is drawn on any rank" in errors
+    assert images[..., 3].max() == 0.0
+
+
+@pytest.fixture(scope="module")
+def target_renders(have_display, tmp_path_factory):
+    directory = tmp_path_factory.mktemp("spt_mpi_target")
+    return {ranks: run(directory / f"target{ranks}.npy", ranks, "--target-error", str(TARGET),
+                       repetitions=TARGET_CAP) for ranks in (0, 1, 2)}
+
+
+@pytest.mark.parametrize("ranks", [1, 2])
+def test_target_error_as_one_process(target_renders, ranks):
+    """The same repetitions, estimate and image as one process with no controller, and the
+    target met well before the cap (a render that ignored the target would draw 256)."""
+    serial, serial_report, _ = target_renders[0]
+    images, report, errors = target_renders[ranks]
+    assert "ERR" not in errors, errors
+    assert report["repetitions"] == serial_report["repetitions"]
+    assert report["repetitions"][0] < TARGET_CAP
+    assert report["estimated_errors"] == pytest.approx(serial_report["estimated_errors"],
+                                                       rel=1e-5)
+    assert 0.0 < report["estimated_errors"][0] <= TARGET
+    assert largest_difference(serial[0], images[0]) <= 1.0
+    assert largest_difference(images[0], images[1]) == 0.0
+
+
+def test_target_error_image_is_the_volume(target_renders):
+    images, _, _ = target_renders[2]
+    reference = scene_support.reference("default", SIZE)
+    assert metrics.rmse(images[0], reference) < REFERENCE_RMSE
+
+
+def test_target_error_bytes(target_renders):
+    """The keys of every repetition, the sums, the second half's sums and the coverage once
+    (after the first step), then the sums and the second half's after each later step: at
+    least one step, at most one per two repetitions."""
+    _, report, _ = target_renders[2]
+    samples = SIZE * SIZE
+    repetitions = report["repetitions"][0]
+    least = samples * (4 * repetitions + 48)
+    most = least + samples * 32 * (repetitions // 2 - 1) + 4096
+    assert least <= report["bytes"] <= most
+
+
+def test_progressive_refinement_across_ranks(have_display, tmp_path):
+    """Each frame adds RepetitionLevel repetitions to the whole image until the target is met;
+    the 2-rank frames are the frames of one process."""
+    options = ("--target-error", "0.002", "--progressive", "--frames", "4")
+    serial, serial_report, _ = run(tmp_path / "progressive0.npy", 0, *options, repetitions=4)
+    two, report, errors = run(tmp_path / "progressive2.npy", 2, *options, repetitions=4)
+    assert "ERR" not in errors, errors
+    assert report["repetitions"] == serial_report["repetitions"] == [4, 8, 12, 16]
+    assert report["estimated_errors"] == pytest.approx(serial_report["estimated_errors"],
+                                                       rel=1e-5)
+    for frame in range(4):
+        assert largest_difference(serial[frame], two[frame]) <= 1.0
+
+
+def test_time_budget_across_ranks(have_display, tmp_path):
+    """With AutoAdjustRepetitions and a budget of 1 ms (far less than a software-rendered
+    frame of this scene takes), the first frame draws the cap (nothing measured yet) and the
+    later ones the cheapest frame, one repetition, on every rank alike."""
+    options = ("--update-rate", "1000", "--frames", "3")
+    serial, serial_report, _ = run(tmp_path / "budget0.npy", 0, *options, repetitions=64)
+    two, report, errors = run(tmp_path / "budget2.npy", 2, *options, repetitions=64)
+    assert "ERR" not in errors, errors
+    assert report["repetitions"] == serial_report["repetitions"] == [64, 1, 1]
+    for frame in range(3):
+        assert largest_difference(serial[frame], two[frame]) <= 1.0
+
+
+def test_target_error_with_an_empty_piece(have_display, tmp_path):
+    """Rank 1 has no cells: rank 0's half is drawn to the target, with no error and no hang."""
+    images, report, errors = run(tmp_path / "target-empty.npy", 2, "--empty-rank", "1",
+                                 "--target-error", str(TARGET), repetitions=TARGET_CAP)
+    assert "ERR" not in errors, errors
+    assert 0.0 < report["estimated_errors"][0] <= TARGET
+    assert images[0][..., 3].max() > 0.0
+
+
+def test_target_error_ranks_that_differ(have_display, tmp_path):
+    images, _, errors = run(tmp_path / "target-differ.npy", 2, "--other-array-on", "1",
+                            "--target-error", str(TARGET), repetitions=TARGET_CAP)
+    assert errors.count("ERR") == 1, errors
     assert images[..., 3].max() == 0.0

@@ -57,7 +57,8 @@ def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Pat
     command = mpiexec(ranks) + [
         sys.executable, "-m", "spt.bench.parallel_rank", "--scene", scene,
         "--output", str(output), "--size", str(settings.parallel_size),
-        "--repetitions", str(settings.parallel_repetitions), "--frames", str(settings.frames)]
+        "--repetitions", str(settings.parallel_repetitions),
+        "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]
     result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
                             check=False)
     if result.returncode != 0:
@@ -76,7 +77,12 @@ def summarize(report: Row, one_rank_image: np.ndarray) -> Row:
                    for r in ranks)
 
     difference = np.abs(np.rint(report["image"] * 255.0) - np.rint(one_rank_image * 255.0))
+    root = ranks[0]["frames"]
     return {"scene": report["scene"], "ranks": report["ranks"],
+            "target_error": report.get("target_error", 0.0),
+            "first_repetitions": root[0].get("repetitions"),
+            "later_repetitions": [f.get("repetitions") for f in root[1:]],
+            "first_estimated_error": root[0].get("estimated_error"),
             "cells": report["whole_cells"],
             "first_cpu_seconds": slowest("cpu_seconds", False),
             "later_cpu_seconds": slowest("cpu_seconds", True),
@@ -121,11 +127,13 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
     preload = os.environ.get("SPT_EXPAT_COMPAT_LIBRARY")
     if preload:  # ParaView's redistribution loses data with Debian 12's expat without it
         command += ["-x", f"LD_PRELOAD={preload}"]
-    command += [shutil.which("pvbatch") or "pvbatch",
+    command += [shutil.which("pvbatch") or "pvbatch", "--symmetric",
                 str(pathlib.Path(__file__).with_name("pvbatch_frames.py")),
                 "--data", str(index), "--representation", representation,
                 "--output", str(output), "--size", str(settings.parallel_size),
-                "--frames", str(settings.frames)]
+                "--frames", str(settings.frames),
+                "--repetitions", str(settings.parallel_repetitions),
+                "--target-error", str(settings.parallel_target_error)]
     result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
                             check=False)
     if result.returncode != 0:
@@ -133,9 +141,14 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
     report = json.loads(output.read_text())
     return {"scene": scene, "ranks": ranks, "representation": representation,
             "read_wall_seconds": report["read_seconds"],
+            "read_cpu_seconds": report["read_cpu_seconds"],
             "first_wall_seconds": report["frames"][0],
             "later_wall_seconds": median(report["frames"][1:]) if len(report["frames"]) > 1
-            else float("nan")}
+            else float("nan"),
+            "first_cpu_seconds": report["cpu_frames"][0],
+            "spt_counts": report.get("spt_counts"),
+            "later_cpu_seconds": median(report["cpu_frames"][1:])
+            if len(report["cpu_frames"]) > 1 else float("nan")}
 
 
 def paraview_rows(settings: Settings, progress: Progress, output: pathlib.Path) -> List[Row]:

@@ -3,8 +3,8 @@
 Every rank makes the scene, keeps its interleaved piece (the cells whose id modulo the number
 of ranks is its rank, numbered by their ids in the whole), and renders it with
 vtkSPTVolumeMapper and the MPI controller: no redistribution. It times each frame (process
-CPU time, all threads, and wall time, between barriers) and rank 0 writes the image and every
-rank's measures.
+CPU time, all threads, and wall time, between barriers) and rank 0 writes the image, every
+rank's measures and, per frame, the repetitions drawn and the noise estimated.
 
     mpiexec -n 2 python3 -m spt.bench.parallel_rank --scene post --output out/post-2
 """
@@ -27,7 +27,10 @@ def parse(argv: Optional[Sequence[str]]) -> argparse.Namespace:
     parser.add_argument("--output", type=pathlib.Path, required=True,
                         help="writes OUTPUT.npy (rank 0's image) and OUTPUT.json")
     parser.add_argument("--size", type=int, default=256)
-    parser.add_argument("--repetitions", type=int, default=16)
+    parser.add_argument("--repetitions", type=int, default=16,
+                        help="RepetitionLevel: the cap, with --target-error")
+    parser.add_argument("--target-error", type=float, default=0.0,
+                        help="TargetError (0: off, every frame draws --repetitions)")
     parser.add_argument("--frames", type=int, default=3)
     return parser.parse_args(argv)
 
@@ -44,8 +47,9 @@ def controller():
     return made
 
 
-def render_frames(window, frames: int, barrier) -> List[Dict[str, float]]:
-    """Each frame's process CPU time and wall time, the ranks starting together."""
+def render_frames(window, mapper, frames: int, barrier) -> List[Dict[str, float]]:
+    """Each frame's process CPU time and wall time, the ranks starting together, and what the
+    frame drew."""
     measures = []
     for _ in range(frames):
         barrier()
@@ -53,7 +57,9 @@ def render_frames(window, frames: int, barrier) -> List[Dict[str, float]]:
         window.Render()
         window.WaitForCompletion()
         measures.append({"cpu_seconds": time.process_time() - cpu,
-                         "wall_seconds": time.perf_counter() - wall})
+                         "wall_seconds": time.perf_counter() - wall,
+                         "repetitions": mapper.GetLastRepetitionCount(),
+                         "estimated_error": mapper.GetEstimatedError()})
     return measures
 
 
@@ -71,12 +77,13 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     mpi = controller()
     rank, ranks = mpi.GetLocalProcessId(), mpi.GetNumberOfProcesses()
     piece = interleaved_piece(scene.grid, rank, ranks)
-    mapper = render.spt_mapper(arguments.repetitions)
+    mapper = render.spt_mapper(arguments.repetitions,
+                               target_error=arguments.target_error or None)
     mapper.SetController(mpi)
     window, renderer = render.make_window(arguments.size, arguments.size)
     render.add_volume(renderer, piece, scene.property, mapper)
     render.place_camera(renderer, scene.grid.GetBounds(), scene.view)
-    frames = render_frames(window, arguments.frames, MPI.COMM_WORLD.Barrier)
+    frames = render_frames(window, mapper, arguments.frames, MPI.COMM_WORLD.Barrier)
     measures = {"rank": rank, "cells": piece.GetNumberOfCells(), "frames": frames,
                 "bytes_per_frame": mapper.GetLastParallelBytes(),
                 "piece_bytes": piece.GetActualMemorySize() * 1024,
@@ -87,7 +94,7 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
         np.save(arguments.output.with_suffix(".npy"), render.read_rgba(window))
         arguments.output.with_suffix(".json").write_text(json.dumps(
             {"scene": arguments.scene, "ranks": ranks, "whole_cells": scene.grid.GetNumberOfCells(),
-             "per_rank": gathered}, indent=1))
+             "target_error": arguments.target_error, "per_rank": gathered}, indent=1))
     window.Finalize()
 
 

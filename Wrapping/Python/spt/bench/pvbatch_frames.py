@@ -1,10 +1,12 @@
 """Frames of one volume representation in pvbatch, for the ``parallel`` benchmark section.
 
-Run by ``mpirun -np N pvbatch pvbatch_frames.py ...`` with the SPT plugin on every rank
-(PV_PLUGIN_PATH): reads a .pvtk of pieces (one per rank), shows it as the given
-representation, and times on rank 0 the reading, the first render (ParaView's redistribution
-where the representation asks for it, and the frame) and later renders (the camera turned by
-one degree each), in wall time. Writes a JSON report.
+Run by ``mpirun -np N pvbatch --symmetric pvbatch_frames.py ...`` with the SPT plugin on every
+rank (PV_PLUGIN_PATH): reads a .pvtk of pieces (one per rank), shows it as the given
+representation, and times the reading, the first render (ParaView's redistribution where the
+representation asks for it, and the frame) and later renders (the camera turned by one degree
+each): wall time on rank 0, and process CPU time (all threads), the largest over the ranks.
+SPT draws with the plugin's error target and cap (--target-error, --repetitions). Rank 0
+writes a JSON report.
 """
 
 import argparse
@@ -12,10 +14,12 @@ import json
 import time
 
 from paraview import simple
+from paraview.modules.vtkRemotingCore import vtkProcessModule
+from vtkmodules.vtkCommonCore import vtkDoubleArray
+from vtkmodules.vtkParallelCore import vtkCommunicator
 
-# The settings that make a render draw a fixed amount of work, by representation.
+# Fixed work per render, by representation (SPT's is set from the arguments).
 FIXED_WORK = {
-    "Volume (SPT)": {"RepetitionLevel": 16, "TargetError": 0.0, "AutoAdjustRepetitions": 0},
     "Volume (PBVR)": {"PBVRRepetitionLevel": 16},
 }
 
@@ -27,7 +31,22 @@ def parse():
     parser.add_argument("--output", required=True)
     parser.add_argument("--size", type=int, default=256)
     parser.add_argument("--frames", type=int, default=3)
+    parser.add_argument("--repetitions", type=int, default=256,
+                        help="SPT's RepetitionLevel, the cap with an error target")
+    parser.add_argument("--target-error", type=float, default=0.005, help="SPT's TargetError")
     return parser.parse_args()
+
+
+def largest_over_ranks(values):
+    """Each of ``values``, the largest over the ranks (every rank runs this script)."""
+    controller = vtkProcessModule.GetProcessModule().GetGlobalController()
+    local, result = vtkDoubleArray(), vtkDoubleArray()
+    for value in values:
+        local.InsertNextValue(value)
+    if controller is None or controller.GetNumberOfProcesses() == 1:
+        return list(values)
+    controller.AllReduce(local, result, vtkCommunicator.MAX_OP)
+    return [result.GetValue(i) for i in range(result.GetNumberOfTuples())]
 
 
 def set_property(display, name, value):
@@ -37,6 +56,17 @@ def set_property(display, name, value):
         display.SMProxy.UpdateVTKObjects()
 
 
+def spt_counts(display):
+    """Rank 0's SPT mapper's repetitions and noise estimate of the last render, or None."""
+    import spt  # noqa: F401  (wraps the plugin's mappers as their own classes)
+
+    active = display.GetClientSideObject().GetActiveRepresentation()
+    mapper = active.GetActiveVolumeMapper() if hasattr(active, "GetActiveVolumeMapper") else None
+    if mapper is None or not hasattr(mapper, "GetLastRepetitionCount"):
+        return None
+    return [mapper.GetLastRepetitionCount(), mapper.GetEstimatedError()]
+
+
 def main():
     arguments = parse()
     view = simple.CreateView("RenderView")
@@ -44,26 +74,35 @@ def main():
     view.OrientationAxesVisibility = 0
     view.UseFXAA = 0
     reader = simple.LegacyVTKReader(FileNames=[arguments.data])
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     display = simple.Show(reader, view)  # reads the pieces
     read_seconds = time.perf_counter() - start
+    cpu_seconds = [time.process_time() - cpu]
     arrays = reader.PointData.keys()
     simple.ColorBy(display, ("POINTS", arrays[0]))
     display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(arguments.representation)
-    for name, value in FIXED_WORK.get(arguments.representation, {}).items():
+    work = dict(FIXED_WORK)
+    work["Volume (SPT)"] = {"RepetitionLevel": arguments.repetitions,
+                            "TargetError": arguments.target_error}
+    for name, value in work.get(arguments.representation, {}).items():
         set_property(display, name, value)
     simple.ResetCamera(view)
-    frames = []
+    frames, counts = [], []
     for frame in range(arguments.frames):
         if frame:
             view.GetActiveCamera().Azimuth(1.0)
-        begin = time.perf_counter()
+        begin, cpu = time.perf_counter(), time.process_time()
         simple.Render(view)
         frames.append(time.perf_counter() - begin)
-    with open(arguments.output, "w") as report:
-        json.dump({"representation": arguments.representation, "frames": frames,
-                   "read_seconds": read_seconds}, report)
+        cpu_seconds.append(time.process_time() - cpu)
+        counts.append(spt_counts(display))
+    cpu_seconds = largest_over_ranks(cpu_seconds)
+    if vtkProcessModule.GetProcessModule().GetPartitionId() == 0:
+        with open(arguments.output, "w") as report:
+            json.dump({"representation": arguments.representation, "frames": frames,
+                       "read_seconds": read_seconds, "read_cpu_seconds": cpu_seconds[0],
+                       "cpu_frames": cpu_seconds[1:], "spt_counts": counts}, report)
 
 
 main()

@@ -259,14 +259,39 @@ def paraview_parallel_table(rows: Sequence[Entry]) -> List[str]:
     """pvbatch: SPT without redistribution against the methods ParaView redistributes."""
     if not rows:
         return []
-    return ["pvbatch with the plugin on the same interleaved pieces, wall seconds on rank 0: "
-            "reading, the first render (ParaView's redistribution, where the representation "
-            "asks for it, and the frame; SPT asks for none) and later renders (the camera "
-            "turned). \"Volume\" is ParaView's own, VTK's projected tetrahedra.", "",
-            table(["scene", "ranks", "representation", "reading [s]", "first render [s]",
-                   "later renders [s]"],
-                  [[r["scene"], r["ranks"], r["representation"], r["read_wall_seconds"],
+    nan = float("nan")
+    return ["pvbatch with the plugin on the same interleaved pieces: reading, the first render "
+            "(ParaView's redistribution, where the representation asks for it, and the frame; "
+            "SPT asks for none) and later renders (the camera turned), in process CPU time "
+            "(the largest over the ranks, all threads) and wall time on rank 0. \"Volume\" is "
+            "ParaView's own, VTK's projected tetrahedra.", "",
+            table(["scene", "ranks", "representation", "SPT reps (estimate)",
+                   "reading CPU [s]", "first CPU [s]", "later CPU [s]", "reading wall [s]",
+                   "first wall [s]", "later wall [s]"],
+                  [[r["scene"], r["ranks"], r["representation"], spt_counts(r),
+                    r.get("read_cpu_seconds", nan), r.get("first_cpu_seconds", nan),
+                    r.get("later_cpu_seconds", nan), r["read_wall_seconds"],
                     r["first_wall_seconds"], r["later_wall_seconds"]] for r in rows]), ""]
+
+
+def spt_counts(row: Entry) -> str:
+    """SPT's repetitions and estimated noise per render in a pvbatch row, if it has them."""
+    counts = [c for c in row.get("spt_counts") or [] if c]
+    return ", ".join(f"{n} ({e:.4f})" for n, e in counts)
+
+
+def parallel_rows(rows: Sequence[Entry]) -> List[List[object]]:
+    """The VTK table's rows."""
+    mib = 2.0 ** 20
+    return [[r["scene"], r["cells"], r["ranks"], r.get("first_repetitions", ""),
+             " / ".join(str(n) for n in r.get("later_repetitions", [])),
+             r.get("first_estimated_error", float("nan")), r["first_cpu_seconds"],
+             r["later_cpu_seconds"], r["first_wall_seconds"], r["later_wall_seconds"],
+             r["bytes_per_frame_per_rank"] / mib,
+             " / ".join(f"{b / mib:.0f}" for b in r["peak_rss_bytes"]),
+             " / ".join(f"{b / mib:.1f}" for b in r["piece_bytes"]),
+             " / ".join(f"{b / mib:.1f}" for b in r["gpu_bytes"]),
+             r["max_levels_from_one_rank"]] for r in rows]
 
 
 def parallel_section(measured) -> List[str]:
@@ -276,25 +301,23 @@ def parallel_section(measured) -> List[str]:
     # Results of the first version of the section are a list of the VTK rows.
     rows = measured.get("vtk", []) if isinstance(measured, dict) else measured
     paraview = measured.get("paraview", []) if isinstance(measured, dict) else []
-    mib = 2.0 ** 20
+    target = rows[0].get("target_error", 0.0) if rows else 0.0
     return ["## Parallel: ranks with interleaved pieces, no redistribution", "",
             f"The ranks share this machine's {os.cpu_count()} cores, so more ranks than cores "
-            "shows the cost of the reductions and of oversubscription, not a speed-up. Times "
-            "are the slowest rank's: process CPU time (all threads, the software rasterizer's "
-            "too) and wall time of the first frame (the mesh prepared, the ranks' settings "
-            "agreed) and of later frames (median). Bytes: what each rank puts into the "
-            "reductions per frame. Memory per rank: peak resident size (it includes making "
-            "the whole scene before keeping the piece), the piece, the GPU buffers.", "",
-            table(["scene", "cells", "ranks", "first CPU [s]", "later CPU [s]",
-                   "first wall [s]", "later wall [s]", "MiB moved per rank", "peak RSS [MiB]",
-                   "piece [MiB]", "GPU [MiB]", "max diff. to 1 rank [levels]"],
-                  [[r["scene"], r["cells"], r["ranks"], r["first_cpu_seconds"],
-                    r["later_cpu_seconds"], r["first_wall_seconds"], r["later_wall_seconds"],
-                    r["bytes_per_frame_per_rank"] / mib,
-                    " / ".join(f"{b / mib:.0f}" for b in r["peak_rss_bytes"]),
-                    " / ".join(f"{b / mib:.1f}" for b in r["piece_bytes"]),
-                    " / ".join(f"{b / mib:.1f}" for b in r["gpu_bytes"]),
-                    r["max_levels_from_one_rank"]] for r in rows]), ""] + \
+            "shows the cost of the reductions and of oversubscription, not a speed-up. SPT "
+            f"with TargetError {target} (0: off) and RepetitionLevel as its cap: the "
+            "repetitions of the first frame and of the later frames (the same camera: a "
+            "frame that meets the target starts anew and draws the same), and the first "
+            "frame's estimated noise. Times are the slowest rank's: process CPU time (all "
+            "threads, the software rasterizer's too) and wall time of the first frame (the "
+            "mesh prepared, the ranks' settings agreed) and of later frames (median). Bytes: "
+            "what each rank puts into the reductions in the last frame. Memory per rank: peak "
+            "resident size (it includes making the whole scene before keeping the piece), "
+            "the piece, the GPU buffers.", "",
+            table(["scene", "cells", "ranks", "first reps", "later reps", "estimate",
+                   "first CPU [s]", "later CPU [s]", "first wall [s]", "later wall [s]",
+                   "MiB moved per rank", "peak RSS [MiB]", "piece [MiB]", "GPU [MiB]",
+                   "max diff. to 1 rank [levels]"], parallel_rows(rows)), ""] + \
         paraview_parallel_table(paraview)
 
 

@@ -51,9 +51,11 @@ class Settings:
     parallel_scenes: Tuple[str, ...] = ("drill-1M", "post")
     parallel_ranks: Tuple[int, ...] = (1, 2, 4)
     parallel_size: int = 256
-    parallel_repetitions: int = 16
+    # SPT with the plugin's defaults: an error target, and a cap on the repetitions
+    parallel_target_error: float = 0.005
+    parallel_repetitions: int = 256
     # pvbatch with the plugin: SPT (no redistribution) against methods ParaView redistributes
-    parallel_paraview_ranks: Tuple[int, ...] = (1, 4)
+    parallel_paraview_ranks: Tuple[int, ...] = (1, 2, 4)
     parallel_paraview_representations: Tuple[str, ...] = ("Volume (SPT)", "Volume (HAVS-like)",
                                                           "Volume")
     # run the sections for these methods only, keeping the other methods' earlier results

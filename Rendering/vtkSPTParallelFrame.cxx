@@ -1,0 +1,100 @@
+#include "vtkSPTParallelFrame.h"
+
+#include "vtkMultiProcessController.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkSPTParallelReduction.h"
+
+#include <algorithm>
+#include <limits>
+
+vtkSPTParallelFrame::vtkSPTParallelFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
+  vtkSPTDepthKeyBuffer* depthKeys, const std::vector<vtkSPTFrame::Volume>& volumes,
+  const vtkSPTFrame::Settings& settings, vtkObject* reporter, vtkSPTParallelReduction* reduction)
+  : Ensemble(ensemble)
+  , Reduction(reduction)
+  , Frame(window, ensemble, depthKeys, volumes,
+      WithExchanges(settings, reduction, &this->Exchanges), reporter)
+  , Samples(size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()))
+{
+}
+
+vtkSPTFrame::Settings vtkSPTParallelFrame::WithExchanges(
+  vtkSPTFrame::Settings settings, vtkSPTParallelReduction* reduction, int* exchanges)
+{
+  settings.AlwaysKeys = true; // the keys are what the ranks combine
+  settings.AfterKeys = [reduction, exchanges](vtkSPTDepthKeyBuffer* keys)
+  {
+    ++*exchanges;
+    return reduction->ReduceKeys(keys);
+  };
+  return settings;
+}
+
+void vtkSPTParallelFrame::Draw(int first, int count, int perPass, bool coverage, bool halves)
+{
+  const int before = this->Exchanges;
+  this->Ok = this->Ok && this->Frame.DrawRepetitions(first, count, perPass, coverage, halves);
+  // The exchanges the other ranks make: one per group of `lanes` repetitions. A rank whose
+  // drawing failed (before or within its groups) makes those it missed with nothing kept.
+  const int lanes = std::max(1, std::min(perPass, count));
+  const int groups = (count + lanes - 1) / lanes;
+  for (; this->Exchanges - before < groups; ++this->Exchanges)
+  {
+    this->Reduction->ReduceNothingKept(this->Samples * size_t(lanes));
+  }
+  this->SumsPending = true;
+  this->CoveragePending = this->CoveragePending || coverage;
+}
+
+bool vtkSPTParallelFrame::MoveSums(bool halves)
+{
+  std::vector<vtkTextureObject*> textures{ this->Ensemble->GetSumTexture() };
+  if (halves)
+  {
+    textures.push_back(this->Ensemble->GetSecondHalfTexture());
+  }
+  if (this->CoveragePending)
+  {
+    textures.push_back(this->Ensemble->GetCoverageTexture());
+  }
+  this->SumsPending = false;
+  this->CoveragePending = false;
+  return this->Reduction->ReduceSums(textures, this->Samples);
+}
+
+bool vtkSPTParallelFrame::Estimate(int halfCount, bool exactCoverage, double& estimate)
+{
+  this->Ok = this->MoveSums(true) && this->Ok;
+  // Rank 0 holds the whole image's halves; the others' estimate is ignored.
+  const bool root = this->Reduction->GetController()->GetLocalProcessId() == 0;
+  estimate = root && this->Ok ? this->Ensemble->EstimateNoise(halfCount, exactCoverage)
+                              : std::numeric_limits<double>::infinity();
+  return this->Reduction->ShareEstimate(this->Ok, estimate);
+}
+
+int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool coverage,
+  bool exactCoverage, double target, vtkSPTFrame::TargetState& state)
+{
+  // The steps of one process, each decided by the shared estimate alone, so that every rank
+  // takes them. A rank whose drawing failed goes on taking part; the ranks learn of it at the
+  // next estimate.
+  vtkSPTFrame::TargetSteps steps;
+  steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
+  {
+    this->Draw(from, repetitions, perPass, withCoverage, halves);
+    return true;
+  };
+  steps.Estimate = [this, exactCoverage](int halfCount, double& estimate)
+  { return this->Estimate(halfCount, exactCoverage, estimate); };
+  return vtkSPTFrame::StepToTarget(steps, first, count, perPass, coverage, target, state);
+}
+
+bool vtkSPTParallelFrame::Finish()
+{
+  if (this->SumsPending || this->CoveragePending)
+  {
+    this->Ok = this->MoveSums(false) && this->Ok;
+  }
+  return this->Reduction->AllSucceeded(this->Ok);
+}

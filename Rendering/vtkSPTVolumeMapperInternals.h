@@ -1,0 +1,106 @@
+/**
+ * @class   vtkSPTVolumeMapper::vtkInternals
+ * @brief   the state of vtkSPTVolumeMapper between renders, and the steps of a render
+ *
+ * Private to the SPT module: vtkSPTVolumeMapper.cxx draws one process's frame,
+ * vtkSPTVolumeMapperParallel.cxx the frame of a parallel render. Not wrapped, not installed.
+ */
+
+#ifndef vtkSPTVolumeMapperInternals_h
+#define vtkSPTVolumeMapperInternals_h
+
+#include "vtkSPTVolumeMapper.h"
+
+#include "vtkNew.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSPTDepthKeyBuffer.h"
+#include "vtkSPTFrame.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSPTParallelReduction.h"
+#include "vtkVolumeViewMatrices.h"
+
+#include <string>  // For the errors
+#include <utility> // For the shared volumes
+#include <vector>  // For the volumes
+
+class vtkSPTVolumeMapper::vtkInternals
+{
+public:
+  vtkNew<vtkSPTMeshBuffers> Buffers;
+  vtkNew<vtkPreIntegrationTable> Table;
+  vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
+  vtkVolumeViewMatrices Matrices;
+  vtkNew<vtkSPTParallelReduction> Reduction;
+  bool WarnedNoGlobalIds = false;
+  std::string ParallelError; // reported once, until the ranks agree again
+
+  vtkSPTFrame::TargetState Target; // progress towards TargetError
+  bool WarnedNoImageAtomics = false;
+  bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
+
+  // The visible SPT volumes of the renderer, vol's first when it is not among them.
+  static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
+    vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
+  // Bring a volume's mesh, table and matrices up to date and onto the GPU.
+  static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
+    RenderTarget& target, vtkSPTFrame::Volume& out);
+  static std::vector<double> Signature(
+    vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
+  // Prepare every shared volume that can be drawn; false when none can.
+  // What the mappers of the frame report of its render.
+  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
+    const vtkSPTFrame& frame) const;
+  static bool CollectVolumes(vtkRenderer* ren,
+    const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
+    std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
+
+  // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
+  // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
+  static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble);
+  // Repetitions per traversal that the context allows, and the estimator with them.
+  int ChooseTraversal(
+    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
+
+  // What one frame draws.
+  struct FramePlan
+  {
+    int First = 0;         // repetitions already accumulated
+    int Count = 0;         // repetitions to add
+    int PerPass = 1;       // repetitions per traversal
+    bool Cheapest = false; // the paper's single passes, when no group fits the budget
+    bool Coverage = false; // draw the exact coverage in this frame
+  };
+  FramePlan Plan(
+    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
+  // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
+  bool StartAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves);
+  // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
+  int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
+
+  // The parallel frame: this rank's piece, combined with the other ranks' by reductions.
+  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, size_t shared);
+  // This rank's settings and piece, for the ranks to agree on; prepares the mesh and ensemble.
+  vtkSPTParallelReduction::Settings DescribePiece(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+    vtkVolume* vol, RenderTarget& target, size_t shared, vtkSPTParallelReduction::Piece& piece);
+  // The piece in the ranks' shared frame, ready to draw; false when it has nothing to draw.
+  bool PrepareSharedPiece(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
+    RenderTarget& target, const vtkSPTParallelReduction::Agreement& agreement,
+    vtkSPTFrame::Volume& out);
+  // Plan the frame with the other ranks, draw it, combine the ranks' keys and sums, and
+  // resolve on rank 0.
+  void DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
+    const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+    const vtkSPTParallelReduction::Agreement& agreement);
+  void DrawParallelFrame(vtkSPTVolumeMapper* self, const RenderTarget& target,
+    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings,
+    const FramePlan& plan);
+  // Plan()'s plan, the same on every rank: rank 0's signature need not match the others', so
+  // the ranks continue an accumulation only if all do, and draw the fewest repetitions any
+  // rank's time budget allows. A collective call.
+  FramePlan PlanParallel(
+    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
+};
+
+#endif
