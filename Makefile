@@ -6,6 +6,9 @@
 #               (.ci/debian-root; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
 #   make test-debian-unstable  the same on Debian unstable (sid: ParaView 6, VTK 9.4 or later;
 #               kept in DEBIAN_UNSTABLE_CACHE, default /var/cache/spt/debian-sid)
+#   make test-vtk-wheel  the C++ module and tests built against PyPI's VTK wheel (vtk 9.5.0) and
+#               run without X (.ci/vtk-wheel-sdk; kept in VTK_WHEEL_CACHE, default
+#               /var/cache/spt/vtk-sdk); make build-vtk-wheel stops after the build
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -45,7 +48,8 @@ PACKAGES = cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test test-egl test-debian13 test-debian-unstable sanitize lint clean
+.PHONY: all deps configure build install demo test test-egl test-debian13 test-debian-unstable \
+	build-vtk-wheel test-vtk-wheel sanitize lint clean
 
 all: build
 
@@ -107,6 +111,20 @@ test-debian-unstable:
 	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN_UNSTABLE_CACHE) JOBS=$(JOBS) \
 	  SPT_DEBIAN_TARGET=$(DEBIAN_UNSTABLE_TARGET) \
 	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root sid
+
+# The C++ module and its C++ tests against the VTK of PyPI's wheel (vtk) with Kitware's SDK
+# (vtk-sdk) of the same version, pointed at the wheel's Linux libraries (.ci/vtk-wheel-sdk): the
+# glad loader and the VTK API of 9.5 without a Debian that ships them. No Python package (the
+# SDK's wrapping tools are macOS programs) and no ParaView plugin. The tests run without X:
+# every window is the EGL window.
+VTK_WHEEL_VERSION ?= 9.5.0
+VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
+build-vtk-wheel:
+	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
+
+test-vtk-wheel: build-vtk-wheel
+	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
+	  nice -n 15 ctest --output-on-failure --timeout 1500
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
