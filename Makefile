@@ -44,7 +44,7 @@ PACKAGES = cmake ninja-build g++ make \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	$(TETGEN_PACKAGE) libglm-dev \
-	python3-numpy python3-matplotlib python3-pytest \
+	python3-numpy python3-scipy python3-matplotlib python3-pytest \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
