@@ -44,7 +44,7 @@ PACKAGES = cmake ninja-build g++ make \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	$(TETGEN_PACKAGE) libglm-dev \
-	python3-numpy python3-scipy python3-matplotlib python3-pytest \
+	python3-numpy python3-scipy python3-matplotlib python3-pytest python3-venv \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
@@ -119,7 +119,7 @@ test-debian-unstable:
 # every window is the EGL window.
 VTK_WHEEL_VERSION ?= 9.5.0
 VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
-build-vtk-wheel:
+build-vtk-wheel: deps
 	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
 
 test-vtk-wheel: build-vtk-wheel
