@@ -3,7 +3,12 @@
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
 #   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
-#               (.ci/debian13; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
+#               (.ci/debian-root; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
+#   make test-debian-unstable  the same on Debian unstable (sid: ParaView 6, VTK 9.4 or later;
+#               kept in DEBIAN_UNSTABLE_CACHE, default /var/cache/spt/debian-sid)
+#   make test-vtk-wheel  the C++ module and tests built against PyPI's VTK wheel (vtk 9.5.0) and
+#               run without X (.ci/vtk-wheel-sdk; kept in VTK_WHEEL_CACHE, default
+#               /var/cache/spt/vtk-sdk); make build-vtk-wheel stops after the build
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -16,8 +21,10 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 # The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
-# is installed (a recursive variable: evaluated when a recipe runs, after deps).
-VTK_DIR ?= $(lastword $(shell ls -d /usr/lib/*/cmake/paraview-*/vtk 2>/dev/null | sort -V))
+# is installed (a recursive variable: evaluated when a recipe runs, after deps); where ParaView
+# has none of its own (Debian's ParaView 6 is built on Debian's VTK), Debian's VTK.
+VTK_DIR ?= $(strip $(or $(lastword $(shell ls -d /usr/lib/*/cmake/paraview-*/vtk 2>/dev/null \
+	| sort -V)),$(lastword $(shell ls -d /usr/lib/*/cmake/vtk-* 2>/dev/null | sort -V))))
 XVFB := xvfb-run -a -s "-screen 0 1280x1024x24 -noreset"
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
@@ -27,17 +34,22 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # the newest libtetX.Y-dev that apt knows.
 TETGEN_PACKAGE = $(or $(lastword $(shell apt-cache pkgnames libtet 2>/dev/null \
 	| grep -E '^libtet[0-9.]+-dev$$' | sort -V)),libtet1.5-dev)
+# Debian's ParaView 6 is built on Debian's VTK (paraview depends on libvtkX.Y) instead of a VTK of
+# its own, and paraview-dev does not bring VTK's SDK: libvtk9-dev then.
+VTK_PACKAGE = $(if $(shell apt-cache depends paraview 2>/dev/null \
+	| grep -E 'Depends: libvtk[0-9.]+$$'),libvtk9-dev)
 PACKAGES = cmake ninja-build g++ make \
-	paraview paraview-dev python3-paraview \
+	paraview paraview-dev python3-paraview $(VTK_PACKAGE) \
 	openmpi-bin libopenmpi-dev libglew-dev libx11-dev libgl-dev libegl-dev libpng-dev libjpeg-dev libtiff-dev \
 	zlib1g-dev libfreetype-dev libexpat1-dev liblz4-dev liblzma-dev libxml2-dev \
 	libdouble-conversion-dev libutfcpp-dev libpython3-dev \
 	$(TETGEN_PACKAGE) libglm-dev \
-	python3-numpy python3-matplotlib python3-pytest \
+	python3-numpy python3-scipy python3-matplotlib python3-pytest python3-venv \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test test-egl test-debian13 sanitize lint clean
+.PHONY: all deps configure build install demo test test-egl test-debian13 test-debian-unstable \
+	build-vtk-wheel test-vtk-wheel sanitize lint clean
 
 all: build
 
@@ -84,11 +96,35 @@ test-egl: install
 
 # `make test` on Debian 13 in a root file system made with debootstrap (needs root and
 # debootstrap): the base system, apt's packages and the build directory are kept in
-# DEBIAN13_CACHE between runs; see .ci/debian13.
+# DEBIAN13_CACHE between runs; see .ci/debian-root.
 DEBIAN13_CACHE ?= /var/cache/spt/debian13
 test-debian13:
-	$(SUDO) env SPT_DEBIAN13_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
-	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian13
+	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
+	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root trixie
+
+# The same on Debian unstable (sid), whose ParaView and VTK are the newest Debian has (ParaView
+# 6.1 and VTK 9.6 when this was written): the glad branch of the OpenGL loader (VTK 9.4 on)
+# built and run. DEBIAN_UNSTABLE_TARGET=build stops after the build.
+DEBIAN_UNSTABLE_CACHE ?= /var/cache/spt/debian-sid
+DEBIAN_UNSTABLE_TARGET ?= test
+test-debian-unstable:
+	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN_UNSTABLE_CACHE) JOBS=$(JOBS) \
+	  SPT_DEBIAN_TARGET=$(DEBIAN_UNSTABLE_TARGET) \
+	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root sid
+
+# The C++ module and its C++ tests against the VTK of PyPI's wheel (vtk) with Kitware's SDK
+# (vtk-sdk) of the same version, pointed at the wheel's Linux libraries (.ci/vtk-wheel-sdk): the
+# glad loader and the VTK API of 9.5 without a Debian that ships them. No Python package (the
+# SDK's wrapping tools are macOS programs) and no ParaView plugin. The tests run without X:
+# every window is the EGL window.
+VTK_WHEEL_VERSION ?= 9.5.0
+VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
+build-vtk-wheel: deps
+	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
+
+test-vtk-wheel: build-vtk-wheel
+	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
+	  nice -n 15 ctest --output-on-failure --timeout 1500
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;

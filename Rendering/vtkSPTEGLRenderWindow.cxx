@@ -405,6 +405,13 @@ void vtkSPTEGLRenderWindow::OpenGLInit()
   this->MakeCurrent();
   if (this->IsCurrent())
   {
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
+    // vtkGenericOpenGLRenderWindow::OpenGLInit() resets VTK's OpenGL state (glClearColor, ...)
+    // before vtkOpenGLRenderWindow::OpenGLInit() has glad load OpenGL's functions: load them
+    // first, as VTK's own windows do once their context is made. The second call returns at
+    // once.
+    this->OpenGLInitContext();
+#endif
     this->Superclass::OpenGLInit();
   }
 }

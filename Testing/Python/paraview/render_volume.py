@@ -307,9 +307,14 @@ def report(display, defaults, reader, view, args):
     points = elements(simple.GetOpacityTransferFunction("field"), "Points")
     info["scalar_range"] = [points[0], points[-4]]
     info["unit_distance"] = elements(display, "ScalarOpacityUnitDistance")
-    process_ids = simple.ProcessIdScalars(Input=reader)
+    if hasattr(simple, "ProcessIdScalars"):  # ParaView 5
+        process_ids = simple.ProcessIdScalars(Input=reader)
+        array = "ProcessId"
+    else:  # ParaView 6 has only its successor, "Process Ids"
+        process_ids = simple.ProcessIds(Input=reader)
+        array = "PointProcessIds"
     process_ids.UpdatePipeline()
-    info["process_ids"] = list(process_ids.PointData["ProcessId"].GetRange())
+    info["process_ids"] = list(process_ids.PointData[array].GetRange())
     simple.Delete(process_ids)
     info.update(local_mapper_report(display, names))
     with open("%s.rank%d.json" % (args.report, rank), "w") as stream:
