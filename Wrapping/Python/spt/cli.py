@@ -261,7 +261,7 @@ def _bench(arguments: argparse.Namespace) -> None:
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)
-    print((arguments.output / "bench.md").read_text())
+    print((arguments.output / "bench.md").read_text(encoding="utf-8"))
     print(f"Results, plots and bench.md written to {arguments.output}")
 
 
@@ -294,7 +294,7 @@ def _convergence(arguments: argparse.Namespace) -> None:
 
     results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
                                   arguments.output)
-    print((arguments.output / "convergence.md").read_text())
+    print((arguments.output / "convergence.md").read_text(encoding="utf-8"))
     print(f"{len(results)} data sets; figures written to {arguments.output}")
 
 
@@ -305,7 +305,7 @@ def _pbvr(arguments: argparse.Namespace) -> None:
                                arguments.levels, arguments.size, arguments.output)
     _print_table(figures.PBVR_TABLE_HEADER, rows)
     print()
-    print((arguments.output / "pbvr_convergence.md").read_text())
+    print((arguments.output / "pbvr_convergence.md").read_text(encoding="utf-8"))
     print(f"Images, comparisons and pbvr_convergence.png written to {arguments.output}")
 
 
@@ -314,7 +314,7 @@ def _sampling(arguments: argparse.Namespace) -> None:
 
     result = sampling_figure(arguments.dataset, arguments.levels, arguments.size,
                              arguments.output)
-    print((arguments.output / "sampling.md").read_text())
+    print((arguments.output / "sampling.md").read_text(encoding="utf-8"))
     check = result["per_pass_check"]
     print(f"16 per pass against 1 per pass at {check['repetitions']} repetitions: "
           f"{check['speedup']:.2f}x faster, largest pixel difference "

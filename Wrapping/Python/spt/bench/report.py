@@ -339,5 +339,5 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     lines += large_section(results.get("large"))
     lines += parallel_section(results.get("parallel"))
     text = "\n".join(lines)
-    (output / "bench.md").write_text(text)
+    (output / "bench.md").write_text(text, encoding="utf-8")
     return text
