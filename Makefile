@@ -14,10 +14,12 @@
 #               (.flake8) and clang-format on every C++ file (.clang-format)
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
-# build), JOBS (parallel build jobs, default: number of cores).
+# build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
+# writes its images and tables, default out/demo).
 
 PREFIX ?= /usr/local
 BUILD ?= build
+DEMO_OUTPUT ?= $(CURDIR)/out/demo
 JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 # The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
@@ -81,7 +83,7 @@ install: build
 	$(SUDO) ldconfig
 
 demo: install
-	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(CURDIR)/out/demo
+	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
 
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) ctest --output-on-failure --timeout 1500
