@@ -27,6 +27,7 @@ enum Field
   Bounds,
   ScalarRange = Bounds + 6,
   MaxEdgeLength = ScalarRange + 2,
+  Tetrahedra,
   FirstSetting
 };
 
@@ -46,6 +47,7 @@ std::vector<double> Record(
   std::copy(piece.Bounds, piece.Bounds + 6, &record[Bounds]);
   std::copy(piece.ScalarRange, piece.ScalarRange + 2, &record[ScalarRange]);
   record[MaxEdgeLength] = piece.MaxEdgeLength;
+  record[Tetrahedra] = piece.Tetrahedra;
   for (size_t i = 0; i < settings.size(); ++i)
   {
     record[FirstSetting + i] = settings[i].second;
@@ -68,6 +70,7 @@ vtkSPTParallelReduction::Agreement Union(const std::vector<double>& records, siz
       continue;
     }
     agreement.AnyCells = true;
+    agreement.Tetrahedra += record[Tetrahedra];
     agreement.GlobalIds = agreement.GlobalIds && record[GlobalIds] != 0.0;
     agreement.MaxEdgeLength = std::max(agreement.MaxEdgeLength, record[MaxEdgeLength]);
     for (int i = 0; i < 8; ++i)

@@ -58,6 +58,7 @@ public:
     double Bounds[6] = { 0.0, -1.0, 0.0, -1.0, 0.0, -1.0 }; // finite points; min > max: none
     double ScalarRange[2] = { 0.0, -1.0 };
     double MaxEdgeLength = 0.0; // data units
+    double Tetrahedra = 0.0;    // in the piece
   };
 
   /// What the ranks agreed on.
@@ -69,6 +70,7 @@ public:
     double Bounds[6] = { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 };
     double ScalarRange[2] = { 0.0, 0.0 };
     double MaxEdgeLength = 0.0;
+    double Tetrahedra = 0.0; // of all pieces
   };
 
   /// Named values that must be equal on every rank (sampling settings, image size, ...).

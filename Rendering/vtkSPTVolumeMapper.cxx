@@ -63,11 +63,10 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
     internals.DepthKeys->GetGPUMemorySize());
 }
 
-std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>
-vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
+vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
   vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self)
 {
-  std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> shared;
+  SharedList shared;
   bool listed = false;
   vtkPropCollection* props = ren->GetViewProps();
   vtkCollectionSimpleIterator it;
@@ -78,8 +77,12 @@ vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
     auto* mapper = volume ? vtkSPTVolumeMapper::SafeDownCast(volume->GetMapper()) : nullptr;
     if (mapper && volume->GetVisibility() && volume->GetProperty())
     {
-      shared.emplace_back(volume, mapper);
-      listed = listed || volume == vol;
+      // A prop may draw its mapper through a vtkVolume of its own (ParaView's vtkPVLODVolume
+      // renders through its vtkLODProp3D's), with the prop's matrix and property: the volume
+      // drawn stands for the prop of its mapper.
+      const bool own = volume == vol || mapper == self;
+      shared.emplace_back(own ? vol : volume, mapper);
+      listed = listed || own;
     }
   }
   if (!listed)
@@ -93,7 +96,9 @@ bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper,
   vtkVolume* vol, RenderTarget& target, vtkSPTFrame::Volume& out)
 {
   vtkInternals& internals = *mapper->Internals;
-  // Input and transfer functions: rebuilt only when they changed.
+  // Input and transfer functions: rebuilt only when they changed. The mesh is normalized on
+  // its own (a mapper drawn in parallel before was normalized with the other ranks' pieces).
+  mapper->GetMesh()->SetSharedFrame(nullptr, nullptr);
   if (!mapper->BeginFrame(ren, target) || !mapper->PrepareMesh(vol, true) ||
     !mapper->ComputeMatrices(ren, vol, internals.Matrices))
   {
@@ -152,9 +157,9 @@ void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
   }
 }
 
-bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren,
-  const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
-  std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers)
+bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren, const SharedList& shared,
+  RenderTarget& target, std::vector<vtkSPTFrame::Volume>& volumes,
+  std::vector<vtkSPTVolumeMapper*>& mappers)
 {
   unsigned int cellIds = 0;
   for (const auto& member : shared)
@@ -260,7 +265,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const bool first = shared.front().second == this;
   if (first && this->Internals->Reduction->GetController())
   {
-    return this->Internals->RenderParallel(this, ren, vol, shared.size());
+    return this->Internals->RenderParallel(this, ren, shared);
   }
   RenderTarget target;
   std::vector<vtkSPTFrame::Volume> volumes;

@@ -40,9 +40,10 @@ public:
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
 
-  // The visible SPT volumes of the renderer, vol's first when it is not among them.
-  static std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>> SharedVolumes(
-    vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
+  // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order.
+  using SharedList = std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>;
+  // The renderer's; vol alone when it is not among them.
+  static SharedList SharedVolumes(vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
   // Bring a volume's mesh, table and matrices up to date and onto the GPU.
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, vtkSPTFrame::Volume& out);
@@ -52,8 +53,7 @@ public:
   // What the mappers of the frame report of its render.
   void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
     const vtkSPTFrame& frame) const;
-  static bool CollectVolumes(vtkRenderer* ren,
-    const std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>& shared, RenderTarget& target,
+  static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
@@ -79,22 +79,33 @@ public:
   // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
   int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 
-  // The parallel frame: this rank's piece, combined with the other ranks' by reductions.
-  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, size_t shared);
-  // This rank's settings and piece, for the ranks to agree on; prepares the mesh and ensemble.
+  // The parallel frame: this rank's pieces of the shared volumes, combined with the other
+  // ranks' by reductions.
+  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared);
+  // This rank's settings and piece of the frame's first volume, for the ranks to agree on;
+  // prepares the mesh and the ensemble.
   vtkSPTParallelReduction::Settings DescribePiece(vtkSPTVolumeMapper* self, vtkRenderer* ren,
     vtkVolume* vol, RenderTarget& target, size_t shared, vtkSPTParallelReduction::Piece& piece);
+  // The same for a later volume of the frame (the `index`th, from 0): what is its own.
+  static vtkSPTParallelReduction::Settings DescribeMember(vtkSPTVolumeMapper* mapper,
+    vtkRenderer* ren, vtkVolume* vol, size_t index, vtkSPTParallelReduction::Piece& piece);
+  // The mesh of one piece, prepared and described.
+  static void DescribeMesh(
+    vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkSPTParallelReduction::Piece& piece);
   // The piece in the ranks' shared frame, ready to draw; false when it has nothing to draw.
   bool PrepareSharedPiece(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, const vtkSPTParallelReduction::Agreement& agreement,
     vtkSPTFrame::Volume& out);
   // Plan the frame with the other ranks, draw it, combine the ranks' keys and sums, and
-  // resolve on rank 0.
+  // resolve on rank 0. `volumes` are this rank's pieces that have cells, of `owners`;
+  // `all` are the mappers of every shared volume.
   void DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+    const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all,
     const vtkSPTParallelReduction::Agreement& agreement);
   void DrawParallelFrame(vtkSPTVolumeMapper* self, const RenderTarget& target,
-    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings,
+    const std::vector<vtkSPTFrame::Volume>& volumes, const std::vector<vtkSPTVolumeMapper*>& owners,
+    const std::vector<vtkSPTVolumeMapper*>& all, vtkSPTFrame::Settings& settings,
     const FramePlan& plan);
   // Plan()'s plan, the same on every rank: rank 0's signature need not match the others', so
   // the ranks continue an accumulation only if all do, and draw the fewest repetitions any

@@ -18,9 +18,35 @@
 #include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
+#include <string>
 
 // The parallel render of vtkSPTVolumeMapper: this rank's piece, combined with the other
 // ranks' by reductions (vtkSPTParallelReduction, vtkSPTParallelFrame).
+
+void vtkSPTVolumeMapper::vtkInternals::DescribeMesh(
+  vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkSPTParallelReduction::Piece& piece)
+{
+  vtkTetrahedralMesh* mesh = mapper->GetMesh();
+  // An empty piece is not an error: the rank draws nothing and still takes part.
+  const bool prepared = piece.Ready && mapper->PrepareMesh(vol, true);
+  piece.HasCells = prepared;
+  piece.Ready = piece.Ready &&
+    (prepared || (mesh->GetLastError().empty() && mesh->GetNumberOfTetrahedra() == 0));
+  if (piece.HasCells)
+  {
+    int cellFlag = -1;
+    vtkDataArray* scalars = vtkAbstractMapper::GetScalars(mapper->GetDataSetInput(),
+      mapper->ScalarMode, mapper->ArrayAccessMode, mapper->ArrayId, mapper->ArrayName, cellFlag);
+    piece.ArrayName = scalars && scalars->GetName() ? scalars->GetName() : "";
+    piece.Components = scalars ? scalars->GetNumberOfComponents() : 0;
+    piece.CellScalars = mesh->GetCellScalars();
+    piece.GlobalIds = !mesh->GetRandomIds().empty();
+    std::copy(mesh->GetDataBounds(), mesh->GetDataBounds() + 6, piece.Bounds);
+    std::copy(mesh->GetDataScalarRange(), mesh->GetDataScalarRange() + 2, piece.ScalarRange);
+    piece.MaxEdgeLength = mesh->GetMaxEdgeLength() * mesh->GetScale();
+    piece.Tetrahedra = double(mesh->GetNumberOfTetrahedra());
+  }
+}
 
 vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiece(
   vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, RenderTarget& target, size_t shared,
@@ -29,25 +55,7 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
   piece.OpaqueScene = HasOpaqueScene(ren);
   piece.Ready = self->BeginFrame(ren, target) && vol->GetProperty() &&
     self->GetEnsemble()->Prepare(target.Window, target.Width, target.Height, self->SubpixelLevel);
-  vtkTetrahedralMesh* mesh = self->GetMesh();
-  // An empty piece is not an error: the rank draws nothing and still takes part.
-  const bool prepared = piece.Ready && self->PrepareMesh(vol, true);
-  piece.HasCells = prepared;
-  piece.Ready = piece.Ready &&
-    (prepared || (mesh->GetLastError().empty() && mesh->GetNumberOfTetrahedra() == 0));
-  if (piece.HasCells)
-  {
-    int cellFlag = -1;
-    vtkDataArray* scalars = vtkAbstractMapper::GetScalars(self->GetDataSetInput(), self->ScalarMode,
-      self->ArrayAccessMode, self->ArrayId, self->ArrayName, cellFlag);
-    piece.ArrayName = scalars && scalars->GetName() ? scalars->GetName() : "";
-    piece.Components = scalars ? scalars->GetNumberOfComponents() : 0;
-    piece.CellScalars = mesh->GetCellScalars();
-    piece.GlobalIds = !mesh->GetRandomIds().empty();
-    std::copy(mesh->GetDataBounds(), mesh->GetDataBounds() + 6, piece.Bounds);
-    std::copy(mesh->GetDataScalarRange(), mesh->GetDataScalarRange() + 2, piece.ScalarRange);
-    piece.MaxEdgeLength = mesh->GetMaxEdgeLength() * mesh->GetScale();
-  }
+  DescribeMesh(self, vol, piece);
   const bool atomics = target.Window && vtkSPTDepthKeyBuffer::IsSupported(target.Window);
   return { { "RepetitionLevel", self->RepetitionLevel },
     { "RepetitionsPerPass", self->RepetitionsPerPass }, { "SmallCellSize", self->SmallCellSize },
@@ -59,6 +67,20 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
     { "image width", target.Width }, { "image height", target.Height },
     { "SPT volumes in the renderer", double(shared) },
     { "image load/store (OpenGL 4.4)", atomics ? 1 : 0 } };
+}
+
+vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribeMember(
+  vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol, size_t index,
+  vtkSPTParallelReduction::Piece& piece)
+{
+  // The frame's sampling settings are the first volume's; a later volume brings its piece and
+  // its table.
+  RenderTarget own;
+  piece.Ready = mapper->BeginFrame(ren, own) && vol->GetProperty();
+  DescribeMesh(mapper, vol, piece);
+  const std::string volume = "SPT volume " + std::to_string(index + 1) + "'s ";
+  return { { volume + "PreIntegrationScalarResolution", mapper->PreIntegrationScalarResolution },
+    { volume + "PreIntegrationThicknessResolution", mapper->PreIntegrationThicknessResolution } };
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* self,
@@ -91,22 +113,34 @@ bool vtkSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* se
 }
 
 void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
-  vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, size_t shared)
+  vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared)
 {
   vtkSPTParallelReduction* reduction = this->Reduction;
   reduction->ResetBytes();
   const bool root = reduction->GetController()->GetLocalProcessId() == 0;
   RenderTarget target;
-  vtkSPTParallelReduction::Piece piece;
-  const auto settings = this->DescribePiece(self, ren, vol, target, shared, piece);
-  vtkSPTParallelReduction::Agreement agreement;
+  // The ranks agree on the first volume, whose settings include the number of volumes, then
+  // on each later one: every rank makes the same collective calls, or stops at the same one.
+  std::vector<vtkSPTParallelReduction::Piece> pieces(shared.size());
+  std::vector<vtkSPTParallelReduction::Agreement> agreements(shared.size());
   std::string error;
-  bool agreed = reduction->Agree(settings, piece, agreement, error);
-  if (agreed && (shared > 1 || settings.back().second == 0.0))
+  bool agreed = true;
+  for (size_t v = 0; v < shared.size() && agreed; ++v)
   {
-    agreed = false;
-    error = shared > 1 ? "Several SPT volumes in one renderer are not combined across ranks"
-                       : "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
+    vtkVolume* vol = shared[v].first;
+    const auto settings = v == 0
+      ? this->DescribePiece(self, ren, vol, target, shared.size(), pieces[0])
+      : DescribeMember(shared[v].second, ren, vol, v, pieces[v]);
+    agreed = reduction->Agree(settings, pieces[v], agreements[v], error);
+    if (!agreed && v > 0)
+    {
+      error = "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error;
+    }
+    else if (agreed && v == 0 && settings.back().second == 0.0)
+    {
+      agreed = false;
+      error = "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
+    }
   }
   if (!agreed)
   {
@@ -118,20 +152,43 @@ void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
     return;
   }
   this->ParallelError.clear();
-  if (!agreement.GlobalIds && agreement.AnyCells && root && !this->WarnedNoGlobalIds)
+  // What the frame draws: each rank's pieces that have cells. The volumes' cells are numbered
+  // one after another by their counts over all ranks, as one process numbers the whole.
+  vtkSPTParallelReduction::Agreement frame = agreements[0];
+  std::vector<vtkSPTFrame::Volume> volumes;
+  std::vector<vtkSPTVolumeMapper*> owners;
+  std::vector<vtkSPTVolumeMapper*> all;
+  double cellIds = 0.0;
+  for (size_t v = 0; v < shared.size(); ++v)
+  {
+    vtkSPTVolumeMapper* mapper = shared[v].second;
+    all.push_back(mapper);
+    if (agreements[v].AnyCells)
+    {
+      frame.GlobalIds =
+        frame.AnyCells ? frame.GlobalIds && agreements[v].GlobalIds : agreements[v].GlobalIds;
+      frame.AnyCells = true;
+    }
+    // After the agreement, a rank whose piece fails still takes part, drawing nothing of it.
+    vtkSPTFrame::Volume volume;
+    if (pieces[v].HasCells &&
+      mapper->Internals->PrepareSharedPiece(
+        mapper, ren, shared[v].first, target, agreements[v], volume))
+    {
+      volume.CellIdOffset = static_cast<unsigned int>(cellIds);
+      volumes.push_back(volume);
+      owners.push_back(mapper);
+    }
+    cellIds += agreements[v].Tetrahedra;
+  }
+  if (!frame.GlobalIds && frame.AnyCells && root && !this->WarnedNoGlobalIds)
   {
     vtkWarningWithObjectMacro(self,
       "The pieces have no global cell ids (cell data GlobalIds): the random numbers follow "
       "each rank's own cell numbering, so the image is not that of one process.");
     this->WarnedNoGlobalIds = true;
   }
-  std::vector<vtkSPTFrame::Volume> volumes(1);
-  // After the agreement, a rank whose piece fails still takes part, drawing nothing.
-  if (!piece.HasCells || !this->PrepareSharedPiece(self, ren, vol, target, agreement, volumes[0]))
-  {
-    volumes.clear();
-  }
-  this->DrawParallel(self, ren, vol, target, volumes, agreement);
+  this->DrawParallel(self, ren, shared.front().first, target, volumes, owners, all, frame);
 }
 
 vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::PlanParallel(
@@ -161,6 +218,7 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
 
 void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren,
   vtkVolume* vol, const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all,
   const vtkSPTParallelReduction::Agreement& agreement)
 {
   vtkOpenGLClearErrorMacro();
@@ -175,17 +233,18 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
   // Every rank has the same ensemble size, so the same repetitions per traversal.
   const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
-  const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, { self }, target));
+  const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, all, target));
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR; // one repetition per group, with keys
   }
-  this->DrawParallelFrame(self, target, volumes, settings, plan);
+  this->DrawParallelFrame(self, target, volumes, owners, all, settings, plan);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
 void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
   const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all,
   vtkSPTFrame::Settings& settings, const FramePlan& plan)
 {
   vtkSPTParallelReduction* reduction = this->Reduction;
@@ -221,7 +280,14 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   // A failure on any rank is known to all at a shared decision: then no rank resolves.
   const bool ok = drawn >= 0 && frame.Finish();
   const double seconds = self->StopTiming();
-  self->LastPointCellCount = volumes.empty() ? 0 : frame.GetPointCellCount(0);
+  for (vtkSPTVolumeMapper* mapper : all)
+  {
+    mapper->LastPointCellCount = 0;
+  }
+  for (size_t v = 0; v < owners.size(); ++v)
+  {
+    owners[v]->LastPointCellCount = frame.GetPointCellCount(v);
+  }
   ostate->PopFramebufferBindings();
   if (!ok)
   {
@@ -230,7 +296,11 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   }
   self->AddRepetitions(drawn, plan.PerPass, seconds);
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
-  self->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+  for (vtkSPTVolumeMapper* mapper : all)
+  {
+    mapper->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+    mapper->LastRepetitionCount = self->GetAccumulatedRepetitions();
+  }
   if (reduction->GetController()->GetLocalProcessId() == 0)
   {
     ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),

@@ -2,6 +2,8 @@
 every rank makes the default mesh, keeps the cells whose id modulo the number of ranks is its
 rank (interleaved pieces, each spanning the whole mesh), numbers them by their ids in the whole
 (GlobalIds), and renders its piece with the mapper's controller set. Rank 0 writes the image.
+With ``--second-volume``, a second SPT volume in the same renderer shows the mesh once more,
+moved into the first by its vtkVolume's position, each rank with its interleaved piece of it.
 
 Run by test_spt_mpi.py under mpiexec; ``--serial`` renders the whole mesh with no controller.
 """
@@ -21,7 +23,10 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--serial", action="store_true", help="no MPI, no controller")
     parser.add_argument("--other-array-on", type=int, default=-1,
-                        help="this rank renders an array of another name")
+                        help="this rank renders an array of another name (in the second "
+                             "volume with --second-volume)")
+    parser.add_argument("--second-volume", action="store_true",
+                        help="a second SPT volume: the mesh moved by SECOND_OFFSET")
     parser.add_argument("--other-seed-on", type=int, default=-1,
                         help="this rank renders with seed 7")
     parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
@@ -49,6 +54,19 @@ def controller_or_none(serial: bool):
     controller.Initialize()
     vtkMultiProcessController.SetGlobalController(controller)
     return controller
+
+
+#: Where the second volume's copy of the mesh goes, as fractions of the mesh's extent.
+SECOND_OFFSET = (0.35, 0.2, 0.1)
+
+
+def second_offset(bounds):
+    return tuple(f * (bounds[2 * a + 1] - bounds[2 * a]) for a, f in enumerate(SECOND_OFFSET))
+
+
+def union_bounds(bounds):
+    offset = second_offset(bounds)
+    return [bounds[i] + (offset[i // 2] if i % 2 else 0.0) for i in range(6)]
 
 
 def black_sphere(bounds):
@@ -82,31 +100,45 @@ def main() -> None:
     ranks = controller.GetNumberOfProcesses() if controller else 1
     scene = scenes.scene("default")
     grid = scene.grid
-    piece = grid
-    if controller is not None:
+
+    def piece_of(grid, renamed):
+        if controller is None:
+            return grid
         piece = meshes.interleaved_piece(grid, rank, ranks, empty=rank == arguments.empty_rank)
-        if rank == arguments.other_array_on:
+        if renamed and rank == arguments.other_array_on:
             piece.GetPointData().GetScalars().SetName("another name")
+        return piece
+
     seed = 7 if rank == arguments.other_seed_on else arguments.seed
-    mapper = render.spt_mapper(arguments.repetitions, seed=seed,
-                               target_error=arguments.target_error)
-    mapper.SetProgressiveRefinement(arguments.progressive)
-    if arguments.update_rate > 0.0:
-        mapper.SetAutoAdjustRepetitions(True)
-    if controller is not None:
-        mapper.SetController(controller)
     window, renderer = render.make_window(arguments.size, arguments.size)
-    render.add_volume(renderer, piece, scene.property, mapper)
+    mappers, pieces = [], []
+    for second in ((False, True) if arguments.second_volume else (False,)):
+        mapper = render.spt_mapper(arguments.repetitions, seed=seed,
+                                   target_error=arguments.target_error)
+        mapper.SetProgressiveRefinement(arguments.progressive)
+        if arguments.update_rate > 0.0:
+            mapper.SetAutoAdjustRepetitions(True)
+        if controller is not None:
+            mapper.SetController(controller)
+        piece = piece_of(grid, renamed=second == arguments.second_volume)
+        volume = render.add_volume(renderer, piece, scene.property, mapper)
+        if second:
+            volume.SetPosition(*second_offset(grid.GetBounds()))
+        mappers.append(mapper)
+        pieces.append(piece)
+    mapper, piece = mappers[0], pieces[0]
     if rank == arguments.opaque_on:
         renderer.AddActor(black_sphere(grid.GetBounds()))
-    render.place_camera(renderer, grid.GetBounds(), scene.view)
+    bounds = union_bounds(grid.GetBounds()) if arguments.second_volume else grid.GetBounds()
+    render.place_camera(renderer, bounds, scene.view)
     if arguments.update_rate > 0.0:
         window.SetDesiredUpdateRate(arguments.update_rate)
     images, counts, estimates = [], [], []
     for _ in range(arguments.frames):
         window.Render()
         images.append(render.read_rgba(window))
-        counts.append(mapper.GetLastRepetitionCount())
+        counts.append([m.GetLastRepetitionCount() for m in mappers]
+                      if arguments.second_volume else mapper.GetLastRepetitionCount())
         estimates.append(mapper.GetEstimatedError())
     if rank == 0:
         np.save(arguments.output, np.stack(images))

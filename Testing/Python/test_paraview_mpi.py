@@ -260,6 +260,32 @@ def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, t
     assert measures["covered_pixels"] > 0.1 and measures["max_levels"] > 8
 
 
+def test_spt_two_representations_in_one_view(pieces, preload, tmp_path):
+    """Two "Volume (SPT)" representations in one view, the data and a second reader's copy
+    moved into it by its Position. In one process, and on two ranks that each draw their pieces
+    as read, the two volumes share one set of buffers, so that they are composited exactly
+    where they overlap: the image does not depend on which representation comes first (drawn
+    one after the other, the overlap would be far beyond the noise), and the 2-rank image is
+    the 1-rank image."""
+    extra = ("--second-offset", "0.0,0.35,0.25")
+    runs = {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {},
+            "one_rank_second_first": dict(extra=extra + ("--second-before",)),
+            "one_rank_seed1": dict(seed=1)}
+    rendered = {}
+    for name, options in runs.items():
+        output = tmp_path / f"two_volumes_{name}.png"
+        options.setdefault("extra", extra)
+        rendered[name] = render(pieces, output, **options)
+        pvs.keep(output, f"mpi_two_volumes_{name}.png")
+        assert "ERR" not in rendered[name][1]["stderr"], rendered[name][1]["stderr"][-4000:]
+    one, _ = rendered["one_rank"]
+    two, report = rendered["two_ranks"]
+    assert report["tetrahedra"] == 36000
+    assert levels(one, two)["max_levels"] <= 1
+    swapped = compare(one, rendered["one_rank_second_first"][0], rendered["one_rank_seed1"][0])
+    assert within_noise(swapped), swapped
+
+
 @pytest.mark.parametrize("method", [HAVS, PBVR])
 def test_data_is_read_distributed_and_redistributed(request, method):
     """Each rank reads one piece; for rendering, ParaView moves cells so that rank 0 holds a

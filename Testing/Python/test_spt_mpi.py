@@ -16,6 +16,10 @@ With an error target (TargetError), rank 0 estimates the noise of the whole imag
 halves' global sums after each step, and every rank follows it: the ranks draw the repetitions
 one process draws, and the 2-rank image, repetition count and estimate are the 1-rank ones.
 Progressive refinement adds to the whole image, and the time budget is agreed by the ranks.
+
+Two SPT volumes in one renderer (the mesh, and a copy moved into it by its vtkVolume's
+position) share one set of buffers across the ranks too: the 2-rank image is that of one
+process, and close to the exact reference of the union.
 """
 
 import json
@@ -28,8 +32,9 @@ import sys
 import numpy as np
 import pytest
 
+import mpi_spt_worker
 import scene_support
-from spt import metrics
+from spt import metrics, render, scenes
 
 WORKER = pathlib.Path(__file__).resolve().parent / "mpi_spt_worker.py"
 SIZE = 128
@@ -242,5 +247,59 @@ def test_target_error_with_an_empty_piece(have_display, tmp_path):
 def test_target_error_ranks_that_differ(have_display, tmp_path):
     images, _, errors = run(tmp_path / "target-differ.npy", 2, "--other-array-on", "1",
                             "--target-error", str(TARGET), repetitions=TARGET_CAP)
+    assert errors.count("ERR") == 1, errors
+    assert images[..., 3].max() == 0.0
+
+
+@pytest.fixture(scope="module")
+def two_volume_renders(have_display, tmp_path_factory):
+    directory = tmp_path_factory.mktemp("spt_mpi_two_volumes")
+    return {ranks: run(directory / f"two{ranks}.npy", ranks, "--second-volume")
+            for ranks in (0, 2)}
+
+
+def union_reference():
+    """The exact reference of both volumes: the mesh and its moved copy as one grid."""
+    from vtkmodules.vtkCommonTransforms import vtkTransform
+    from vtkmodules.vtkFiltersCore import vtkAppendFilter
+    from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
+
+    scene = scenes.scene("default")
+    transform = vtkTransform()
+    transform.Translate(*mpi_spt_worker.second_offset(scene.grid.GetBounds()))
+    moved = vtkTransformFilter()
+    moved.SetInputData(scene.grid)
+    moved.SetTransform(transform)
+    union = vtkAppendFilter()
+    union.AddInputData(scene.grid)
+    union.AddInputConnection(moved.GetOutputPort())
+    union.Update()
+    return render.reference(union.GetOutput(), scene.property, scene.view, (SIZE, SIZE)).image
+
+
+def test_two_volumes_on_two_ranks_equal_one_process(two_volume_renders):
+    serial, serial_report, _ = two_volume_renders[0]
+    two, report, errors = two_volume_renders[2]
+    assert "ERR" not in errors, errors
+    assert report["repetitions"][0] == serial_report["repetitions"][0] == [REPETITIONS] * 2
+    assert largest_difference(serial[0], two[0]) <= 1.0
+    assert largest_difference(two[0], two[1]) == 0.0
+
+
+def test_two_volumes_on_two_ranks_are_the_union(two_volume_renders):
+    """Both volumes, composited where they overlap: as close to the union's reference as one
+    volume is to its own (an image missing a volume or a piece is off by more than 0.02)."""
+    two, _, _ = two_volume_renders[2]
+    reference = union_reference()
+    assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
+    assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
+
+
+def test_a_later_volume_that_differs_gives_one_error(have_display, tmp_path):
+    images, _, errors = run(tmp_path / "differ2.npy", 2, "--second-volume",
+                            "--other-array-on", "1")
+    message = ("SPT volume 2 of the renderer: Rank 1 renders the point array 'another name' of "
+               "1 component(s), but rank 0 renders the point array 'field'")
+    assert errors.count(message) == 1, errors
     assert errors.count("ERR") == 1, errors
     assert images[..., 3].max() == 0.0

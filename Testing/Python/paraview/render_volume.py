@@ -79,6 +79,11 @@ def parse_arguments(argv):
                         "unit distance to use, for a part of that data set")
     parser.add_argument("--transparent", action="store_true",
                         help="RGBA over a transparent background instead of RGB over black")
+    parser.add_argument("--second-offset", metavar="FX,FY,FZ",
+                        help="show the data a second time, in a second representation of the "
+                        "same kind, moved by these fractions of its extent (its Position)")
+    parser.add_argument("--second-before", action="store_true",
+                        help="show the second representation before the first")
     parser.add_argument("--plain", help="also write this PNG: the same scene rendered by a "
                         "plain VTK pipeline (pvpython on its own only)")
     return parser.parse_args(argv)
@@ -187,6 +192,18 @@ def show_volume(reader, view, args, like):
         set_setting(display, name, value)
     display.UseDataPartitions = int(args.use_data_partitions)
     return display, defaults
+
+
+def show_second(view, args, like):
+    """The data once more, from a second reader, in a second representation of the same kind
+    and settings, moved into the first by its own transform (the representation's Position,
+    its vtkVolume's)."""
+    reader = simple.LegacyVTKReader(FileNames=[args.data])
+    bounds = reader.GetDataInformation().GetBounds()
+    fractions = [float(f) for f in args.second_offset.split(",")]
+    display, _ = show_volume(reader, view, args, like)
+    display.Position = [f * (bounds[2 * a + 1] - bounds[2 * a]) for a, f in enumerate(fractions)]
+    return reader, display
 
 
 def look_along(view, axis):
@@ -336,7 +353,10 @@ def main(argv):
     if args.like:
         with open(args.like) as stream:
             like = json.load(stream)
+    second = show_second(view, args, like) if args.second_before else None
     display, defaults = show_volume(reader, view, args, like)
+    if args.second_offset and not args.second_before:
+        second = show_second(view, args, like)
     if like:
         set_camera(view, like["camera"])
     else:
@@ -349,7 +369,11 @@ def main(argv):
 
     # Leave nothing behind for the exit: the view goes before the data.
     simple.Hide(reader, view)
+    if second:
+        simple.Hide(second[0], view)
     simple.Delete(view)
+    if second:
+        simple.Delete(second[0])
     simple.Delete(reader)
     if connected:
         simple.Disconnect()
