@@ -62,13 +62,15 @@ private:
   std::vector<vtkTextureObject*> Textures;
 };
 
-// The repetitions to add to each half for the noise to fall from `estimate` to `target`, if it
-// falls as one over the square root of the repetitions (stratified sampling does better, so
-// this rarely falls short): at least one, at most 16 times what each half holds.
+// The repetitions to add to each half for the noise to fall from `estimate` to a quarter below
+// `target` in variance, if it falls as one over the square root of the repetitions: at least
+// one, at most 16 times what each half holds. A step costs a traversal pair whatever its
+// repetitions (up to a group), and the estimate is itself noisy: aiming at the target exactly
+// falls short about half the time, and a step of a few repetitions more costs another pair.
 int RepetitionsToTarget(int half, double estimate, double target)
 {
   const double ratio = estimate / target;
-  const double more = std::ceil(half * (ratio * ratio - 1.0));
+  const double more = std::ceil(half * (1.25 * ratio * ratio - 1.0));
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
 }
 }
@@ -448,10 +450,10 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
     return 0; // the image meets the target (or shows nothing)
   }
   int drawn = 0;
-  // The first estimate comes from a few repetitions per half: a traversal of a whole group
-  // costs little more than one of two repetitions, and the estimate from one per half is
-  // itself noisy. After it, each step aims at the target.
-  int half = state.HalfCount == 0 ? std::max(1, std::min({ perPass, count, 256 }) / 32)
+  // The first estimate comes from a sixteenth of a group per half (16 + 16 of 256): a traversal
+  // of a whole group costs little more than one of a few repetitions, and the estimate from
+  // one per half is itself noisy. After it, each step aims beyond the target.
+  int half = state.HalfCount == 0 ? std::max(1, std::min({ perPass, count, 256 }) / 16)
                                   : RepetitionsToTarget(state.HalfCount, state.Estimate, target);
   while (count - drawn >= 2)
   {

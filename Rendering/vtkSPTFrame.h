@@ -128,10 +128,10 @@ public:
 
   /**
    * The steps of an error target, whoever draws them (one process, or ranks that share each
-   * estimate): the first draws a thirty-second of a group per half (at least one), each later
-   * one as many as the estimate predicts for the target, until the estimate meets it or count
-   * is drawn. Where only one repetition fits, it is drawn alone and the halves are no longer
-   * balanced (no estimate). Returns how many were drawn, or -1 on failure.
+   * estimate): the first draws a sixteenth of a group per half (at least one), each later
+   * one as many as the estimate predicts for a quarter below the target in variance, until the
+   * estimate meets it or count is drawn. Where only one repetition fits, it is drawn alone and the
+   * halves are no longer balanced (no estimate). Returns how many were drawn, or -1 on failure.
    */
   static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
     bool coverage, double target, TargetState& state);

@@ -182,15 +182,16 @@ public:
    * footprint) at which a render stops adding repetitions; RepetitionLevel becomes a cap.
    * The noise is estimated from the image itself, never from a reference: the repetitions are
    * drawn as two independent halves of equal size, and the mean of both has a quarter of the
-   * variance of their difference. A render first draws one thirty-second of a group per half
-   * (8 + 8 repetitions with 256 per traversal, 1 + 1 with 32 or fewer: a group costs little
+   * variance of their difference. A render first draws one sixteenth of a group per half
+   * (16 + 16 repetitions with 256 per traversal, 1 + 1 with 16 or fewer: a group costs little
    * more than a few repetitions, and an estimate from one per half is itself noisy), then as
-   * many as the estimate predicts (the noise falling as one over the square root of the
-   * repetitions),
-   * until the estimate is at most the target, RepetitionLevel is reached or, with
-   * AutoAdjustRepetitions, the time allotted is spent. With ProgressiveRefinement, a render
-   * of an image that already meets the target adds nothing. 0 (the default) turns it off.
-   * Range 0 to 1; 0.005 is about two levels of an 8-bit image.
+   * many as the estimate predicts for a noise a quarter below the target in variance (the
+   * noise falling as one over the square root of the repetitions; each step costs a traversal
+   * pair, so a step that falls just short is the costlier mistake), until the estimate is at most
+   * the target, RepetitionLevel is reached or, with AutoAdjustRepetitions, the time allotted is
+   * spent. With ProgressiveRefinement, a render of an image that already meets the target adds
+   * nothing. 0 (the default) turns it off. Range 0 to 1; 0.005 is about two levels of an 8-bit
+   * image.
    */
   vtkSetClampMacro(TargetError, double, 0.0, 1.0);
   vtkGetMacro(TargetError, double);
