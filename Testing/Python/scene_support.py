@@ -24,6 +24,21 @@ def reference(name: str, size: int):
     return render.reference(s.grid, s.property, s.view, (size, size)).image
 
 
+def with_moved_copy(grid, offset):
+    """``grid`` and a copy of it moved by ``offset``, appended into one grid: the union that
+    two volumes of ``grid`` show when the second's vtkVolume is moved by ``offset``."""
+    transform = vtk.vtkTransform()
+    transform.Translate(*offset)
+    moved = vtk.vtkTransformFilter()
+    moved.SetInputData(grid)
+    moved.SetTransform(transform)
+    union = vtk.vtkAppendFilter()
+    union.AddInputData(grid)
+    union.AddInputConnection(moved.GetOutputPort())
+    union.Update()
+    return union.GetOutput()
+
+
 def window_with(mapper, size: int, name: str = "default"):
     """A window showing the named scene through ``mapper``, with a property of its own (the
     tests change it)."""

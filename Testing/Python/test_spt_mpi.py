@@ -260,21 +260,10 @@ def two_volume_renders(have_display, tmp_path_factory):
 
 def union_reference():
     """The exact reference of both volumes: the mesh and its moved copy as one grid."""
-    from vtkmodules.vtkCommonTransforms import vtkTransform
-    from vtkmodules.vtkFiltersCore import vtkAppendFilter
-    from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
-
     scene = scenes.scene("default")
-    transform = vtkTransform()
-    transform.Translate(*mpi_spt_worker.second_offset(scene.grid.GetBounds()))
-    moved = vtkTransformFilter()
-    moved.SetInputData(scene.grid)
-    moved.SetTransform(transform)
-    union = vtkAppendFilter()
-    union.AddInputData(scene.grid)
-    union.AddInputConnection(moved.GetOutputPort())
-    union.Update()
-    return render.reference(union.GetOutput(), scene.property, scene.view, (SIZE, SIZE)).image
+    union = scene_support.with_moved_copy(
+        scene.grid, mpi_spt_worker.second_offset(scene.grid.GetBounds()))
+    return render.reference(union, scene.property, scene.view, (SIZE, SIZE)).image
 
 
 def test_two_volumes_on_two_ranks_equal_one_process(two_volume_renders):

@@ -16,10 +16,8 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
+import scene_support
 from spt import metrics, render, scenes, statistics
-from vtkmodules.vtkCommonTransforms import vtkTransform
-from vtkmodules.vtkFiltersCore import vtkAppendFilter
-from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
 from vtkmodules.vtkRenderingCore import vtkVolume, vtkVolumeProperty
 
 from conftest import load_or_skip
@@ -44,16 +42,7 @@ def _offset(grid):
 @lru_cache(maxsize=None)
 def _union(name):
     s = _scene(name)
-    transform = vtkTransform()
-    transform.Translate(*_offset(s.grid))
-    moved = vtkTransformFilter()
-    moved.SetInputData(s.grid)
-    moved.SetTransform(transform)
-    append = vtkAppendFilter()
-    append.AddInputData(s.grid)
-    append.AddInputConnection(moved.GetOutputPort())
-    append.Update()
-    return append.GetOutput()
+    return scene_support.with_moved_copy(s.grid, _offset(s.grid))
 
 
 @lru_cache(maxsize=None)
