@@ -260,7 +260,7 @@ def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, t
     assert measures["covered_pixels"] > 0.1 and measures["max_levels"] > 8
 
 
-def test_spt_two_representations_in_one_view(pieces, preload, tmp_path):
+def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tmp_path):
     """Two "Volume (SPT)" representations in one view, the data and a second reader's copy
     moved into it by its Position. In one process, and on two ranks that each draw their pieces
     as read, the two volumes share one set of buffers, so that they are composited exactly
