@@ -15,12 +15,15 @@
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
-# writes its images and tables, default out/demo).
+# writes its images and tables, default out/demo), TESTS (a regular expression: test,
+# test-egl and test-debian13 run only the tests whose names match, e.g. TESTS=paraview_mpi).
 
 PREFIX ?= /usr/local
 BUILD ?= build
 DEMO_OUTPUT ?= $(CURDIR)/out/demo
 JOBS ?= $(shell nproc)
+TESTS ?=
+CTEST = ctest --output-on-failure --timeout 1500 $(if $(TESTS),-R '$(TESTS)')
 PYTHON := /usr/bin/python3
 # The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
 # is installed (a recursive variable: evaluated when a recipe runs, after deps); where ParaView
@@ -86,14 +89,14 @@ demo: install
 	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
 
 test: install
-	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) ctest --output-on-failure --timeout 1500
+	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
 
 # The whole suite once more without X: no Xvfb and no DISPLAY, so that every window is the EGL
 # window (vtkSPTEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
 # windows are GLX only) and the comparison of an EGL image with an X one.
 test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
-	  ctest --output-on-failure --timeout 1500; status=$$?; \
+	  $(CTEST); status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
 
 # `make test` on Debian 13 in a root file system made with debootstrap (needs root and
@@ -102,6 +105,7 @@ test-egl: install
 DEBIAN13_CACHE ?= /var/cache/spt/debian13
 test-debian13:
 	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
+	  SPT_DEBIAN_TARGET="test$(if $(TESTS), TESTS='$(TESTS)')" \
 	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root trixie
 
 # The same on Debian unstable (sid), whose ParaView and VTK are the newest Debian has (ParaView

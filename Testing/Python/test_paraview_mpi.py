@@ -262,11 +262,11 @@ def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, t
 
 def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tmp_path):
     """Two "Volume (SPT)" representations in one view, the data and a second reader's copy
-    moved into it by its Position. In one process, and on two ranks that each draw their pieces
-    as read, the two volumes share one set of buffers, so that they are composited exactly
-    where they overlap: the image does not depend on which representation comes first (drawn
-    one after the other, the overlap would be far beyond the noise), and the 2-rank image is
-    the 1-rank image."""
+    moved into it by its Translation (Position before ParaView 5.13). In one process, and on
+    two ranks that each draw their pieces as read, the two volumes share one set of buffers, so
+    that they are composited exactly where they overlap: the image does not depend on which
+    representation comes first (drawn one after the other, the overlap would be far beyond the
+    noise), and the 2-rank image is the 1-rank image."""
     extra = ("--second-offset", "0.0,0.35,0.25")
     runs = {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {},
             "one_rank_second_first": dict(extra=extra + ("--second-before",)),

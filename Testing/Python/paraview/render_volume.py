@@ -81,7 +81,7 @@ def parse_arguments(argv):
                         help="RGBA over a transparent background instead of RGB over black")
     parser.add_argument("--second-offset", metavar="FX,FY,FZ",
                         help="show the data a second time, in a second representation of the "
-                        "same kind, moved by these fractions of its extent (its Position)")
+                        "same kind, moved by these fractions of its extent (its Translation)")
     parser.add_argument("--second-before", action="store_true",
                         help="show the second representation before the first")
     parser.add_argument("--plain", help="also write this PNG: the same scene rendered by a "
@@ -196,13 +196,15 @@ def show_volume(reader, view, args, like):
 
 def show_second(view, args, like):
     """The data once more, from a second reader, in a second representation of the same kind
-    and settings, moved into the first by its own transform (the representation's Position,
-    its vtkVolume's)."""
+    and settings, moved into the first by its own transform (the representation's Translation,
+    named Position before ParaView 5.13; its vtkVolume's)."""
     reader = simple.LegacyVTKReader(FileNames=[args.data])
     bounds = reader.GetDataInformation().GetBounds()
     fractions = [float(f) for f in args.second_offset.split(",")]
     display, _ = show_volume(reader, view, args, like)
-    display.Position = [f * (bounds[2 * a + 1] - bounds[2 * a]) for a, f in enumerate(fractions)]
+    offset = [f * (bounds[2 * a + 1] - bounds[2 * a]) for a, f in enumerate(fractions)]
+    name = "Translation" if "Translation" in display.ListProperties() else "Position"
+    setattr(display, name, offset)
     return reader, display
 
 
