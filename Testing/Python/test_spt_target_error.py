@@ -41,7 +41,7 @@ def _reference(name):
 #: Repetitions per traversal for the tests of the estimate. With 32, the first estimate comes
 #: from one repetition per half and each later step aims at the target, so a render stops
 #: near it, above the 8-bit read-back's floor, where the error measured against the reference
-#: is the noise. (The default group of 256 starts from 8 per half, which on these small
+#: is the noise. (The default group of 256 starts from 16 per half, which on these small
 #: images can land below the floor at once: test_default_group_stops_at_or_below_the_target.)
 PER_PASS = 32
 
@@ -87,7 +87,7 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
 def test_default_group_stops_at_or_below_the_target(name, have_display):
-    """With the default 256 repetitions per traversal the first estimate comes from 8 per
+    """With the default 256 repetitions per traversal the first estimate comes from 16 per
     half: the render stops at the first estimate that meets the target, and its error against
     the reference (the 8-bit read-back's floor included) meets it too."""
     s = _scene(name)
