@@ -17,6 +17,7 @@
 #include "vtkEnsembleFootprintFS.h"
 #include "vtkEnsembleNoiseFS.h"
 #include "vtkEnsembleResolveFS.h"
+#include "vtkEnsembleSceneFS.h"
 
 #include <cmath>
 #include <string>
@@ -422,6 +423,73 @@ void vtkEnsembleBuffer::MarkFootprint(int x, int y)
   this->Sum->Deactivate();
 }
 
+std::vector<unsigned char> vtkEnsembleBuffer::ReadSceneColor(int x, int y) const
+{
+  std::vector<unsigned char> color(size_t(this->Width) * size_t(this->Height) * 4);
+  if (!this->Context)
+  {
+    return color;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  ostate->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, this->Width, this->Height, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  return color;
+}
+
+bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>& color)
+{
+  if (color.size() != size_t(this->Width) * size_t(this->Height) * 4)
+  {
+    return false;
+  }
+  if (!this->SceneQuad)
+  {
+    this->SceneQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleSceneFS, ""));
+  }
+  if (!this->SceneQuad->Program)
+  {
+    return false;
+  }
+  if (this->SceneColor->GetWidth() != static_cast<unsigned int>(this->Width) ||
+    this->SceneColor->GetHeight() != static_cast<unsigned int>(this->Height) ||
+    !this->SceneColor->GetHandle())
+  {
+    vtkSceneDepthTexture::UseNearestTexels(this->SceneColor, this->Context);
+    if (!this->SceneColor->Allocate2D(this->Width, this->Height, 4, VTK_UNSIGNED_CHAR))
+    {
+      return false;
+    }
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->SceneColor->Activate();
+  ostate->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexSubImage2D(this->SceneColor->GetTarget(), 0, 0, 0, this->Width, this->Height, GL_RGBA,
+    GL_UNSIGNED_BYTE, color.data());
+  vtkTextureObject* depth = this->SceneDepth->GetTexture();
+  depth->Activate();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  this->Context->GetShaderCache()->ReadyShaderProgram(this->SceneQuad->Program);
+  this->SceneQuad->Program->SetUniformi("sceneColorTexture", this->SceneColor->GetTextureUnit());
+  this->SceneQuad->Program->SetUniformi("sceneDepthTexture", depth->GetTextureUnit());
+  this->SceneQuad->Render();
+  depth->Deactivate();
+  this->SceneColor->Deactivate();
+  return true;
+}
+
 size_t vtkEnsembleBuffer::GetGPUMemorySize() const
 {
   if (!this->Context)
@@ -431,17 +499,19 @@ size_t vtkEnsembleBuffer::GetGPUMemorySize() const
   const size_t samples = size_t(this->GetPassWidth()) * size_t(this->GetPassHeight());
   const size_t pixels = size_t(this->Width) * size_t(this->Height);
   // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel,
-  // and the RGBA32F coverage when it is used.
+  // and the RGBA32F coverage when it is used; the composited scene's RGBA8 when it is drawn.
   const size_t coverage = this->Coverage->GetHandle() ? 16 : 0;
   const size_t secondHalf = this->SecondHalf->GetHandle() ? 16 : 0;
   const size_t noise = this->Noise->GetHandle() ? 8 : 0;
-  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise);
+  const size_t sceneColor = this->SceneColor->GetHandle() ? 4 : 0;
+  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise + sceneColor);
 }
 
 void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Accumulate.reset();
   this->Footprint.reset();
+  this->SceneQuad.reset();
   this->AccumulateBoth.reset();
   this->Mean.reset();
   this->NoiseQuad.reset();
@@ -454,7 +524,7 @@ void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
     framebuffer->ReleaseGraphicsResources(window);
   }
   for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
-         this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get() })
+         this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get(), this->SceneColor.Get() })
   {
     texture->ReleaseGraphicsResources(window);
   }

@@ -112,6 +112,19 @@ public:
   void Resolve(int x, int y, int numberOfPasses, bool exactCoverage = false);
 
   /**
+   * Read the color that the scene drew before the volume, in the viewport at (x, y) of what is
+   * bound for reading: RGBA bytes, one pixel after another from the bottom row up.
+   */
+  std::vector<unsigned char> ReadSceneColor(int x, int y) const;
+
+  /**
+   * Replace the opaque scene bound for drawing, in the viewport at (x, y), by `color` (as
+   * ReadSceneColor() reads it) and the scene depth texture's depth: the scene that several
+   * processes drew, composited, for the volume to be resolved over.
+   */
+  bool DrawScene(int x, int y, const std::vector<unsigned char>& color);
+
+  /**
    * Write the near plane's depth into the depth buffer bound for drawing wherever the sum
    * covers a pixel, in the viewport at (x, y), and no color: for a compositor that keeps each
    * pixel of the nearest process (IceT's z-buffer mode takes far pixels for empty ones).
@@ -179,6 +192,8 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> AccumulateBoth; // to the sum and the second half's
   std::unique_ptr<vtkOpenGLQuadHelper> Mean;
   std::unique_ptr<vtkOpenGLQuadHelper> Footprint;
+  std::unique_ptr<vtkOpenGLQuadHelper> SceneQuad;
+  vtkNew<vtkTextureObject> SceneColor; // the composited scene's color (DrawScene())
   std::unique_ptr<vtkOpenGLQuadHelper> NoiseQuad;
 };
 

@@ -9,6 +9,7 @@
 #include "vtkSPTDepthKeyBuffer.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <sstream>
@@ -205,17 +206,51 @@ std::string vtkSPTParallelReduction::Compare(const Settings& settings,
   return std::string();
 }
 
-bool vtkSPTParallelReduction::ReduceSceneDepth(vtkTextureObject* depth)
+bool vtkSPTParallelReduction::CompositeScene(
+  vtkTextureObject* depth, std::vector<unsigned char>& color)
 {
+  // One key per pixel: the depth's bits above the rank. Depths are not negative, so their
+  // bits order as their values do, and the minimum key names the nearest rank.
   std::vector<float> local = ReadTexture(depth, GL_DEPTH_COMPONENT, 1);
-  std::vector<float> global(local.size());
+  const int rank = this->Controller->GetLocalProcessId();
+  std::vector<unsigned long long> keys(local.size());
+  for (size_t i = 0; i < local.size(); ++i)
+  {
+    const float value = local[i] > 0.0f ? local[i] : 0.0f;
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &value, sizeof(bits));
+    keys[i] = (static_cast<unsigned long long>(bits) << 32) | static_cast<unsigned int>(rank);
+  }
+  std::vector<unsigned long long> nearest(keys.size());
   if (!this->Controller->AllReduce(
-        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::MIN_OP))
+        keys.data(), nearest.data(), vtkIdType(keys.size()), vtkCommunicator::MIN_OP))
   {
     return false;
   }
-  this->Bytes += local.size() * sizeof(float);
-  WriteTexture(depth, GL_DEPTH_COMPONENT, global);
+  this->Bytes += keys.size() * sizeof(unsigned long long);
+  for (size_t i = 0; i < local.size(); ++i)
+  {
+    const std::uint32_t bits = static_cast<std::uint32_t>(nearest[i] >> 32);
+    std::memcpy(&local[i], &bits, sizeof(bits));
+  }
+  WriteTexture(depth, GL_DEPTH_COMPONENT, local);
+  // Each pixel's color comes from its nearest rank alone: a sum of one term.
+  color.resize(4 * keys.size(), 0);
+  for (size_t i = 0; i < keys.size(); ++i)
+  {
+    if (nearest[i] != keys[i])
+    {
+      std::fill_n(color.begin() + 4 * i, 4, static_cast<unsigned char>(0));
+    }
+  }
+  std::vector<unsigned char> composited(color.size());
+  if (!this->Controller->Reduce(
+        color.data(), composited.data(), vtkIdType(color.size()), vtkCommunicator::SUM_OP, 0))
+  {
+    return false;
+  }
+  this->Bytes += color.size();
+  color.swap(composited);
   return true;
 }
 

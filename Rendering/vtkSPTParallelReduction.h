@@ -84,8 +84,14 @@ public:
   bool Agree(
     const Settings& settings, const Piece& piece, Agreement& agreement, std::string& error);
 
-  /// The global minimum of a depth texture (the scene depth), on every rank. Collective.
-  bool ReduceSceneDepth(vtkTextureObject* depth);
+  /**
+   * The opaque scene of all ranks, composited as a z-buffer compositor does: the global
+   * minimum of the scene depth texture, written back on every rank, and on rank 0 the color
+   * of the rank nearest at each pixel (the lowest rank where several are at one depth).
+   * `color` holds this rank's RGBA bytes, one pixel per texel of `depth`, and on return rank
+   * 0's holds the composited color. Collective.
+   */
+  bool CompositeScene(vtkTextureObject* depth, std::vector<unsigned char>& color);
 
   /// The global minimum of the depth keys, on every rank. Collective.
   bool ReduceKeys(vtkSPTDepthKeyBuffer* keys);

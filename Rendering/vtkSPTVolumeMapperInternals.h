@@ -39,6 +39,9 @@ public:
   vtkSPTFrame::TargetState Target; // progress towards TargetError
   bool WarnedNoImageAtomics = false;
   bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
+  // Rank 0's: the opaque scene of all ranks, composited when the accumulation started, that
+  // the volume is resolved over (RGBA bytes per pixel; empty when no rank draws one).
+  std::vector<unsigned char> SceneColor;
 
   // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order.
   using SharedList = std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>;

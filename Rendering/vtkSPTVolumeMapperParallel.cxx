@@ -250,13 +250,25 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   vtkSPTParallelReduction* reduction = this->Reduction;
   vtkOpenGLState* ostate = target.Window->GetState();
   vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  const bool root = reduction->GetController()->GetLocalProcessId() == 0;
   ostate->PushFramebufferBindings();
-  // Every rank starts a new accumulation or none does (the plan is shared).
+  // Every rank starts a new accumulation or none does (the plan is shared). Opaque geometry
+  // on any rank hides the volume on every rank (the global minimum of the scene depth), and
+  // rank 0 resolves the volume over every rank's geometry.
+  if (plan.First == 0)
+  {
+    this->SceneColor.clear();
+    if (settings.OpaqueScene)
+    {
+      this->SceneColor = ensemble->ReadSceneColor(target.X, target.Y);
+    }
+  }
   const bool started =
     plan.First > 0 || this->StartAccumulation(self, target, self->TargetError > 0.0);
-  if (plan.First == 0 && settings.OpaqueScene)
+  if (plan.First == 0 && settings.OpaqueScene &&
+    (!reduction->CompositeScene(ensemble->GetSceneDepthTexture(), this->SceneColor) || !root))
   {
-    reduction->ReduceSceneDepth(ensemble->GetSceneDepthTexture());
+    this->SceneColor.clear();
   }
   vtkSPTParallelFrame frame(
     target.Window, ensemble, this->DepthKeys, volumes, settings, self, reduction);
@@ -301,8 +313,12 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
     mapper->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
     mapper->LastRepetitionCount = self->GetAccumulatedRepetitions();
   }
-  if (reduction->GetController()->GetLocalProcessId() == 0)
+  if (root)
   {
+    if (!this->SceneColor.empty())
+    {
+      ensemble->DrawScene(target.X, target.Y, this->SceneColor);
+    }
     ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
       self->ExactCoverage && this->CoverageDrawn);
     ensemble->MarkFootprint(target.X, target.Y);

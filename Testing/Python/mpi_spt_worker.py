@@ -31,7 +31,7 @@ def parse() -> argparse.Namespace:
                         help="this rank renders with seed 7")
     parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
     parser.add_argument("--opaque-on", type=int, default=-1,
-                        help="this rank draws an opaque black sphere in the middle of the mesh")
+                        help="this rank draws an opaque sphere in the middle of the mesh")
     parser.add_argument("--frames", type=int, default=2)
     parser.add_argument("--target-error", type=float, default=None,
                         help="TargetError; --repetitions is then the cap")
@@ -69,9 +69,9 @@ def union_bounds(bounds):
     return [bounds[i] + (offset[i // 2] if i % 2 else 0.0) for i in range(6)]
 
 
-def black_sphere(bounds):
-    """An opaque black sphere in the middle of ``bounds``: it hides and cuts the volume, and
-    adds nothing to the color over a black background."""
+def opaque_sphere(bounds):
+    """An opaque orange sphere in the middle of ``bounds``, unlit (one flat color): it hides
+    and cuts the volume, and shows through where the volume in front of it is translucent."""
     from vtkmodules.vtkFiltersSources import vtkSphereSource
     from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 
@@ -84,8 +84,8 @@ def black_sphere(bounds):
     mapper.SetInputConnection(sphere.GetOutputPort())
     actor = vtkActor()
     actor.SetMapper(mapper)
-    actor.GetProperty().SetColor(0.0, 0.0, 0.0)
-    actor.GetProperty().SetAmbient(0.0)
+    actor.GetProperty().SetColor(0.9, 0.55, 0.2)
+    actor.GetProperty().SetAmbient(1.0)
     actor.GetProperty().SetDiffuse(0.0)
     actor.GetProperty().SetSpecular(0.0)
     return actor
@@ -128,7 +128,7 @@ def main() -> None:
         pieces.append(piece)
     mapper, piece = mappers[0], pieces[0]
     if rank == arguments.opaque_on:
-        renderer.AddActor(black_sphere(grid.GetBounds()))
+        renderer.AddActor(opaque_sphere(grid.GetBounds()))
     bounds = union_bounds(grid.GetBounds()) if arguments.second_volume else grid.GetBounds()
     render.place_camera(renderer, bounds, scene.view)
     if arguments.update_rate > 0.0:

@@ -286,6 +286,24 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     assert within_noise(swapped), swapped
 
 
+def test_spt_opaque_geometry_of_every_rank(images, pieces, preload, tmp_path):
+    """An opaque sphere in the middle of the data, of which each rank makes a part (ParaView's
+    Sphere source): each part hides the volume behind it on every rank, and shows through
+    the translucent volume in front of it, so the 2-rank image is the 1-rank image."""
+    extra = ("--opaque-sphere",)
+    rendered = {}
+    for name, options in {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {}}.items():
+        output = tmp_path / f"sphere_{name}.png"
+        rendered[name] = render(pieces, output, extra=extra, **options)
+        pvs.keep(output, f"mpi_sphere_{name}.png")
+        assert "ERR" not in rendered[name][1]["stderr"], rendered[name][1]["stderr"][-4000:]
+    one, _ = rendered["one_rank"]
+    two, _ = rendered["two_ranks"]
+    assert levels(one, two)["max_levels"] <= 1
+    without, _ = images["one_rank"]
+    assert levels(without, one)["max_levels"] > 32
+
+
 @pytest.mark.parametrize("method", [HAVS, PBVR])
 def test_data_is_read_distributed_and_redistributed(request, method):
     """Each rank reads one piece; for rendering, ParaView moves cells so that rank 0 holds a

@@ -142,16 +142,16 @@ def test_an_empty_piece_takes_part(have_display, tmp_path):
 
 
 def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path, renders):
-    """An opaque black sphere drawn by rank 1 only cuts and hides rank 0's piece too (the
-    scene depth is a global minimum): over black, the 2-rank image's color is the 1-rank
-    image's with the sphere. (Rank 0 shows the volume over its own background, so the sphere's
-    alpha is not in its image.)"""
+    """An opaque sphere drawn by rank 1 only cuts and hides rank 0's piece too (the scene
+    depth is a global minimum), and shows through the translucent volume in front of it:
+    rank 0 resolves the volume over every rank's geometry, so the 2-rank image is the 1-rank
+    image with the sphere, in all four channels."""
     one, _, _ = run(tmp_path / "sphere1.npy", 1, "--opaque-on", "0")
     two, _, errors = run(tmp_path / "sphere2.npy", 2, "--opaque-on", "1")
     assert "ERR" not in errors, errors
-    assert largest_difference(one[0][..., :3], two[0][..., :3]) <= 1.0
+    assert largest_difference(one[0], two[0]) <= 1.0
     without, _, _ = renders[2]
-    assert largest_difference(without[0][..., :3], two[0][..., :3]) > 32.0
+    assert largest_difference(without[0], two[0]) > 32.0
 
 
 @pytest.mark.parametrize("options, message", [

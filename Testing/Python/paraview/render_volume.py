@@ -84,6 +84,9 @@ def parse_arguments(argv):
                         "same kind, moved by these fractions of its extent (its Translation)")
     parser.add_argument("--second-before", action="store_true",
                         help="show the second representation before the first")
+    parser.add_argument("--opaque-sphere", action="store_true",
+                        help="also show an opaque sphere in the middle of the data: ParaView's "
+                        "Sphere source, of which each rank makes a part")
     parser.add_argument("--plain", help="also write this PNG: the same scene rendered by a "
                         "plain VTK pipeline (pvpython on its own only)")
     return parser.parse_args(argv)
@@ -206,6 +209,24 @@ def show_second(view, args, like):
     name = "Translation" if "Translation" in display.ListProperties() else "Position"
     setattr(display, name, offset)
     return reader, display
+
+
+def show_sphere(reader, view):
+    """An opaque, unlit sphere in the middle of the data, with a quarter of its smallest
+    extent as radius. The Sphere source makes a part of it on each rank (its pieces), so
+    under MPI each rank draws opaque geometry that the others do not."""
+    bounds = reader.GetDataInformation().GetBounds()
+    sphere = simple.Sphere(
+        Center=[(bounds[2 * a] + bounds[2 * a + 1]) / 2.0 for a in range(3)],
+        Radius=0.25 * min(bounds[2 * a + 1] - bounds[2 * a] for a in range(3)),
+        ThetaResolution=48, PhiResolution=48)
+    display = simple.Show(sphere, view)
+    display.ColorArrayName = ["POINTS", ""]
+    display.AmbientColor = display.DiffuseColor = [0.9, 0.55, 0.2]
+    display.Ambient = 1.0
+    display.Diffuse = 0.0
+    display.Specular = 0.0
+    return sphere
 
 
 def look_along(view, axis):
@@ -359,6 +380,7 @@ def main(argv):
     display, defaults = show_volume(reader, view, args, like)
     if args.second_offset and not args.second_before:
         second = show_second(view, args, like)
+    sphere = show_sphere(reader, view) if args.opaque_sphere else None
     if like:
         set_camera(view, like["camera"])
     else:
@@ -373,9 +395,13 @@ def main(argv):
     simple.Hide(reader, view)
     if second:
         simple.Hide(second[0], view)
+    if sphere:
+        simple.Hide(sphere, view)
     simple.Delete(view)
     if second:
         simple.Delete(second[0])
+    if sphere:
+        simple.Delete(sphere)
     simple.Delete(reader)
     if connected:
         simple.Disconnect()
