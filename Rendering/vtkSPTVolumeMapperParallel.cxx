@@ -315,9 +315,11 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   }
   if (root)
   {
-    if (!this->SceneColor.empty())
+    if (!this->SceneColor.empty() && !ensemble->DrawScene(target.X, target.Y, this->SceneColor))
     {
-      ensemble->DrawScene(target.X, target.Y, this->SceneColor);
+      vtkErrorWithObjectMacro(self,
+        "Could not draw the opaque geometry of the other ranks: the "
+        "volume is shown over rank 0's alone.");
     }
     ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
       self->ExactCoverage && this->CoverageDrawn);
