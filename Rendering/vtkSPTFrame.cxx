@@ -21,6 +21,7 @@
 #include "vtkSPTPassKeysFS.h"
 #include "vtkSPTPassSingleFS.h"
 #include "vtkSPTTetrahedraFS.h"
+#include "vtkSPTFacePlane.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraPointsVS.h"
 #include "vtkSPTTetrahedraVS.h"
@@ -142,7 +143,6 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   // only while one cuts some volume's bounds: a fragment stage pays for its branches),
   // and the scene depth (only when opaque geometry was drawn).
   std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
-  common += points ? "#define SPT_POINT_SPRITES\n" : "";
   common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
@@ -150,6 +150,8 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   std::string geometry = points ? "" : vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(vertex, "//SPT::Defines::Dec", common);
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
+  vtkShaderProgram::Substitute(vertex, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
 
   std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
   if (kind == PassKind::KeysAndCoverage)
@@ -392,9 +394,9 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
 bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
 {
   // The visibility estimator counts the survivors behind each fragment: sorted keys make that
-  // a binary search. Every fragment is rasterized no deeper than its segment's front (a point
-  // at its cell's nearest vertex), but the exit faces of clipped cells lie behind theirs: then
-  // no culling.
+  // a binary search. Every fragment is rasterized at its cell's nearest vertex, no deeper than
+  // its segment's front, but the exit faces of clipped cells lie behind theirs: then no
+  // culling.
   const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
   const bool cull = !this->ClipPlanesCut;
   if (!sortKeys && !cull)

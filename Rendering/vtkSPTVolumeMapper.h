@@ -8,13 +8,13 @@
  *   N. Sakamoto, T. Kawamura, H. Kuwano and K. Koyamada, "Sorting-free pre-integrated
  *   projected tetrahedra", Proc. Workshop on Ultrascale Visualization (UltraVis), 2009.
  *
- * Every tetrahedron is projected and split into 3 or 4 triangles (Shirley and Tuchman) on the
- * GPU. Each fragment reads the pre-integrated color and opacity of its ray segment from a 3D
- * table indexed by (front scalar, back scalar, thickness), is kept with probability equal to
- * that opacity, and is then written opaque with the depth test. The image is the mean of
- * RepetitionLevel such passes, each with SubpixelLevel^2 samples per pixel; its expected value
- * is exact front-to-back compositing, and its noise falls as 1 / sqrt(RepetitionLevel *
- * SubpixelLevel^2).
+ * Every tetrahedron is projected on the GPU and drawn as its outline (one or two triangles).
+ * Each fragment finds its ray segment from the cell's face planes, reads the segment's
+ * pre-integrated color and opacity from a 3D table indexed by (front scalar, back scalar,
+ * thickness), is kept with probability equal to that opacity, and is then written opaque with
+ * the depth test. The image is the mean of RepetitionLevel such passes, each with
+ * SubpixelLevel^2 samples per pixel; its expected value is exact front-to-back compositing, and
+ * its noise falls as 1 / sqrt(RepetitionLevel * SubpixelLevel^2).
  *
  * Beyond the paper, and on by default: several repetitions per traversal (image atomics),
  * stratified thresholds, and two changes to what a repetition adds that keep the expectation

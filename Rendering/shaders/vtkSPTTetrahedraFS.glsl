@@ -8,18 +8,11 @@
 // and opacity, and draws the keep-or-discard thresholds; the main() of the pass, appended at
 // the end, decides what the fragment writes (vtkSPTPass*FS.glsl).
 
-#ifdef SPT_POINT_SPRITES
 flat in int tetrahedronId;
-flat in vec4 facePlaneNDC[4]; // see vtkSPTTetrahedraPointsVS.glsl
+flat in vec4 facePlaneNDC[4]; // the cell's face planes and scalar plane (vtkSPTFacePlane.glsl)
 flat in vec4 scalarPlaneNDC;
-#else
-noperspective in vec4 frontVCOverW;
-noperspective in vec4 backVCOverW;
-noperspective in vec2 scalarsOverW;
-flat in int tetrahedronId;
 #ifdef SPT_CLIPPED_CELLS
-flat in int clippedCell;
-#endif
+flat in int clippedCell; // 1: the exit face of a cell that a clipping plane cuts
 #endif
 
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA
@@ -132,11 +125,11 @@ void rayCellSegment(vec4 facePlane[4], vec4 vertexScalar, vec3 origin, vec3 dire
 }
 #endif
 
-#ifdef SPT_POINT_SPRITES
-// The segment of this fragment's ray through the point's tetrahedron, clipped in normalized
-// device coordinates, where the ray is a line along z: each face plane bounds z from one side.
-// False when the ray misses the cell (the point's square is larger than the cell's projection).
-bool pointSegment(out Segment segment)
+// The segment of this fragment's ray through its tetrahedron, clipped in normalized device
+// coordinates, where the ray is a line along z: each face plane bounds z from one side. False
+// when the ray misses the cell (a point's square is larger than the cell's projection, and a
+// sample on the outline's edge may fall just outside the cell).
+bool planeSegment(out Segment segment)
 {
   vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
   float enter = -1.0;
@@ -168,7 +161,6 @@ bool pointSegment(out Segment segment)
   segment.frontDepth = 0.5 * enter + 0.5;
   return true;
 }
-#endif
 
 #ifdef SPT_CLIPPED_CELLS
 
@@ -228,12 +220,6 @@ bool cellSegment(out Segment segment)
 // nothing of it is visible.
 bool visibleSegment(out Segment segment)
 {
-#if defined(SPT_POINT_SPRITES)
-  if (!pointSegment(segment))
-  {
-    return false;
-  }
-#else
 #ifdef SPT_CLIPPED_CELLS
   if (clippedCell != 0)
   {
@@ -244,14 +230,10 @@ bool visibleSegment(out Segment segment)
   }
   else
 #endif
+  if (!planeSegment(segment))
   {
-    segment.frontVC = frontVCOverW.xyz / frontVCOverW.w;
-    segment.backVC = backVCOverW.xyz / backVCOverW.w;
-    segment.frontScalar = scalarsOverW.x / frontVCOverW.w;
-    segment.backScalar = scalarsOverW.y / backVCOverW.w;
-    segment.frontDepth = gl_FragCoord.z;
+    return false;
   }
-#endif
 
 #ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.

@@ -1,36 +1,42 @@
 //VTK::System::Dec
 //SPT::Defines::Dec
 
-// SPT geometry stage: Shirley-Tuchman projected tetrahedra (Shirley and Tuchman 1990) on the
-// GPU. A tetrahedron (4 vertices of GL_LINES_ADJACENCY) is split into the 3 or 4 triangles of
-// its projected outline that share the "thick" point, the point where the tetrahedron is
-// thickest along the view ray; each fan is sent as one triangle strip. Degenerate projections
-// (classes 3 and 4) are the limits of classes 1 and 2: their extra triangles have no area and
-// draw nothing.
+// SPT geometry stage: a tetrahedron (4 vertices of GL_LINES_ADJACENCY) is drawn as its
+// projected outline, the convex hull of its four projected vertices: one triangle when a vertex
+// projects inside the triangle of the other three (Shirley and Tuchman's class 1), two when the
+// outline is a quadrilateral (class 2). Degenerate projections (classes 3 and 4) are the limits
+// of class 1. The fragment stage clips its own view ray by the cell's four face planes, made
+// here in normalized device coordinates, where the ray is a line along z, and reads the scalars
+// at the segment's ends from the cell's scalar plane (vtkSPTTetrahedraFS.glsl).
 //
-// Every emitted vertex carries the front and the back point of the view ray through it (both
-// in view coordinates) and the scalars there. They are passed divided by their own clip w and
-// interpolated without perspective, so that the fragment stage recovers the exact front and
-// back points of its own ray under perspective and parallel projection alike.
+// Shirley and Tuchman split the outline into the 3 or 4 triangles that share the thick point
+// and interpolate the segment's ends across them. On a software rasterizer the setup of those
+// triangles takes most of a traversal; the outline is 1 or 2 triangles with the same fragments,
+// which find the same segments.
 //
-// That needs the whole tetrahedron inside the view volume: clipping does not interpolate those
-// values right where w varies much across a triangle. A tetrahedron that a clipping plane cuts
-// (the near plane with the camera inside or close to the mesh, possibly with vertices behind
-// the eye; a side plane when the view is zoomed in) is drawn as its exit faces instead, which
-// the hardware clips; each of their fragments finds its own segment from the cell's face
-// planes, from the near plane or the nearest entry face on (vtkSPTTetrahedraFS.glsl).
+// All of a cell's fragments are rasterized at the depth of its nearest vertex, which none of
+// its segments lies in front of: the color traversal's early depth test compares it with the
+// farthest survivor. The fragment stage writes the segment's own depth where the depth test
+// decides (the single pass).
+//
+// The outline needs the whole tetrahedron inside the view volume. A tetrahedron that a
+// clipping plane cuts (the near plane with the camera inside or close to the mesh, possibly
+// with vertices behind the eye; a side plane when the view is zoomed in) is drawn as its exit
+// faces instead, which the hardware clips; each of their fragments finds its own segment from
+// the cell's face planes, from the near plane or the nearest entry face on.
 
 layout(lines_adjacency) in;
 #ifdef SPT_CLIPPED_CELLS
 layout(triangle_strip, max_vertices = 12) out; // all four faces with the eye inside
 #else
-layout(triangle_strip, max_vertices = 7) out;
+layout(triangle_strip, max_vertices = 4) out;
 #endif
 
 in vec3 positionVCVSOutput[];
 in float scalarVSOutput[];
 
 uniform mat4 VCDCMatrix;     // view -> clip
+uniform mat4 DCVCMatrix;     // clip -> view
 uniform int primitiveOffset; // index of the first tetrahedron of this draw call
 uniform vec4 eyeVC;          // the eye in homogeneous view coordinates: (0, 0, 0, 1) in
                              // perspective, the point at infinity (0, 0, 1, 0) in parallel
@@ -38,10 +44,9 @@ uniform vec4 eyeVC;          // the eye in homogeneous view coordinates: (0, 0, 
 uniform samplerBuffer cellScalars;
 #endif
 
-noperspective out vec4 frontVCOverW; // (front point, 1) / w_front
-noperspective out vec4 backVCOverW;  // (back point, 1) / w_back
-noperspective out vec2 scalarsOverW; // (front scalar / w_front, back scalar / w_back)
 flat out int tetrahedronId;
+flat out vec4 facePlaneNDC[4]; // as vtkSPTTetrahedraPointsVS.glsl makes them
+flat out vec4 scalarPlaneNDC;
 #ifdef SPT_CLIPPED_CELLS
 flat out int clippedCell; // 1: the fragment stage computes the segment from the cell
 #endif
@@ -52,37 +57,46 @@ float vertexScalar[4];
 
 // A vertex's clip coordinates, from its view coordinates. Not kept in an array: Mesa 25's
 // llvmpipe (LLVM 19) reads wrong values, or crashes, when a geometry shader indexes an array of
-// vec4 (an input or its own) with a variable; arrays of vec3, vec2 and float read right.
+// vec4 (an input or its own) with a variable; arrays of vec3, vec2 and float read right. For
+// the same reason the planes are four variables, and the output array takes constant indices.
 vec4 vertexDC(int i)
 {
   return VCDCMatrix * vec4(vertexVC[i], 1.0);
 }
 
-// The thick point: its front and back points (view and clip coordinates) and scalars.
-vec3 thickFrontVC;
-vec3 thickBackVC;
-vec4 thickFrontDC;
-vec4 thickBackDC;
-float thickFrontScalar;
-float thickBackScalar;
+vec4 plane0;
+vec4 plane1;
+vec4 plane2;
+vec4 plane3;
+vec4 scalarPlane;
+float nearestDepth; // of the cell's vertices, in normalized device coordinates
+
+//SPT::FacePlane::Impl
 
 float orient2D(vec2 a, vec2 b, vec2 c)
 {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-void emitPoint(vec3 frontVC, vec4 frontDC, float frontScalar, vec3 backVC, vec4 backDC,
-  float backScalar)
+void emitVertex(vec4 position, int clipped)
 {
-  gl_Position = frontDC;
-  frontVCOverW = vec4(frontVC, 1.0) / frontDC.w;
-  backVCOverW = vec4(backVC, 1.0) / backDC.w;
-  scalarsOverW = vec2(frontScalar / frontDC.w, backScalar / backDC.w);
+  gl_Position = position;
+  facePlaneNDC[0] = plane0;
+  facePlaneNDC[1] = plane1;
+  facePlaneNDC[2] = plane2;
+  facePlaneNDC[3] = plane3;
+  scalarPlaneNDC = scalarPlane;
   tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
 #ifdef SPT_CLIPPED_CELLS
-  clippedCell = 0;
+  clippedCell = clipped;
 #endif
   EmitVertex();
+}
+
+// An outline vertex, at the depth of the cell's nearest vertex.
+void emitOutline(int i)
+{
+  emitVertex(vec4(vertexNDC[i], nearestDepth, 1.0), 0);
 }
 
 #ifdef SPT_CLIPPED_CELLS
@@ -91,6 +105,7 @@ void emitPoint(vec3 frontVC, vec4 frontDC, float frontScalar, vec3 backVC, vec4 
 // point where its ray leaves the cell), which carries nothing but the cell's id.
 void emitExitFaces()
 {
+  plane0 = plane1 = plane2 = plane3 = scalarPlane = vec4(0.0);
   for (int k = 0; k < 4; ++k)
   {
     int a = (k + 1) % 4;
@@ -109,97 +124,40 @@ void emitExitFaces()
     }
     for (int corner = 0; corner < 3; ++corner)
     {
-      gl_Position = vertexDC((k + 1 + corner) % 4);
-      frontVCOverW = vec4(0.0);
-      backVCOverW = vec4(0.0);
-      scalarsOverW = vec2(0.0);
-      tetrahedronId = primitiveOffset + gl_PrimitiveIDIn;
-      clippedCell = 1;
-      EmitVertex();
+      emitVertex(vertexDC((k + 1 + corner) % 4), 1);
     }
     EndPrimitive();
   }
 }
 #endif
 
-// An outline vertex: the tetrahedron has zero thickness there.
-void emitOutline(int i)
+// Class 1: vertex i projects inside the triangle of the other three, which is the outline.
+void emitClass1(int i)
 {
-  emitPoint(vertexVC[i], vertexDC(i), vertexScalar[i], vertexVC[i], vertexDC(i), vertexScalar[i]);
-}
-
-void emitThick()
-{
-  emitPoint(thickFrontVC, thickFrontDC, thickFrontScalar, thickBackVC, thickBackDC,
-    thickBackScalar);
-}
-
-// The nearer of two points on one view ray is the one with the larger view-space z, for
-// perspective and parallel projection alike (the camera looks down -z).
-void setThick(vec3 pVC, vec4 pDC, float pScalar, vec3 qVC, vec4 qDC, float qScalar)
-{
-  bool pInFront = pVC.z >= qVC.z;
-  thickFrontVC = pInFront ? pVC : qVC;
-  thickFrontDC = pInFront ? pDC : qDC;
-  thickFrontScalar = pInFront ? pScalar : qScalar;
-  thickBackVC = pInFront ? qVC : pVC;
-  thickBackDC = pInFront ? qDC : pDC;
-  thickBackScalar = pInFront ? qScalar : pScalar;
-}
-
-// Class 1: vertex i projects inside the triangle of the other three. The thick point is that
-// vertex and the point of the opposite face on the same ray.
-void emitClass1(int i, vec3 screenWeights)
-{
-  int j = (i + 1) % 4;
-  int k = (i + 2) % 4;
-  int l = (i + 3) % 4;
-  // Screen-space barycentric weights become perspective-correct ones through 1/w; clip
-  // coordinates are linear in view coordinates, so the same weights give the clip point.
-  vec3 weights = screenWeights / vec3(vertexDC(j).w, vertexDC(k).w, vertexDC(l).w);
-  weights /= weights.x + weights.y + weights.z;
-  vec3 faceVC = weights.x * vertexVC[j] + weights.y * vertexVC[k] + weights.z * vertexVC[l];
-  vec4 faceDC = weights.x * vertexDC(j) + weights.y * vertexDC(k) + weights.z * vertexDC(l);
-  float faceScalar = dot(weights, vec3(vertexScalar[j], vertexScalar[k], vertexScalar[l]));
-  setThick(vertexVC[i], vertexDC(i), vertexScalar[i], faceVC, faceDC, faceScalar);
-  // The fan (thick; j, k, l) as the strip k, j, thick, l, k.
-  emitOutline(k);
-  emitOutline(j);
-  emitThick();
-  emitOutline(l);
-  emitOutline(k);
+  emitOutline((i + 1) % 4);
+  emitOutline((i + 2) % 4);
+  emitOutline((i + 3) % 4);
   EndPrimitive();
 }
 
-// Class 2: the projections of edges (a, b) and (c, d) cross at screen parameters u and v.
-void emitClass2(int a, int b, int c, int d, float u, float v)
+// Class 2: the projections of edges (a, b) and (c, d) cross; the outline alternates between
+// these diagonals, a, c, b, d, and is drawn as the strip a, c, d, b.
+void emitClass2(int a, int b, int c, int d)
 {
-  // Screen-space parameters on an edge become view-space ones through the clip w.
-  float t = u * vertexDC(a).w / (u * vertexDC(a).w + (1.0 - u) * vertexDC(b).w);
-  float s = v * vertexDC(c).w / (v * vertexDC(c).w + (1.0 - v) * vertexDC(d).w);
-  setThick(mix(vertexVC[a], vertexVC[b], t), mix(vertexDC(a), vertexDC(b), t),
-    mix(vertexScalar[a], vertexScalar[b], t), mix(vertexVC[c], vertexVC[d], s),
-    mix(vertexDC(c), vertexDC(d), s), mix(vertexScalar[c], vertexScalar[d], s));
-  // The outline alternates between the diagonals: a, c, b, d. The fan (thick; a, c, b, d) as
-  // the strip a, c, thick, b, thick, d, a (its fourth triangle has no area).
   emitOutline(a);
   emitOutline(c);
-  emitThick();
-  emitOutline(b);
-  emitThick();
   emitOutline(d);
-  emitOutline(a);
+  emitOutline(b);
   EndPrimitive();
 }
 
 // Class 1 test: the vertex whose smallest barycentric weight in the triangle of the other
-// three is largest. Returns that vertex (-1 when all four project onto one line), its
-// smallest weight and its weights.
-int findClass1(out float bestWeight, out vec3 bestWeights)
+// three is largest. Returns that vertex (-1 when all four project onto one line) and its
+// smallest weight.
+int findClass1(out float bestWeight)
 {
   int bestVertex = -1;
   bestWeight = -1.0e30;
-  bestWeights = vec3(0.0);
   for (int i = 0; i < 4; ++i)
   {
     vec2 pj = vertexNDC[(i + 1) % 4];
@@ -217,7 +175,6 @@ int findClass1(out float bestWeight, out vec3 bestWeights)
     {
       bestWeight = smallest;
       bestVertex = i;
-      bestWeights = w;
     }
   }
   return bestVertex;
@@ -230,7 +187,6 @@ void emitBestClass2()
   ivec4 pairs[3] = ivec4[3](ivec4(0, 1, 2, 3), ivec4(0, 2, 1, 3), ivec4(0, 3, 1, 2));
   int bestPair = -1;
   float bestMargin = -1.0e30;
-  vec2 bestParameters = vec2(0.0);
   for (int p = 0; p < 3; ++p)
   {
     ivec4 e = pairs[p];
@@ -249,14 +205,12 @@ void emitBestClass2()
     {
       bestMargin = margin;
       bestPair = p;
-      bestParameters = vec2(u, v);
     }
   }
   if (bestPair >= 0)
   {
     ivec4 e = pairs[bestPair];
-    vec2 uv = clamp(bestParameters, 0.0, 1.0);
-    emitClass2(e.x, e.y, e.z, e.w, uv.x, uv.y);
+    emitClass2(e.x, e.y, e.z, e.w);
   }
 }
 
@@ -292,17 +246,31 @@ void main()
 #endif
   }
   float bestWeight;
-  vec3 bestWeights;
-  int bestVertex = findClass1(bestWeight, bestWeights);
-  if (bestVertex < 0)
+  int bestVertex = findClass1(bestWeight);
+  vec3 v0 = vertexVC[0];
+  vec3 v1 = vertexVC[1];
+  vec3 v2 = vertexVC[2];
+  vec3 v3 = vertexVC[3];
+  if (bestVertex < 0 || dot(cross(v1 - v0, v2 - v0), v3 - v0) == 0.0)
   {
-    return; // all four vertices on one line: the projection covers no area
+    return; // a flat tetrahedron: no volume, and its projection may cover no area
+  }
+  plane0 = ndcFacePlane(v0, v1, v2, v3);
+  plane1 = ndcFacePlane(v1, v2, v3, v0);
+  plane2 = ndcFacePlane(v2, v3, v0, v1);
+  plane3 = ndcFacePlane(v3, v0, v1, v2);
+  scalarPlane = vertexScalar[0] * plane0 + vertexScalar[1] * plane1 + vertexScalar[2] * plane2 +
+    vertexScalar[3] * plane3;
+  nearestDepth = 1.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    nearestDepth = min(nearestDepth, vertexDC(i).z / vertexDC(i).w);
   }
   // Inside the triangle of the other three (or on its outline): class 1.
   const float insideTolerance = 1.0e-6;
   if (bestWeight >= -insideTolerance)
   {
-    emitClass1(bestVertex, max(bestWeights, vec3(0.0)));
+    emitClass1(bestVertex);
   }
   else
   {

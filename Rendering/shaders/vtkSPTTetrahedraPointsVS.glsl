@@ -4,10 +4,10 @@
 // SPT vertex stage for tetrahedra drawn as points: one point per tetrahedron (glDrawArrays of
 // GL_POINTS, gl_VertexID is the tetrahedron's index), a square that holds the tetrahedron's
 // projection. The fragment stage clips its own view ray by the four face planes made here and
-// discards the samples that miss the cell (vtkSPTTetrahedraFS.glsl, SPT_POINT_SPRITES).
+// discards the samples that miss the cell (vtkSPTTetrahedraFS.glsl).
 //
 // Where tetrahedra cover few pixels each (about a million at 256 x 256), a point is one
-// primitive to set up and rasterize against the three or four triangles of the projected
+// primitive to set up and rasterize against the one or two triangles of the projected
 // outline, and it needs no geometry stage. Only the leading classes of size are drawn so
 // (vtkSPTMeshBuffers, vtkSPTFrame: their squares stay small on the screen, and the mesh's bounds
 // lie in front of the near plane); the geometry stage draws the others.
@@ -29,14 +29,7 @@ flat out int tetrahedronId;
 flat out vec4 facePlaneNDC[4];
 flat out vec4 scalarPlaneNDC;
 
-// The outward plane in view coordinates of the face (a, b, c), scaled so that the opposite
-// vertex k lies at -1, taken to normalized device coordinates.
-vec4 facePlane(vec3 k, vec3 a, vec3 b, vec3 c)
-{
-  vec3 normal = cross(b - a, c - a);
-  normal /= -dot(normal, k - a);
-  return vec4(normal, -dot(normal, a)) * DCVCMatrix;
-}
+//SPT::FacePlane::Impl
 
 void main()
 {
@@ -52,10 +45,10 @@ void main()
   vec4 scalar = vec4(texelFetch(scalars, int(ids.x)).r, texelFetch(scalars, int(ids.y)).r,
     texelFetch(scalars, int(ids.z)).r, texelFetch(scalars, int(ids.w)).r);
 #endif
-  facePlaneNDC[0] = facePlane(v0, v1, v2, v3);
-  facePlaneNDC[1] = facePlane(v1, v2, v3, v0);
-  facePlaneNDC[2] = facePlane(v2, v3, v0, v1);
-  facePlaneNDC[3] = facePlane(v3, v0, v1, v2);
+  facePlaneNDC[0] = ndcFacePlane(v0, v1, v2, v3);
+  facePlaneNDC[1] = ndcFacePlane(v1, v2, v3, v0);
+  facePlaneNDC[2] = ndcFacePlane(v2, v3, v0, v1);
+  facePlaneNDC[3] = ndcFacePlane(v3, v0, v1, v2);
   scalarPlaneNDC = scalar.x * facePlaneNDC[0] + scalar.y * facePlaneNDC[1] +
     scalar.z * facePlaneNDC[2] + scalar.w * facePlaneNDC[3];
   // The projection's bounding square in window coordinates of the pass.

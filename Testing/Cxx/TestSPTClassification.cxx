@@ -1,11 +1,14 @@
-// Unit test of the GPU projection and classification (Shirley-Tuchman) of the SPT geometry
-// shader: the shader itself runs under transform feedback, and its triangles are checked on
-// the CPU (GLM) against the exact geometry, for the four classes and for random tetrahedra, in
-// perspective and parallel projection:
+// Unit test of the GPU projection and classification (Shirley-Tuchman's classes) of the SPT
+// geometry shader: the shader itself runs under transform feedback, and its triangles are
+// checked on the CPU (GLM) against the exact geometry, for the four classes and for random
+// tetrahedra, in perspective and parallel projection:
 // - the triangles cover exactly the projected outline (the convex hull of the four projected
-//   vertices): each point inside it lies in exactly one triangle, none outside;
-// - at every point, the interpolated front and back points and scalars (as the fragment shader
-//   reconstructs them) are the exact entry and exit of the view ray through the tetrahedron.
+//   vertices), one triangle when it is a triangle and two when it is a quadrilateral: each
+//   point inside it lies in exactly one triangle, none outside;
+// - at every point, the front and back points and scalars that the fragment shader finds from
+//   the cell's face planes and scalar plane are the exact entry and exit of the view ray
+//   through the tetrahedron;
+// - the triangles lie no deeper than any of their segments' fronts (the early depth test).
 
 #include "vtkSPTOpenGL.h"
 
@@ -39,15 +42,14 @@ struct Tetrahedron
   const char* Name;
 };
 
-// One emitted vertex, as captured: clip position, then the three noperspective outputs.
+// One emitted vertex, as captured: clip position, then the cell's planes (flat outputs).
 struct Captured
 {
   glm::vec4 Position;
-  glm::vec4 FrontOverW;
-  glm::vec4 BackOverW;
-  glm::vec2 ScalarsOverW;
+  glm::vec4 FacePlanes[4];
+  glm::vec4 ScalarPlane;
 };
-static_assert(sizeof(Captured) == 14 * sizeof(float), "captured vertices must be packed");
+static_assert(sizeof(Captured) == 24 * sizeof(float), "captured vertices must be packed");
 
 std::string ReadShader(const char* name)
 {
@@ -65,6 +67,10 @@ std::string ReadShader(const char* name)
   };
   replace("//VTK::System::Dec", "#version 150");
   replace("//SPT::Defines::Dec", "");
+  if (source.find("//SPT::FacePlane::Impl") != std::string::npos)
+  {
+    replace("//SPT::FacePlane::Impl", ReadShader("vtkSPTFacePlane.glsl"));
+  }
   return source;
 }
 
@@ -196,16 +202,16 @@ std::vector<Tetrahedron> MakeTetrahedra()
   std::vector<Tetrahedron> tetrahedra = {
     { { glm::vec3(0.1f, 0.05f, -5.0f), glm::vec3(-1.0f, -0.8f, -6.0f),
         glm::vec3(1.1f, -0.7f, -6.2f), glm::vec3(0.0f, 1.0f, -5.8f) },
-      { 0.2f, 0.9f, 0.4f, 0.6f }, 3, "class 1 (thick vertex in front)" },
+      { 0.2f, 0.9f, 0.4f, 0.6f }, 1, "class 1 (thick vertex in front)" },
     { { glm::vec3(0.1f, 0.05f, -6.5f), glm::vec3(-1.0f, -0.8f, -5.0f),
         glm::vec3(1.1f, -0.7f, -5.2f), glm::vec3(0.0f, 1.0f, -5.4f) },
-      { 0.7f, 0.1f, 0.3f, 0.5f }, 3, "class 1 (thick vertex behind)" },
+      { 0.7f, 0.1f, 0.3f, 0.5f }, 1, "class 1 (thick vertex behind)" },
     { { glm::vec3(-1.0f, 0.1f, -5.0f), glm::vec3(1.0f, -0.1f, -5.1f), glm::vec3(0.1f, -1.0f, -6.0f),
         glm::vec3(-0.1f, 1.0f, -6.3f) },
-      { 0.0f, 1.0f, 0.25f, 0.75f }, 4, "class 2" },
+      { 0.0f, 1.0f, 0.25f, 0.75f }, 2, "class 2" },
     { { glm::vec3(0.0f, 0.0f, -5.0f), glm::vec3(-1.2f, 0.0f, -6.0f), glm::vec3(1.2f, 0.0f, -6.0f),
         glm::vec3(0.0f, 1.0f, -6.0f) },
-      { 0.5f, 0.0f, 1.0f, 0.3f }, 2, "class 3 (vertex projects onto an edge)" },
+      { 0.5f, 0.0f, 1.0f, 0.3f }, 1, "class 3 (vertex projects onto an edge)" },
     { { glm::vec3(0.0f, 0.0f, -5.0f), glm::vec3(0.0f, 0.0f, -6.5f), glm::vec3(1.0f, 0.0f, -5.7f),
         glm::vec3(0.0f, 1.0f, -5.9f) },
       { 0.1f, 0.8f, 0.4f, 0.6f }, 1, "class 4 (two vertices on one ray)" },
@@ -317,7 +323,7 @@ private:
   ScreenGeometry Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const;
   int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
     const ScreenGeometry& screen, glm::vec2 q, float scale) const;
-  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec3 w, glm::vec2 q) const;
+  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const;
   const char* ProjectionName() const { return this->Parallel ? " (parallel)" : " (perspective)"; }
 };
 
@@ -394,7 +400,7 @@ int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& verti
       continue;
     }
     ++containing;
-    failures += this->CheckSegment(t, &vertices[3 * i], w, q);
+    failures += this->CheckSegment(t, &vertices[3 * i], q);
   }
   const int expected = margin > 0.0f ? 1 : 0;
   if (containing != expected)
@@ -407,20 +413,32 @@ int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& verti
   return failures;
 }
 
-// What the fragment shader reconstructs at q is the exact entry and exit of the view ray.
-int Checker::CheckSegment(
-  const Tetrahedron& t, const Captured* triangle, glm::vec3 w, glm::vec2 q) const
+// What the fragment shader finds at q from the triangle's planes (as planeSegment() in
+// vtkSPTTetrahedraFS.glsl does) is the exact entry and exit of the view ray, and the triangle
+// lies no deeper than the entry.
+int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const
 {
-  glm::vec4 front(0.0f), back(0.0f);
-  glm::vec2 scalars(0.0f);
-  for (int v = 0; v < 3; ++v)
+  float enter = -1.0f, leave = 1.0f;
+  for (const glm::vec4& plane : triangle[0].FacePlanes)
   {
-    front += w[v] * triangle[v].FrontOverW;
-    back += w[v] * triangle[v].BackOverW;
-    scalars += w[v] * triangle[v].ScalarsOverW;
+    const float atZero = plane.x * q.x + plane.y * q.y + plane.w;
+    if (plane.z < 0.0f)
+    {
+      enter = std::max(enter, -atZero / plane.z);
+    }
+    else if (plane.z > 0.0f)
+    {
+      leave = std::min(leave, -atZero / plane.z);
+    }
   }
+  const glm::mat4 inverse = glm::inverse(this->Projection);
+  const glm::vec4 front = inverse * glm::vec4(q, enter, 1.0f);
+  const glm::vec4 back = inverse * glm::vec4(q, leave, 1.0f);
   const glm::vec3 frontPoint = glm::vec3(front) / front.w;
   const glm::vec3 backPoint = glm::vec3(back) / back.w;
+  const float frontScalar =
+    -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, enter, 1.0f)) / front.w;
+  const float backScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, leave, 1.0f)) / back.w;
   glm::vec3 origin, direction, exactFront, exactBack;
   float exactFrontScalar, exactBackScalar;
   this->Ray(q, origin, direction);
@@ -429,21 +447,36 @@ int Checker::CheckSegment(
     return 0; // grazing ray
   }
   const float tolerance = 2.0e-3f;
-  const float thickness = glm::distance(frontPoint, backPoint);
+  const float thickness = enter < leave ? glm::distance(frontPoint, backPoint) : 0.0f;
   const float exactThickness = glm::distance(exactFront, exactBack);
+  int failures = 0;
   if (glm::distance(frontPoint, exactFront) > tolerance ||
     glm::distance(backPoint, exactBack) > tolerance ||
     std::abs(thickness - exactThickness) > tolerance ||
-    std::abs(scalars.x / front.w - exactFrontScalar) > tolerance ||
-    std::abs(scalars.y / back.w - exactBackScalar) > tolerance)
+    std::abs(frontScalar - exactFrontScalar) > tolerance ||
+    std::abs(backScalar - exactBackScalar) > tolerance)
   {
     std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
               << "): thickness " << thickness << " vs exact " << exactThickness << ", scalars "
-              << scalars.x / front.w << " " << scalars.y / back.w << " vs exact "
-              << exactFrontScalar << " " << exactBackScalar << "\n";
-    return 1;
+              << frontScalar << " " << backScalar << " vs exact " << exactFrontScalar << " "
+              << exactBackScalar << "\n";
+    ++failures;
   }
-  return 0;
+  const glm::vec4 exactFrontDC = this->Projection * glm::vec4(exactFront, 1.0f);
+  const float exactFrontDepth = exactFrontDC.z / exactFrontDC.w;
+  for (int v = 0; v < 3; ++v)
+  {
+    const float depth = triangle[v].Position.z / triangle[v].Position.w;
+    if (depth > exactFrontDepth + 1.0e-5f)
+    {
+      std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
+                << "): a triangle at depth " << depth << " behind the segment's front at "
+                << exactFrontDepth << "\n";
+      ++failures;
+      break;
+    }
+  }
+  return failures;
 }
 
 // The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
@@ -452,8 +485,9 @@ GLuint LinkProgram(GLuint vs, GLuint gs)
   GLuint program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, gs);
-  const char* varyings[] = { "gl_Position", "frontVCOverW", "backVCOverW", "scalarsOverW" };
-  glTransformFeedbackVaryings(program, 4, varyings, GL_INTERLEAVED_ATTRIBS);
+  const char* varyings[] = { "gl_Position", "facePlaneNDC[0]", "facePlaneNDC[1]", "facePlaneNDC[2]",
+    "facePlaneNDC[3]", "scalarPlaneNDC" };
+  glTransformFeedbackVaryings(program, 6, varyings, GL_INTERLEAVED_ATTRIBS);
   glLinkProgram(program);
   GLint linked = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &linked);
@@ -467,7 +501,7 @@ GLuint LinkProgram(GLuint vs, GLuint gs)
   return program;
 }
 
-// Four vertices per tetrahedron in, up to four triangles each out.
+// Four vertices per tetrahedron in, up to two triangles each out.
 void UploadTetrahedra(
   GLuint program, const std::vector<Tetrahedron>& tetrahedra, GLuint vao, const GLuint buffers[3])
 {
@@ -491,7 +525,7 @@ void UploadTetrahedra(
   location = glGetAttribLocation(program, "scalarTF");
   glEnableVertexAttribArray(location);
   glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-  const size_t capacity = tetrahedra.size() * 4 * 3; // at most four triangles each
+  const size_t capacity = tetrahedra.size() * 2 * 3; // at most two triangles each
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
   glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
@@ -526,6 +560,9 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
     glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
   glUniformMatrix4fv(
     glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
+  const glm::mat4 inverse = glm::inverse(checker.Projection);
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "DCVCMatrix"), 1, GL_FALSE, glm::value_ptr(inverse));
   glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
   for (size_t n = 0; n < tetrahedra.size(); ++n)
   {
