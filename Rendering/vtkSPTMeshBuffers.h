@@ -10,8 +10,10 @@
  *
  * The tetrahedra are uploaded in classes of size: by their longest edge, a factor of sqrt(2)
  * apart, smallest first, each class in the mesh's order (which keeps the locality of the
- * input's numbering). So the cells no longer than a length are a leading range, which a frame
- * draws as points, and the rest one more range (vtkSPTFrame); each draw touches only its cells.
+ * input's numbering). The cells whose mean projection fills too little of the square of their
+ * longest edge (needles and slivers) come after all the others, in classes of their own. So
+ * the well-shaped cells no longer than a length are a leading range, which a frame draws as
+ * points, and the rest one more range (vtkSPTFrame); each draw touches only its cells.
  * GetMeshIndexTexture() keeps each uploaded cell's index in the mesh, for its random numbers.
  *
  * Private helper of vtkSPTVolumeMapper; not wrapped.
@@ -74,8 +76,9 @@ public:
   vtkTextureObject* GetRandomIdTexture() { return this->RandomIdTexture; }
   /// Each uploaded tetrahedron's index in the mesh (R32UI).
   vtkTextureObject* GetMeshIndexTexture() { return this->MeshIndexTexture; }
-  /// How many of the leading uploaded tetrahedra, whole classes of size, have no edge longer
-  /// than `length` (normalized units); zero for a negative length.
+  /// How many of the leading uploaded tetrahedra, whole classes of size of the cells shaped
+  /// for points, have no edge longer than `length` (normalized units); zero for a negative
+  /// length.
   vtkIdType CountSmallCells(double length) const;
 
   /**
@@ -126,7 +129,8 @@ private:
   vtkSmartPointer<vtkTextureObject> PointTexture;
   vtkSmartPointer<vtkTextureObject> RandomIdTexture;
   vtkSmartPointer<vtkTextureObject> MeshIndexTexture;
-  // Per class of size, smallest first: its longest edge, and where its cells end.
+  // Per class of size of the cells shaped for points, smallest first: its longest edge, and
+  // where its cells end.
   std::vector<float> ClassLongestEdges;
   std::vector<vtkIdType> ClassEnds;
   size_t UploadedBytes = 0;
