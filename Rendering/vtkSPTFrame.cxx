@@ -16,12 +16,12 @@
 #include "vtkVolumeViewMatrices.h"
 
 #include "vtkHashRandom.h"
+#include "vtkSPTFacePlane.h"
 #include "vtkSPTPassColorsFS.h"
 #include "vtkSPTPassCoverageFS.h"
 #include "vtkSPTPassKeysFS.h"
 #include "vtkSPTPassSingleFS.h"
 #include "vtkSPTTetrahedraFS.h"
-#include "vtkSPTFacePlane.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraPointsVS.h"
 #include "vtkSPTTetrahedraVS.h"

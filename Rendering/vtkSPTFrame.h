@@ -170,13 +170,14 @@ private:
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of
   // vtkSPTMeshBuffers about SmallCellSize pixels across or less; the others are drawn as the
-  // triangles of their projection. Two ranges: each cell is drawn exactly once.
+  // outline of their projection (vtkSPTTetrahedraGS.glsl). Two ranges: each cell is drawn
+  // exactly once.
   std::vector<vtkIdType> PointCellCounts;
   void ChooseSmallCells();
   // Whether a traversal of the volume has cells to draw as points (or as triangles).
   bool Draws(size_t volume, bool points) const;
   // The programs of this frame, by pass kind, by scalars per point (0) or per cell (1), and by
-  // primitive: the projection's triangles (0) or one point per tetrahedron (1).
+  // primitive: the projection's outline (0) or one point per tetrahedron (1).
   vtkShaderProgram* Programs[NumberOfPassKinds][2][2] = {};
   vtkShaderProgram*& ProgramOf(PassKind kind, size_t volume, bool points);
 };

@@ -100,16 +100,16 @@ public:
   /**
    * How tetrahedra are drawn. The cells about SmallCellSize pixels across or less (by classes
    * of their longest edge, a factor of sqrt(2) apart, at the depth of the mesh's centre) are
-   * drawn as one point each, a square over the projection, whose fragments clip their own view
-   * rays by the cell's four face planes; the others are split into the three or four triangles
-   * of their projection by a geometry shader, as in the paper. The image is the same either
-   * way (the two may differ only for samples on a shared edge). A point is one primitive to set
-   * up against three or four, with no geometry stage, but its square also covers samples that
+   * drawn as one point each, a square over the projection; the others as the outline of their
+   * projection, one or two triangles, by a geometry shader. Needles and slivers (cells whose
+   * mean projection fills less than 0.15 of the square of their longest edge) are never
+   * points. The fragments of both clip their own view rays by the cell's four face planes, so
+   * the image is the same either way (the two may differ only for samples on a shared edge).
+   * A point is one primitive with no geometry stage, but its square also covers samples that
    * miss the cell, so it pays where cells are small and well shaped on the screen: on
-   * llvmpipe at 256 x 256, 0.70 of the time on a 200,000-cell TetGen mesh, 0.77 on the Oxygen
-   * Post, but 1.2 on the thin cells of the Blunt Fin. Points are used only where the mesh's
-   * bounds lie wholly in front of the near plane. 0 draws every cell as triangles. Range 0 to
-   * 64 pixels, default 8.
+   * llvmpipe at 256 x 256, 0.7 of the time on a 200,000-cell TetGen mesh, about 1.0 on the
+   * Oxygen Post. Points are used only where the mesh's bounds lie wholly in front of the near
+   * plane. 0 draws every cell as an outline. Range 0 to 64 pixels, default 8.
    */
   vtkSetClampMacro(SmallCellSize, double, 0.0, 64.0);
   vtkGetMacro(SmallCellSize, double);

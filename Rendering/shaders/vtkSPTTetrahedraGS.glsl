@@ -45,7 +45,7 @@ uniform samplerBuffer cellScalars;
 #endif
 
 flat out int tetrahedronId;
-flat out vec4 facePlaneNDC[4]; // as vtkSPTTetrahedraPointsVS.glsl makes them
+flat out vec4 facePlaneNDC[4]; // the cell's face planes (vtkSPTFacePlane.glsl)
 flat out vec4 scalarPlaneNDC;
 #ifdef SPT_CLIPPED_CELLS
 flat out int clippedCell; // 1: the fragment stage computes the segment from the cell

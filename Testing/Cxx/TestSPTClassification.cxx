@@ -436,8 +436,7 @@ int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::v
   const glm::vec4 back = inverse * glm::vec4(q, leave, 1.0f);
   const glm::vec3 frontPoint = glm::vec3(front) / front.w;
   const glm::vec3 backPoint = glm::vec3(back) / back.w;
-  const float frontScalar =
-    -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, enter, 1.0f)) / front.w;
+  const float frontScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, enter, 1.0f)) / front.w;
   const float backScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, leave, 1.0f)) / back.w;
   glm::vec3 origin, direction, exactFront, exactBack;
   float exactFrontScalar, exactBackScalar;

@@ -1,14 +1,15 @@
 """Tetrahedra drawn as points (vtkSPTVolumeMapper's SmallCellSize) against tetrahedra drawn as
-the triangles of their projection.
+the outline of their projection.
 
-A point is a square over its cell's projection, the triangles are the projection's outline;
-the fragments of both clip their own view ray by the cell's four face planes, and the random
-numbers follow the pixel and the cell, not the primitive. So with the same seed the two are the same image, up to the samples that
-lie on an edge two cells share (each primitive decides those with its own arithmetic). The
-tests compare them pixel by pixel, with and without opaque geometry, in perspective and
-parallel projection, zoomed in until the mesh crosses the viewport's edges, with cell scalars
-and with the paper's single passes; and check where points are not used: with the camera
-inside the mesh, and for cells whose projection would fill little of their square.
+A point is a square over its cell's projection, the outline one or two triangles; the
+fragments of both clip their own view ray by the cell's four face planes, and the random
+numbers follow the pixel and the cell, not the primitive. So with the same seed the two are
+the same image, up to the samples that lie on an edge two cells share (each primitive decides
+those with its own arithmetic). The tests compare them pixel by pixel, with and without
+opaque geometry, in perspective and parallel projection, zoomed in until the mesh crosses the
+viewport's edges, with cell scalars and with the paper's single passes; and check where points
+are not used: with the camera inside the mesh, and for cells whose projection would fill
+little of their square.
 """
 
 from functools import lru_cache
