@@ -364,6 +364,33 @@ bool vtkEnsembleBuffer::BeginCoveragePass()
   return true;
 }
 
+bool vtkEnsembleBuffer::BeginSumBesideDepthPass(bool coverage)
+{
+  if (coverage && !this->BeginCoveragePass())
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  // Draw buffers are state of a framebuffer object: one object for each set. Attaching a
+  // texture that is attached already does nothing.
+  vtkOpenGLFramebufferObject* framebuffer =
+    coverage ? this->SumAndCoverageFramebuffer : this->SumBesideDepthFramebuffer;
+  ostate->PushFramebufferBindings();
+  framebuffer->SetContext(this->Context);
+  framebuffer->Bind();
+  framebuffer->AddColorAttachment(0, this->Sum);
+  if (coverage)
+  {
+    framebuffer->AddColorAttachment(1, this->Coverage);
+  }
+  framebuffer->ActivateDrawBuffers(coverage ? 2 : 1);
+  ostate->PopFramebufferBindings();
+  framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+  return true;
+}
+
 void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
 {
   exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
@@ -519,6 +546,7 @@ void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->HalvesSum = 0;
   for (vtkOpenGLFramebufferObject* framebuffer :
     { this->PassFramebuffer.Get(), this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get(),
+      this->SumBesideDepthFramebuffer.Get(), this->SumAndCoverageFramebuffer.Get(),
       this->HalvesFramebuffer.Get(), this->NoiseFramebuffer.Get() })
   {
     framebuffer->ReleaseGraphicsResources(window);

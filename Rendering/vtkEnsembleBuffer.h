@@ -105,6 +105,19 @@ public:
   bool BeginCoveragePass();
 
   /**
+   * Bind the sum for drawing, as BeginSumPass() does but without the passes' depth buffer, so
+   * that the caller can read it (GetPassDepthTexture()). With `coverage`, the coverage buffer
+   * is allocated and cleared as BeginCoveragePass() does and bound as draw buffer 1, for a
+   * traversal that draws both. Bracketed like BeginPass(); false, with an error, when the
+   * coverage cannot be allocated.
+   */
+  bool BeginSumBesideDepthPass(bool coverage);
+
+  /// The passes' depth buffer: one 32-bit float per sample, what BeginPass() cleared and the
+  /// caller drew since.
+  vtkTextureObject* GetPassDepthTexture() { return this->PassDepth; }
+
+  /**
    * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
    * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2; with exactCoverage,
    * corrected by the coverage buffer drawn since the sum was cleared.
@@ -185,7 +198,9 @@ private:
   vtkNew<vtkOpenGLFramebufferObject> PassFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> SumFramebuffer;
   vtkNew<vtkOpenGLFramebufferObject> CoverageFramebuffer;
-  vtkNew<vtkOpenGLFramebufferObject> HalvesFramebuffer; // the sum and the second half's
+  vtkNew<vtkOpenGLFramebufferObject> SumBesideDepthFramebuffer; // the sum, no depth
+  vtkNew<vtkOpenGLFramebufferObject> SumAndCoverageFramebuffer; // the sum and the coverage
+  vtkNew<vtkOpenGLFramebufferObject> HalvesFramebuffer;         // the sum and the second half's
   unsigned int HalvesSum = 0; // the sum texture that HalvesFramebuffer holds
   vtkNew<vtkOpenGLFramebufferObject> NoiseFramebuffer;
   std::unique_ptr<vtkOpenGLQuadHelper> Accumulate;

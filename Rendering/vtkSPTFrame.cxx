@@ -19,6 +19,7 @@
 #include "vtkSPTFacePlane.h"
 #include "vtkSPTPassColorsFS.h"
 #include "vtkSPTPassCoverageFS.h"
+#include "vtkSPTPassDepthColorsFS.h"
 #include "vtkSPTPassKeysFS.h"
 #include "vtkSPTPassSingleFS.h"
 #include "vtkSPTTetrahedraFS.h"
@@ -138,7 +139,8 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
-    vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS };
+    vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS, vtkSPTPassDepthColorsFS,
+    vtkSPTPassDepthColorsFS };
   // Both stages: scalars per cell, the path for cells that a clipping plane cuts (compiled in
   // only while one cuts some volume's bounds: a fragment stage pays for its branches),
   // and the scene depth (only when opaque geometry was drawn).
@@ -154,7 +156,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
 
   std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
-  if (kind == PassKind::KeysAndCoverage)
+  if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
   {
     defines += "\n#define SPT_WRITE_COVERAGE";
   }
@@ -242,6 +244,12 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
         program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
       }
       SetVolumeUniforms(program, volume);
+      if (kind == PassKind::DepthColors || kind == PassKind::DepthColorsAndCoverage)
+      {
+        // Active for the traversal (DrawDepthSurvivors()).
+        program->SetUniformi(
+          "survivorDepth", this->Ensemble->GetPassDepthTexture()->GetTextureUnit());
+      }
       program->SetUniformi("repetition", repetition);
       program->SetUniformi("repetitionsInGroup", inGroup);
       this->DrawTetrahedra(volume, program, points, this->PointCellCounts[v]);
@@ -277,17 +285,24 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // need a traversal of its own. The survivor estimator draws one repetition at a time (one
   // per pass, or a render of one) as the paper does: the depth test finds the survivor in one
   // traversal, where keys would take two.
-  const bool single = std::min(perPass, count) == 1 &&
-    this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR && !this->FrameSettings.AlwaysKeys;
-  const bool needed[NumberOfPassKinds] = { single, !single && (!coverage || count > perPass),
-    !single && coverage, !single, single && coverage };
+  // The visibility estimator one repetition at a time finds its survivors the same way, and
+  // its color traversal then reads the survivor's depth (unless the ranks of a parallel frame
+  // combine keys, or the error target counts two halves).
+  const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys;
+  const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
+  const bool depthSurvivors =
+    oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR && !halves;
+  const bool keys = !single && !depthSurvivors;
+  const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
+    keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,
+    depthSurvivors && (!coverage || count > 1), depthSurvivors && coverage };
   // A render of fewer repetitions than a group draws only those: the fragment loops are sized
   // by the compiled count.
   const int lanes = std::min(perPass, count);
   // Active before the frame's uniforms name its unit.
   ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
   if (!this->ReadyPrograms(needed, lanes, first, count, halves) ||
-    (!single &&
+    (keys &&
       !this->DepthKeys->Prepare(
         this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes)))
   {
@@ -297,8 +312,48 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  if (depthSurvivors)
+  {
+    return this->DrawDepthSurvivors(first, count, coverage);
+  }
   return single ? this->DrawSingles(first, count, coverage, halves)
                 : this->DrawGroups(first, count, lanes, coverage, halves);
+}
+
+bool vtkSPTFrame::DrawDepthSurvivors(int first, int count, bool coverage)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  vtkEnsembleBuffer* ensemble = this->Ensemble;
+  bool ok = true;
+  for (int r = first; ok && r < first + count; ++r)
+  {
+    // The survivor: the single pass's depth test keeps the nearest kept segment's front, as
+    // the keys' atomic minimum would, and its color is not needed.
+    ensemble->BeginPass();
+    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ostate->vtkglDisable(GL_BLEND);
+    ostate->vtkglEnable(GL_DEPTH_TEST);
+    ostate->vtkglDepthFunc(GL_LESS);
+    ostate->vtkglDepthMask(GL_TRUE);
+    this->Traverse(PassKind::Single, r, 1);
+    // Every fragment in front of it adds its color, read against its depth: no depth test
+    // (the rasterized depth is the cell's nearest vertex, not the segment's front), and the
+    // first traversal of the image adds every segment's coverage too.
+    const bool withCoverage = coverage && r == first;
+    ok = ensemble->BeginSumBesideDepthPass(withCoverage);
+    if (ok)
+    {
+      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      ostate->vtkglEnable(GL_BLEND);
+      ostate->vtkglDisable(GL_DEPTH_TEST);
+      ostate->vtkglDepthMask(GL_FALSE);
+      ScopedTextures survivorDepth({ ensemble->GetPassDepthTexture() });
+      this->Traverse(withCoverage ? PassKind::DepthColorsAndCoverage : PassKind::DepthColors, r, 1);
+    }
+  }
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDepthMask(GL_TRUE);
+  return ok;
 }
 
 bool vtkSPTFrame::DrawSingles(int first, int count, bool coverage, bool halves)

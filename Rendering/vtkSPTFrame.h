@@ -56,13 +56,15 @@ public:
   /// What a pass writes; see the vtkSPTPass*FS.glsl shaders.
   enum class PassKind
   {
-    Single,          // one repetition, opaque with the depth test
+    Single,          // one repetition: the nearest kept segment by the depth test, opaque
     Keys,            // several repetitions: nearest survivors by atomic minimum of depth keys
     KeysAndCoverage, // the same, and every segment's optical depth terms
     Colors,          // several repetitions: what the visible segments (or survivors) add
     Coverage,        // every segment's optical depth terms, for the single passes
+    DepthColors,     // one repetition: what the segments not behind the survivor's depth add
+    DepthColorsAndCoverage, // the same, and every segment's optical depth terms
   };
-  static constexpr int NumberOfPassKinds = 5;
+  static constexpr int NumberOfPassKinds = 7;
 
   enum EstimatorType
   {
@@ -152,6 +154,10 @@ private:
     const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
+  // The visibility estimator one repetition per traversal pair: the single pass's depth test
+  // finds each survivor, and the color traversal (with the coverage, in the first) reads its
+  // depth.
+  bool DrawDepthSurvivors(int first, int count, bool coverage);
   // Between a group's keys and colors: sort each half's keys for the visibility estimator,
   // and write the farthest survivor into the depth buffer and test the color traversal
   // against it, so that fragments behind all the survivors are not shaded. False (and no

@@ -49,8 +49,9 @@ def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
 @pytest.mark.parametrize("stratified", [False, True])
 def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling, have_display):
     """12 repetitions one per pass, 16 per pass (one short group) and 5 per pass (groups of
-    5, 5 and 2): the same random numbers, so the same image up to the 8-bit read-back. (The
-    survivor estimator draws one per pass with the depth test, the others with depth keys.)"""
+    5, 5 and 2): the same random numbers, so the same image up to the 8-bit read-back. (One
+    per pass, both estimators find the survivor with the depth test; groups, with depth
+    keys.)"""
     single = _image(12, 7, stratified, per_pass=1, sampling=sampling)
     assert single[..., 3].max() > 0.2, "the image is empty"
     for per_pass in (16, 5):
@@ -80,6 +81,11 @@ def test_depth_keys_are_reported_and_released(have_display):
     assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (3 * 4 + 16)
     mapper.ReleaseGraphicsResources(window)
     assert mapper.GetGPUMemorySize() == 0
+    # One repetition at a time, the visibility estimator finds its survivor with the depth
+    # test as the survivor estimator does: no keys, only the coverage on top.
+    mapper.SetRepetitionLevel(1)
+    window.Render()
+    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * 16
     window.Finalize()
 
 
