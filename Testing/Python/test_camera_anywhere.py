@@ -120,6 +120,19 @@ def test_no_holes_with_the_camera_inside(name, have_display):
     assert not holes.any(), f"{int(holes.sum())} empty pixels"
 
 
+@pytest.mark.parametrize("camera", ["near plane cutting", "inside"])
+def test_one_repetition_per_pass_draws_the_groups_image(camera, have_display):
+    """With the near plane cutting the mesh, one repetition per pass (the survivor found by the
+    depth test) draws the image of groups (the survivor found from depth keys): the same
+    random numbers, the same segments from the near plane on."""
+    def image(per_pass):
+        return _render("bluntfin", render.spt_mapper(4, seed=1, per_pass=per_pass),
+                       CAMERAS[camera])[0]
+    one, groups = image(1), image(16)
+    assert one[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert np.abs(one - groups).max() <= 1.0 / 255.0 + 1e-6
+
+
 @lru_cache(maxsize=None)
 def _havs(name, dolly, parallel=False):
     return _render(name, render.havs_mapper(6), dolly, parallel)[0]

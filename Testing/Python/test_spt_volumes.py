@@ -97,6 +97,16 @@ def test_two_volumes_composite_as_their_union(name, have_display):
         f"SPT {two_error:.4f}, VTK PT with two volumes {sorted_one_by_one:.4f}")
 
 
+def test_one_repetition_per_pass_draws_the_groups_image(have_display):
+    """Two interpenetrating volumes, one repetition per pass (each survivor found by the depth
+    test over both) against groups (found from depth keys): the same image."""
+    name = SCENES[0]
+    one = _two_volumes(name, lambda: render.spt_mapper(4, seed=1, per_pass=1))
+    groups = _two_volumes(name, lambda: render.spt_mapper(4, seed=1, per_pass=16))
+    assert one[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert np.abs(one - groups).max() <= 1.0 / 255.0 + 1e-6
+
+
 def test_each_volume_keeps_its_transfer_function(have_display):
     s = _scene("default")
     transparent = vtkVolumeProperty()
