@@ -371,8 +371,9 @@ bool vtkEnsembleBuffer::BeginSumBesideDepthPass(bool coverage)
     return false;
   }
   vtkOpenGLState* ostate = this->Context->GetState();
-  // Draw buffers are state of a framebuffer object: one object for each set. Attaching a
-  // texture that is attached already does nothing.
+  // Draw buffers are state of a framebuffer object: one object for each set, never changed
+  // (VTK's state cache compares only the buffers asked for, so it would not shrink a set of
+  // two to one). Attaching a texture that is attached already does nothing.
   vtkOpenGLFramebufferObject* framebuffer =
     coverage ? this->SumAndCoverageFramebuffer : this->SumBesideDepthFramebuffer;
   ostate->PushFramebufferBindings();
