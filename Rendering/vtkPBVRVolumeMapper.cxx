@@ -500,7 +500,8 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // The sets that fit the time allotted, after those accumulated when refining progressively;
   // at most the sets generated.
   int perPass = 1;
-  int count = this->ChooseRepetitions(vol, this->RepetitionLevel, perPass);
+  Traversal kind = Traversal::Single;
+  int count = this->ChooseRepetitions(vol, this->RepetitionLevel, perPass, kind);
   std::vector<double> signature(internals.Transforms.MCVC, internals.Transforms.MCVC + 16);
   signature.insert(signature.end(), internals.Transforms.VCDC, internals.Transforms.VCDC + 16);
   signature.push_back(double(internals.GenerationCount));
@@ -566,7 +567,7 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y, int first, int count)
     internals.DrawSet(ostate, program, set);
     ensemble->EndPass();
   }
-  this->AddRepetitions(count, 1, this->StopTiming());
+  this->AddRepetitions(count, 1, Traversal::Single, this->StopTiming());
   sceneDepth->Deactivate();
   colors->Deactivate();
   ostate->PopFramebufferBindings();

@@ -75,6 +75,14 @@ int RepetitionsToTarget(int half, double estimate, double target)
   const double more = std::ceil(half * (1.25 * ratio * ratio - 1.0));
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
 }
+
+// The repetitions per half of an image's first step, from the noise of one repetition.
+int FirstHalfToTarget(double noisePerRepetition, double target, int most)
+{
+  const double ratio = noisePerRepetition / target;
+  const double half = std::ceil(0.5 * 1.25 * ratio * ratio);
+  return static_cast<int>(std::max(1.0, std::min(half, double(most))));
+}
 }
 
 vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
@@ -507,11 +515,19 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
     return 0; // the image meets the target (or shows nothing)
   }
   int drawn = 0;
-  // The first estimate comes from a sixteenth of a group per half (16 + 16 of 256): a traversal
-  // of a whole group costs little more than one of a few repetitions, and the estimate from
-  // one per half is itself noisy. After it, each step aims beyond the target.
-  int half = state.HalfCount == 0 ? std::max(1, std::min({ perPass, count, 256 }) / 16)
-                                  : RepetitionsToTarget(state.HalfCount, state.Estimate, target);
+  // Each step aims beyond the target. The first of an image aims with the noise per
+  // repetition of the images before it (the noise changes little with the view, and any
+  // shortfall takes one more step); the first image's first estimate comes from a sixteenth of
+  // a group per half (16 + 16 of 256): a traversal of a whole group costs little more than one
+  // of a few repetitions.
+  if (state.HalfCount == 0 && state.FirstHalf == 0 && count >= 2)
+  {
+    state.FirstHalf = state.NoisePerRepetition > 0.0
+      ? FirstHalfToTarget(state.NoisePerRepetition, target, count / 2)
+      : std::max(1, std::min({ perPass, count, 256 }) / 16);
+  }
+  int half = state.HalfCount > 0 ? RepetitionsToTarget(state.HalfCount, state.Estimate, target)
+                                 : state.FirstHalf;
   while (count - drawn >= 2)
   {
     half = std::min(half, (count - drawn) / 2);
@@ -524,6 +540,10 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
     if (!steps.Estimate(state.HalfCount, state.Estimate))
     {
       return -1;
+    }
+    if (state.Estimate > 0.0)
+    {
+      state.NoisePerRepetition = state.Estimate * std::sqrt(2.0 * state.HalfCount);
     }
     if (state.Estimate <= target)
     {

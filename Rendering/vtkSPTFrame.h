@@ -109,6 +109,22 @@ public:
     int HalfCount = 0;      // repetitions in each half
     bool Balanced = true;   // the halves are of equal size
     double Estimate = -1.0; // the last noise estimate; negative: none
+    /// The noise of one repetition, from the last estimate of this image or of an image
+    /// before it (it survives Restart()); negative: none yet.
+    double NoisePerRepetition = -1.0;
+    /// The repetitions per half of this image's first step; 0: not chosen yet.
+    int FirstHalf = 0;
+
+    /**
+     * A new image: nothing drawn. Its first step aims with the noise per repetition of the
+     * images before it, or repeats the last image's first step where everything that shapes
+     * the image is as it was (`sameImage`), so that the same render gives the same image.
+     */
+    void Restart(bool sameImage)
+    {
+      *this =
+        TargetState{ 0, true, -1.0, this->NoisePerRepetition, sameImage ? this->FirstHalf : 0 };
+    }
   };
 
   /**
@@ -130,10 +146,12 @@ public:
 
   /**
    * The steps of an error target, whoever draws them (one process, or ranks that share each
-   * estimate): the first draws a sixteenth of a group per half (at least one), each later
-   * one as many as the estimate predicts for a quarter below the target in variance, until the
-   * estimate meets it or count is drawn. Where only one repetition fits, it is drawn alone and the
-   * halves are no longer balanced (no estimate). Returns how many were drawn, or -1 on failure.
+   * estimate). Each step draws as many as the noise per repetition predicts for a quarter below
+   * the target in variance, until the estimate meets the target or count is drawn; the first
+   * step of an image takes that noise from the images before it, and of the first image, draws
+   * a sixteenth of a group per half (at least one). Where only one repetition fits, it is drawn
+   * alone and the halves are no longer balanced (no estimate). Returns how many were drawn, or -1
+   * on failure.
    */
   static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
     bool coverage, double target, TargetState& state);

@@ -201,13 +201,13 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
-  vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves)
+  vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage)
 {
   vtkEnsembleBuffer* ensemble = self->GetEnsemble();
   ensemble->CaptureSceneDepth(target.X, target.Y);
   self->ResetAccumulation();
   this->CoverageDrawn = false;
-  this->Target = vtkSPTFrame::TargetState();
+  this->Target.Restart(sameImage);
   if (!ensemble->SetHalves(halves))
   {
     self->ForgetAccumulation();
@@ -233,22 +233,26 @@ int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
     self->ForgetAccumulation();
     return drawn;
   }
-  self->AddRepetitions(drawn, plan.PerPass, seconds);
+  self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
   return drawn;
 }
 
 vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Plan(
-  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature)
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs, std::vector<double> signature)
 {
   // What to draw: the repetitions that fit the time allotted, added to what is accumulated
   // when refining progressively.
   FramePlan plan;
   plan.PerPass = perPass;
-  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass);
-  // When not even one group of repetitions fits, the cheapest frame: the paper's single
-  // passes, one traversal each, unbiased too; the exact coverage waits for a later frame.
-  plan.Cheapest = plan.PerPass == 1 && self->RepetitionsPerPass > 1;
+  plan.Kind = pairs ? Traversal::Pair : Traversal::Single;
+  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
+  // When not even one group of repetitions fits, the visibility estimator one repetition at a
+  // time (a pair of traversals each, the coverage drawn with the colors). When not even one
+  // pair fits, the cheapest frame: the paper's single passes, one traversal each, unbiased too;
+  // the exact coverage waits for a later frame.
+  plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
+  plan.SameImage = self->IsLastSignature(signature);
   plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
   // it, and a new accumulation starts without it.
@@ -286,8 +290,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   vtkSPTFrame::Settings settings;
   const int perPass = internals.ChooseTraversal(this, renWin, settings);
-  const vtkInternals::FramePlan plan =
-    internals.Plan(this, vol, perPass, vtkInternals::Signature(ren, mappers, target));
+  const vtkInternals::FramePlan plan = internals.Plan(this, vol, perPass,
+    settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR;
@@ -300,8 +304,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
     [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
   ostate->PushFramebufferBindings();
-  const bool started =
-    plan.First > 0 || internals.StartAccumulation(this, target, this->TargetError > 0.0);
+  const bool started = plan.First > 0 ||
+    internals.StartAccumulation(this, target, this->TargetError > 0.0, plan.SameImage);
   vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
   const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(this, frame, plan) >= 0);
   ostate->PopFramebufferBindings();
@@ -345,7 +349,7 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.Table->ReleaseGraphicsResources(window);
   internals.DepthKeys->ReleaseGraphicsResources(window);
   internals.CoverageDrawn = false;
-  internals.Target = vtkSPTFrame::TargetState();
+  internals.Target.Restart(false); // keeps the noise per repetition, which all ranks share
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

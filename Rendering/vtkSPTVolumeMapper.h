@@ -88,8 +88,10 @@ public:
    * drawn per traversal, but never fewer than 16. Needs OpenGL 4.4 (image load/store, clear
    * texture); without it the mapper falls back to 1 and to the survivor estimator. With
    * AutoAdjustRepetitions, the time allotted is spent in whole traversals of RepetitionsPerPass
-   * repetitions while one fits, else in the cheapest frame there is: the paper's single passes
-   * (one traversal per repetition, the survivor estimator, no exact coverage; unbiased too).
+   * repetitions while one fits; else, with the visibility estimator, in repetitions drawn one
+   * per pair of traversals (the depth test finds the survivor, with exact coverage) while one
+   * fits; else in the cheapest frame there is: the paper's single passes (one traversal per
+   * repetition, the survivor estimator, no exact coverage; unbiased too).
    * Range 1 to 256, default 256.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 256);

@@ -69,16 +69,19 @@ public:
   // What one frame draws.
   struct FramePlan
   {
-    int First = 0;         // repetitions already accumulated
-    int Count = 0;         // repetitions to add
-    int PerPass = 1;       // repetitions per traversal
-    bool Cheapest = false; // the paper's single passes, when no group fits the budget
-    bool Coverage = false; // draw the exact coverage in this frame
+    int First = 0;   // repetitions already accumulated
+    int Count = 0;   // repetitions to add
+    int PerPass = 1; // repetitions per traversal
+    vtkStochasticVolumeMapper::Traversal Kind = vtkStochasticVolumeMapper::Traversal::Group;
+    bool Cheapest = false;  // the paper's single passes, when nothing else fits the budget
+    bool Coverage = false;  // draw the exact coverage in this frame
+    bool SameImage = false; // all that shapes the image is as in the last render
   };
-  FramePlan Plan(
-    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
+  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs,
+    std::vector<double> signature);
   // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
-  bool StartAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves);
+  bool StartAccumulation(
+    vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage);
   // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
   int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 

@@ -196,12 +196,19 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
 {
   FramePlan plan;
   plan.PerPass = perPass;
-  const int chosen = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass);
+  // One repetition of the visibility estimator at a time is a pair of traversals here too,
+  // with keys (which the ranks combine) where one process finds the survivor by depth: the
+  // same image.
+  plan.Kind = self->Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
+  const int chosen = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
   int count = chosen;
   // The fewest repetitions of any rank's budget come with its repetitions per traversal: a
-  // rank that can afford only single passes chooses fewer than one group.
-  int agreed[3] = { self->ContinueAccumulation(std::move(signature), count), chosen, plan.PerPass };
-  if (!this->Reduction->AllMinimum(agreed, 3))
+  // rank that can afford only single passes chooses fewer than one group, and no pair.
+  const int same = self->IsLastSignature(signature) ? 1 : 0;
+  const int pairs = plan.Kind == Traversal::Single ? 0 : 1;
+  int agreed[5] = { self->ContinueAccumulation(std::move(signature), count), chosen, plan.PerPass,
+    same, pairs };
+  if (!this->Reduction->AllMinimum(agreed, 5))
   {
     agreed[0] = agreed[1] = 0; // nothing drawn; the frame's last exchange fails too
   }
@@ -210,7 +217,11 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
     ? std::min(agreed[1], self->MaximumProgressiveRepetitions - plan.First)
     : agreed[1];
   plan.PerPass = agreed[2];
-  plan.Cheapest = plan.PerPass == 1 && self->RepetitionsPerPass > 1;
+  plan.SameImage = agreed[3] != 0; // on every rank
+  plan.Kind = plan.PerPass > 1 ? Traversal::Group
+    : agreed[4] != 0           ? Traversal::Pair
+                               : Traversal::Single;
+  plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
   const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
   plan.Coverage = self->ExactCoverage && !coverageDrawn && !plan.Cheapest;
   return plan;
@@ -263,8 +274,8 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
       this->SceneColor = ensemble->ReadSceneColor(target.X, target.Y);
     }
   }
-  const bool started =
-    plan.First > 0 || this->StartAccumulation(self, target, self->TargetError > 0.0);
+  const bool started = plan.First > 0 ||
+    this->StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
   if (plan.First == 0 && settings.OpaqueScene &&
     (!reduction->CompositeScene(ensemble->GetSceneDepthTexture(), this->SceneColor) || !root))
   {
@@ -306,7 +317,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
     self->ForgetAccumulation();
     return;
   }
-  self->AddRepetitions(drawn, plan.PerPass, seconds);
+  self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
   for (vtkSPTVolumeMapper* mapper : all)
   {

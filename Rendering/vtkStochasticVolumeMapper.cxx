@@ -42,63 +42,75 @@ vtkMTimeType RedrawTime(vtkProp* prop)
   }
   return time;
 }
-
-// The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
-// little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
-// 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
-// whole groups, and when not even one group fits, in single-repetition passes, the cheapest
-// frame there is (0.36 s there), as many as fit and at least one.
-struct RepetitionBudget
-{
-  double TimePerGroup = 0.0;      // seconds per traversal group of several repetitions
-  double TimePerSinglePass = 0.0; // seconds per repetition drawn one per traversal
-
-  // How many repetitions to draw, and how many per traversal (perPass may drop to 1).
-  int Choose(double allotted, int level, int& perPass) const
-  {
-    int most = level;
-    if (perPass > 1)
-    {
-      const int groups = (level + perPass - 1) / perPass;
-      if (this->TimePerGroup <= 0.0 || allotted >= groups * this->TimePerGroup)
-      {
-        return level;
-      }
-      if (allotted >= this->TimePerGroup)
-      {
-        return std::min(level, static_cast<int>(allotted / this->TimePerGroup) * perPass);
-      }
-      most = std::min(level, perPass);
-      perPass = 1;
-      if (this->TimePerSinglePass <= 0.0)
-      {
-        return 1; // measured by this frame
-      }
-    }
-    if (this->TimePerSinglePass <= 0.0 || allotted >= most * this->TimePerSinglePass)
-    {
-      return most;
-    }
-    return std::max(1, static_cast<int>(allotted / this->TimePerSinglePass));
-  }
-
-  void Measure(double seconds, int count, int perPass)
-  {
-    if (perPass > 1)
-    {
-      this->TimePerGroup = seconds / ((count + perPass - 1) / perPass);
-    }
-    else
-    {
-      this->TimePerSinglePass = seconds / count;
-    }
-  }
-};
 }
 
 class vtkStochasticVolumeMapper::vtkSchedule
 {
 public:
+  // The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
+  // little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
+  // 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
+  // whole groups. When not even one group fits, one repetition at a time: in pairs of traversals
+  // where the mapper has them and one fits (SPT's visibility estimator, about two single passes,
+  // with an error some 40 times smaller than a single pass's on SPX), else in single passes, the
+  // cheapest frame there is (0.36 s there); as many as fit and at least one.
+  struct RepetitionBudget
+  {
+    double TimePerGroup = 0.0;      // seconds per traversal group of several repetitions
+    double TimePerPair = 0.0;       // seconds per repetition drawn one per pair of traversals
+    double TimePerSinglePass = 0.0; // seconds per repetition drawn one per traversal
+
+    // How many repetitions to draw, how many per traversal (perPass may drop to 1), and how.
+    int Choose(double allotted, int level, int& perPass, Traversal& kind) const
+    {
+      int most = level;
+      const bool belowGroups = perPass > 1;
+      if (belowGroups)
+      {
+        const int groups = (level + perPass - 1) / perPass;
+        if (this->TimePerGroup <= 0.0 || allotted >= groups * this->TimePerGroup)
+        {
+          kind = Traversal::Group;
+          return level;
+        }
+        if (allotted >= this->TimePerGroup)
+        {
+          kind = Traversal::Group;
+          return std::min(level, static_cast<int>(allotted / this->TimePerGroup) * perPass);
+        }
+        most = std::min(level, perPass);
+        perPass = 1;
+      }
+      if (belowGroups && kind == Traversal::Pair && this->TimePerPair > 0.0 &&
+        allotted < this->TimePerPair)
+      {
+        kind = Traversal::Single; // not even one pair fits
+      }
+      const double time = kind == Traversal::Pair ? this->TimePerPair : this->TimePerSinglePass;
+      if (time <= 0.0 || allotted >= most * time)
+      {
+        return time <= 0.0 && belowGroups ? 1 : most; // not timed yet: timed by this frame
+      }
+      return std::max(1, static_cast<int>(allotted / time));
+    }
+
+    void Measure(double seconds, int count, int perPass, Traversal kind)
+    {
+      if (kind == Traversal::Group)
+      {
+        this->TimePerGroup = seconds / ((count + perPass - 1) / perPass);
+      }
+      else if (kind == Traversal::Pair)
+      {
+        this->TimePerPair = seconds / count;
+      }
+      else
+      {
+        this->TimePerSinglePass = seconds / count;
+      }
+    }
+  };
+
   std::vector<double> Signature; // what the accumulated image was drawn from
   int Accumulated = 0;           // repetitions in it
   RepetitionBudget Budget;
@@ -120,11 +132,15 @@ vtkEnsembleBuffer* vtkStochasticVolumeMapper::GetEnsemble() const
   return this->Ensemble;
 }
 
-int vtkStochasticVolumeMapper::ChooseRepetitions(vtkVolume* vol, int level, int& perPass) const
+int vtkStochasticVolumeMapper::ChooseRepetitions(
+  vtkVolume* vol, int level, int& perPass, Traversal& kind) const
 {
-  return this->AutoAdjustRepetitions
-    ? this->Schedule->Budget.Choose(vol->GetAllocatedRenderTime(), level, perPass)
-    : level;
+  if (!this->AutoAdjustRepetitions)
+  {
+    kind = perPass > 1 ? Traversal::Group : kind;
+    return level;
+  }
+  return this->Schedule->Budget.Choose(vol->GetAllocatedRenderTime(), level, perPass, kind);
 }
 
 int vtkStochasticVolumeMapper::ContinueAccumulation(std::vector<double> signature, int& count)
@@ -138,6 +154,11 @@ int vtkStochasticVolumeMapper::ContinueAccumulation(std::vector<double> signatur
   }
   schedule.Signature = std::move(signature);
   return first;
+}
+
+bool vtkStochasticVolumeMapper::IsLastSignature(const std::vector<double>& signature) const
+{
+  return !signature.empty() && signature == this->Schedule->Signature;
 }
 
 void vtkStochasticVolumeMapper::ResetAccumulation()
@@ -195,13 +216,14 @@ double vtkStochasticVolumeMapper::StopTiming()
   return schedule.Clock->GetElapsedTime();
 }
 
-void vtkStochasticVolumeMapper::AddRepetitions(int drawn, int perPass, double seconds)
+void vtkStochasticVolumeMapper::AddRepetitions(
+  int drawn, int perPass, Traversal kind, double seconds)
 {
   vtkSchedule& schedule = *this->Schedule;
   if (seconds >= 0.0 && drawn > 0)
   {
     this->TimePerRepetition = seconds / drawn;
-    schedule.Budget.Measure(seconds, drawn, perPass);
+    schedule.Budget.Measure(seconds, drawn, perPass, kind);
   }
   schedule.Accumulated += drawn;
   this->LastRepetitionCount = schedule.Accumulated;
@@ -213,7 +235,7 @@ void vtkStochasticVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   vtkSchedule& schedule = *this->Schedule;
   schedule.Signature.clear();
   schedule.Accumulated = 0;
-  schedule.Budget = RepetitionBudget();
+  schedule.Budget = vtkSchedule::RepetitionBudget();
   schedule.Timer.Release(window != nullptr);
   this->Superclass::ReleaseGraphicsResources(window);
 }

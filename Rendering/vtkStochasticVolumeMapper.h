@@ -112,12 +112,22 @@ protected:
   /// The framebuffers the repetitions are summed in and resolved from.
   vtkEnsembleBuffer* GetEnsemble() const;
 
+  /// How a render draws its repetitions.
+  enum class Traversal
+  {
+    Group,  ///< several repetitions per traversal
+    Pair,   ///< one repetition per pair of traversals, finding its survivor and adding colors
+    Single, ///< one repetition per traversal: the cheapest frame
+  };
+
   /**
    * How many of `level` repetitions the time allotted to the volume fits (all of them without
    * AutoAdjustRepetitions). `perPass` is the repetitions one traversal draws; when not even
-   * one traversal of them fits, it drops to 1: the cheapest frame, single passes.
+   * one traversal of them fits, it drops to 1. On entry `kind` is the best way this mapper
+   * draws one repetition at a time (Pair or Single); on return it is the way chosen: Group
+   * while perPass is above 1, Pair where a pair fits (or has not been timed yet), else Single.
    */
-  int ChooseRepetitions(vtkVolume* vol, int level, int& perPass) const;
+  int ChooseRepetitions(vtkVolume* vol, int level, int& perPass, Traversal& kind) const;
 
   /**
    * Where this render's repetitions start: after those accumulated, when refining
@@ -125,6 +135,8 @@ protected:
    * accumulated image; else 0. `count` is capped at MaximumProgressiveRepetitions in all.
    */
   int ContinueAccumulation(std::vector<double> signature, int& count);
+  /// Whether `signature` is that of the last render's image.
+  bool IsLastSignature(const std::vector<double>& signature) const;
   /// A new image: nothing accumulated.
   void ResetAccumulation();
   /// Nothing accumulated, and the next render starts anew whatever its signature.
@@ -149,10 +161,10 @@ protected:
   ///@}
 
   /**
-   * Count `drawn` repetitions, drawn `perPass` per traversal in `seconds` (negative: not
-   * timed), into the accumulated image and the budget.
+   * Count `drawn` repetitions, drawn `perPass` per traversal in the way `kind` in `seconds`
+   * (negative: not timed), into the accumulated image and the budget.
    */
-  void AddRepetitions(int drawn, int perPass, double seconds);
+  void AddRepetitions(int drawn, int perPass, Traversal kind, double seconds);
 
   int RepetitionLevel = 32;
   int SubpixelLevel = 1;

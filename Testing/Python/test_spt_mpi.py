@@ -224,8 +224,9 @@ def test_progressive_refinement_across_ranks(have_display, tmp_path):
 
 def test_time_budget_across_ranks(have_display, tmp_path):
     """With AutoAdjustRepetitions and a budget of 1 ms (far less than a software-rendered
-    frame of this scene takes), the first frame draws the cap (nothing measured yet) and the
-    later ones the cheapest frame, one repetition, on every rank alike."""
+    frame of this scene takes), the first frame draws the cap (nothing measured yet), the
+    second one repetition of the visibility estimator (a pair of traversals, not timed yet)
+    and the third the cheapest frame, one repetition in one traversal, on every rank alike."""
     options = ("--update-rate", "1000", "--frames", "3")
     serial, serial_report, _ = run(tmp_path / "budget0.npy", 0, *options, repetitions=64)
     two, report, errors = run(tmp_path / "budget2.npy", 2, *options, repetitions=64)

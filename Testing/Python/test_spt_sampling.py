@@ -196,3 +196,43 @@ def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
     assert volume.GetAllocatedRenderTime() == pytest.approx(2.5 * traversal)
     assert mapper.GetLastRepetitionCount() == 32
     window.Finalize()
+
+
+def _budget_frame(mapper):
+    """The image one render of the default scene gives through ``mapper``, at the still rate."""
+    window, _ = window_with(mapper, SIZE)
+    render_at_still_rate(window)
+    image = render.read_rgba(window)
+    window.Finalize()
+    return image
+
+
+def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
+    """Below one group, one repetition of the visibility estimator, drawn by a pair of
+    traversals (the depth test finds its survivor, the colors read it): the image a render of
+    one repetition gives. Once a pair is timed and does not fit either, the paper's single
+    pass, the cheapest frame. Each is the image the same repetition gives without the budget,
+    and the pair's is far closer to the reference."""
+    mapper = render.spt_mapper(64, seed=1, per_pass=16)
+    mapper.AutoAdjustRepetitionsOn()
+    window, _ = window_with(mapper, SIZE)
+    window.SetDesiredUpdateRate(0.0001)
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 64
+    window.SetDesiredUpdateRate(1000.0)  # 1 ms: not a group, nor (once timed) a pair
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 1
+    pair = render.read_rgba(window)
+    assert mapper.GetTimePerRepetition() > 1e-3
+    window.Render()
+    assert mapper.GetLastRepetitionCount() == 1
+    single = render.read_rgba(window)
+    window.Finalize()
+    assert pair[..., 3].max() > 0.2 and single[..., 3].max() > 0.2, "an empty image"
+    one_pair = _budget_frame(render.spt_mapper(1, seed=1, per_pass=16))
+    one_single = _budget_frame(render.spt_mapper(1, seed=1, per_pass=16, **SAMPLING["survivor"]))
+    assert np.abs(pair - one_pair).max() <= 1.0 / 255.0 + 1e-6
+    assert np.abs(single - one_single).max() <= 1.0 / 255.0 + 1e-6
+    pair_error = metrics.rmse(pair, _reference())
+    single_error = metrics.rmse(single, _reference())
+    assert pair_error < 0.25 * single_error, f"pair {pair_error:.4f}, single {single_error:.4f}"

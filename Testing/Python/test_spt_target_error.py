@@ -103,6 +103,48 @@ def test_default_group_stops_at_or_below_the_target(name, have_display):
     assert measured <= TARGETS[name], f"measured {measured:.4f} at {level} repetitions"
 
 
+@pytest.mark.parametrize("name", ["spx", "bluntfin"])
+def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_display):
+    """The first image's first estimate comes from 16 repetitions per half. A new image (the
+    same view with another seed) draws at once as many as the last image's noise per
+    repetition predicts for the target: fewer here, and its estimate still meets the target
+    and the error measured against the reference."""
+    s = _scene(name)
+    mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
+    render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE))
+    first_level = mapper.GetLastRepetitionCount()
+    assert first_level >= 32, f"the first image stopped at {first_level} repetitions"
+    mapper.SetSeed(2)
+    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    level = mapper.GetLastRepetitionCount()
+    estimated = mapper.GetEstimatedError()
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert 2 <= level < first_level, f"{level} repetitions after {first_level}"
+    assert 0.0 < estimated <= TARGETS[name]
+    measured = metrics.rmse(image, _reference(name))
+    assert measured / 1.5 <= estimated <= 1.5 * measured, (
+        f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
+
+
+def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
+    """Where nothing that shapes the image changed, a render repeats the last one's steps
+    (it does not aim with the noise that image measured), so it gives the same image; a
+    change of the seed makes a new image, which aims with that noise."""
+    mapper = _mapper(CAP, 1, TARGETS["default"], per_pass=None)
+    window, _ = window_with(mapper, SIZE)
+    images, counts = [], []
+    for seed in (1, 1, 2, 2):
+        mapper.SetSeed(seed)
+        window.Render()
+        images.append(render.read_rgba(window))
+        counts.append(mapper.GetLastRepetitionCount())
+    window.Finalize()
+    assert images[0][..., 3].max() > 0.2, "the image is (almost) empty"
+    assert counts[0] == counts[1] and np.array_equal(images[0], images[1]), counts
+    assert counts[2] == counts[3] and np.array_equal(images[2], images[3]), counts
+    assert counts[2] < counts[0], counts
+
+
 @pytest.mark.parametrize("name", SCENES)
 def test_stopped_images_are_unbiased(name, have_display):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""
