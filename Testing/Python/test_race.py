@@ -81,8 +81,9 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     assert reference.shape == (48, 48, 4) and reference[..., 3].max() > 0.1
     again = race.cached_reference(race.race_scene("default"), 48, tmp_path / "references")
     assert np.array_equal(again, reference)
-    assert len(result["summary"]) == 3 + race.has_error_target()
+    assert len(result["summary"]) == 3 + 2 * race.has_error_target()
     if race.has_error_target():
-        target = next(r for r in rows if r["method"] == "spt-target")
-        assert target["target_error"] == pytest.approx(rows[0]["rmse"])
+        for name in ("spt-target", "spt-target-turned"):
+            target = next(r for r in rows if r["method"] == name)
+            assert target["target_error"] == pytest.approx(rows[0]["rmse"])
     assert (tmp_path / "default_pt_1.png").stat().st_size > 100

@@ -309,6 +309,27 @@ def read_rgba(window: vtkRenderWindow) -> np.ndarray:
     return metrics.from_vtk_image(grab.GetOutput(), as_float_rgba=True)
 
 
+#: How far around the scene's view :func:`after_another_view` turns the camera, in degrees.
+ANOTHER_VIEW_AZIMUTH = 10.0
+
+
+def after_another_view(mapper: vtkSPTVolumeMapper, grid: vtkDataSet, prop: vtkVolumeProperty,
+                       view: View, size: Tuple[int, int]) -> vtkSPTVolumeMapper:
+    """Render ``grid`` once through ``mapper`` from ``view`` turned by
+    ``ANOTHER_VIEW_AZIMUTH`` degrees, in a window of its own, and return the mapper. Its next
+    image is then a new one, whose error target aims at once with the noise per repetition
+    this render measured, as when a user turns the camera and the view renders still."""
+    turned = dataclasses.replace(view, azimuth=view.azimuth + ANOTHER_VIEW_AZIMUTH)
+    window, renderer = make_window(*size)
+    add_volume(renderer, grid, prop, mapper)
+    place_camera(renderer, grid.GetBounds(), turned)
+    window.Render()
+    window.WaitForCompletion()
+    renderer.RemoveAllViewProps()
+    window.Finalize()
+    return mapper
+
+
 def warm_up(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper) -> None:
     """One untimed render that builds what later frames reuse (shaders, buffers, tables).
     SPT does it with one traversal group: its shaders are compiled for the repetitions a
