@@ -52,7 +52,8 @@ flat out int clippedCell; // 1: the fragment stage computes the segment from the
 #endif
 
 vec3 vertexVC[4];
-vec2 vertexNDC[4];
+vec2 vertexNDC[4];   // the projection, in normalized device coordinates
+float vertexDepth[4]; // and the depth
 float vertexScalar[4];
 
 // A vertex's clip coordinates, from its view coordinates. Not kept in an array: Mesa 25's
@@ -218,12 +219,15 @@ void main()
 {
   // Clip space puts a point outside the view volume's near and side planes at z < -w,
   // |x| > w or |y| > w (a point behind the eye too); count the vertices beyond each plane.
+  // Each vertex is projected once (the divisions are used only when all four lie inside).
   ivec4 beyond = ivec4(0);
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
     vec4 p = vertexDC(i);
     beyond += ivec4(p.z < -p.w, p.x < -p.w, p.x > p.w, p.y < -p.w || p.y > p.w);
+    vertexNDC[i] = p.xy / p.w;
+    vertexDepth[i] = p.z / p.w;
   }
   if (any(equal(beyond.xyz, ivec3(4))))
   {
@@ -238,7 +242,6 @@ void main()
   }
   for (int i = 0; i < 4; ++i)
   {
-    vertexNDC[i] = vertexDC(i).xy / vertexDC(i).w;
 #ifdef SPT_CELL_SCALARS
     vertexScalar[i] = texelFetch(cellScalars, primitiveOffset + gl_PrimitiveIDIn).r;
 #else
@@ -261,11 +264,8 @@ void main()
   plane3 = ndcFacePlane(v3, v0, v1, v2);
   scalarPlane = vertexScalar[0] * plane0 + vertexScalar[1] * plane1 + vertexScalar[2] * plane2 +
     vertexScalar[3] * plane3;
-  nearestDepth = 1.0;
-  for (int i = 0; i < 4; ++i)
-  {
-    nearestDepth = min(nearestDepth, vertexDC(i).z / vertexDC(i).w);
-  }
+  nearestDepth =
+    min(1.0, min(min(vertexDepth[0], vertexDepth[1]), min(vertexDepth[2], vertexDepth[3])));
   // Inside the triangle of the other three (or on its outline): class 1.
   const float insideTolerance = 1.0e-6;
   if (bestWeight >= -insideTolerance)
