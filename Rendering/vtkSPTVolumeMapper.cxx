@@ -208,6 +208,10 @@ bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
   self->ResetAccumulation();
   this->CoverageDrawn = false;
   this->Target.Restart(sameImage);
+  if (!self->ReuseNoiseEstimate)
+  {
+    this->Target.NoisePerRepetition = -1.0; // every image starts alike
+  }
   if (!ensemble->SetHalves(halves))
   {
     self->ForgetAccumulation();
@@ -365,6 +369,7 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "Estimator: " << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility")
      << "\n";
   os << indent << "TargetError: " << this->TargetError << "\n";
+  os << indent << "ReuseNoiseEstimate: " << (this->ReuseNoiseEstimate ? "On" : "Off") << "\n";
   os << indent << "Controller: " << this->GetController() << "\n";
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";

@@ -184,19 +184,36 @@ public:
    * footprint) at which a render stops adding repetitions; RepetitionLevel becomes a cap.
    * The noise is estimated from the image itself, never from a reference: the repetitions are
    * drawn as two independent halves of equal size, and the mean of both has a quarter of the
-   * variance of their difference. A render first draws one sixteenth of a group per half
+   * variance of their difference. The first image draws one sixteenth of a group per half
    * (16 + 16 repetitions with 256 per traversal, 1 + 1 with 16 or fewer: a group costs little
-   * more than a few repetitions, and an estimate from one per half is itself noisy), then as
+   * more than a few repetitions); a new image after it, as many as the noise per repetition
+   * measured before predicts (ReuseNoiseEstimate). Then each step draws as
    * many as the estimate predicts for a noise a quarter below the target in variance (the
    * noise falling as one over the square root of the repetitions; each step costs a traversal
    * pair, so a step that falls just short is the costlier mistake), until the estimate is at most
    * the target, RepetitionLevel is reached or, with AutoAdjustRepetitions, the time allotted is
    * spent. With ProgressiveRefinement, a render of an image that already meets the target adds
-   * nothing. 0 (the default) turns it off. Range 0 to 1; 0.005 is about two levels of an 8-bit
-   * image.
+   * nothing. 0 (the default) turns it off. Range 0 to 1; 0.005 is about 1.3 levels of an 8-bit
+   * image (one level is 1/255).
    */
   vtkSetClampMacro(TargetError, double, 0.0, 1.0);
   vtkGetMacro(TargetError, double);
+  ///@}
+
+  ///@{
+  /**
+   * With TargetError, let a new image's first step aim at the target with the noise per
+   * repetition measured in the images before it (the noise changes little from one view to
+   * the next; a shortfall costs one more step). A render of the same image as the last one
+   * (nothing that shapes it changed) repeats that image's steps, so it gives the same image.
+   * The cost: an image then depends on what was drawn before it, so the same seed and view
+   * can stop at other repetition counts in another window or after other views. Off, every
+   * image starts from one sixteenth of a group per half, and the same seed and view always
+   * give the same image. Default on.
+   */
+  vtkSetMacro(ReuseNoiseEstimate, vtkTypeBool);
+  vtkGetMacro(ReuseNoiseEstimate, vtkTypeBool);
+  vtkBooleanMacro(ReuseNoiseEstimate, vtkTypeBool);
   ///@}
 
   /**
@@ -263,6 +280,7 @@ protected:
   int Estimator = VISIBILITY_ESTIMATOR;
   vtkTypeBool ExactCoverage = 1;
   double TargetError = 0.0;
+  vtkTypeBool ReuseNoiseEstimate = 1;
   double EstimatedError = -1.0;
 
 private:

@@ -62,6 +62,7 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
     { "Seed", self->Seed }, { "SubpixelLevel", self->SubpixelLevel },
     { "Estimator", self->Estimator }, { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
     { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
+    { "ReuseNoiseEstimate", self->ReuseNoiseEstimate ? 1 : 0 },
     { "PreIntegrationScalarResolution", self->PreIntegrationScalarResolution },
     { "PreIntegrationThicknessResolution", self->PreIntegrationThicknessResolution },
     { "image width", target.Width }, { "image height", target.Height },

@@ -145,6 +145,24 @@ def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
     assert counts[2] < counts[0], counts
 
 
+def test_without_reusing_the_noise_every_image_starts_alike(have_display):
+    """ReuseNoiseEstimate off: an image drawn after another one is the image a new mapper
+    draws for the same seed and view."""
+    images, counts = [], []
+    for seeds in ((1, 2), (2,)):
+        mapper = _mapper(CAP, seeds[0], TARGETS["default"], per_pass=None)
+        mapper.ReuseNoiseEstimateOff()
+        window, _ = window_with(mapper, SIZE)
+        for seed in seeds:
+            mapper.SetSeed(seed)
+            window.Render()
+        images.append(render.read_rgba(window))
+        counts.append(mapper.GetLastRepetitionCount())
+        window.Finalize()
+    assert images[0][..., 3].max() > 0.2, "the image is (almost) empty"
+    assert counts[0] == counts[1] and np.array_equal(images[0], images[1]), counts
+
+
 @pytest.mark.parametrize("name", SCENES)
 def test_stopped_images_are_unbiased(name, have_display):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""

@@ -59,6 +59,7 @@ def test_print_self_lists_every_setting():
     for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
                     "PreIntegrationThicknessResolution", "VectorMode", "VectorComponent",
                     "RepetitionsPerPass", "StratifiedSampling", "Estimator", "ExactCoverage",
+                    "TargetError", "ReuseNoiseEstimate",
                     "ProgressiveRefinement", "MaximumProgressiveRepetitions",
                     "AutoAdjustRepetitions", "NumberOfTetrahedra", "GPUMemorySize",
                     "ScalarMode"]:

@@ -66,7 +66,7 @@ _ESTIMATORS = {"survivor": vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
 
 
 #: The error target that the demo, the command line and the ParaView plugin use by default
-#: (RMSE of premultiplied RGBA, about one level of an 8-bit image).
+#: (RMSE of premultiplied RGBA, about 1.3 levels of an 8-bit image).
 DEFAULT_TARGET_ERROR = 0.005
 
 
