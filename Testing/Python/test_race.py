@@ -72,6 +72,8 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     for row in rows:
         assert 0.0 <= row["rmse"] < 0.5 and row["seconds"] > 0.0, row
         assert math.isfinite(row["host_seconds"]) and row["host_seconds"] >= 0.0, row
+        # the objects named are a part of the host time
+        assert sum(row["host_objects"].values()) <= row["host_seconds"] + 1e-9, row
     # SPT converges: its error at the largest level measured is below its error at L=1
     spt = sorted((r for r in rows if r["method"] == "spt"), key=lambda r: r["repetitions"])
     assert spt[-1]["rmse"] < spt[0]["rmse"]

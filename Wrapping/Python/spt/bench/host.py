@@ -22,8 +22,10 @@ from .methods import METHODS, generated_scene
 from .settings import Settings
 from .timing import FramesHook, Timing, time_method
 
-#: Where the emulated GPU runs: llvmpipe's JIT-compiled shaders and Mesa's driver.
-GPU_OBJECTS = ("[JIT]", "swrast_dri.so", "libgallium", "[unknown]")
+#: Where the emulated GPU runs: llvmpipe's JIT-compiled shaders, Mesa's driver, and LLVM, the
+#: driver's shader compiler (it compiles a shader variant on the application thread the first
+#: time a draw needs it; a GPU's driver compiles its shaders on the host too).
+GPU_OBJECTS = ("[JIT]", "swrast_dri.so", "libgallium", "libLLVM", "[unknown]")
 #: The kernel and the C library: on the application thread, mostly the memory that llvmpipe's
 #: vertex stage maps and fills for every draw.
 SYSTEM_OBJECTS = ("[kernel", "libc.so")
@@ -90,19 +92,31 @@ def split_by_role(by_object: Dict[Tuple[str, str], float]) -> Dict[str, float]:
     }
 
 
+def host_objects(by_object: Dict[Tuple[str, str], float], frames: int,
+                 count: int = 3) -> Dict[str, float]:
+    """The shared objects that the host time of a recording is spent in, the largest
+    ``count``, in seconds per frame: where a row's host time went, when it stands out."""
+    main: Dict[str, float] = {}
+    for (comm, dso), t in by_object.items():
+        if not comm.startswith("llvmpipe") and not dso.startswith(GPU_OBJECTS + SYSTEM_OBJECTS):
+            main[dso] = main.get(dso, 0.0) + t / frames
+    return dict(sorted(main.items(), key=lambda item: -item[1])[:count])
+
+
 def timed_with_host(run: Callable[[Optional[FramesHook]], Timing], frames: int,
-                    use_perf: bool) -> Tuple[Timing, float, str]:
+                    use_perf: bool) -> Tuple[Timing, float, str, Dict[str, float]]:
     """Run ``run(on_frames)`` (a :func:`time_method` call of ``frames`` frames) and return
-    its timing, the host seconds per frame, and how they were measured (``perf`` or
-    ``thread_time``)."""
+    its timing, the host seconds per frame, how they were measured (``perf`` or
+    ``thread_time``) and, with ``perf``, the shared objects they were spent in."""
     if not use_perf:
         timing = run(None)
-        return timing, timing.thread_median, "thread_time"
+        return timing, timing.thread_median, "thread_time", {}
     with tempfile.TemporaryDirectory() as directory:
         path = os.path.join(directory, "perf.data")
         timing = run(perf_attach(path))
-        roles = split_by_role(perf_seconds_by_object(path))
-    return timing, roles["host"] / frames, "perf"
+        by_object = perf_seconds_by_object(path)
+    return (timing, split_by_role(by_object)["host"] / frames, "perf",
+            host_objects(by_object, frames))
 
 
 def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]:

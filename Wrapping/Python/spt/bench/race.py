@@ -200,7 +200,7 @@ def measure(lap: Lap, method: Method, level: int, **extra) -> Entry:
         return time_method(lap.scene, method, lap.size, level, 1, FRAMES, keep_image=True,
                            on_frames=hook)
 
-    timing, host_seconds, source = host.timed_with_host(run, FRAMES, lap.use_perf)
+    timing, host_seconds, source, objects = host.timed_with_host(run, FRAMES, lap.use_perf)
     best = int(np.argmin(timing.seconds))
     metrics.write_png(lap.output / f"{lap.scene.name}_{method.name}_{level}.png", timing.image)
     entry: Entry = {
@@ -209,7 +209,7 @@ def measure(lap: Lap, method: Method, level: int, **extra) -> Entry:
         "repetitions": level if method.stochastic else 1,
         "rmse": metrics.rmse(timing.image, lap.reference), "seconds": timing.seconds[best],
         "cpu_seconds": timing.cpu_seconds[best], "host_seconds": host_seconds,
-        "host_source": source}
+        "host_source": source, "host_objects": objects}
     entry.update(timing.report)
     entry.update(extra)
     return entry
