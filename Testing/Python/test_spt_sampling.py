@@ -179,16 +179,23 @@ def test_time_budget_cuts_repetitions_during_interaction(have_display):
     window.Finalize()
 
 
-def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
-    """A traversal of 16 repetitions costs little more than one of fewer, so a budget of 2.5
-    traversals gets two whole ones (32 repetitions). The budget is set from the mapper's own
-    measure of the still render (64 repetitions, 4 traversals), so the count is exact."""
+def _budget_mapper_after_a_still_render():
+    """A mapper of 64 repetitions, 16 per traversal, with the time budget on, in a window of
+    its own after one render at the still rate (all 64 repetitions, which it times)."""
     mapper = render.spt_mapper(64, seed=1, per_pass=16)
     mapper.AutoAdjustRepetitionsOn()
     window, renderer = window_with(mapper, SIZE)
     window.SetDesiredUpdateRate(0.0001)
     window.Render()
     assert mapper.GetLastRepetitionCount() == 64
+    return mapper, window, renderer
+
+
+def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
+    """A traversal of 16 repetitions costs little more than one of fewer, so a budget of 2.5
+    traversals gets two whole ones (32 repetitions). The budget is set from the mapper's own
+    measure of the still render (64 repetitions, 4 traversals), so the count is exact."""
+    mapper, window, renderer = _budget_mapper_after_a_still_render()
     traversal = 16 * mapper.GetTimePerRepetition()
     window.SetDesiredUpdateRate(1.0 / (2.5 * traversal))
     window.Render()
@@ -213,12 +220,7 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
     one repetition gives. Once a pair is timed and does not fit either, the paper's single
     pass, the cheapest frame. Each is the image the same repetition gives without the budget,
     and the pair's is far closer to the reference."""
-    mapper = render.spt_mapper(64, seed=1, per_pass=16)
-    mapper.AutoAdjustRepetitionsOn()
-    window, _ = window_with(mapper, SIZE)
-    window.SetDesiredUpdateRate(0.0001)
-    window.Render()
-    assert mapper.GetLastRepetitionCount() == 64
+    mapper, window, _ = _budget_mapper_after_a_still_render()
     window.SetDesiredUpdateRate(1000.0)  # 1 ms: not a group, nor (once timed) a pair
     window.Render()
     assert mapper.GetLastRepetitionCount() == 1

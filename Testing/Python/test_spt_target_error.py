@@ -85,6 +85,18 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f}")
 
 
+def _render_to_target(s, mapper, name):
+    """One render of scene ``s`` through ``mapper``, which must stop with an estimate at or
+    below the scene's target: the image, the repetitions drawn, the estimate and the error
+    measured against the reference."""
+    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    level = mapper.GetLastRepetitionCount()
+    estimated = mapper.GetEstimatedError()
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert 0.0 < estimated <= TARGETS[name]
+    return image, level, estimated, metrics.rmse(image, _reference(name))
+
+
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
 def test_default_group_stops_at_or_below_the_target(name, have_display):
     """With the default 256 repetitions per traversal the first estimate comes from 16 per
@@ -93,13 +105,8 @@ def test_default_group_stops_at_or_below_the_target(name, have_display):
     s = _scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
     assert mapper.GetRepetitionsPerPass() == 256
-    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
-    level = mapper.GetLastRepetitionCount()
-    estimated = mapper.GetEstimatedError()
-    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    _, level, _, measured = _render_to_target(s, mapper, name)
     assert 16 <= level < CAP, f"stopped at {level} repetitions"
-    assert 0.0 < estimated <= TARGETS[name]
-    measured = metrics.rmse(image, _reference(name))
     assert measured <= TARGETS[name], f"measured {measured:.4f} at {level} repetitions"
 
 
@@ -115,31 +122,34 @@ def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_d
     first_level = mapper.GetLastRepetitionCount()
     assert first_level >= 32, f"the first image stopped at {first_level} repetitions"
     mapper.SetSeed(2)
-    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
-    level = mapper.GetLastRepetitionCount()
-    estimated = mapper.GetEstimatedError()
-    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    _, level, estimated, measured = _render_to_target(s, mapper, name)
     assert 2 <= level < first_level, f"{level} repetitions after {first_level}"
-    assert 0.0 < estimated <= TARGETS[name]
-    measured = metrics.rmse(image, _reference(name))
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
 
 
-def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
-    """Where nothing that shapes the image changed, a render repeats the last one's steps
-    (it does not aim with the noise that image measured), so it gives the same image; a
-    change of the seed makes a new image, which aims with that noise."""
-    mapper = _mapper(CAP, 1, TARGETS["default"], per_pass=None)
+def _renders_with_seeds(seeds, reuse=True):
+    """The default scene rendered by one mapper in one window, once per seed in turn, at the
+    default target: each image and its repetition count."""
+    mapper = _mapper(CAP, seeds[0], TARGETS["default"], per_pass=None)
+    mapper.SetReuseNoiseEstimate(reuse)
     window, _ = window_with(mapper, SIZE)
     images, counts = [], []
-    for seed in (1, 1, 2, 2):
+    for seed in seeds:
         mapper.SetSeed(seed)
         window.Render()
         images.append(render.read_rgba(window))
         counts.append(mapper.GetLastRepetitionCount())
     window.Finalize()
     assert images[0][..., 3].max() > 0.2, "the image is (almost) empty"
+    return images, counts
+
+
+def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
+    """Where nothing that shapes the image changed, a render repeats the last one's steps
+    (it does not aim with the noise that image measured), so it gives the same image; a
+    change of the seed makes a new image, which aims with that noise."""
+    images, counts = _renders_with_seeds((1, 1, 2, 2))
     assert counts[0] == counts[1] and np.array_equal(images[0], images[1]), counts
     assert counts[2] == counts[3] and np.array_equal(images[2], images[3]), counts
     assert counts[2] < counts[0], counts
@@ -148,19 +158,10 @@ def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
 def test_without_reusing_the_noise_every_image_starts_alike(have_display):
     """ReuseNoiseEstimate off: an image drawn after another one is the image a new mapper
     draws for the same seed and view."""
-    images, counts = [], []
-    for seeds in ((1, 2), (2,)):
-        mapper = _mapper(CAP, seeds[0], TARGETS["default"], per_pass=None)
-        mapper.ReuseNoiseEstimateOff()
-        window, _ = window_with(mapper, SIZE)
-        for seed in seeds:
-            mapper.SetSeed(seed)
-            window.Render()
-        images.append(render.read_rgba(window))
-        counts.append(mapper.GetLastRepetitionCount())
-        window.Finalize()
-    assert images[0][..., 3].max() > 0.2, "the image is (almost) empty"
-    assert counts[0] == counts[1] and np.array_equal(images[0], images[1]), counts
+    after, after_counts = _renders_with_seeds((1, 2), reuse=False)
+    alone, alone_counts = _renders_with_seeds((2,), reuse=False)
+    assert after_counts[-1] == alone_counts[-1], (after_counts, alone_counts)
+    assert np.array_equal(after[-1], alone[-1])
 
 
 @pytest.mark.parametrize("name", SCENES)
