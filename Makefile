@@ -53,7 +53,8 @@ PACKAGES = cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps configure build install demo test test-egl test-debian13 test-debian-unstable \
+.PHONY: all deps debian-root-deps configure build install demo test test-egl test-debian13 \
+	test-debian-unstable \
 	build-vtk-wheel test-vtk-wheel sanitize lint clean
 
 all: build
@@ -99,11 +100,23 @@ test-egl: install
 	  $(CTEST); status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
 
+# What .ci/debian-root needs on the host beyond `deps` (only the Debian root targets use it).
+ROOT_PACKAGES = debootstrap
+debian-root-deps:
+	@missing=$$(for p in $(ROOT_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "install ok installed" || echo $$p; \
+	done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing:" $$missing; \
+	  $(SUDO) apt-get update -q && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
+	fi
+
 # `make test` on Debian 13 in a root file system made with debootstrap (needs root and
 # debootstrap): the base system, apt's packages and the build directory are kept in
 # DEBIAN13_CACHE between runs; see .ci/debian-root.
 DEBIAN13_CACHE ?= /var/cache/spt/debian13
-test-debian13:
+test-debian13: debian-root-deps
 	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN13_CACHE) JOBS=$(JOBS) \
 	  SPT_DEBIAN_TARGET="test$(if $(TESTS), TESTS='$(TESTS)')" \
 	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root trixie
@@ -113,7 +126,7 @@ test-debian13:
 # built and run. DEBIAN_UNSTABLE_TARGET=build stops after the build.
 DEBIAN_UNSTABLE_CACHE ?= /var/cache/spt/debian-sid
 DEBIAN_UNSTABLE_TARGET ?= test
-test-debian-unstable:
+test-debian-unstable: debian-root-deps
 	$(SUDO) env SPT_DEBIAN_CACHE=$(DEBIAN_UNSTABLE_CACHE) JOBS=$(JOBS) \
 	  SPT_DEBIAN_TARGET=$(DEBIAN_UNSTABLE_TARGET) \
 	  $(if $(SPT_DATA_DIR),SPT_DATA_DIR=$(SPT_DATA_DIR)) .ci/debian-root sid
