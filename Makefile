@@ -59,8 +59,9 @@ PACKAGES = cmake ninja-build g++ make \
 
 all: build
 
-deps:
-	@missing=$$(for p in $(PACKAGES); do \
+# Install those of the packages $(1) that are missing, with apt.
+define install_missing
+	@missing=$$(for p in $(1); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "install ok installed" || echo $$p; \
 	done); \
 	if [ -n "$$missing" ]; then \
@@ -68,6 +69,10 @@ deps:
 	  $(SUDO) apt-get update -q && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
 	else echo "All packages present."; fi
+endef
+
+deps:
+	$(call install_missing,$(PACKAGES))
 	@# Debian 13: ParaView's CMake files name its Python modules without their suffix.
 	@for d in /usr/lib/*/cmake/paraview-*; do CMake/link-vtk-python-modules "$$d"; done
 
@@ -103,14 +108,7 @@ test-egl: install
 # What .ci/debian-root needs on the host beyond `deps` (only the Debian root targets use it).
 ROOT_PACKAGES = debootstrap
 debian-root-deps:
-	@missing=$$(for p in $(ROOT_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q "install ok installed" || echo $$p; \
-	done); \
-	if [ -n "$$missing" ]; then \
-	  echo "Installing:" $$missing; \
-	  $(SUDO) apt-get update -q && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
-	fi
+	$(call install_missing,$(ROOT_PACKAGES))
 
 # `make test` on Debian 13 in a root file system made with debootstrap (needs root and
 # debootstrap): the base system, apt's packages and the build directory are kept in
