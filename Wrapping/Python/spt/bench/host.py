@@ -76,15 +76,28 @@ def perf_seconds_by_object(path: str, frequency: int = FREQUENCY
     return seconds
 
 
+def application_objects(by_object: Dict[Tuple[str, str], float]) -> Dict[str, float]:
+    """CPU seconds per shared object of every thread but llvmpipe's rasterizer threads."""
+    main: Dict[str, float] = {}
+    for (comm, dso), t in by_object.items():
+        if not comm.startswith("llvmpipe"):
+            main[dso] = main.get(dso, 0.0) + t
+    return main
+
+
+def _is_host(dso: str) -> bool:
+    """Whether time in ``dso`` on the application thread is host time (not the driver's)."""
+    return not dso.startswith(GPU_OBJECTS + SYSTEM_OBJECTS)
+
+
 def split_by_role(by_object: Dict[Tuple[str, str], float]) -> Dict[str, float]:
     """CPU seconds of a recording by role: ``host`` (this project, VTK and Python on the
     application thread), ``project`` (this project's library alone), ``system`` (kernel and
     C library on that thread), ``application_thread`` (all of it) and ``workers`` (the
     rasterizer threads)."""
-    main = {dso: t for (comm, dso), t in by_object.items() if not comm.startswith("llvmpipe")}
+    main = application_objects(by_object)
     return {
-        "host": sum(t for dso, t in main.items()
-                    if not dso.startswith(GPU_OBJECTS + SYSTEM_OBJECTS)),
+        "host": sum(t for dso, t in main.items() if _is_host(dso)),
         "project": sum(t for dso, t in main.items() if "SPTRendering" in dso),
         "system": sum(t for dso, t in main.items() if dso.startswith(SYSTEM_OBJECTS)),
         "application_thread": sum(main.values()),
@@ -96,11 +109,9 @@ def host_objects(by_object: Dict[Tuple[str, str], float], frames: int,
                  count: int = 3) -> Dict[str, float]:
     """The shared objects that the host time of a recording is spent in, the largest
     ``count``, in seconds per frame: where a row's host time went, when it stands out."""
-    main: Dict[str, float] = {}
-    for (comm, dso), t in by_object.items():
-        if not comm.startswith("llvmpipe") and not dso.startswith(GPU_OBJECTS + SYSTEM_OBJECTS):
-            main[dso] = main.get(dso, 0.0) + t / frames
-    return dict(sorted(main.items(), key=lambda item: -item[1])[:count])
+    host = [(dso, t / frames) for dso, t in application_objects(by_object).items()
+            if _is_host(dso)]
+    return dict(sorted(host, key=lambda item: -item[1])[:count])
 
 
 def timed_with_host(run: Callable[[Optional[FramesHook]], Timing], frames: int,
@@ -137,8 +148,7 @@ def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]
                                  on_frames=perf_attach(path))
             by_object = perf_seconds_by_object(path)
         roles = split_by_role(by_object)
-        main = {dso: t for (comm, dso), t in by_object.items()
-                if not comm.startswith("llvmpipe")}
+        main = application_objects(by_object)
         results.append({
             "scene": s.name, "cells": s.grid.GetNumberOfCells(), "frames": frames,
             "frame_seconds": timing.median,
