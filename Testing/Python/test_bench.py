@@ -197,6 +197,32 @@ def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
     assert result["spt_seconds"] == pytest.approx(0.04)
 
 
+def test_host_time_adds_every_application_thread_and_leaves_out_the_rasterizer():
+    """perf's samples per (thread, shared object): one object's seconds on two application
+    threads add up; llvmpipe's threads and the driver's objects are not host time."""
+    from spt.bench import host
+
+    by_object = {
+        ("python3", "libSPTRendering.so"): 0.25,
+        ("vtk-worker", "libSPTRendering.so"): 0.5,
+        ("python3", "libvtkCommonCore.so"): 0.125,
+        ("python3", "libLLVM-15.so.1"): 2.0,
+        ("python3", "libc.so.6"): 0.0625,
+        ("llvmpipe-0", "libSPTRendering.so"): 8.0,
+        ("llvmpipe-1", "libgallium-23.so"): 16.0,
+    }
+    assert host.application_objects(by_object) == {
+        "libSPTRendering.so": 0.75, "libvtkCommonCore.so": 0.125, "libLLVM-15.so.1": 2.0,
+        "libc.so.6": 0.0625}
+    roles = host.split_by_role(by_object)
+    assert roles["host"] == pytest.approx(0.875)
+    assert roles["project"] == pytest.approx(0.75)
+    assert roles["system"] == pytest.approx(0.0625)
+    assert roles["application_thread"] == pytest.approx(2.9375)
+    assert roles["workers"] == pytest.approx(24.0)
+    assert host.host_objects(by_object, frames=2, count=1) == {"libSPTRendering.so": 0.375}
+
+
 def test_the_parallel_section_runs_ranks_with_the_same_image(have_display, tmp_path):
     """SPT on 1 and 2 MPI ranks with interleaved pieces, with the plugin's error target: the
     same repetitions and image, and the bytes each rank moves per frame (4 bytes per sample and
