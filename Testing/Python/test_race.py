@@ -60,6 +60,49 @@ def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():
     assert summary["host_repetitions"] == 2
 
 
+def _race(scenes, rows_per_scene=None, **changes):
+    rows = []
+    for scene in scenes:
+        for row in rows_per_scene or [_row("pt", 1, 0.01, 0.1, False), _row("spt", 1, 0.005, 0.2)]:
+            rows.append(dict(row, scene=scene))
+    result = {"size": 256, "azimuth": race.AZIMUTH, "elevation": race.ELEVATION,
+              "frames": race.FRAMES, "max_repetitions": 256, "host_source": "perf",
+              "rows": rows, "summary": race.summarize(rows)}
+    result.update(changes)
+    return result
+
+
+def test_a_race_of_some_scenes_keeps_the_other_scenes_of_the_earlier_race():
+    earlier = _race(["spx", "torus", "drill-1M"])
+    later = _race(["drill-3M", "torus"], [_row("pt", 1, 0.02, 0.3, False),
+                                          _row("spt", 1, 0.01, 0.6)])
+    merged = race.merge_runs(later, earlier)
+    # the race's order of scenes; torus's rows are the later run's only
+    assert [row["scene"] for row in merged["rows"]] == [
+        "spx", "spx", "torus", "torus", "drill-1M", "drill-1M", "drill-3M", "drill-3M"]
+    torus = [row for row in merged["rows"] if row["scene"] == "torus"]
+    assert [row["seconds"] for row in torus] == [0.3, 0.6]
+    assert [s["scene"] for s in merged["summary"]] == ["spx", "torus", "drill-1M", "drill-3M"]
+    torus_summary = next(s for s in merged["summary"] if s["scene"] == "torus")
+    assert torus_summary["reached"]["VTK PT's error"]["ratio"] == pytest.approx(2.0)
+    assert merged["runs"] == [{"scenes": ["spx", "drill-1M"]}, {"scenes": ["torus", "drill-3M"]}]
+    # a third run that races spx again leaves drill-1M as the first run's only scene
+    again = race.merge_runs(_race(["spx"]), merged)
+    assert again["runs"] == [{"scenes": ["spx"]}, {"scenes": ["torus", "drill-3M"]},
+                             {"scenes": ["drill-1M"]}]
+    assert len(again["rows"]) == 8
+
+
+@pytest.mark.parametrize("key, value", [("size", 128), ("frames", 3), ("max_repetitions", 64),
+                                        ("host_source", "thread_time")])
+def test_an_earlier_race_measured_otherwise_is_dropped(key, value):
+    earlier = _race(["spx", "torus"], **{key: value})
+    merged = race.merge_runs(_race(["drill-3M"]), earlier)
+    assert {row["scene"] for row in merged["rows"]} == {"drill-3M"}
+    assert merged["runs"] == [{"scenes": ["drill-3M"]}]
+    assert race.merge_runs(_race(["drill-3M"]), None)["runs"] == [{"scenes": ["drill-3M"]}]
+
+
 def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     settings = Settings(race_scenes=("default",), race_size=48, race_max_repetitions=2)
     progress = Progress(race.steps(settings), "race", stream=None)

@@ -175,7 +175,8 @@ def _add_bench(commands) -> None:
                        help="timed frames per point, their median is reported (default 3)")
     bench.add_argument("--scenes", type=_race_scenes, default=None,
                        help="comma-separated scenes of the race (default: spx,torus,bluntfin,"
-                            "post,drill-0.2M,drill-1M,drill-3M)")
+                            "post,drill-0.2M,drill-1M,drill-3M); the other scenes of a race "
+                            "measured alike in OUTPUT/bench.json are kept")
     bench.add_argument("--max-repetitions", type=_positive_int(65536), default=None,
                        help="the race's largest repetition level (default 256)")
     bench.add_argument("--race-size", type=_positive_int(MAX_IMAGE_SIZE), default=None,

@@ -29,7 +29,7 @@ from ..progress import Progress
 from ..SPTRendering import vtkSPTVolumeMapper
 from . import host
 from .methods import METHODS, Method, havs_method
-from .settings import Settings
+from .settings import RACE_SCENES, Settings
 from .timing import time_method
 
 Entry = Dict[str, object]
@@ -284,15 +284,55 @@ def steps(settings: Settings) -> int:
     return len(settings.race_scenes) * per_scene
 
 
-def race(settings: Settings, progress: Progress, output: pathlib.Path) -> Dict[str, object]:
+#: What makes two runs' rows comparable: the same image, camera, frames and host-time source.
+SAME_RACE = ("size", "azimuth", "elevation", "frames", "max_repetitions", "host_source")
+
+
+def merge_runs(measured: Dict[str, object], previous: Optional[Dict[str, object]]
+               ) -> Dict[str, object]:
+    """``measured`` with the scenes of an earlier race that it did not run, so that a long
+    race can be run scene by scene (``--scenes``). Each scene keeps the rows of the one run
+    that raced it, in one process; an earlier race measured otherwise (another size, camera,
+    number of frames, repetition cap or host-time source) is dropped. The scenes are listed in
+    the race's order, and ``runs`` says which scenes were raced together."""
+    names = list(RACE_SCENES) + [name for name in scene_names() if name not in RACE_SCENES]
+    order = {name: index for index, name in enumerate(names)}
+
+    def position(name: str) -> int:
+        return order.get(name, len(order))
+
+    run = {"scenes": sorted(dict.fromkeys(row["scene"] for row in measured["rows"]),
+                            key=position)}
+    runs = [run] if run["scenes"] else []
+    rows = list(measured["rows"])
+    if previous and all(previous.get(key) == measured[key] for key in SAME_RACE):
+        kept = [row for row in previous.get("rows", []) if row["scene"] not in run["scenes"]]
+        earlier = previous.get("runs") or [
+            {"scenes": list(dict.fromkeys(row["scene"] for row in previous.get("rows", [])))}]
+        for other in earlier:
+            scenes_left = [name for name in other["scenes"] if name not in run["scenes"]]
+            if scenes_left:
+                runs.append({"scenes": scenes_left})
+        rows += kept
+    rows.sort(key=lambda row: position(row["scene"]))  # stable: a scene's rows keep their order
+    runs.sort(key=lambda r: min(position(name) for name in r["scenes"]))
+    merged = dict(measured)
+    merged.update(rows=rows, summary=summarize(rows), runs=runs)
+    return merged
+
+
+def race(settings: Settings, progress: Progress, output: pathlib.Path,
+         previous: Optional[Dict[str, object]] = None) -> Dict[str, object]:
     """The race on every scene of ``settings.race_scenes``; images and the cached references
-    go to ``output``. Returns the rows, the summary and how host time was measured."""
+    go to ``output``. Returns the rows, the summary and how host time was measured, with the
+    scenes of ``previous`` (an earlier race) that this one did not run (merge_runs())."""
     output.mkdir(parents=True, exist_ok=True)
     use_perf = host.perf_available()
     rows: List[Entry] = []
     for name in settings.race_scenes:
         rows += race_scene_rows(name, settings, progress, output, use_perf)
-    return {"size": settings.race_size, "azimuth": AZIMUTH, "elevation": ELEVATION,
-            "frames": FRAMES, "max_repetitions": settings.race_max_repetitions,
-            "host_source": "perf" if use_perf else "thread_time",
-            "rows": rows, "summary": summarize(rows)}
+    measured = {"size": settings.race_size, "azimuth": AZIMUTH, "elevation": ELEVATION,
+                "frames": FRAMES, "max_repetitions": settings.race_max_repetitions,
+                "host_source": "perf" if use_perf else "thread_time",
+                "rows": rows, "summary": summarize(rows)}
+    return merge_runs(measured, previous)

@@ -64,6 +64,16 @@ def race_rows_table(race: Dict[str, object]) -> str:
                  + ["CPU, all threads [s]"], rows)
 
 
+def _runs(race: Dict[str, object]) -> str:
+    """Which scenes were raced together, where a race was run scene by scene."""
+    runs = race.get("runs") or []
+    if len(runs) < 2:
+        return ""
+    groups = "; ".join(", ".join(run["scenes"]) for run in runs)
+    return (f" The scenes were raced in {len(runs)} runs ({groups}): each scene's methods in "
+            "one process, so compare ratios within a scene.")
+
+
 def race_section(race: Dict[str, object]) -> List[str]:
     """The race, the report's headline."""
     if not race:
@@ -79,7 +89,7 @@ def race_section(race: Dict[str, object]) -> List[str]:
             f"process. Stochastic methods at L = 1, 2, 4, ... up to "
             f"{race['max_repetitions']}, until every target is reached. Time to an error: "
             "the frame of the smallest L at or below it, as a multiple of VTK PT's frame. "
-            f"Host CPU time: {source}.", "",
+            f"Host CPU time: {source}.{_runs(race)}", "",
             "![race](race.png)", "", race_summary_table(race), race_rows_table(race)]
 
 
@@ -340,7 +350,8 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     lines = ["# SPT benchmark", "",
              f"Machine: {results['machine']}. Sweep times are medians of {results['frames']} "
              "frames after a warm-up frame, with the GPU finished; every ratio is taken within "
-             "this run. Generated meshes: " + results["shape"] + ".", ""]
+             "one run of its section (of its scene in the race). Generated meshes: "
+             + results["shape"] + ".", ""]
     lines += race_section(results.get("race"))
     lines += camera_section(results.get("camera"))
     lines += cells_section(results)

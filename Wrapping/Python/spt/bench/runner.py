@@ -82,7 +82,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
         elif section == "quality":
             entries += quality.quality(settings, progress, output)
         elif section == "race":
-            measured["race"] = race.race(settings, progress, output / "race")
+            measured["race"] = race.race(settings, progress, output / "race",
+                                         previous.get("race"))
         elif section == "camera":
             measured["camera"] = camera.camera_section(settings, progress)
         elif section == "host":
