@@ -1,6 +1,7 @@
-"""The race's bookkeeping on made-up rows (time to an error, "not reached", the summary), and
-one small race on the embedded default scene. No timing is asserted: the race reports
-speed, tests check that it is measured and accounted for."""
+"""The race's bookkeeping on made-up rows (time to an error, "not reached", the summary, the
+merge of races run scene by scene), and one small race on the embedded default scene. No
+timing is asserted: the race reports speed, tests check that it is measured and accounted
+for."""
 
 import math
 
