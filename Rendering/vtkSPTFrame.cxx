@@ -436,11 +436,15 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
       ensemble->BeginSumPass(halves);
       // The repetitions from first + count / 2 on form the second half.
       const int secondHalfFrom = halves ? std::max(first + count / 2 - r, 0) : inGroup;
-      const bool culled = this->PrepareSurvivors(inGroup, secondHalfFrom);
-      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      ostate->vtkglEnable(GL_BLEND);
-      this->Traverse(PassKind::Colors, r, inGroup);
-      vtkSPTDepthKeyBuffer::Barrier();
+      bool culled = false;
+      ok = this->PrepareSurvivors(inGroup, secondHalfFrom, culled);
+      if (ok)
+      {
+        ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        ostate->vtkglEnable(GL_BLEND);
+        this->Traverse(PassKind::Colors, r, inGroup);
+        vtkSPTDepthKeyBuffer::Barrier();
+      }
       if (culled)
       {
         ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -454,7 +458,7 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   return ok;
 }
 
-bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
+bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled)
 {
   // The visibility estimator counts the survivors behind each fragment: sorted keys make that
   // a binary search. Every fragment is rasterized at its cell's nearest vertex, no deeper than
@@ -462,9 +466,10 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
   // culling.
   const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
   const bool cull = !this->ClipPlanesCut;
+  culled = false;
   if (!sortKeys && !cull)
   {
-    return false;
+    return true;
   }
   vtkOpenGLState* ostate = this->Window->GetState();
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
@@ -481,10 +486,16 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom)
   if (!cull || !done)
   {
     ostate->vtkglDisable(GL_DEPTH_TEST);
-    return false;
+    if (!done && sortKeys)
+    {
+      vtkErrorWithObjectMacro(this->Reporter,
+        "Could not compile the shader that sorts the depth keys; the frame is not drawn.");
+    }
+    return done || !sortKeys;
   }
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);
+  culled = true;
   return true;
 }
 

@@ -178,9 +178,10 @@ private:
   bool DrawDepthSurvivors(int first, int count, bool coverage);
   // Between a group's keys and colors: sort each half's keys for the visibility estimator,
   // and write the farthest survivor into the depth buffer and test the color traversal
-  // against it, so that fragments behind all the survivors are not shaded. False (and no
-  // depth test) where the frame cannot cull.
-  bool PrepareSurvivors(int inGroup, int secondHalfFrom);
+  // against it, so that fragments behind all the survivors are not shaded. `culled` is false
+  // (and no depth test) where the frame cannot cull. False if the keys needed sorting and
+  // could not be sorted: the color traversal would count the survivors wrongly.
+  bool PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 

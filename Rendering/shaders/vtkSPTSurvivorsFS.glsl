@@ -69,21 +69,39 @@ void main()
   ivec2 pixel = ivec2(floor(texCoord * passSize));
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   uint farthest = 0u;
+#ifdef SPT_SORT_KEYS
+  // Only the kept keys are sorted: each half's are gathered at its start, and the rest of the
+  // half is "nothing kept", the largest key, as a sort of the whole half would leave it. Where
+  // few repetitions keep anything (thin parts of the volume, and outside its footprint, where
+  // none does) that is far less work than sorting every repetition's key.
+  int split = clamp(secondHalfFrom, 0, lanes);
+  int kept[2] = int[2](0, 0);
+#endif
   for (int r = 0; r < lanes; ++r)
   {
     uint key = imageLoad(depthKeys, ivec3(r, pixel)).r;
     farthest = max(farthest, key);
 #ifdef SPT_SORT_KEYS
-    keys[r] = key;
+    if (key != 0xFFFFFFFFu)
+    {
+      int part = r < split ? 0 : 1;
+      keys[part * split + kept[part]] = key;
+      ++kept[part];
+    }
 #endif
   }
 #ifdef SPT_SORT_KEYS
-  int split = clamp(secondHalfFrom, 0, lanes);
-  int firstHalf = sortKeys(0, split) * N;
-  int secondHalf = sortKeys(split, lanes) * N;
-  for (int r = 0; r < lanes; ++r)
+  if (kept[0] + kept[1] > 0)
   {
-    imageStore(depthKeys, ivec3(r, pixel), uvec4(keys[(r < split ? firstHalf : secondHalf) + r]));
+    int firstHalf = sortKeys(0, kept[0]) * N;
+    int secondHalf = sortKeys(split, split + kept[1]) * N;
+    for (int r = 0; r < lanes; ++r)
+    {
+      bool second = r >= split;
+      bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
+      uint key = keys[(second ? secondHalf : firstHalf) + r];
+      imageStore(depthKeys, ivec3(r, pixel), uvec4(isKept ? key : 0xFFFFFFFFu));
+    }
   }
 #endif
   // A key holds the depth in its upper 24 bits, rounded down; the next two steps up cover the
