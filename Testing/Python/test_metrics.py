@@ -65,6 +65,20 @@ def test_uint8_and_float_agree():
                                                  abs=2e-3)
 
 
+def test_read_back_floor():
+    # values spread over the 8-bit steps: the rounding error is uniform in half a step
+    rng = np.random.default_rng(2009)
+    image = rng.uniform(0.1, 0.9, (64, 64, 4))
+    floor = metrics.read_back_floor(image)
+    assert floor == pytest.approx(1.0 / 255.0 / math.sqrt(12.0), rel=0.03)
+    # rounding to the nearest step is each value's least error: any other 8-bit image of it
+    # is further away
+    truncated = np.floor(image * 255.0).astype(np.uint8)
+    assert metrics.rmse(truncated, image) > 1.5 * floor
+    # an image on the 8-bit steps loses nothing
+    assert metrics.read_back_floor(metrics.as_float(metrics.to_uint8(image))) == 0.0
+
+
 def test_shape_mismatch_raises():
     with pytest.raises(ValueError):
         metrics.rmse(np.zeros((2, 2, 4)), np.zeros((2, 3, 4)))

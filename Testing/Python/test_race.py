@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from spt.bench import race
+from spt.bench import race, report
 from spt.bench.settings import Settings
 from spt.progress import Progress
 
@@ -35,9 +35,10 @@ def test_levels_double_up_to_the_cap():
     assert race.levels(64)[-1] == 64
 
 
-def _row(method, level, rmse, seconds, stochastic=True):
+def _row(method, level, rmse, seconds, stochastic=True, floor=0.00113):
     return {"scene": "s", "method": method, "label": method, "stochastic": stochastic,
-            "repetitions": level, "rmse": rmse, "seconds": seconds, "host_seconds": level * 1e-3}
+            "repetitions": level, "rmse": rmse, "seconds": seconds, "cpu_seconds": seconds,
+            "host_seconds": level * 1e-3, "read_back_floor": floor}
 
 
 def test_summary_as_multiples_of_vtk_pt():
@@ -51,6 +52,19 @@ def test_summary_as_multiples_of_vtk_pt():
     assert reached["RMSE 0.002"] is None
     # host time where VTK PT's error is reached
     assert summary["host_repetitions"] == 4 and summary["host_seconds"] == pytest.approx(4e-3)
+    assert summary["read_back_floor"] == pytest.approx(0.00113)
+
+
+def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
+    result = _race(["spx", "torus"], [_row("pt", 1, 0.01, 0.1, False, floor=0.0011),
+                                      _row("spt", 1, 0.005, 0.2, floor=0.0011)])
+    text = "\n".join(report.race_section(result))
+    assert "rounded to 8 bits: spx 0.0011, torus 0.0011." in text
+    # rows of a race measured before the floor was recorded
+    for row in result["rows"]:
+        del row["read_back_floor"]
+    assert "rounded to 8 bits" not in "\n".join(report.race_section(result))
+    assert race.summarize(result["rows"])[0]["read_back_floor"] is None
 
 
 def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():
@@ -113,8 +127,12 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     assert {"pt", "havs2", "havs3", "havs4", "havs5", "havs6", "spt", "spt-paper-sampling",
             "pbvr"} <= methods
     assert result["host_source"] in ("perf", "thread_time")
+    floor = rows[0]["read_back_floor"]
+    assert 0.0005 < floor < 0.002  # about 1 / 255 / sqrt(12)
     for row in rows:
         assert 0.0 <= row["rmse"] < 0.5 and row["seconds"] > 0.0, row
+        # every image is read back through 8 bits: no error is below the exact image's own
+        assert row["read_back_floor"] == floor and row["rmse"] >= floor, row
         assert math.isfinite(row["host_seconds"]) and row["host_seconds"] >= 0.0, row
         # the objects named are a part of the host time
         assert sum(row["host_objects"].values()) <= row["host_seconds"] + 1e-9, row

@@ -77,6 +77,14 @@ def rmse(a: np.ndarray, b: np.ndarray,
     return float(np.sqrt(np.mean(diff * diff)))
 
 
+def read_back_floor(reference: np.ndarray) -> float:
+    """The RMSE of ``reference`` rounded to 8 bits per channel against itself: the least error
+    any image read back through 8 bits per channel can have against it, since rounding to
+    the nearest step is each value's least error. Where the values spread over the steps it is
+    about 1 / 255 / sqrt(12) = 0.00113."""
+    return rmse(as_float(to_uint8(reference)), reference)
+
+
 def psnr(a: np.ndarray, b: np.ndarray,
          mask: Optional[np.ndarray] = None) -> float:
     """Peak signal-to-noise ratio in dB with peak 1.0; ``inf`` when the

@@ -11,7 +11,9 @@ application thread outside the OpenGL driver) comes with it: the part a GPU woul
 over. Where the mapper has an error target, SPT also runs with VTK PT's error as its target:
 a new mapper, whose first image estimates its noise from 16 repetitions per half, and a mapper
 that has drawn the scene from another view (azimuth 10 degrees further), whose first step aims
-with the noise per repetition measured there.
+with the noise per repetition measured there. Every image is read back through 8 bits per
+channel, so each row also records the least error an 8-bit image can have against the
+reference (``read_back_floor``): a method whose error is near it is exact to the read-back.
 """
 
 from __future__ import annotations
@@ -106,8 +108,9 @@ def race_targets(rows: Sequence[Entry]) -> Dict[str, float]:
 
 def summarize(rows: Sequence[Entry]) -> List[Entry]:
     """Per scene and stochastic method: its time to reach each target as a multiple of VTK
-    PT's frame (None where not reached), with the L it took, and its host CPU time per frame
-    at the L that reaches VTK PT's error (or at its largest L)."""
+    PT's frame (None where not reached), with the L it took, its host CPU time per frame at
+    the L that reaches VTK PT's error (or at its largest L), and the scene's 8-bit read-back
+    floor (None for rows measured without it)."""
     summary = []
     for scene in dict.fromkeys(row["scene"] for row in rows):
         chosen = [row for row in rows if row["scene"] == scene]
@@ -129,7 +132,7 @@ def summarize(rows: Sequence[Entry]) -> List[Entry]:
             at = next(row for row in chosen if row["method"] == method
                       and row["repetitions"] == level)
             entry.update(host_seconds=at["host_seconds"], host_repetitions=level,
-                         label=at["label"])
+                         label=at["label"], read_back_floor=pt.get("read_back_floor"))
             summary.append(entry)
     return summary
 
@@ -193,6 +196,11 @@ class Lap:
     use_perf: bool
     output: pathlib.Path
 
+    @property
+    def read_back_floor(self) -> float:
+        """The least error an 8-bit image can have against the reference."""
+        return metrics.read_back_floor(self.reference)
+
 
 def measure(lap: Lap, method: Method, level: int, **extra) -> Entry:
     """One method at one repetition level: error, best frame time and host time."""
@@ -207,7 +215,8 @@ def measure(lap: Lap, method: Method, level: int, **extra) -> Entry:
         "scene": lap.scene.name, "cells": lap.scene.grid.GetNumberOfCells(),
         "method": method.name, "label": method.label, "stochastic": method.stochastic,
         "repetitions": level if method.stochastic else 1,
-        "rmse": metrics.rmse(timing.image, lap.reference), "seconds": timing.seconds[best],
+        "rmse": metrics.rmse(timing.image, lap.reference),
+        "read_back_floor": lap.read_back_floor, "seconds": timing.seconds[best],
         "cpu_seconds": timing.cpu_seconds[best], "host_seconds": host_seconds,
         "host_source": source, "host_objects": objects}
     entry.update(timing.report)

@@ -74,6 +74,19 @@ def _runs(race: Dict[str, object]) -> str:
             "one process, so compare ratios within a scene.")
 
 
+def _read_back_floors(race: Dict[str, object]) -> str:
+    """Each scene's least error of an 8-bit image, where the race recorded it."""
+    floors: Dict[str, float] = {}
+    for row in race["rows"]:
+        if row.get("read_back_floor") is not None:
+            floors.setdefault(row["scene"], row["read_back_floor"])
+    if not floors:
+        return ""
+    listed = ", ".join(f"{scene} {tables.format_value(value)}" for scene, value in floors.items())
+    return (" Every image is read back through 8 bits per channel, so no error can be below "
+            f"that of the exact image rounded to 8 bits: {listed}.")
+
+
 def race_section(race: Dict[str, object]) -> List[str]:
     """The race, the report's headline."""
     if not race:
@@ -89,7 +102,7 @@ def race_section(race: Dict[str, object]) -> List[str]:
             f"process. Stochastic methods at L = 1, 2, 4, ... up to "
             f"{race['max_repetitions']}, until every target is reached. Time to an error: "
             "the frame of the smallest L at or below it, as a multiple of VTK PT's frame. "
-            f"Host CPU time: {source}.{_runs(race)}", "",
+            f"Host CPU time: {source}.{_runs(race)}{_read_back_floors(race)}", "",
             "![race](race.png)", "", race_summary_table(race), race_rows_table(race)]
 
 
