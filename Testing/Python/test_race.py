@@ -52,7 +52,6 @@ def test_summary_as_multiples_of_vtk_pt():
     assert reached["RMSE 0.002"] is None
     # host time where VTK PT's error is reached
     assert summary["host_repetitions"] == 4 and summary["host_seconds"] == pytest.approx(4e-3)
-    assert summary["read_back_floor"] == pytest.approx(0.00113)
 
 
 def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
@@ -64,7 +63,6 @@ def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
     for row in result["rows"]:
         del row["read_back_floor"]
     assert "rounded to 8 bits" not in "\n".join(report.race_section(result))
-    assert race.summarize(result["rows"])[0]["read_back_floor"] is None
 
 
 def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():

@@ -108,9 +108,8 @@ def race_targets(rows: Sequence[Entry]) -> Dict[str, float]:
 
 def summarize(rows: Sequence[Entry]) -> List[Entry]:
     """Per scene and stochastic method: its time to reach each target as a multiple of VTK
-    PT's frame (None where not reached), with the L it took, its host CPU time per frame at
-    the L that reaches VTK PT's error (or at its largest L), and the scene's 8-bit read-back
-    floor (None for rows measured without it)."""
+    PT's frame (None where not reached), with the L it took, and its host CPU time per frame
+    at the L that reaches VTK PT's error (or at its largest L)."""
     summary = []
     for scene in dict.fromkeys(row["scene"] for row in rows):
         chosen = [row for row in rows if row["scene"] == scene]
@@ -132,7 +131,7 @@ def summarize(rows: Sequence[Entry]) -> List[Entry]:
             at = next(row for row in chosen if row["method"] == method
                       and row["repetitions"] == level)
             entry.update(host_seconds=at["host_seconds"], host_repetitions=level,
-                         label=at["label"], read_back_floor=pt.get("read_back_floor"))
+                         label=at["label"])
             summary.append(entry)
     return summary
 
@@ -192,14 +191,10 @@ class Lap:
 
     scene: scenes.Scene
     reference: np.ndarray
+    read_back_floor: float  # the least error an 8-bit image can have against the reference
     size: int
     use_perf: bool
     output: pathlib.Path
-
-    @property
-    def read_back_floor(self) -> float:
-        """The least error an 8-bit image can have against the reference."""
-        return metrics.read_back_floor(self.reference)
 
 
 def measure(lap: Lap, method: Method, level: int, **extra) -> Entry:
@@ -254,7 +249,8 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
     reference = cached_reference(s, settings.race_size, output / "references")
     metrics.write_png(output / f"{s.name}_reference.png", reference)
     progress.step(f"{name} reference")
-    lap = Lap(s, reference, settings.race_size, use_perf, output)
+    lap = Lap(s, reference, metrics.read_back_floor(reference), settings.race_size, use_perf,
+              output)
     rows = []
     for method in EXACT_METHODS:
         rows.append(measure(lap, method, 1))
