@@ -10,6 +10,7 @@
 
 #include "vtkEnsembleBuffer.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkSPTComputeTraversal.h"
 #include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTMeshBuffers.h"
 #include "vtkTetrahedralMesh.h"
@@ -22,6 +23,8 @@
 #include "vtkSPTPassDepthColorsFS.h"
 #include "vtkSPTPassKeysFS.h"
 #include "vtkSPTPassSingleFS.h"
+#include "vtkSPTPointCell.h"
+#include "vtkSPTTetrahedraCS.h"
 #include "vtkSPTTetrahedraFS.h"
 #include "vtkSPTTetrahedraGS.h"
 #include "vtkSPTTetrahedraPointsVS.h"
@@ -37,6 +40,8 @@
 namespace
 {
 constexpr int DepthKeyImageUnit = 0;
+// The compute traversal's fixed-point sums.
+constexpr int SumsImageUnit = 1;
 
 // Texture objects active for a scope, deactivated in reverse order on every way out.
 class ScopedTextures
@@ -123,11 +128,17 @@ void vtkSPTFrame::ChooseSmallCells()
       : -1.0;
     this->PointCellCounts.push_back(volume.Buffers->CountSmallCells(length));
   }
+  this->ComputedCellCounts.assign(this->Volumes.size(), 0);
 }
 
 vtkIdType vtkSPTFrame::GetPointCellCount(size_t volume) const
 {
   return this->PointCellCounts[volume];
+}
+
+vtkIdType vtkSPTFrame::GetComputedCellCount(size_t volume) const
+{
+  return this->ComputedCellCounts[volume];
 }
 
 bool vtkSPTFrame::Draws(size_t volume, bool points) const
@@ -162,6 +173,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::Defines::Dec", common);
   vtkShaderProgram::Substitute(vertex, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
 
   std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
   if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
@@ -189,6 +201,56 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
     vertex.c_str(), fragment.c_str(), geometry.c_str());
 }
 
+vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
+  bool cellScalars, PassKind kind, int lanes, bool halves)
+{
+  // The pass's fragment code, with the cell's planes and the sample's position set by the
+  // compute pass's main() (vtkSPTTetrahedraCS.glsl) instead of read from the points.
+  const bool colors = kind == PassKind::Colors;
+  std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
+  defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
+  defines += colors ? "#define SPT_COMPUTE_COLORS\n" : "";
+  defines += colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR
+    ? "#define SPT_VISIBILITY_WEIGHTED\n"
+    : "";
+  defines += colors && halves ? "#define SPT_SECOND_HALF\n" : "";
+  defines += "#define SPT_COMPUTE_GROUP_SIZE " + std::to_string(vtkSPTComputeTraversal::GroupSize) +
+    "\n#define SPT_FIXED_ONE " + std::to_string(vtkSPTComputeTraversal::FixedPointOne);
+  std::string source = vtkSPTTetrahedraFS;
+  vtkShaderProgram::Substitute(source, "//VTK::System::Dec", "#version 430\n#define SPT_COMPUTE");
+  vtkShaderProgram::Substitute(source, "//SPT::Extensions::Dec", "");
+  vtkShaderProgram::Substitute(source, "//VTK::Output::Dec", "");
+  vtkShaderProgram::Substitute(source, "//SPT::Pass::Dec", defines);
+  vtkShaderProgram::Substitute(source, "//SPT::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(source, "//SPT::Pass::Impl",
+    std::string(colors ? vtkSPTPassColorsFS : vtkSPTPassKeysFS) + vtkSPTTetrahedraCS);
+  vtkShaderProgram::Substitute(source, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(source, "//SPT::PointCell::Impl", vtkSPTPointCell);
+  return this->FrameSettings.Compute->GetProgram(this->Window, source);
+}
+
+bool vtkSPTFrame::Computes(PassKind kind, size_t volume) const
+{
+  return this->FrameSettings.Compute &&
+    (kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors) &&
+    this->Draws(volume, true);
+}
+
+bool vtkSPTFrame::Computes(PassKind kind) const
+{
+  for (size_t v = 0; v < this->Volumes.size(); ++v)
+  {
+    if (this->Computes(kind, v))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool vtkSPTFrame::ReadyPrograms(
   const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves)
 {
@@ -200,15 +262,33 @@ bool vtkSPTFrame::ReadyPrograms(
       byPrimitive[0] = byPrimitive[1] = nullptr;
     }
   }
+  for (auto& byScalars : this->ComputePrograms)
+  {
+    byScalars[0] = byScalars[1] = nullptr;
+  }
   for (int k = 0; k < NumberOfPassKinds; ++k)
   {
     for (size_t v = 0; v < this->Volumes.size(); ++v)
     {
+      const PassKind kind = static_cast<PassKind>(k);
+      const bool cellScalars = this->Volumes[v].Buffers->GetMesh()->GetCellScalars();
+      if (needed[k] && this->Computes(kind, v) && !this->ComputePrograms[k][cellScalars ? 1 : 0])
+      {
+        vtkShaderProgram* program = this->ReadyComputeProgram(cellScalars, kind, lanes, halves);
+        if (!program)
+        {
+          vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT compute traversal.");
+          return false;
+        }
+        this->ComputePrograms[k][cellScalars ? 1 : 0] = program;
+        vtkSPTComputeTraversal::Use(this->Window, program);
+        this->SetFrameUniforms(program, first, count, halves);
+        program->SetUniformi("sums", SumsImageUnit);
+      }
       for (const bool points : { false, true })
       {
-        const PassKind kind = static_cast<PassKind>(k);
         vtkShaderProgram*& program = this->ProgramOf(kind, v, points);
-        if (!needed[k] || !this->Draws(v, points) || program)
+        if (!needed[k] || !this->Draws(v, points) || (points && this->Computes(kind, v)) || program)
         {
           continue;
         }
@@ -240,8 +320,19 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
       }
       // The ensemble's accumulation binds its own program between passes; uniforms go to the
       // bound program.
-      vtkShaderProgram* program = this->ProgramOf(kind, v, points);
-      this->Window->GetShaderCache()->ReadyShaderProgram(program);
+      const bool compute = points && this->Computes(kind, v);
+      const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
+      vtkShaderProgram* program = compute
+        ? this->ComputePrograms[static_cast<int>(kind)][cellScalars ? 1 : 0]
+        : this->ProgramOf(kind, v, points);
+      if (compute)
+      {
+        vtkSPTComputeTraversal::Use(this->Window, program);
+      }
+      else
+      {
+        this->Window->GetShaderCache()->ReadyShaderProgram(program);
+      }
       ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
         volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture(),
         volume.Buffers->GetMeshIndexTexture() });
@@ -260,7 +351,17 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
       }
       program->SetUniformi("repetition", repetition);
       program->SetUniformi("repetitionsInGroup", inGroup);
-      this->DrawTetrahedra(volume, program, points, this->PointCellCounts[v]);
+      if (compute)
+      {
+        program->SetUniformi(
+          "meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
+        vtkSPTComputeTraversal::Dispatch(program, 0, this->PointCellCounts[v]);
+        this->ComputedCellCounts[v] = this->PointCellCounts[v];
+      }
+      else
+      {
+        this->DrawTetrahedra(volume, program, points, this->PointCellCounts[v]);
+      }
     }
   }
 }
@@ -392,6 +493,41 @@ bool vtkSPTFrame::DrawSingles(int first, int count, bool coverage, bool halves)
   return true;
 }
 
+bool vtkSPTFrame::TraverseAdding(
+  PassKind kind, int repetition, int inGroup, bool adds, bool secondTarget)
+{
+  // A compute pass adds in fixed point, and then into the pass's targets.
+  const bool computeSums = adds && this->Computes(kind);
+  vtkSPTComputeTraversal* compute = this->FrameSettings.Compute;
+  if (computeSums)
+  {
+    if (!compute->PrepareSums(
+          this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight()))
+    {
+      return false;
+    }
+    compute->BindSumsImage(SumsImageUnit);
+  }
+  this->Traverse(kind, repetition, inGroup);
+  vtkSPTDepthKeyBuffer::Barrier();
+  if (!computeSums)
+  {
+    return true;
+  }
+  vtkSPTComputeTraversal::UnbindSumsImage(SumsImageUnit);
+  // The color traversal's depth test (against the farthest survivor) is not the sums'.
+  vtkOpenGLState* ostate = this->Window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  if (!compute->AddSums(this->Window, secondTarget))
+  {
+    vtkErrorWithObjectMacro(
+      this->Reporter, "Could not compile the shader that adds the compute traversal's sums.");
+    return false;
+  }
+  return true;
+}
+
 bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, bool halves)
 {
   vtkOpenGLState* ostate = this->Window->GetState();
@@ -421,15 +557,12 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
       ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
       ostate->vtkglDisable(GL_BLEND);
     }
-    if (ok)
+    const PassKind keysKind = withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys;
+    ok = ok && this->TraverseAdding(keysKind, r, inGroup, withCoverage, false);
+    if (ok && this->FrameSettings.AfterKeys)
     {
-      this->Traverse(withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys, r, inGroup);
+      ok = this->FrameSettings.AfterKeys(this->DepthKeys);
       vtkSPTDepthKeyBuffer::Barrier();
-      if (this->FrameSettings.AfterKeys)
-      {
-        ok = this->FrameSettings.AfterKeys(this->DepthKeys);
-        vtkSPTDepthKeyBuffer::Barrier();
-      }
     }
     if (ok)
     {
@@ -442,8 +575,7 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
       {
         ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
         ostate->vtkglEnable(GL_BLEND);
-        this->Traverse(PassKind::Colors, r, inGroup);
-        vtkSPTDepthKeyBuffer::Barrier();
+        ok = this->TraverseAdding(PassKind::Colors, r, inGroup, true, halves);
       }
       if (culled)
       {

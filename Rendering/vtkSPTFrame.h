@@ -30,6 +30,7 @@
 class vtkObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
+class vtkSPTComputeTraversal;
 class vtkSPTDepthKeyBuffer;
 class vtkEnsembleBuffer;
 class vtkSPTMeshBuffers;
@@ -89,6 +90,9 @@ public:
     /// Called after each key traversal, before the color traversal reads the keys (the ranks
     /// of a parallel render take their minimum there); false stops the frame.
     std::function<bool(vtkSPTDepthKeyBuffer*)> AfterKeys;
+    /// Where set, a group's keys and color traversals visit the cells drawn as points in a compute
+    /// pass (vtkSPTComputeTraversal) instead of rasterizing their points.
+    vtkSPTComputeTraversal* Compute = nullptr;
   };
 
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
@@ -159,14 +163,27 @@ public:
   /// How many tetrahedra of a volume the traversals draw as points.
   vtkIdType GetPointCellCount(size_t volume) const;
 
+  /// How many of those a traversal of this frame visited in a compute pass (Settings::Compute).
+  vtkIdType GetComputedCellCount(size_t volume) const;
+
 private:
   vtkShaderProgram* ReadyProgram(
     bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves);
+  // The compute traversal's program of a keys or colors pass kind (vtkSPTTetrahedraCS.glsl).
+  vtkShaderProgram* ReadyComputeProgram(bool cellScalars, PassKind kind, int lanes, bool halves);
+  // Whether a traversal of this kind visits the volume's points in a compute pass.
+  bool Computes(PassKind kind, size_t volume) const;
+  // Whether a traversal of this kind visits some volume's points in a compute pass.
+  bool Computes(PassKind kind) const;
   // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars.
   bool ReadyPrograms(
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
   // One traversal of every volume with the program of that pass kind.
   void Traverse(PassKind kind, int repetition, int inGroup);
+  // Traverse(), for a pass that `adds` into the bound targets (the second too with
+  // `secondTarget`): a compute traversal adds its fixed-point sums there after it. False if
+  // its sums cannot be allocated or added.
+  bool TraverseAdding(PassKind kind, int repetition, int inGroup, bool adds, bool secondTarget);
   // Draw the volume's leading pointCells tetrahedra as points, or the others as triangles.
   void DrawTetrahedra(
     const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells);
@@ -198,12 +215,15 @@ private:
   // outline of their projection (vtkSPTTetrahedraGS.glsl). Two ranges: each cell is drawn
   // exactly once.
   std::vector<vtkIdType> PointCellCounts;
+  std::vector<vtkIdType> ComputedCellCounts; // per volume: by a compute pass, in this frame
   void ChooseSmallCells();
   // Whether a traversal of the volume has cells to draw as points (or as triangles).
   bool Draws(size_t volume, bool points) const;
   // The programs of this frame, by pass kind, by scalars per point (0) or per cell (1), and by
   // primitive: the projection's outline (0) or one point per tetrahedron (1).
   vtkShaderProgram* Programs[NumberOfPassKinds][2][2] = {};
+  // The compute traversal's programs, by pass kind and scalars (Settings::Compute).
+  vtkShaderProgram* ComputePrograms[NumberOfPassKinds][2] = {};
   vtkShaderProgram*& ProgramOf(PassKind kind, size_t volume, bool points);
 };
 

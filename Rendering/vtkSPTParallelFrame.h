@@ -66,6 +66,10 @@ public:
 
   /// How many tetrahedra of a volume the traversals draw as points.
   vtkIdType GetPointCellCount(size_t volume) const { return this->Frame.GetPointCellCount(volume); }
+  vtkIdType GetComputedCellCount(size_t volume) const
+  {
+    return this->Frame.GetComputedCellCount(volume);
+  }
 
 private:
   static vtkSPTFrame::Settings WithExchanges(

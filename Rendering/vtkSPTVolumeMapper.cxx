@@ -60,7 +60,7 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
   const vtkInternals& internals = *this->Internals;
   return static_cast<vtkIdType>(internals.Buffers->GetGPUMemorySize() +
     internals.Table->GetGPUMemorySize() + this->GetEnsemble()->GetGPUMemorySize() +
-    internals.DepthKeys->GetGPUMemorySize());
+    internals.DepthKeys->GetGPUMemorySize() + internals.Compute->GetGPUMemorySize());
 }
 
 vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
@@ -154,6 +154,7 @@ void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
     mappers[v]->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
     mappers[v]->LastRepetitionCount = self->GetAccumulatedRepetitions();
     mappers[v]->LastPointCellCount = frame.GetPointCellCount(v);
+    mappers[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
   }
 }
 
@@ -307,6 +308,9 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.OpaqueScene = HasOpaqueScene(ren);
   settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
     [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
+  settings.Compute = this->ComputeTraversal && vtkSPTComputeTraversal::IsSupported(renWin)
+    ? internals.Compute.Get()
+    : nullptr;
   ostate->PushFramebufferBindings();
   const bool started = plan.First > 0 ||
     internals.StartAccumulation(this, target, this->TargetError > 0.0, plan.SameImage);
@@ -352,6 +356,7 @@ void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   internals.Buffers->ReleaseGraphicsResources(window);
   internals.Table->ReleaseGraphicsResources(window);
   internals.DepthKeys->ReleaseGraphicsResources(window);
+  internals.Compute->ReleaseGraphicsResources(window);
   internals.CoverageDrawn = false;
   internals.Target.Restart(false); // keeps the noise per repetition, which all ranks share
   this->Superclass::ReleaseGraphicsResources(window);
@@ -363,6 +368,7 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "SmallCellSize: " << this->SmallCellSize << "\n";
   os << indent << "LastPointCellCount: " << this->LastPointCellCount << "\n";
+  os << indent << "ComputeTraversal: " << (this->ComputeTraversal ? "On" : "Off") << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
   os << indent

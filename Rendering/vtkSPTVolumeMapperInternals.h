@@ -15,6 +15,7 @@
 
 #include "vtkEnsembleBuffer.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkSPTComputeTraversal.h"
 #include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTFrame.h"
 #include "vtkSPTMeshBuffers.h"
@@ -31,6 +32,7 @@ public:
   vtkNew<vtkSPTMeshBuffers> Buffers;
   vtkNew<vtkPreIntegrationTable> Table;
   vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
+  vtkNew<vtkSPTComputeTraversal> Compute; // the keys traversal of the points (ComputeTraversal)
   vtkVolumeViewMatrices Matrices;
   vtkNew<vtkSPTParallelReduction> Reduction;
   bool WarnedNoGlobalIds = false;

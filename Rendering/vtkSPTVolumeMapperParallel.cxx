@@ -243,6 +243,9 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
   settings.Seed = self->Seed;
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
+  settings.Compute = self->ComputeTraversal && vtkSPTComputeTraversal::IsSupported(target.Window)
+    ? this->Compute.Get()
+    : nullptr;
   // Every rank has the same ensemble size, so the same repetitions per traversal.
   const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
   const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, all, target));
@@ -307,10 +310,12 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   for (vtkSPTVolumeMapper* mapper : all)
   {
     mapper->LastPointCellCount = 0;
+    mapper->LastComputedCellCount = 0;
   }
   for (size_t v = 0; v < owners.size(); ++v)
   {
     owners[v]->LastPointCellCount = frame.GetPointCellCount(v);
+    owners[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
   }
   ostate->PopFramebufferBindings();
   if (!ok)

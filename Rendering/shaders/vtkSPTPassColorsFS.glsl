@@ -14,7 +14,9 @@
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 // Where the frame writes the farthest survivor's depth first (vtkSPTSurvivorsFS.glsl),
 // the fragments behind it are rejected before they are shaded; otherwise the depth test is off.
+#ifndef SPT_COMPUTE
 layout(early_fragment_tests) in;
+#endif
 uniform int secondHalfStart; // the first repetition of the second half
 
 #ifdef SPT_VISIBILITY_WEIGHTED
@@ -40,15 +42,17 @@ int survivorsNotInFront(uint key, ivec2 pixel, int begin, int end)
 }
 #endif
 
-void main()
+// What this fragment's (or the compute traversal's) sample adds to the sum and to the second
+// half's sum; false when it adds to none (then its color is not looked up).
+bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
 {
   Segment segment;
   if (!visibleSegment(segment))
   {
-    discard;
+    return false;
   }
   uint key = depthKey(segment);
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
 #ifdef SPT_VISIBILITY_WEIGHTED
   // Each half's keys are sorted (vtkSPTSurvivorsFS.glsl): the survivors not in front of the
@@ -58,13 +62,11 @@ void main()
   int count = survivorsNotInFront(key, pixel, 0, split) + inSecondHalf;
   if (count == 0)
   {
-    discard;
+    return false;
   }
   vec4 color = preIntegrated(segment);
-  gl_FragData[0] = float(count) * color;
-#ifdef SPT_SECOND_HALF
-  gl_FragData[1] = float(inSecondHalf) * color;
-#endif
+  sum = float(count) * color;
+  secondHalf = float(inSecondHalf) * color;
 #else
   bool holdsOne = false; // the minimum of some repetition is this fragment's key
   for (int r = 0; r < lanes; ++r)
@@ -73,7 +75,7 @@ void main()
   }
   if (!holdsOne)
   {
-    discard;
+    return false;
   }
   // The key holds 8 bits of the cell's id: a fragment of another cell at the same depth may
   // share it, so the keep-or-discard decision is checked too.
@@ -87,9 +89,24 @@ void main()
     count += wins;
     inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
   }
-  gl_FragData[0] = float(count) * vec4(color.rgb / color.a, 1.0);
-#ifdef SPT_SECOND_HALF
-  gl_FragData[1] = float(inSecondHalf) * vec4(color.rgb / color.a, 1.0);
+  sum = float(count) * vec4(color.rgb / color.a, 1.0);
+  secondHalf = float(inSecondHalf) * vec4(color.rgb / color.a, 1.0);
 #endif
+  return true;
+}
+
+#ifndef SPT_COMPUTE
+void main()
+{
+  vec4 sum;
+  vec4 secondHalf;
+  if (!colorsAtSample(sum, secondHalf))
+  {
+    discard;
+  }
+  gl_FragData[0] = sum;
+#ifdef SPT_SECOND_HALF
+  gl_FragData[1] = secondHalf;
 #endif
 }
+#endif

@@ -35,16 +35,19 @@ void keepByStrata(float alpha, uint key, ivec2 pixel, int lanes)
   }
 }
 
-void main()
+// The pass's work for this fragment's (or the compute traversal's) sample: the keys of the
+// repetitions that keep the segment, and its optical depth terms for the exact coverage. False
+// when the sample's ray misses the visible part of the cell.
+bool keysAtSample(out vec4 coverageTerms)
 {
   Segment segment;
   if (!visibleSegment(segment))
   {
-    discard;
+    return false;
   }
   vec4 color = preIntegrated(segment);
   uint key = depthKey(segment);
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   if (fewStrataKeep(color.a, repetition, lanes))
   {
@@ -61,8 +64,25 @@ void main()
     }
   }
 #ifdef SPT_WRITE_COVERAGE
-  gl_FragData[0] = opticalDepthTerms(color);
+  coverageTerms = opticalDepthTerms(color);
+#else
+  coverageTerms = vec4(0.0);
+#endif
+  return true;
+}
+
+#ifndef SPT_COMPUTE
+void main()
+{
+  vec4 coverageTerms;
+  if (!keysAtSample(coverageTerms))
+  {
+    discard;
+  }
+#ifdef SPT_WRITE_COVERAGE
+  gl_FragData[0] = coverageTerms;
 #else
   gl_FragData[0] = vec4(0.0);
 #endif
 }
+#endif

@@ -8,9 +8,18 @@
 // and opacity, and draws the keep-or-discard thresholds; the main() of the pass, appended at
 // the end, decides what the fragment writes (vtkSPTPass*FS.glsl).
 
+#ifdef SPT_COMPUTE
+// The compute traversal sets these for each cell and sample (vtkSPTTetrahedraCS.glsl).
+vec2 samplePosition; // window coordinates of the sample's centre in the pass
+int tetrahedronId;
+vec4 facePlaneNDC[4];
+vec4 scalarPlaneNDC;
+#else
+#define samplePosition gl_FragCoord.xy
 flat in int tetrahedronId;
 flat in vec4 facePlaneNDC[4]; // the cell's face planes and scalar plane (vtkSPTFacePlane.glsl)
 flat in vec4 scalarPlaneNDC;
+#endif
 #ifdef SPT_CLIPPED_CELLS
 flat in int clippedCell; // 1: the exit face of a cell that a clipping plane cuts
 #endif
@@ -76,7 +85,7 @@ float scalarAt(uint pointId)
 // The sample's ray in view coordinates, from the near plane (t = 0) to the far plane (t = 1).
 void sampleRay(out vec3 origin, out vec3 direction)
 {
-  vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
+  vec2 ndc = samplePosition / passSizeInPixels * 2.0 - 1.0;
   vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
   vec4 farVC = DCVCMatrix * vec4(ndc, 1.0, 1.0);
   origin = nearVC.xyz / nearVC.w;
@@ -131,7 +140,7 @@ void rayCellSegment(vec4 facePlane[4], vec4 vertexScalar, vec3 origin, vec3 dire
 // sample on the outline's edge may fall just outside the cell).
 bool planeSegment(out Segment segment)
 {
-  vec2 ndc = gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0;
+  vec2 ndc = samplePosition / passSizeInPixels * 2.0 - 1.0;
   float enter = -1.0;
   float leave = 1.0;
   for (int k = 0; k < 4; ++k)
@@ -237,14 +246,14 @@ bool visibleSegment(out Segment segment)
 
 #ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
-  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(gl_FragCoord.xy) / subpixelLevel, 0).r;
+  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(samplePosition) / subpixelLevel, 0).r;
   if (segment.frontDepth >= sceneDepth)
   {
     return false;
   }
   if (sceneDepth < 1.0 && segment.frontVC.z > segment.backVC.z)
   {
-    vec4 sceneDC = vec4(gl_FragCoord.xy / passSizeInPixels * 2.0 - 1.0, sceneDepth * 2.0 - 1.0, 1.0);
+    vec4 sceneDC = vec4(samplePosition / passSizeInPixels * 2.0 - 1.0, sceneDepth * 2.0 - 1.0, 1.0);
     vec4 sceneVC = DCVCMatrix * sceneDC;
     float sceneZ = sceneVC.z / sceneVC.w;
     if (sceneZ > segment.backVC.z)
@@ -360,7 +369,7 @@ uint thresholdBits(uint r)
   if ((r >> 2u) != hashGroup)
   {
     hashGroup = r >> 2u;
-    uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
+    uvec3 cell = uvec3(uvec2(samplePosition), cellId());
     hashBits = pcg4d(uvec4(cell, hashGroup ^ (uint(seed) * 0x9E3779B9u)));
   }
   return hashBits[r & 3u];
@@ -372,7 +381,7 @@ uint strataOrderKey(uint block)
   if (block != orderBlock)
   {
     orderBlock = block;
-    uvec3 cell = uvec3(uvec2(gl_FragCoord.xy), cellId());
+    uvec3 cell = uvec3(uvec2(samplePosition), cellId());
     orderKey = pcg4d(uvec4(cell, (uint(stratumOrigin) + block) ^ (uint(seed) * 0x85EBCA6Bu))).x;
   }
   return orderKey;

@@ -69,16 +69,19 @@ def test_depth_keys_are_reported_and_released(have_display):
     single = mapper.GetGPUMemorySize()
     mapper.SetRepetitionsPerPass(8)
     window.Render()
-    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * 8 * 4
+    # Where the groups' traversals visit the points in a compute pass, its fixed-point sums
+    # (two targets of four terms) come on top.
+    sums = 8 * 4 if mapper.GetLastComputedCellCount() > 0 else 0
+    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (8 * 4 + sums)
     # The default estimator with exact coverage: its RGBA32F coverage buffer on top.
     mapper.SetEstimatorToVisibility()
     mapper.ExactCoverageOn()
     window.Render()
-    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (8 * 4 + 16)
+    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (8 * 4 + 16 + sums)
     # A render of fewer repetitions than a pass draws holds keys for those only.
     mapper.SetRepetitionLevel(3)
     window.Render()
-    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (3 * 4 + 16)
+    assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (3 * 4 + 16 + sums)
     mapper.ReleaseGraphicsResources(window)
     assert mapper.GetGPUMemorySize() == 0
     # One repetition at a time, the visibility estimator finds its survivor with the depth

@@ -1,0 +1,84 @@
+// SPT's traversals of the cells that are drawn as points, as a compute pass: one invocation per
+// cell visits the samples whose centres lie in the square that holds the cell's projection
+// (those its point would cover) and does there what the point's fragments do: the keys pass's
+// keysAtSample() (vtkSPTPassKeysFS.glsl) or, with SPT_COMPUTE_COLORS, the colors pass's
+// colorsAtSample() (vtkSPTPassColorsFS.glsl). The keys' atomic minima give the same keys in
+// any order. What the fragments add by blending (the exact coverage's optical depth terms, the
+// colors and the second half's colors) is added here as fixed-point integers (SPT_FIXED_ONE per
+// unit), whose sums do not depend on the order either; a full-screen pass then adds them into
+// the float targets (vtkSPTComputeSumsFS.glsl).
+//
+// On a software rasterizer the points' setup and binning run on the application's thread, one
+// point at a time; a compute pass runs on all cores.
+
+layout(local_size_x = SPT_COMPUTE_GROUP_SIZE) in;
+
+uniform int firstCell; // the cells [firstCell, firstCell + cellCount) are visited
+uniform int cellCount;
+
+#if defined(SPT_WRITE_COVERAGE) || defined(SPT_COMPUTE_COLORS)
+layout(r32ui) coherent uniform uimage3D sums; // (term, pixel): fixed point
+
+// Add four non-negative terms to the sums of layers [layer, layer + 4) of a sample.
+void addToSums(int layer, vec4 terms, ivec2 pixel)
+{
+  uvec4 fixedTerms = uvec4(round(terms * SPT_FIXED_ONE));
+  for (int k = 0; k < 4; ++k)
+  {
+    if (fixedTerms[k] != 0u)
+    {
+      imageAtomicAdd(sums, ivec3(layer + k, pixel), fixedTerms[k]);
+    }
+  }
+}
+#endif
+
+//SPT::FacePlane::Impl
+//SPT::PointCell::Impl
+
+void main()
+{
+  int cell = int(gl_GlobalInvocationID.x);
+  vec2 low;
+  vec2 high;
+  float nearest;
+  if (cell >= cellCount ||
+    !pointCell(firstCell + cell, facePlaneNDC, scalarPlaneNDC, low, high, nearest))
+  {
+    return;
+  }
+  tetrahedronId = firstCell + cell;
+  vec2 windowLow = (low * 0.5 + 0.5) * passSizeInPixels;
+  vec2 windowHigh = (high * 0.5 + 0.5) * passSizeInPixels;
+  ivec2 first = max(ivec2(ceil(windowLow - 0.5)), ivec2(0));
+  ivec2 last = min(ivec2(floor(windowHigh - 0.5)), ivec2(passSizeInPixels) - 1);
+  for (int y = first.y; y <= last.y; ++y)
+  {
+    for (int x = first.x; x <= last.x; ++x)
+    {
+      samplePosition = vec2(x, y) + 0.5;
+      // The random numbers' caches belong to one (sample, cell).
+      hashGroup = 0xFFFFFFFFu;
+      orderBlock = 0xFFFFFFFFu;
+#ifdef SPT_COMPUTE_COLORS
+      vec4 sum;
+      vec4 secondHalf;
+      if (colorsAtSample(sum, secondHalf))
+      {
+        addToSums(0, sum, ivec2(x, y));
+#ifdef SPT_SECOND_HALF
+        addToSums(4, secondHalf, ivec2(x, y));
+#endif
+      }
+#else
+      vec4 coverageTerms;
+      if (keysAtSample(coverageTerms))
+      {
+#ifdef SPT_WRITE_COVERAGE
+        addToSums(0, coverageTerms, ivec2(x, y));
+#endif
+      }
+#endif
+    }
+  }
+}

@@ -1,0 +1,246 @@
+#include "vtkSPTComputeTraversal.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkSPTOpenGL.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkSPTComputeSumsFS.h"
+
+#include <vector>
+
+namespace
+{
+// A compute program built through OpenGL, in a vtkShaderProgram so that VTK's uniform setters
+// (which need only a linked handle) set its uniforms as they set any other program's.
+class vtkSPTComputeProgram : public vtkShaderProgram
+{
+public:
+  static vtkSPTComputeProgram* New();
+  vtkTypeMacro(vtkSPTComputeProgram, vtkShaderProgram);
+
+  // Compile and link; false with the compiler's or linker's log.
+  bool Build(const std::string& source, std::string& log)
+  {
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint status = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
+    if (status != GL_TRUE)
+    {
+      log = ShaderLog(shader);
+      glDeleteShader(shader);
+      return false;
+    }
+    const GLuint program = glCreateProgram();
+    glAttachShader(program, shader);
+    glLinkProgram(program);
+    glDetachShader(program, shader);
+    glDeleteShader(shader);
+    glGetProgramiv(program, GL_LINK_STATUS, &status);
+    if (status != GL_TRUE)
+    {
+      GLint length = 0;
+      glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+      std::vector<char> buffer(static_cast<size_t>(length) + 1, '\0');
+      glGetProgramInfoLog(program, length, nullptr, buffer.data());
+      log = buffer.data();
+      glDeleteProgram(program);
+      return false;
+    }
+    this->Handle = static_cast<int>(program);
+    this->Linked = true;
+    return true;
+  }
+
+  void Use() { glUseProgram(static_cast<GLuint>(this->Handle)); }
+
+protected:
+  vtkSPTComputeProgram() = default;
+  ~vtkSPTComputeProgram() override = default;
+
+private:
+  static std::string ShaderLog(GLuint shader)
+  {
+    GLint length = 0;
+    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> buffer(static_cast<size_t>(length) + 1, '\0');
+    glGetShaderInfoLog(shader, length, nullptr, buffer.data());
+    return buffer.data();
+  }
+
+  vtkSPTComputeProgram(const vtkSPTComputeProgram&) = delete;
+  void operator=(const vtkSPTComputeProgram&) = delete;
+};
+
+vtkStandardNewMacro(vtkSPTComputeProgram);
+}
+
+vtkStandardNewMacro(vtkSPTComputeTraversal);
+
+namespace
+{
+// Two targets of four terms per sample.
+constexpr int Layers = 8;
+}
+
+vtkSPTComputeTraversal::vtkSPTComputeTraversal() = default;
+
+vtkSPTComputeTraversal::~vtkSPTComputeTraversal() = default;
+
+bool vtkSPTComputeTraversal::IsSupported(vtkOpenGLRenderWindow* renWin)
+{
+  if (!renWin)
+  {
+    return false;
+  }
+  renWin->MakeCurrent();
+  return vtkSPTOpenGL::HasVersion(4, 3) || vtkSPTOpenGL::HasExtension("GL_ARB_compute_shader");
+}
+
+vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(
+  vtkOpenGLRenderWindow* renWin, const std::string& source)
+{
+  if (renWin != this->Context)
+  {
+    this->ReleaseGraphicsResources(this->Context);
+    this->Context = renWin;
+  }
+  auto found = this->Programs.find(source);
+  if (found != this->Programs.end())
+  {
+    return found->second;
+  }
+  vtkSmartPointer<vtkSPTComputeProgram> program = vtkSmartPointer<vtkSPTComputeProgram>::New();
+  std::string log;
+  if (!program->Build(source, log))
+  {
+    vtkErrorMacro("Could not build the compute traversal: " << log);
+    return nullptr;
+  }
+  this->Programs[source] = program;
+  return program;
+}
+
+void vtkSPTComputeTraversal::Use(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program)
+{
+  // VTK's cache binds a program only when it is not its last one: it must forget it.
+  renWin->GetShaderCache()->ReleaseCurrentShader();
+  static_cast<vtkSPTComputeProgram*>(program)->Use();
+}
+
+void vtkSPTComputeTraversal::Dispatch(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
+{
+  if (count <= 0)
+  {
+    return;
+  }
+  program->SetUniformi("firstCell", static_cast<int>(first));
+  program->SetUniformi("cellCount", static_cast<int>(count));
+  glDispatchCompute(static_cast<GLuint>((count + GroupSize - 1) / GroupSize), 1, 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+    GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+bool vtkSPTComputeTraversal::PrepareSums(vtkOpenGLRenderWindow* renWin, int width, int height)
+{
+  if (renWin != this->Context || width != this->Width || height != this->Height)
+  {
+    if (renWin != this->Context)
+    {
+      this->ReleaseGraphicsResources(this->Context);
+      this->Context = renWin;
+    }
+    else if (this->Sums->GetHandle())
+    {
+      this->Sums->ReleaseGraphicsResources(renWin);
+    }
+    this->Sums->SetContext(renWin);
+    this->Sums->SetInternalFormat(GL_R32UI);
+    this->Sums->SetFormat(GL_RED_INTEGER);
+    this->Sums->SetDataType(GL_UNSIGNED_INT);
+    this->Sums->SetMinificationFilter(vtkTextureObject::Nearest);
+    this->Sums->SetMagnificationFilter(vtkTextureObject::Nearest);
+    if (!this->Sums->Create3DFromRaw(Layers, width, height, 1, VTK_UNSIGNED_INT, nullptr))
+    {
+      vtkErrorMacro("Could not allocate the compute traversal's " << width << "x" << height
+                                                                  << " fixed-point sums.");
+      this->Width = this->Height = 0;
+      return false;
+    }
+    this->Width = width;
+    this->Height = height;
+  }
+  const GLuint zero = 0;
+  glClearTexImage(this->Sums->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  return true;
+}
+
+void vtkSPTComputeTraversal::BindSumsImage(int unit)
+{
+  glBindImageTexture(
+    static_cast<GLuint>(unit), this->Sums->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
+void vtkSPTComputeTraversal::UnbindSumsImage(int unit)
+{
+  glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+}
+
+bool vtkSPTComputeTraversal::AddSums(vtkOpenGLRenderWindow* renWin, bool secondTarget)
+{
+  std::unique_ptr<vtkOpenGLQuadHelper>& quad = this->AddSumsQuads[secondTarget ? 1 : 0];
+  if (!quad)
+  {
+    std::string source = vtkSPTComputeSumsFS;
+    vtkShaderProgram::Substitute(source, "//SPT::Defines::Dec",
+      std::string(secondTarget ? "#define SPT_SECOND_HALF\n" : "") + "#define SPT_FIXED_ONE " +
+        std::to_string(FixedPointOne));
+    quad.reset(new vtkOpenGLQuadHelper(renWin, nullptr, source.c_str(), ""));
+  }
+  vtkShaderProgram* program = quad->Program;
+  if (!program)
+  {
+    return false;
+  }
+  renWin->GetShaderCache()->ReadyShaderProgram(program);
+  this->Sums->Activate();
+  program->SetUniformi("sums", this->Sums->GetTextureUnit());
+  quad->Render();
+  this->Sums->Deactivate();
+  return true;
+}
+
+size_t vtkSPTComputeTraversal::GetGPUMemorySize() const
+{
+  return size_t(this->Width) * size_t(this->Height) * Layers * 4;
+}
+
+void vtkSPTComputeTraversal::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (window)
+  {
+    for (auto& entry : this->Programs)
+    {
+      entry.second->ReleaseGraphicsResources(window);
+    }
+    this->Sums->ReleaseGraphicsResources(window);
+  }
+  this->Programs.clear();
+  this->AddSumsQuads[0].reset();
+  this->AddSumsQuads[1].reset();
+  this->Width = this->Height = 0;
+  this->Context = nullptr;
+}
+
+void vtkSPTComputeTraversal::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Programs: " << this->Programs.size() << "\n";
+  os << indent << "Sums: " << this->Width << " x " << this->Height << " x " << Layers << "\n";
+}

@@ -1,0 +1,150 @@
+"""The traversals of the cells drawn as points in a compute pass (vtkSPTVolumeMapper's
+ComputeTraversal) against the points themselves.
+
+One invocation per cell visits the samples of its square and runs the points' fragment code
+there, in the keys traversal and in the color traversal. The depth keys are atomic minima, so
+they are the same; what the fragments add by blending (the exact coverage's terms, the colors,
+the second half's colors) is added in fixed point (2^-16 per term). So with the same seed the
+two images may differ only by that rounding, at most one 8-bit level, and the compute pass's
+image is the same from one render to the next. The tests compare them pixel by pixel on the
+test scenes and in every mode that changes the fragment code (cell scalars, opaque geometry, a
+zoom that cuts squares at the viewport, parallel projection, the survivor estimator, the error
+target's two halves, two volumes in one view), and check where the compute pass is not used.
+"""
+
+from functools import lru_cache
+
+import numpy as np
+import pytest
+import vtk
+
+from spt import render
+
+from scene_support import scene
+
+SIZE = 128
+#: Most cells of the test scenes are at most 64 pixels across at 128 x 128: drawn as points.
+ALL_SMALL = 64.0
+#: One 8-bit level, with room for the rounding of the read-back.
+ONE_LEVEL = 1.5 / 255.0
+
+
+def _cell_scalar_grid(grid):
+    to_cells = vtk.vtkPointDataToCellData()
+    to_cells.SetInputData(grid)
+    to_cells.Update()
+    cells = vtk.vtkUnstructuredGrid()
+    cells.ShallowCopy(to_cells.GetOutput())
+    cells.GetPointData().SetActiveScalars(None)
+    return cells
+
+
+def _opaque_plane(grid):
+    """A plane through the middle of the mesh, across the view."""
+    bounds = grid.GetBounds()
+    cx = 0.5 * (bounds[0] + bounds[1])
+    plane = vtk.vtkPlaneSource()
+    plane.SetOrigin(cx, bounds[2] - 1, bounds[4] - 1)
+    plane.SetPoint1(cx, bounds[3] + 1, bounds[4] - 1)
+    plane.SetPoint2(cx, bounds[2] - 1, bounds[5] + 1)
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtk.vtkActor()
+    actor.SetMapper(mapper)
+    return actor
+
+
+@lru_cache(maxsize=None)
+def _render(name, compute, case="", level=16):
+    s = scene(name)
+    grid = _cell_scalar_grid(s.grid) if case == "cell scalars" else s.grid
+    view = s.view
+    if case == "zoomed":
+        view = render.View(view.azimuth, view.elevation, zoom=2.5)
+    if case == "parallel":
+        view = render.View(view.azimuth, view.elevation, parallel=True)
+    options = {"survivor": {"estimator": "survivor"},
+               "error target": {"target_error": 0.004}}.get(case, {})
+    mapper = render.spt_mapper(level, seed=3, **options)
+    mapper.SetSmallCellSize(ALL_SMALL)
+    mapper.SetComputeTraversal(compute)
+    actors = (_opaque_plane(grid),) if case == "opaque" else ()
+    image = render.render(grid, s.property, mapper, view, (SIZE, SIZE), actors=actors).image
+    return (image, mapper.GetLastPointCellCount(), mapper.GetLastComputedCellCount(),
+            mapper.GetEstimatedError())
+
+
+def _check_same_image(name, case="", level=16):
+    image, points, computed, estimate = _render(name, True, case, level)
+    other, other_points, none, other_estimate = _render(name, False, case, level)
+    assert points > 0 and points == other_points, "the scene draws no points"
+    assert computed == points, "the keys traversal did not visit the points in a compute pass"
+    assert none == 0, "ComputeTraversal off still computes"
+    assert other[..., 3].max() > 0.2, "the image is empty"
+    difference = np.abs(image - other).max(axis=-1)
+    assert difference.max() <= ONE_LEVEL, f"{name}, {case}: {difference.max() * 255} levels"
+    assert difference.mean() < 1e-4
+    # The error target's estimate compares the two halves' sums (the second target).
+    assert estimate == pytest.approx(other_estimate, rel=1e-3)
+
+
+@pytest.mark.parametrize("name", ["default", "spx", "bluntfin"])
+def test_compute_and_points_draw_the_same_image(name, have_display):
+    _check_same_image(name)
+
+
+@pytest.mark.parametrize("case", ["cell scalars", "opaque", "zoomed", "parallel", "survivor",
+                                  "error target"])
+def test_compute_draws_the_same_image_in_every_mode(case, have_display):
+    _check_same_image("default", case)
+
+
+def test_compute_images_repeat(have_display):
+    """The fixed-point sums do not depend on the order of the invocations."""
+    first = _render("spx", True)[0]
+    s = scene("spx")
+    mapper = render.spt_mapper(16, seed=3)
+    mapper.SetSmallCellSize(ALL_SMALL)
+    mapper.ComputeTraversalOn()
+    again = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    assert mapper.GetLastComputedCellCount() > 0
+    np.testing.assert_array_equal(first, again)
+
+
+def test_one_repetition_needs_no_keys(have_display):
+    """One repetition finds its survivor by the depth test: no keys traversal to compute."""
+    image, points, computed, _ = _render("default", True, level=1)
+    assert points > 0 and computed == 0
+    assert image[..., 3].max() > 0.2
+
+
+def test_two_volumes_share_the_compute_traversal(have_display):
+    """Two interpenetrating volumes in one renderer: both volumes' points go through the
+    compute pass into the same keys and sums."""
+    s = scene("default")
+    bounds = s.grid.GetBounds()
+    shift = 0.3 * (bounds[1] - bounds[0])
+    images = []
+    for compute in (True, False):
+        window, renderer = render.make_window(SIZE, SIZE)
+        mappers = []
+        for offset in (0.0, shift):
+            mapper = render.spt_mapper(16, seed=3)
+            mapper.SetSmallCellSize(ALL_SMALL)
+            mapper.SetComputeTraversal(compute)
+            render.add_volume(renderer, s.grid, s.property, mapper).SetPosition(offset, 0.0, 0.0)
+            mappers.append(mapper)
+        union = list(bounds)
+        union[1] += shift
+        render.place_camera(renderer, union, s.view)
+        window.Render()
+        images.append(render.read_rgba(window))
+        counts = [m.GetLastComputedCellCount() for m in mappers]
+        points = [m.GetLastPointCellCount() for m in mappers]
+        window.Finalize()
+        if compute:
+            assert all(p > 0 for p in points) and counts == points
+        else:
+            assert counts == [0, 0]
+    assert images[1][..., 3].max() > 0.2, "the image is empty"
+    assert np.abs(images[0] - images[1]).max() <= ONE_LEVEL
