@@ -1,8 +1,9 @@
 """Measure a compute traversal of the cells against drawing them as points.
 
-SPT's keys traversal on llvmpipe is bound by rasterizing one point per small cell (see
-Documentation/results.md, "A compute traversal of the small cells"). This experiment does the
-same work per (cell, sample) both ways, in one OpenGL context, on a race scene:
+SPT's traversals of a large mesh on llvmpipe are bound by rasterizing one point per small cell
+(Documentation/results.md, "A compute traversal of the small cells"; the mapper's own compute
+pass is vtkSPTVolumeMapper's ComputeTraversal). This experiment does the same work per (cell,
+sample) both ways, in one OpenGL context, on a race scene, with shaders of its own:
 
 - *points*: one GL_POINTS primitive per cell, as vtkSPTTetrahedraPointsVS.glsl draws it; the
   fragment stage finds the segment, looks up its color, keeps it or not by a hashed threshold
