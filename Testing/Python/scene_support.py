@@ -24,6 +24,32 @@ def reference(name: str, size: int):
     return render.reference(s.grid, s.property, s.view, (size, size)).image
 
 
+def with_cell_scalars(grid):
+    """A copy of ``grid`` whose scalars are its point scalars averaged per cell."""
+    to_cells = vtk.vtkPointDataToCellData()
+    to_cells.SetInputData(grid)
+    to_cells.Update()
+    cells = vtk.vtkUnstructuredGrid()
+    cells.ShallowCopy(to_cells.GetOutput())
+    cells.GetPointData().SetActiveScalars(None)
+    return cells
+
+
+def opaque_plane(grid):
+    """An opaque plane actor through the middle of the mesh, across the view."""
+    bounds = grid.GetBounds()
+    plane = vtk.vtkPlaneSource()
+    cx = 0.5 * (bounds[0] + bounds[1])
+    plane.SetOrigin(cx, bounds[2] - 1, bounds[4] - 1)
+    plane.SetPoint1(cx, bounds[3] + 1, bounds[4] - 1)
+    plane.SetPoint2(cx, bounds[2] - 1, bounds[5] + 1)
+    mapper = vtk.vtkPolyDataMapper()
+    mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtk.vtkActor()
+    actor.SetMapper(mapper)
+    return actor
+
+
 def with_moved_copy(grid, offset):
     """``grid`` and a copy of it moved by ``offset``, appended into one grid: the union that
     two volumes of ``grid`` show when the second's vtkVolume is moved by ``offset``."""

@@ -16,11 +16,10 @@ from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
 from spt import render
 
-from scene_support import scene
+from scene_support import opaque_plane, scene, with_cell_scalars
 
 SIZE = 128
 #: Most cells of the test scenes are at most 64 pixels across at 128 x 128: drawn as points.
@@ -29,35 +28,10 @@ ALL_SMALL = 64.0
 ONE_LEVEL = 1.5 / 255.0
 
 
-def _cell_scalar_grid(grid):
-    to_cells = vtk.vtkPointDataToCellData()
-    to_cells.SetInputData(grid)
-    to_cells.Update()
-    cells = vtk.vtkUnstructuredGrid()
-    cells.ShallowCopy(to_cells.GetOutput())
-    cells.GetPointData().SetActiveScalars(None)
-    return cells
-
-
-def _opaque_plane(grid):
-    """A plane through the middle of the mesh, across the view."""
-    bounds = grid.GetBounds()
-    cx = 0.5 * (bounds[0] + bounds[1])
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(cx, bounds[2] - 1, bounds[4] - 1)
-    plane.SetPoint1(cx, bounds[3] + 1, bounds[4] - 1)
-    plane.SetPoint2(cx, bounds[2] - 1, bounds[5] + 1)
-    mapper = vtk.vtkPolyDataMapper()
-    mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
-    return actor
-
-
 @lru_cache(maxsize=None)
 def _render(name, compute, case="", level=16):
     s = scene(name)
-    grid = _cell_scalar_grid(s.grid) if case == "cell scalars" else s.grid
+    grid = with_cell_scalars(s.grid) if case == "cell scalars" else s.grid
     view = s.view
     if case == "zoomed":
         view = render.View(view.azimuth, view.elevation, zoom=2.5)
@@ -68,7 +42,7 @@ def _render(name, compute, case="", level=16):
     mapper = render.spt_mapper(level, seed=3, **options)
     mapper.SetSmallCellSize(ALL_SMALL)
     mapper.SetComputeTraversal(compute)
-    actors = (_opaque_plane(grid),) if case == "opaque" else ()
+    actors = (opaque_plane(grid),) if case == "opaque" else ()
     image = render.render(grid, s.property, mapper, view, (SIZE, SIZE), actors=actors).image
     return (image, mapper.GetLastPointCellCount(), mapper.GetLastComputedCellCount(),
             mapper.GetEstimatedError())

@@ -20,7 +20,7 @@ import vtk
 
 from spt import render
 
-from scene_support import scene
+from scene_support import opaque_plane, scene, with_cell_scalars
 
 SIZE = 128
 #: Most cells of the test scenes are at most 64 pixels across at 128 x 128.
@@ -34,30 +34,7 @@ EDGE_PIXELS = 0.002
 
 def _grid(name, cell_scalars=False):
     grid = scene(name).grid
-    if not cell_scalars:
-        return grid
-    to_cells = vtk.vtkPointDataToCellData()
-    to_cells.SetInputData(grid)
-    to_cells.Update()
-    cells = vtk.vtkUnstructuredGrid()
-    cells.ShallowCopy(to_cells.GetOutput())
-    cells.GetPointData().SetActiveScalars(None)
-    return cells
-
-
-def _opaque_plane(grid):
-    """A plane through the middle of the mesh, across the view."""
-    bounds = grid.GetBounds()
-    plane = vtk.vtkPlaneSource()
-    cx = 0.5 * (bounds[0] + bounds[1])
-    plane.SetOrigin(cx, bounds[2] - 1, bounds[4] - 1)
-    plane.SetPoint1(cx, bounds[3] + 1, bounds[4] - 1)
-    plane.SetPoint2(cx, bounds[2] - 1, bounds[5] + 1)
-    mapper = vtk.vtkPolyDataMapper()
-    mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
-    return actor
+    return with_cell_scalars(grid) if cell_scalars else grid
 
 
 @lru_cache(maxsize=None)
@@ -71,7 +48,7 @@ def _render(name, small_cell_size, view=None, cell_scalars=False, opaque=False, 
     mapper.SetSmallCellSize(small_cell_size)
     if paper:
         mapper.SetRepetitionsPerPass(1)
-    actors = (_opaque_plane(grid),) if opaque else ()
+    actors = (opaque_plane(grid),) if opaque else ()
     result = render.render(grid, prop, mapper, view or s.view, (SIZE, SIZE), actors=actors)
     return result.image, mapper.GetLastPointCellCount(), mapper.GetNumberOfTetrahedra()
 
