@@ -10,6 +10,7 @@
 
 #include "vtkSPTComputeSumsFS.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace
@@ -136,13 +137,18 @@ void vtkSPTComputeTraversal::Use(vtkOpenGLRenderWindow* renWin, vtkShaderProgram
 
 void vtkSPTComputeTraversal::Dispatch(vtkShaderProgram* program, vtkIdType first, vtkIdType count)
 {
-  if (count <= 0)
+  // A dispatch holds at most GL_MAX_COMPUTE_WORK_GROUP_COUNT groups along x (65,535 at the
+  // least: 4 million cells of 64): larger ranges go in several.
+  GLint maxGroups = 0;
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &maxGroups);
+  const vtkIdType most = vtkIdType(std::max(maxGroups, 1)) * GroupSize;
+  for (vtkIdType done = 0; done < count; done += most)
   {
-    return;
+    const vtkIdType cells = std::min(most, count - done);
+    program->SetUniformi("firstCell", static_cast<int>(first + done));
+    program->SetUniformi("cellCount", static_cast<int>(cells));
+    glDispatchCompute(static_cast<GLuint>((cells + GroupSize - 1) / GroupSize), 1, 1);
   }
-  program->SetUniformi("firstCell", static_cast<int>(first));
-  program->SetUniformi("cellCount", static_cast<int>(count));
-  glDispatchCompute(static_cast<GLuint>((count + GroupSize - 1) / GroupSize), 1, 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
     GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
