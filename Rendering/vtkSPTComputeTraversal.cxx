@@ -34,7 +34,7 @@ public:
     glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
     if (status != GL_TRUE)
     {
-      log = ShaderLog(shader);
+      log = InfoLog(shader, glGetShaderiv, glGetShaderInfoLog);
       glDeleteShader(shader);
       return false;
     }
@@ -46,11 +46,7 @@ public:
     glGetProgramiv(program, GL_LINK_STATUS, &status);
     if (status != GL_TRUE)
     {
-      GLint length = 0;
-      glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-      std::vector<char> buffer(static_cast<size_t>(length) + 1, '\0');
-      glGetProgramInfoLog(program, length, nullptr, buffer.data());
-      log = buffer.data();
+      log = InfoLog(program, glGetProgramiv, glGetProgramInfoLog);
       glDeleteProgram(program);
       return false;
     }
@@ -66,12 +62,14 @@ protected:
   ~vtkSPTComputeProgram() override = default;
 
 private:
-  static std::string ShaderLog(GLuint shader)
+  // The info log of a shader or a program, read with its own pair of functions.
+  template <typename GetValue, typename GetLog>
+  static std::string InfoLog(GLuint object, GetValue getValue, GetLog getLog)
   {
     GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    getValue(object, GL_INFO_LOG_LENGTH, &length);
     std::vector<char> buffer(static_cast<size_t>(length) + 1, '\0');
-    glGetShaderInfoLog(shader, length, nullptr, buffer.data());
+    getLog(object, length, nullptr, buffer.data());
     return buffer.data();
   }
 

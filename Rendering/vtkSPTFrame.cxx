@@ -351,10 +351,24 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
       }
       program->SetUniformi("repetition", repetition);
       program->SetUniformi("repetitionsInGroup", inGroup);
+      program->SetUniformi("meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
       if (compute)
       {
-        program->SetUniformi(
-          "meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
+        // The points' fragments pass the depth test against the farthest survivor when the
+        // frame set one (PrepareSurvivors()): the compute pass makes the same test.
+        vtkTextureObject* survivors = this->Ensemble->GetPassDepthTexture();
+        const bool skipBehind = kind == PassKind::Colors &&
+          this->Window->GetState()->GetEnumState(GL_DEPTH_TEST) && survivors->GetHandle();
+        std::unique_ptr<ScopedTextures> farthest;
+        if (kind == PassKind::Colors)
+        {
+          program->SetUniformi("behindSurvivorsSkipped", skipBehind ? 1 : 0);
+        }
+        if (skipBehind)
+        {
+          farthest.reset(new ScopedTextures({ survivors }));
+          program->SetUniformi("farthestSurvivor", survivors->GetTextureUnit());
+        }
         vtkSPTComputeTraversal::Dispatch(program, 0, this->PointCellCounts[v]);
         this->ComputedCellCounts[v] = this->PointCellCounts[v];
       }
@@ -369,7 +383,6 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
 void vtkSPTFrame::DrawTetrahedra(
   const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells)
 {
-  program->SetUniformi("meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
   if (points)
   {
     vtkOpenGLState* ostate = this->Window->GetState();

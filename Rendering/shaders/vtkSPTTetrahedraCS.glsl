@@ -33,6 +33,15 @@ void addToSums(int layer, vec4 terms, ivec2 pixel)
 }
 #endif
 
+#ifdef SPT_COMPUTE_COLORS
+// The points' early depth test: where the frame wrote the farthest survivor's depth
+// (vtkSPTSurvivorsFS.glsl) and tests against it, a sample whose survivors all lie in front of
+// the cell's nearest vertex gets nothing from the cell, and is skipped before its segment is
+// found.
+uniform int behindSurvivorsSkipped;
+uniform sampler2D farthestSurvivor; // window depth, one texel per sample
+#endif
+
 //SPT::FacePlane::Impl
 //SPT::PointCell::Impl
 
@@ -52,6 +61,10 @@ void main()
   vec2 windowHigh = (high * 0.5 + 0.5) * passSizeInPixels;
   ivec2 first = max(ivec2(ceil(windowLow - 0.5)), ivec2(0));
   ivec2 last = min(ivec2(floor(windowHigh - 0.5)), ivec2(passSizeInPixels) - 1);
+#ifdef SPT_COMPUTE_COLORS
+  // The depth the point is rasterized at (vtkSPTTetrahedraPointsVS.glsl), in window depth.
+  float nearestDepth = clamp(nearest, -1.0, 1.0) * 0.5 + 0.5;
+#endif
   for (int y = first.y; y <= last.y; ++y)
   {
     for (int x = first.x; x <= last.x; ++x)
@@ -61,6 +74,11 @@ void main()
       hashGroup = 0xFFFFFFFFu;
       orderBlock = 0xFFFFFFFFu;
 #ifdef SPT_COMPUTE_COLORS
+      if (behindSurvivorsSkipped != 0 &&
+        nearestDepth > texelFetch(farthestSurvivor, ivec2(x, y), 0).r)
+      {
+        continue;
+      }
       vec4 sum;
       vec4 secondHalf;
       if (colorsAtSample(sum, secondHalf))
