@@ -102,7 +102,7 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
 {
   for (const Volume& volume : volumes)
   {
-    this->ClipPlanesCut = this->ClipPlanesCut || volume.Matrices->ClipPlanesCutBounds;
+    this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
   }
   this->ChooseSmallCells();
 }
@@ -293,7 +293,7 @@ bool vtkSPTFrame::ReadyPrograms(
           continue;
         }
         program = this->ReadyProgram(this->Volumes[v].Buffers->GetMesh()->GetCellScalars(),
-          this->ClipPlanesCut, points, kind, lanes, halves);
+          this->NearPlaneCuts, points, kind, lanes, halves);
         if (!program)
         {
           vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
@@ -607,10 +607,10 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled
 {
   // The visibility estimator counts the survivors behind each fragment: sorted keys make that
   // a binary search. Every fragment is rasterized at its cell's nearest vertex, no deeper than
-  // its segment's front, but the exit faces of clipped cells lie behind theirs: then no
-  // culling.
+  // its segment's front, but the exit faces of the cells that the near plane cuts lie behind
+  // theirs: then no culling.
   const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
-  const bool cull = !this->ClipPlanesCut;
+  const bool cull = !this->NearPlaneCuts;
   culled = false;
   if (!sortKeys && !cull)
   {

@@ -208,7 +208,7 @@ private:
   const std::vector<Volume>& Volumes;
   Settings FrameSettings;
   vtkObject* Reporter;
-  bool ClipPlanesCut = false; // a clipping plane cuts the bounds of some volume
+  bool NearPlaneCuts = false; // the near plane cuts the bounds of some volume
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of
   // vtkSPTMeshBuffers about SmallCellSize pixels across or less; the others are drawn as the

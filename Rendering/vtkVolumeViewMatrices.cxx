@@ -58,12 +58,11 @@ void ToRowMajor(vtkMatrix4x4* matrix, double elements[4][4])
 }
 
 // Where the corners of the bounding box fall in clip space. A corner beyond the near plane (or
-// behind the eye) or a side plane has clip z < -w, |x| > w or |y| > w; the box is convex, so
-// without such a corner no cell reaches there. In front of the near plane, the projections of
-// the corners bound those of every point in the box.
+// behind the eye) has clip z < -w; the box is convex, so without such a corner no cell reaches
+// there. In front of the near plane, the projections of the corners bound those of every point
+// in the box.
 struct BoundsInClipSpace
 {
-  bool Cut = false;                    // some corner lies beyond a clipping plane
   bool NearCut = false;                // some corner lies beyond the near plane or behind the eye
   double NearestW = 0.0;               // the smallest clip w of the corners
   double LargestNDC[2] = { 0.0, 0.0 }; // the largest |x / w| and |y / w| of the corners
@@ -90,8 +89,6 @@ BoundsInClipSpace ProjectBounds(
         viewToClip[i][2] * view[2] + viewToClip[i][3] * view[3];
     }
     const bool nearCut = !(clip[2] >= -clip[3] && clip[3] > 0.0);
-    const bool inside = !nearCut && std::abs(clip[0]) <= clip[3] && std::abs(clip[1]) <= clip[3];
-    result.Cut = result.Cut || !inside;
     result.NearCut = result.NearCut || nearCut;
     result.NearestW = std::min(result.NearestW, clip[3]);
     for (int i = 0; i < 2 && !nearCut; ++i)
@@ -194,7 +191,7 @@ void vtkVolumeViewMatrices::Compute(
   this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
   const BoundsInClipSpace box =
     ProjectBounds(mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip);
-  this->ClipPlanesCutBounds = box.Cut;
+  this->NearPlaneCutsBounds = box.NearCut;
   ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
     this->NDCPerLength, this->TypicalNDCPerLength);
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);

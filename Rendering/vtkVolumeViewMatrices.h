@@ -34,9 +34,10 @@ struct SPTRENDERING_EXPORT vtkVolumeViewMatrices
   double ViewScale = 1.0;
   /// Whether the camera projects in parallel.
   bool ParallelProjection = false;
-  /// Whether a clipping plane (near or side) cuts the mesh's bounding box, as with the camera
-  /// inside or close to the mesh or a view zoomed into it: then some tetrahedra may be cut.
-  bool ClipPlanesCutBounds = false;
+  /// Whether the near plane cuts the mesh's bounding box (or some of it lies behind the eye), as
+  /// with the camera inside or close to the mesh: then some tetrahedra may be cut by it. Side
+  /// planes, as in a view zoomed into the mesh, only clip what the outlines cover.
+  bool NearPlaneCutsBounds = false;
   /// An upper bound of the x and y extents, in normalized device coordinates, of the
   /// projection of a segment of unit length (normalized model units) that lies within the
   /// mesh's bounds; zero when the near plane cuts the bounds (no bound then).

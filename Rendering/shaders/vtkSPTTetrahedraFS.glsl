@@ -21,7 +21,7 @@ flat in vec4 facePlaneNDC[4]; // the cell's face planes and scalar plane (vtkSPT
 flat in vec4 scalarPlaneNDC;
 #endif
 #ifdef SPT_CLIPPED_CELLS
-flat in int clippedCell; // 1: the exit face of a cell that a clipping plane cuts
+flat in int clippedCell; // 1: the exit face of a cell that the near plane cuts
 #endif
 
 uniform sampler3D preIntegrationTable; // (front scalar, back scalar, sqrt(thickness)) -> RGBA

@@ -19,11 +19,12 @@
 // farthest survivor. The fragment stage writes the segment's own depth where the depth test
 // decides (the single pass).
 //
-// The outline needs the whole tetrahedron inside the view volume. A tetrahedron that a
-// clipping plane cuts (the near plane with the camera inside or close to the mesh, possibly
-// with vertices behind the eye; a side plane when the view is zoomed in) is drawn as its exit
-// faces instead, which the hardware clips; each of their fragments finds its own segment from
-// the cell's face planes, from the near plane or the nearest entry face on.
+// The outline needs the whole tetrahedron in front of the near plane; the hardware clips it by
+// the side planes (a view zoomed into the mesh), and the fragments inside the viewport find
+// their segments as anywhere else. A tetrahedron that the near plane cuts (the camera inside
+// or close to the mesh, possibly with vertices behind the eye) is drawn as its exit faces
+// instead, which the hardware clips; each of their fragments finds its own segment from the
+// cell's face planes, from the near plane or the nearest entry face on.
 
 layout(lines_adjacency) in;
 #ifdef SPT_CLIPPED_CELLS
@@ -233,12 +234,12 @@ void main()
   {
     return; // wholly beyond one plane: nothing visible
   }
-  if (any(greaterThan(beyond, ivec4(0))))
+  if (beyond.x > 0)
   {
 #ifdef SPT_CLIPPED_CELLS
     emitExitFaces();
 #endif
-    return; // (without a plane cutting the mesh's bounds, this cannot happen)
+    return; // (without the near plane cutting the mesh's bounds, this cannot happen)
   }
   for (int i = 0; i < 4; ++i)
   {

@@ -1,6 +1,6 @@
-"""SPT, PBVR and HAVS-like with the camera anywhere: outside the mesh, with the near plane
-cutting it, inside it in perspective and in parallel projection, and exactly on a vertex, an
-edge or a face plane.
+"""SPT, PBVR and HAVS-like with the camera anywhere: outside the mesh, zoomed in (the side
+planes cut the mesh, the near plane does not), with the near plane cutting it, inside it in
+perspective and in parallel projection, and exactly on a vertex, an edge or a face plane.
 
 The exact reference (spt.raycast) starts every ray at the near plane, as the mappers do. The
 tests check that each mapper's error against it with the camera inside is no larger than with the
@@ -22,8 +22,10 @@ from scene_support import scene
 
 SIZE = 96
 REPETITIONS = 16
-#: Dolly factors from the default framing: outside, the near plane cutting the mesh, inside.
-CAMERAS = {"outside": 1.0, "near plane cutting": 8.0, "inside": 12.0, "deep inside": 30.0}
+#: Dolly factors from the default framing: outside, zoomed in (the side planes cut the mesh),
+#: the near plane cutting the mesh, inside.
+CAMERAS = {"outside": 1.0, "zoomed in": 2.0, "near plane cutting": 8.0, "inside": 12.0,
+           "deep inside": 30.0}
 SCENES = ("default", "bluntfin")
 
 
@@ -56,6 +58,19 @@ MAPPERS = {
 }
 
 
+def _planes_cutting(camera, bounds):
+    """Whether the near plane and whether a side plane cut the box ``bounds`` seen by
+    ``camera`` (a square viewport): some corner beyond it in clip space."""
+    matrix = camera.GetCompositeProjectionTransformMatrix(1.0, -1.0, 1.0)
+    near = side = False
+    for corner in range(8):
+        point = [bounds[2 * axis + ((corner >> axis) & 1)] for axis in range(3)] + [1.0]
+        x, y, z, w = matrix.MultiplyPoint(point)
+        near = near or z < -w or w <= 0.0
+        side = side or abs(x) > w or abs(y) > w
+    return near, side
+
+
 @lru_cache(maxsize=None)
 def _image(method, name, dolly, seed=1, parallel=False):
     return _render(name, MAPPERS[method](seed), dolly, parallel)
@@ -86,8 +101,10 @@ def _error_and_noise(name, dolly, parallel=False, method="spt"):
 def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera, have_display):
     outside, outside_estimate = _error_and_noise(name, CAMERAS["outside"], method=method)
     error, estimate = _error_and_noise(name, CAMERAS[camera], method=method)
-    image, _ = _image(method, name, CAMERAS[camera])
+    image, seen_by = _image(method, name, CAMERAS[camera])
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    if camera == "zoomed in":
+        assert _planes_cutting(seen_by, scene(name).grid.GetBounds()) == (False, True)
     tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
     assert error <= outside + tolerance, (
         f"{camera}: {error:.4f} against {outside:.4f} outside (tolerance {tolerance:.4f})")
