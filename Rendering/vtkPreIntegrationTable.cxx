@@ -102,9 +102,13 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
 bool vtkPreIntegrationTable::HasAxes(
   const double scalarRange[2], double maxLength, int scalarResolution, int lengthResolution) const
 {
+  // The longest edge comes from float coordinates: normalized in another frame (a parallel
+  // render's pieces take the shared frame after their first render), the same edge measures a
+  // few units in the seventh digit apart, far below a step of the length axis.
+  const double lengthTolerance = 1e-6 * std::max(maxLength, this->MaxLength);
   return scalarRange[0] == this->ScalarRange[0] && scalarRange[1] == this->ScalarRange[1] &&
-    maxLength == this->MaxLength && scalarResolution == this->ScalarResolution &&
-    lengthResolution == this->LengthResolution;
+    std::abs(maxLength - this->MaxLength) <= lengthTolerance &&
+    scalarResolution == this->ScalarResolution && lengthResolution == this->LengthResolution;
 }
 
 std::vector<float> vtkPreIntegrationTable::IntegrateTable() const

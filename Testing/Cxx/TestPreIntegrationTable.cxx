@@ -233,6 +233,28 @@ int CheckCaching(vtkPreIntegrationTable* table, TransferFunctions& functions)
     std::cerr << "A changed opacity function did not rebuild the table.\n";
   }
   functions.Opacity->RemovePoint(8.0);
+  if (!UpdateTable(table, functions.Property))
+  {
+    ++failures;
+    std::cerr << "Update failed after the opacity function was restored.\n";
+  }
+  // The longest edge measured from float coordinates normalized in another frame differs in
+  // the seventh digit: the same table. A length that differs in the fourth digit is another.
+  const vtkMTimeType restored = table->GetBuildTime();
+  if (!table->Update(
+        functions.Property, Range, MaxLength * (1.0 + 3e-7), ScalarResolution, LengthResolution) ||
+    table->GetBuildTime() != restored)
+  {
+    ++failures;
+    std::cerr << "A longest edge equal to float precision rebuilt the table.\n";
+  }
+  if (!table->Update(
+        functions.Property, Range, MaxLength * (1.0 + 1e-4), ScalarResolution, LengthResolution) ||
+    table->GetBuildTime() == restored)
+  {
+    ++failures;
+    std::cerr << "Another longest edge did not rebuild the table.\n";
+  }
   return failures;
 }
 }
