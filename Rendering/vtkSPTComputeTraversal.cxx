@@ -11,6 +11,8 @@
 #include "vtkSPTComputeSumsFS.h"
 
 #include <algorithm>
+#include <initializer_list>
+#include <string>
 #include <vector>
 
 namespace
@@ -100,6 +102,30 @@ bool vtkSPTComputeTraversal::IsSupported(vtkOpenGLRenderWindow* renWin)
   }
   renWin->MakeCurrent();
   return vtkSPTOpenGL::HasVersion(4, 3) || vtkSPTOpenGL::HasExtension("GL_ARB_compute_shader");
+}
+
+bool vtkSPTComputeTraversal::IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin)
+{
+  if (!renWin)
+  {
+    return false;
+  }
+  renWin->MakeCurrent();
+  const GLubyte* name = glGetString(GL_RENDERER);
+  const std::string renderer = name ? reinterpret_cast<const char*>(name) : "";
+  for (const char* software : { "llvmpipe", "softpipe", "SwiftShader", "Software Rasterizer" })
+  {
+    if (renderer.find(software) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool vtkSPTComputeTraversal::IsWanted(int mode, vtkOpenGLRenderWindow* renWin)
+{
+  return (mode == 1 || (mode == 2 && IsSoftwareRasterizer(renWin))) && IsSupported(renWin);
 }
 
 vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(

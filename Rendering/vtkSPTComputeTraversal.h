@@ -67,6 +67,18 @@ public:
   static bool IsSupported(vtkOpenGLRenderWindow* renWin);
 
   /**
+   * Whether the context's renderer is a software rasterizer (Mesa's llvmpipe or softpipe,
+   * SwiftShader), where compute passes pay for small cells.
+   */
+  static bool IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin);
+
+  /**
+   * Whether a mapper's ComputeTraversal mode (0 off, 1 on, 2 automatic: on a software
+   * rasterizer) computes in this context.
+   */
+  static bool IsWanted(int mode, vtkOpenGLRenderWindow* renWin);
+
+  /**
    * The program built from this compute shader source, compiled once per source and context;
    * nullptr (with the compiler's log as an error) if it does not compile.
    */

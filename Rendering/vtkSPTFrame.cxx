@@ -42,6 +42,15 @@ namespace
 constexpr int DepthKeyImageUnit = 0;
 // The compute traversal's fixed-point sums.
 constexpr int SumsImageUnit = 1;
+// The compute traversal takes the cells drawn as points that are about this many pixels across
+// or less: an invocation loops over its cell's samples and each sample's lanes, and invocations
+// whose loops differ in length run side by side, where a point's fragments are neighbours with
+// similar work. At 256 repetitions per traversal on a 200,000-cell TetGen mesh, computing all
+// its points (up to 8 pixels across) took 1.17 to 1.23 of the points' frame, those up to 4
+// pixels 0.97 to 0.99; on the 1M-cell one, 4 pixels take nearly all its points.
+constexpr double ComputedCellSize = 4.0;
+// ... and only where they are at least this many per sample of the image.
+constexpr double ComputedCellsPerSample = 0.25;
 
 // Texture objects active for a scope, deactivated in reverse order on every way out.
 class ScopedTextures
@@ -110,23 +119,40 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
 void vtkSPTFrame::ChooseSmallCells()
 {
   // The cells drawn as points are about SmallCellSize pixels across at the depth of the mesh's
-  // centre, and no point may exceed the largest size OpenGL draws, wherever it lies.
+  // centre, and no point may exceed the largest size OpenGL draws, wherever it lies. Of them,
+  // the compute traversal takes the leading classes, about ComputedCellSize pixels across.
   GLfloat pointSizes[2] = { 1.0f, 1.0f };
   glGetFloatv(GL_POINT_SIZE_RANGE, pointSizes);
   const double halfSize[2] = { 0.5 * this->Ensemble->GetPassWidth(),
     0.5 * this->Ensemble->GetPassHeight() };
   this->PointCellCounts.clear();
+  this->ComputeCellCounts.clear();
+  vtkIdType computed = 0;
   for (const Volume& volume : this->Volumes)
   {
     const double* bound = volume.Matrices->NDCPerLength;
     const double* typical = volume.Matrices->TypicalNDCPerLength;
     const double largestPixels = std::max(bound[0] * halfSize[0], bound[1] * halfSize[1]);
     const double typicalPixels = std::max(typical[0] * halfSize[0], typical[1] * halfSize[1]);
-    const double length = largestPixels > 0.0 && typicalPixels > 0.0
-      ? std::min(
-          this->FrameSettings.SmallCellSize / typicalPixels, (pointSizes[1] - 1.0) / largestPixels)
-      : -1.0;
+    const bool inView = largestPixels > 0.0 && typicalPixels > 0.0;
+    const double length = inView ? std::min(this->FrameSettings.SmallCellSize / typicalPixels,
+                                     (pointSizes[1] - 1.0) / largestPixels)
+                                 : -1.0;
     this->PointCellCounts.push_back(volume.Buffers->CountSmallCells(length));
+    const double computeLength = !inView || this->FrameSettings.ComputeEveryPoint
+      ? length
+      : std::min(length, ComputedCellSize / typicalPixels);
+    this->ComputeCellCounts.push_back(
+      this->FrameSettings.Compute ? volume.Buffers->CountSmallCells(computeLength) : 0);
+    computed += this->ComputeCellCounts.back();
+  }
+  // A traversal that computes clears the fixed-point sums and adds them to the image, a pass
+  // over every sample: it pays where the cells it takes from the rasterizer are many.
+  const double samples =
+    double(this->Ensemble->GetPassWidth()) * double(this->Ensemble->GetPassHeight());
+  if (!this->FrameSettings.ComputeEveryPoint && computed < ComputedCellsPerSample * samples)
+  {
+    this->ComputeCellCounts.assign(this->Volumes.size(), 0);
   }
   this->ComputedCellCounts.assign(this->Volumes.size(), 0);
 }
@@ -236,7 +262,30 @@ bool vtkSPTFrame::Computes(PassKind kind, size_t volume) const
 {
   return this->FrameSettings.Compute &&
     (kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors) &&
-    this->Draws(volume, true);
+    this->ComputeCellCounts[volume] > 0;
+}
+
+vtkIdType vtkSPTFrame::FirstRasterizedPoint(PassKind kind, size_t volume) const
+{
+  return this->Computes(kind, volume) ? this->ComputeCellCounts[volume] : 0;
+}
+
+bool vtkSPTFrame::Rasterizes(PassKind kind, size_t volume, bool points) const
+{
+  return points ? this->PointCellCounts[volume] > this->FirstRasterizedPoint(kind, volume)
+                : this->Draws(volume, false);
+}
+
+bool vtkSPTFrame::ComputesMostCells() const
+{
+  vtkIdType computed = 0;
+  vtkIdType cells = 0;
+  for (size_t v = 0; v < this->Volumes.size(); ++v)
+  {
+    computed += this->FrameSettings.Compute ? this->ComputeCellCounts[v] : 0;
+    cells += this->Volumes[v].Buffers->GetMesh()->GetNumberOfTetrahedra();
+  }
+  return computed > 0 && 2 * computed >= cells;
 }
 
 bool vtkSPTFrame::Computes(PassKind kind) const
@@ -288,7 +337,7 @@ bool vtkSPTFrame::ReadyPrograms(
       for (const bool points : { false, true })
       {
         vtkShaderProgram*& program = this->ProgramOf(kind, v, points);
-        if (!needed[k] || !this->Draws(v, points) || (points && this->Computes(kind, v)) || program)
+        if (!needed[k] || !this->Rasterizes(kind, v, points) || program)
         {
           continue;
         }
@@ -311,16 +360,19 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
   for (size_t v = 0; v < this->Volumes.size(); ++v)
   {
     const Volume& volume = this->Volumes[v];
-    // Points for the small cells first, then triangles for the others.
-    for (const bool points : { true, false })
+    // The smallest cells in a compute pass, the other small cells as points, then triangles
+    // for the others.
+    for (const Primitive primitive :
+      { Primitive::Computed, Primitive::Points, Primitive::Outlines })
     {
-      if (!this->Draws(v, points))
+      const bool compute = primitive == Primitive::Computed;
+      const bool points = primitive != Primitive::Outlines;
+      if (compute ? !this->Computes(kind, v) : !this->Rasterizes(kind, v, points))
       {
         continue;
       }
       // The ensemble's accumulation binds its own program between passes; uniforms go to the
       // bound program.
-      const bool compute = points && this->Computes(kind, v);
       const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
       vtkShaderProgram* program = compute
         ? this->ComputePrograms[static_cast<int>(kind)][cellScalars ? 1 : 0]
@@ -369,25 +421,26 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
           farthest.reset(new ScopedTextures({ survivors }));
           program->SetUniformi("farthestSurvivor", survivors->GetTextureUnit());
         }
-        vtkSPTComputeTraversal::Dispatch(program, 0, this->PointCellCounts[v]);
-        this->ComputedCellCounts[v] = this->PointCellCounts[v];
+        vtkSPTComputeTraversal::Dispatch(program, 0, this->ComputeCellCounts[v]);
+        this->ComputedCellCounts[v] = this->ComputeCellCounts[v];
       }
       else
       {
-        this->DrawTetrahedra(volume, program, points, this->PointCellCounts[v]);
+        this->DrawTetrahedra(
+          volume, program, points, this->FirstRasterizedPoint(kind, v), this->PointCellCounts[v]);
       }
     }
   }
 }
 
-void vtkSPTFrame::DrawTetrahedra(
-  const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells)
+void vtkSPTFrame::DrawTetrahedra(const Volume& volume, vtkShaderProgram* program, bool points,
+  vtkIdType firstPoint, vtkIdType pointCells)
 {
   if (points)
   {
     vtkOpenGLState* ostate = this->Window->GetState();
     ostate->vtkglEnable(GL_PROGRAM_POINT_SIZE);
-    volume.Buffers->DrawPoints(program, 0, pointCells);
+    volume.Buffers->DrawPoints(program, firstPoint, pointCells - firstPoint);
     ostate->vtkglDisable(GL_PROGRAM_POINT_SIZE);
   }
   else
@@ -409,11 +462,13 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // traversal, where keys would take two.
   // The visibility estimator one repetition at a time finds its survivors the same way, and
   // its color traversal then reads the survivor's depth (unless the ranks of a parallel frame
-  // combine keys, or the error target counts two halves).
+  // combine keys, the error target counts two halves, or a compute pass takes most of the
+  // cells: there a group of one, whose keys and colors it computes, costs less than two
+  // rasterized traversals).
   const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys;
   const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
-  const bool depthSurvivors =
-    oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR && !halves;
+  const bool depthSurvivors = oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR &&
+    !halves && !this->ComputesMostCells();
   const bool keys = !single && !depthSurvivors;
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,

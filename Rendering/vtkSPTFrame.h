@@ -93,6 +93,9 @@ public:
     /// Where set, a group's keys and color traversals visit the cells drawn as points in a compute
     /// pass (vtkSPTComputeTraversal) instead of rasterizing their points.
     vtkSPTComputeTraversal* Compute = nullptr;
+    /// With Compute: every cell drawn as a point, rather than only the smallest ones where they
+    /// are many.
+    bool ComputeEveryPoint = false;
   };
 
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
@@ -175,6 +178,8 @@ private:
   bool Computes(PassKind kind, size_t volume) const;
   // Whether a traversal of this kind visits some volume's points in a compute pass.
   bool Computes(PassKind kind) const;
+  // Whether a group's traversals visit at least half of the frame's cells in a compute pass.
+  bool ComputesMostCells() const;
   // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars.
   bool ReadyPrograms(
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
@@ -184,9 +189,10 @@ private:
   // `secondTarget`): a compute traversal adds its fixed-point sums there after it. False if
   // its sums cannot be allocated or added.
   bool TraverseAdding(PassKind kind, int repetition, int inGroup, bool adds, bool secondTarget);
-  // Draw the volume's leading pointCells tetrahedra as points, or the others as triangles.
-  void DrawTetrahedra(
-    const Volume& volume, vtkShaderProgram* program, bool points, vtkIdType pointCells);
+  // Draw the volume's tetrahedra [firstPoint, pointCells) as points, or those from pointCells
+  // on as triangles.
+  void DrawTetrahedra(const Volume& volume, vtkShaderProgram* program, bool points,
+    vtkIdType firstPoint, vtkIdType pointCells);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
   // The visibility estimator one repetition per traversal pair: the single pass's depth test
@@ -215,10 +221,24 @@ private:
   // outline of their projection (vtkSPTTetrahedraGS.glsl). Two ranges: each cell is drawn
   // exactly once.
   std::vector<vtkIdType> PointCellCounts;
+  // Per volume: the leading ones of the cells drawn as points that a group's keys and color
+  // traversals visit in a compute pass instead (Settings::Compute); they are rasterized as
+  // points in the other traversals.
+  std::vector<vtkIdType> ComputeCellCounts;
   std::vector<vtkIdType> ComputedCellCounts; // per volume: by a compute pass, in this frame
   void ChooseSmallCells();
-  // Whether a traversal of the volume has cells to draw as points (or as triangles).
+  // Whether the volume has cells to draw as points (or as triangles).
   bool Draws(size_t volume, bool points) const;
+  // Whether a traversal of the kind rasterizes cells of the volume as points (or triangles),
+  // and the first cell it rasterizes as a point.
+  bool Rasterizes(PassKind kind, size_t volume, bool points) const;
+  vtkIdType FirstRasterizedPoint(PassKind kind, size_t volume) const;
+  enum class Primitive
+  {
+    Computed, // the smallest cells, in a compute pass
+    Points,   // the small cells, one point each
+    Outlines, // the others, the outline of their projection
+  };
   // The programs of this frame, by pass kind, by scalars per point (0) or per cell (1), and by
   // primitive: the projection's outline (0) or one point per tetrahedron (1).
   vtkShaderProgram* Programs[NumberOfPassKinds][2][2] = {};

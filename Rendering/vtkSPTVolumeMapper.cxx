@@ -308,9 +308,10 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.OpaqueScene = HasOpaqueScene(ren);
   settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
     [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
-  settings.Compute = this->ComputeTraversal && vtkSPTComputeTraversal::IsSupported(renWin)
+  settings.Compute = vtkSPTComputeTraversal::IsWanted(this->ComputeTraversal, renWin)
     ? internals.Compute.Get()
     : nullptr;
+  settings.ComputeEveryPoint = this->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
   ostate->PushFramebufferBindings();
   const bool started = plan.First > 0 ||
     internals.StartAccumulation(this, target, this->TargetError > 0.0, plan.SameImage);
@@ -368,7 +369,8 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "SmallCellSize: " << this->SmallCellSize << "\n";
   os << indent << "LastPointCellCount: " << this->LastPointCellCount << "\n";
-  os << indent << "ComputeTraversal: " << (this->ComputeTraversal ? "On" : "Off") << "\n";
+  const char* const computeModes[] = { "Off", "On", "Auto" };
+  os << indent << "ComputeTraversal: " << computeModes[this->ComputeTraversal] << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
   os << indent

@@ -89,10 +89,10 @@ public:
    * texture); without it the mapper falls back to 1 and to the survivor estimator. With
    * AutoAdjustRepetitions, the time allotted is spent in whole traversals of RepetitionsPerPass
    * repetitions while one fits; else, with the visibility estimator, in repetitions drawn one
-   * per pair of traversals (the depth test finds the survivor, with exact coverage) while one
-   * fits; else in the cheapest frame there is: the paper's single passes (one traversal per
-   * repetition, the survivor estimator, no exact coverage; unbiased too).
-   * Range 1 to 256, default 256.
+   * per pair of traversals (the depth test finds the survivor, with exact coverage, unless a
+   * compute pass takes most of the cells, see ComputeTraversal) while one fits; else in the
+   * cheapest frame there is: the paper's single passes (one traversal per repetition, the survivor
+   * estimator, no exact coverage; unbiased too). Range 1 to 256, default 256.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 256);
   vtkGetMacro(RepetitionsPerPass, int);
@@ -122,29 +122,42 @@ public:
    */
   vtkGetMacro(LastPointCellCount, vtkIdType);
 
+  enum ComputeTraversalMode
+  {
+    COMPUTE_TRAVERSAL_OFF = 0,
+    COMPUTE_TRAVERSAL_ON = 1,
+    COMPUTE_TRAVERSAL_AUTO = 2
+  };
+
   ///@{
   /**
-   * Visit the cells drawn as points (see SmallCellSize) in compute passes in the keys and
-   * color traversals of a group, where the context has compute shaders (OpenGL 4.3): one
-   * invocation per cell runs the points' fragment work on the samples of its square. The keys
-   * are the same; what the fragments add by blending (the exact coverage's terms, the colors)
-   * is added in fixed point (2^-16 per term), so the image differs from the points' by at most
-   * an 8-bit level and stays the same from run to run. It pays on a software rasterizer such as
+   * Visit cells drawn as points (see SmallCellSize) in compute passes in the keys and color
+   * traversals of a group, where the context has compute shaders (OpenGL 4.3): one invocation
+   * per cell runs the points' fragment work on the samples of its square. The keys are the
+   * same; what the fragments add by blending (the exact coverage's terms, the colors) is added
+   * in fixed point (2^-16 per term), so the image differs from the points' by at most an 8-bit
+   * level and stays the same from run to run. It pays on a software rasterizer such as
    * llvmpipe, which sets up and bins points one at a time on the application's thread, where
-   * the points are many and small: at 256 x 256, 0.49 to 0.79 of the frame on TetGen meshes of
-   * 1 and 3 million cells, 0.76 to 0.90 on the Blunt Fin, but 1.1 to 1.3 on small meshes and
-   * at 256 repetitions on 200,000 cells (a fixed cost per traversal, and invocations whose loops
-   * differ in length). A GPU rasterizes points in hardware. Default off.
+   * the points are many and small: at 256 x 256, 0.65 to 0.86 of the frame on a TetGen mesh of
+   * 1 million cells, 0.89 to 0.93 on the Oxygen Post. A GPU rasterizes points in hardware.
+   * - COMPUTE_TRAVERSAL_AUTO (default): where the OpenGL renderer is a software rasterizer
+   *   (Mesa's llvmpipe or softpipe, SwiftShader), the points about 4 pixels across or less,
+   *   where they are at least a quarter as many as the image's samples (a compute traversal
+   *   has a cost per sample, and an invocation loops over its cell's samples).
+   * - COMPUTE_TRAVERSAL_ON: every cell drawn as a point, on any renderer.
+   * - COMPUTE_TRAVERSAL_OFF: none.
    */
-  vtkSetMacro(ComputeTraversal, vtkTypeBool);
-  vtkGetMacro(ComputeTraversal, vtkTypeBool);
-  vtkBooleanMacro(ComputeTraversal, vtkTypeBool);
+  vtkSetClampMacro(ComputeTraversal, int, COMPUTE_TRAVERSAL_OFF, COMPUTE_TRAVERSAL_AUTO);
+  vtkGetMacro(ComputeTraversal, int);
+  void ComputeTraversalOn() { this->SetComputeTraversal(COMPUTE_TRAVERSAL_ON); }
+  void ComputeTraversalOff() { this->SetComputeTraversal(COMPUTE_TRAVERSAL_OFF); }
+  void SetComputeTraversalToAuto() { this->SetComputeTraversal(COMPUTE_TRAVERSAL_AUTO); }
   ///@}
 
   /**
    * How many tetrahedra the last render's traversals visited in a compute pass (see
-   * ComputeTraversal): the cells drawn as points, or 0 where the render drew no keys (one
-   * repetition finds its survivor by the depth test) or the context has no compute shaders.
+   * ComputeTraversal), or 0 where the render drew no keys (one repetition finds its survivor
+   * by the depth test), the context has no compute shaders, or the small cells are too few.
    */
   vtkGetMacro(LastComputedCellCount, vtkIdType);
 
@@ -302,7 +315,7 @@ protected:
   int RepetitionsPerPass = 256;
   double SmallCellSize = 8.0;
   vtkIdType LastPointCellCount = 0;
-  vtkTypeBool ComputeTraversal = 0;
+  int ComputeTraversal = COMPUTE_TRAVERSAL_AUTO;
   vtkIdType LastComputedCellCount = 0;
   vtkTypeBool StratifiedSampling = 1;
   int Estimator = VISIBILITY_ESTIMATOR;

@@ -243,9 +243,10 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
   settings.Seed = self->Seed;
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
-  settings.Compute = self->ComputeTraversal && vtkSPTComputeTraversal::IsSupported(target.Window)
+  settings.Compute = vtkSPTComputeTraversal::IsWanted(self->ComputeTraversal, target.Window)
     ? this->Compute.Get()
     : nullptr;
+  settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;
   // Every rank has the same ensemble size, so the same repetitions per traversal.
   const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
   const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, all, target));

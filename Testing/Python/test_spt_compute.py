@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from spt import render
+from spt.SPTRendering import vtkSPTVolumeMapper
 
 from scene_support import opaque_plane, scene, with_cell_scalars
 
@@ -85,11 +86,31 @@ def test_compute_images_repeat(have_display):
     np.testing.assert_array_equal(first, again)
 
 
-def test_one_repetition_needs_no_keys(have_display):
-    """One repetition finds its survivor by the depth test: no keys traversal to compute."""
+def test_one_repetition_computes_where_most_cells_are_computed(have_display):
+    """One repetition is a group of one, with keys, where the compute pass takes most of the
+    cells (here every cell is a point): the image of the depth test's survivor without it."""
     image, points, computed, _ = _render("default", True, level=1)
-    assert points > 0 and computed == 0
+    other, other_points, none, _ = _render("default", False, level=1)
+    assert points > 0.5 * scene("default").grid.GetNumberOfCells()
+    assert computed == points and none == 0
     assert image[..., 3].max() > 0.2
+    assert np.abs(image - other).max() <= ONE_LEVEL
+
+
+def test_one_repetition_needs_no_keys(have_display):
+    """Where the compute pass would take few of the cells (SPX's few hundred points at
+    256 x 256), one repetition finds its survivor by the depth test: no keys to compute."""
+    s = scene("spx")
+    mapper = render.spt_mapper(1, seed=3)
+    mapper.ComputeTraversalOn()
+    image = render.render(s.grid, s.property, mapper, s.view, (256, 256)).image
+    points = mapper.GetLastPointCellCount()
+    assert 0 < points < 0.5 * s.grid.GetNumberOfCells()
+    assert mapper.GetLastComputedCellCount() == 0
+    assert image[..., 3].max() > 0.2
+    mapper.SetRepetitionLevel(2)
+    render.render(s.grid, s.property, mapper, s.view, (256, 256))
+    assert mapper.GetLastComputedCellCount() == points, "a group computes every point"
 
 
 def test_two_volumes_share_the_compute_traversal(have_display):
@@ -122,3 +143,49 @@ def test_two_volumes_share_the_compute_traversal(have_display):
             assert counts == [0, 0]
     assert images[1][..., 3].max() > 0.2, "the image is empty"
     assert np.abs(images[0] - images[1]).max() <= ONE_LEVEL
+
+
+def _software_rasterizer():
+    window, _ = render.make_window(16, 16)
+    window.Render()
+    capabilities = window.ReportCapabilities()
+    window.Finalize()
+    return any(name in capabilities for name in ("llvmpipe", "softpipe", "SwiftShader"))
+
+
+def _automatic(name, size):
+    s = scene(name)
+    counts = []
+    images = []
+    for mode in (vtkSPTVolumeMapper.COMPUTE_TRAVERSAL_AUTO,
+                 vtkSPTVolumeMapper.COMPUTE_TRAVERSAL_OFF):
+        mapper = render.spt_mapper(16, seed=3)
+        mapper.SetComputeTraversal(mode)
+        images.append(render.render(s.grid, s.property, mapper, s.view, (size, size)).image)
+        counts.append((mapper.GetLastPointCellCount(), mapper.GetLastComputedCellCount()))
+    return counts, images
+
+
+def test_automatic_computes_where_small_points_are_many(have_display):
+    """The default computes the points about 4 pixels across or less on a software rasterizer,
+    where they are at least a quarter as many as the samples: the default mesh's 47,700 points
+    at 128 x 128 (16,384 samples), and the same image as without the compute pass to a level."""
+    assert vtkSPTVolumeMapper().GetComputeTraversal() == \
+        vtkSPTVolumeMapper.COMPUTE_TRAVERSAL_AUTO
+    counts, images = _automatic("default", SIZE)
+    (points, computed), (off_points, none) = counts
+    assert points > 0 and points == off_points and none == 0
+    if _software_rasterizer():
+        assert 0.25 * SIZE * SIZE <= computed <= points
+    else:
+        assert computed == 0
+    assert images[1][..., 3].max() > 0.2, "the image is empty"
+    assert np.abs(images[0] - images[1]).max() <= ONE_LEVEL
+
+
+@pytest.mark.parametrize("name", ["default", "spx"])
+def test_automatic_leaves_large_or_few_points_to_the_rasterizer(name, have_display):
+    """At 256 x 256 the default mesh's points are larger than 4 pixels, and SPX has a few
+    hundred points: nothing to compute."""
+    (points, computed), _ = _automatic(name, 256)[0]
+    assert points > 0 and computed == 0

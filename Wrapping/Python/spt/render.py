@@ -364,6 +364,9 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
     report: Dict[str, float] = {}
     if hasattr(mapper, "GetGPUMemorySize"):
         report["gpu_memory"] = float(mapper.GetGPUMemorySize())
+    if hasattr(mapper, "GetLastComputedCellCount"):
+        report["point_cells"] = float(mapper.GetLastPointCellCount())
+        report["computed_cells"] = float(mapper.GetLastComputedCellCount())
     if isinstance(mapper, vtkPBVRVolumeMapper):
         report["particles"] = float(mapper.GetNumberOfParticles())
         report["particle_sets"] = float(mapper.GetNumberOfParticleSets())
