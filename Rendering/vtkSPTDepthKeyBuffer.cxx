@@ -10,6 +10,7 @@
 
 #include "vtkSPTSurvivorsFS.h"
 
+#include <algorithm>
 #include <string>
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
@@ -34,21 +35,34 @@ bool vtkSPTDepthKeyBuffer::IsSupported(vtkOpenGLRenderWindow* renWin)
 
 bool vtkSPTDepthKeyBuffer::Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers)
 {
+  // The texture holds the compiled lanes' layers, a power of two: the layers a group uses
+  // change with its count, and counts that share their programs share the texture too.
+  const int allocated = GetCompiledLanes(layers);
   if (renWin == this->Context && width == this->Width && height == this->Height &&
-    layers == this->Layers)
+    allocated == this->AllocatedLayers)
   {
+    this->Layers = layers;
     return true;
   }
-  this->ReleaseGraphicsResources(this->Context);
+  if (renWin != this->Context)
+  {
+    this->ReleaseGraphicsResources(this->Context);
+  }
+  else
+  {
+    // Another size: the survivors' shaders still serve.
+    this->Keys->ReleaseGraphicsResources(renWin);
+    this->Width = this->Height = this->Layers = this->AllocatedLayers = 0;
+  }
   this->Keys->SetContext(renWin);
   this->Keys->SetInternalFormat(GL_R32UI);
   this->Keys->SetFormat(GL_RED_INTEGER);
   this->Keys->SetDataType(GL_UNSIGNED_INT);
   this->Keys->SetMinificationFilter(vtkTextureObject::Nearest);
   this->Keys->SetMagnificationFilter(vtkTextureObject::Nearest);
-  if (!this->Keys->Create3DFromRaw(layers, width, height, 1, VTK_UNSIGNED_INT, nullptr))
+  if (!this->Keys->Create3DFromRaw(allocated, width, height, 1, VTK_UNSIGNED_INT, nullptr))
   {
-    vtkErrorMacro("Could not allocate the " << width << "x" << height << "x" << layers
+    vtkErrorMacro("Could not allocate the " << width << "x" << height << "x" << allocated
                                             << " depth keys of several repetitions per pass.");
     this->ReleaseGraphicsResources(renWin);
     return false;
@@ -57,7 +71,18 @@ bool vtkSPTDepthKeyBuffer::Prepare(vtkOpenGLRenderWindow* renWin, int width, int
   this->Width = width;
   this->Height = height;
   this->Layers = layers;
+  this->AllocatedLayers = allocated;
   return true;
+}
+
+int vtkSPTDepthKeyBuffer::GetCompiledLanes(int repetitions)
+{
+  int lanes = 1;
+  while (lanes < repetitions)
+  {
+    lanes *= 2;
+  }
+  return lanes;
 }
 
 void vtkSPTDepthKeyBuffer::Clear()
@@ -87,14 +112,16 @@ bool vtkSPTDepthKeyBuffer::PrepareSurvivors(
   int unit, int repetitions, int secondHalfFrom, bool sortKeys)
 {
   std::unique_ptr<vtkOpenGLQuadHelper>& helper = this->Survivors[sortKeys ? 1 : 0];
-  if (!helper)
+  // The layers are the most repetitions a group holds: they size the sort's array.
+  const int lanes = this->AllocatedLayers;
+  if (!helper || this->SurvivorsLanes[sortKeys ? 1 : 0] != lanes)
   {
-    // The layers are the most repetitions a group holds: the size of the sort's array.
     std::string source = vtkSPTSurvivorsFS;
     vtkShaderProgram::Substitute(source, "//SPT::Survivors::Dec",
       std::string(sortKeys ? "#define SPT_SORT_KEYS\n" : "") + "#define SPT_REPETITIONS_PER_PASS " +
-        std::to_string(this->Layers));
+        std::to_string(lanes));
     helper.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
+    this->SurvivorsLanes[sortKeys ? 1 : 0] = lanes;
   }
   vtkShaderProgram* program = helper->Program;
   if (!program)
@@ -113,24 +140,34 @@ bool vtkSPTDepthKeyBuffer::PrepareSurvivors(
 
 std::vector<unsigned int> vtkSPTDepthKeyBuffer::Read()
 {
-  std::vector<unsigned int> keys(this->GetGPUMemorySize() / 4);
-  if (!keys.empty())
+  const size_t samples = this->Context ? size_t(this->Width) * size_t(this->Height) : 0;
+  std::vector<unsigned int> keys(samples * size_t(this->Layers));
+  if (keys.empty())
   {
-    this->Keys->Activate();
-    glGetTexImage(this->Keys->GetTarget(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, keys.data());
-    this->Keys->Deactivate();
+    return keys;
+  }
+  // The texture is allocated layers x width x height (see Prepare()): every sample's layers
+  // in use, without the unused ones after them.
+  std::vector<unsigned int> allocated(samples * size_t(this->AllocatedLayers));
+  this->Keys->Activate();
+  glGetTexImage(this->Keys->GetTarget(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, allocated.data());
+  this->Keys->Deactivate();
+  for (size_t sample = 0; sample < samples; ++sample)
+  {
+    std::copy_n(allocated.begin() + sample * this->AllocatedLayers, this->Layers,
+      keys.begin() + sample * this->Layers);
   }
   return keys;
 }
 
 void vtkSPTDepthKeyBuffer::Write(const std::vector<unsigned int>& keys)
 {
-  if (keys.empty() || keys.size() != this->GetGPUMemorySize() / 4)
+  if (!this->Context || keys.empty() ||
+    keys.size() != size_t(this->Width) * size_t(this->Height) * size_t(this->Layers))
   {
     return;
   }
   this->Keys->Activate();
-  // The texture is layers x width x height (see Prepare()).
   glTexSubImage3D(this->Keys->GetTarget(), 0, 0, 0, 0, this->Layers, this->Width, this->Height,
     GL_RED_INTEGER, GL_UNSIGNED_INT, keys.data());
   this->Keys->Deactivate();
@@ -138,7 +175,9 @@ void vtkSPTDepthKeyBuffer::Write(const std::vector<unsigned int>& keys)
 
 size_t vtkSPTDepthKeyBuffer::GetGPUMemorySize() const
 {
-  return this->Context ? size_t(this->Width) * size_t(this->Height) * size_t(this->Layers) * 4 : 0;
+  return this->Context
+    ? size_t(this->Width) * size_t(this->Height) * size_t(this->AllocatedLayers) * 4
+    : 0;
 }
 
 void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
@@ -149,12 +188,14 @@ void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->Survivors[0].reset();
   this->Survivors[1].reset();
+  this->SurvivorsLanes[0] = this->SurvivorsLanes[1] = 0;
   this->Context = nullptr;
-  this->Width = this->Height = this->Layers = 0;
+  this->Width = this->Height = this->Layers = this->AllocatedLayers = 0;
 }
 
 void vtkSPTDepthKeyBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Size: " << this->Width << " x " << this->Height << " x " << this->Layers << "\n";
+  os << indent << "Size: " << this->Width << " x " << this->Height << " x " << this->Layers
+     << " (allocated " << this->AllocatedLayers << ")\n";
 }

@@ -42,11 +42,20 @@ public:
   static bool IsSupported(vtkOpenGLRenderWindow* renWin);
 
   /**
-   * Size the buffer: width x height samples, one layer per repetition of a pass. Reallocates
-   * only when one of these or the context changes. Returns false (with an error) when the
-   * texture cannot be allocated.
+   * Size the buffer: width x height samples, one layer per repetition of a pass. The texture
+   * holds GetCompiledLanes(layers) layers, and reallocates only when that, the size or the
+   * context changes. Returns false (with an error) when the texture cannot be allocated.
    */
   bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers);
+
+  /**
+   * The repetitions a shader is compiled for when it draws `repetitions` at once: the next
+   * power of two. The shaders loop over the count they are given (a uniform) and size only
+   * their arrays by the compiled one, so that a handful of programs serve every count. A
+   * program per count would stall every frame whose count is new (each is compiled on first
+   * use), and the error target and the time budget choose counts freely.
+   */
+  static int GetCompiledLanes(int repetitions);
 
   /**
    * Set every key to "nothing kept" (the largest key).
@@ -77,15 +86,15 @@ public:
 
   ///@{
   /**
-   * Read every key back to the host (layer by layer, as the shaders index them), and write
-   * keys of the same size back; for reductions across processes.
+   * Read the keys of the layers in use back to the host (sample by sample, each sample's
+   * layers in order), and write keys of the same size back; for reductions across processes.
    */
   std::vector<unsigned int> Read();
   void Write(const std::vector<unsigned int>& keys);
   ///@}
 
   /**
-   * Bytes held on the GPU.
+   * Bytes held on the GPU (the allocated layers).
    */
   size_t GetGPUMemorySize() const;
 
@@ -102,9 +111,11 @@ private:
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;
   int Height = 0;
-  int Layers = 0;
+  int Layers = 0;          // in use: the group's repetitions
+  int AllocatedLayers = 0; // held: GetCompiledLanes(Layers)
   vtkNew<vtkTextureObject> Keys;
   std::unique_ptr<vtkOpenGLQuadHelper> Survivors[2]; // by sortKeys
+  int SurvivorsLanes[2] = { 0, 0 };                  // what each is compiled for
 };
 
 #endif

@@ -473,12 +473,13 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,
     depthSurvivors && (!coverage || count > 1), depthSurvivors && coverage };
-  // A render of fewer repetitions than a group draws only those: the fragment loops are sized
-  // by the compiled count.
+  // A render of fewer repetitions than a group draws only those: the fragment loops run over
+  // the group's count, and the programs are compiled for the next power of two.
   const int lanes = std::min(perPass, count);
   // Active before the frame's uniforms name its unit.
   ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
-  if (!this->ReadyPrograms(needed, lanes, first, count, halves) ||
+  if (!this->ReadyPrograms(
+        needed, vtkSPTDepthKeyBuffer::GetCompiledLanes(lanes), first, count, halves) ||
     (keys &&
       !this->DepthKeys->Prepare(
         this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes)))

@@ -1,4 +1,4 @@
-// SPT keys pass, for SPT_REPETITIONS_PER_PASS repetitions at once: each repetition that keeps
+// SPT keys pass, for up to SPT_REPETITIONS_PER_PASS repetitions at once: each repetition that keeps
 // the fragment takes the atomic minimum of its depth key, so that after the pass every sample
 // holds each repetition's nearest survivor. With SPT_WRITE_COVERAGE the same traversal also
 // adds the segment's optical depth terms (additive blending into the coverage buffer);

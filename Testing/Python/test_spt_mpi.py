@@ -132,6 +132,20 @@ def test_bytes_moved(renders):
     assert expected <= report["bytes"] <= expected + 4096
 
 
+def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
+    """The keys of 12 repetitions lie in a buffer of 16 layers (the shaders are compiled for
+    a power of two): the ranks exchange the 12 layers in use, and combine them as one process
+    draws them."""
+    serial, _, _ = run(tmp_path / "twelve0.npy", 0, repetitions=12)
+    two, report, errors = run(tmp_path / "twelve2.npy", 2, repetitions=12)
+    assert "ERR" not in errors, errors
+    assert serial[0][..., 3].max() > 0.2, "the image is empty"
+    assert largest_difference(serial[0], two[0]) <= 1.0
+    samples = SIZE * SIZE
+    expected = samples * (4 * 12 + 32)
+    assert expected <= report["bytes"] <= expected + 4096
+
+
 def test_an_empty_piece_takes_part(have_display, tmp_path):
     """Rank 1 has no cells: rank 0's half of the mesh is drawn, with no error."""
     images, _, errors = run(tmp_path / "empty.npy", 2, "--empty-rank", "1")
