@@ -32,7 +32,8 @@ SETTINGS = {
     SPT: {"TargetError": TARGET_ERROR, "RepetitionLevel": REPETITIONS, "SubpixelLevel": 1,
           "Seed": SEED,
           "PreIntegrationScalarResolution": 128, "PreIntegrationThicknessResolution": 64,
-          "RepetitionsPerPass": 256, "StratifiedSampling": 1, "ReuseNoiseEstimate": 0,
+          "RepetitionsPerPass": 256, "ComputeTraversal": 1, "StratifiedSampling": 1,
+          "ReuseNoiseEstimate": 0,
           "Estimator": 1,
           "ExactCoverage": 1, "ProgressiveRefinement": 0,
           "AutoAdjustRepetitions": 1},
@@ -43,8 +44,9 @@ SETTINGS = {
 }
 # ParaView renders a view more than once before its screenshot; with ReuseNoiseEstimate on, the
 # error target's first step would depend on the renders before it, which a plain VTK window
-# does not repeat.
-SET_BY_NAME = {SPT: ["ReuseNoiseEstimate=0"],
+# does not repeat. ComputeTraversal On (the default is Automatic) shows that an enumeration
+# reaches the mapper, and draws every point with the compute pass on any renderer.
+SET_BY_NAME = {SPT: ["ReuseNoiseEstimate=0", "ComputeTraversal=1"],
                HAVS: ["KBufferSize=4", "HAVSPreIntegrationScalarResolution=96"],
                PBVR: ["MaximumParticleMemory=512"]}
 GROUPS = {SPT: "SPT Volume Rendering", HAVS: "HAVS-like Volume Rendering",
@@ -116,6 +118,7 @@ def test_spt_has_an_error_target_by_default(builtin):
     assert report["defaults"]["TargetError"] == TARGET_ERROR
     assert report["defaults"]["RepetitionLevel"] == 256
     assert report["defaults"]["ReuseNoiseEstimate"] == 1
+    assert report["defaults"]["ComputeTraversal"] == 2  # Automatic
     assert report["property_groups"][GROUPS[SPT]][:2] == ["TargetError", "RepetitionLevel"]
 
 

@@ -26,7 +26,8 @@ METHODS = {
         "settings": {name: name for name in (
             "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed",
             "PreIntegrationScalarResolution",
-            "PreIntegrationThicknessResolution", "RepetitionsPerPass", "StratifiedSampling",
+            "PreIntegrationThicknessResolution", "RepetitionsPerPass", "ComputeTraversal",
+            "StratifiedSampling",
             "ReuseNoiseEstimate", "Estimator", "ExactCoverage", "ProgressiveRefinement",
             "AutoAdjustRepetitions")},
         "repetitions": "RepetitionLevel",
