@@ -123,9 +123,15 @@ bool vtkSPTComputeTraversal::IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin)
   return false;
 }
 
-bool vtkSPTComputeTraversal::IsWanted(int mode, vtkOpenGLRenderWindow* renWin)
+bool vtkSPTComputeTraversal::IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer)
 {
-  return (mode == 1 || (mode == 2 && IsSoftwareRasterizer(renWin))) && IsSupported(renWin);
+  if (renWin != this->QueriedContext)
+  {
+    this->Supported = IsSupported(renWin);
+    this->Software = IsSoftwareRasterizer(renWin);
+    this->QueriedContext = renWin;
+  }
+  return this->Supported && (onAnyRenderer || this->Software);
 }
 
 vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(
@@ -266,6 +272,7 @@ void vtkSPTComputeTraversal::ReleaseGraphicsResources(vtkWindow* window)
   this->AddSumsQuads[1].reset();
   this->Width = this->Height = 0;
   this->Context = nullptr;
+  this->QueriedContext = nullptr;
 }
 
 void vtkSPTComputeTraversal::PrintSelf(ostream& os, vtkIndent indent)

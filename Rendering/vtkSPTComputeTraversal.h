@@ -73,10 +73,12 @@ public:
   static bool IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin);
 
   /**
-   * Whether a mapper's ComputeTraversal mode (0 off, 1 on, 2 automatic: on a software
-   * rasterizer) computes in this context.
+   * Whether frames in this context compute their small cells: on any renderer with
+   * `onAnyRenderer` (a mapper's COMPUTE_TRAVERSAL_ON), else only on a software rasterizer
+   * (COMPUTE_TRAVERSAL_AUTO); never without compute shaders. The context is asked once, not
+   * every frame.
    */
-  static bool IsWanted(int mode, vtkOpenGLRenderWindow* renWin);
+  bool IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer);
 
   /**
    * The program built from this compute shader source, compiled once per source and context;
@@ -135,6 +137,9 @@ private:
   void operator=(const vtkSPTComputeTraversal&) = delete;
 
   vtkOpenGLRenderWindow* Context = nullptr;
+  vtkOpenGLRenderWindow* QueriedContext = nullptr; // the context the next two describe
+  bool Supported = false;
+  bool Software = false;
   std::map<std::string, vtkSmartPointer<vtkShaderProgram>> Programs;
   int Width = 0;
   int Height = 0;

@@ -308,7 +308,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.OpaqueScene = HasOpaqueScene(ren);
   settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
     [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
-  settings.Compute = vtkSPTComputeTraversal::IsWanted(this->ComputeTraversal, renWin)
+  settings.Compute = this->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
+      internals.Compute->IsWanted(renWin, this->ComputeTraversal == COMPUTE_TRAVERSAL_ON)
     ? internals.Compute.Get()
     : nullptr;
   settings.ComputeEveryPoint = this->ComputeTraversal == COMPUTE_TRAVERSAL_ON;

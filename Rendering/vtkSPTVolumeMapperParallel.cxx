@@ -243,7 +243,9 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
   settings.Seed = self->Seed;
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
-  settings.Compute = vtkSPTComputeTraversal::IsWanted(self->ComputeTraversal, target.Window)
+  settings.Compute = self->ComputeTraversal != vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_OFF &&
+      this->Compute->IsWanted(
+        target.Window, self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON)
     ? this->Compute.Get()
     : nullptr;
   settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;
