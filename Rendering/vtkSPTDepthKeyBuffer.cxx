@@ -1,5 +1,6 @@
 #include "vtkSPTDepthKeyBuffer.h"
 
+#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -77,12 +78,7 @@ bool vtkSPTDepthKeyBuffer::Prepare(vtkOpenGLRenderWindow* renWin, int width, int
 
 int vtkSPTDepthKeyBuffer::GetCompiledLanes(int repetitions)
 {
-  int lanes = 1;
-  while (lanes < repetitions)
-  {
-    lanes *= 2;
-  }
-  return lanes;
+  return vtkMath::NearestPowerOfTwo(repetitions);
 }
 
 void vtkSPTDepthKeyBuffer::Clear()
@@ -148,11 +144,13 @@ std::vector<unsigned int> vtkSPTDepthKeyBuffer::Read()
   }
   // The texture is allocated layers x width x height (see Prepare()): every sample's layers
   // in use, without the unused ones after them.
-  std::vector<unsigned int> allocated(samples * size_t(this->AllocatedLayers));
+  const bool full = this->Layers == this->AllocatedLayers;
+  std::vector<unsigned int> allocated(full ? 0 : samples * size_t(this->AllocatedLayers));
   this->Keys->Activate();
-  glGetTexImage(this->Keys->GetTarget(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, allocated.data());
+  glGetTexImage(this->Keys->GetTarget(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+    full ? keys.data() : allocated.data());
   this->Keys->Deactivate();
-  for (size_t sample = 0; sample < samples; ++sample)
+  for (size_t sample = 0; !full && sample < samples; ++sample)
   {
     std::copy_n(allocated.begin() + sample * this->AllocatedLayers, this->Layers,
       keys.begin() + sample * this->Layers);
