@@ -130,8 +130,9 @@ bool vtkSPTComputeTraversal::IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyR
     this->Supported = IsSupported(renWin);
     this->Software = IsSoftwareRasterizer(renWin);
     this->QueriedContext = renWin;
+    this->BuildFailed = false;
   }
-  return this->Supported && (onAnyRenderer || this->Software);
+  return this->Supported && !this->BuildFailed && (onAnyRenderer || this->Software);
 }
 
 vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(
@@ -139,7 +140,7 @@ vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(
 {
   if (renWin != this->Context)
   {
-    this->ReleaseGraphicsResources(this->Context);
+    this->ReleaseContextResources(this->Context);
     this->Context = renWin;
   }
   auto found = this->Programs.find(source);
@@ -151,7 +152,15 @@ vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(
   std::string log;
   if (!program->Build(source, log))
   {
-    vtkErrorMacro("Could not build the compute traversal: " << log);
+    // A driver can advertise compute shaders and still not build this one (a GLSL version or
+    // a limit below what OpenGL 4.3 promises). The rasterizer draws the same image.
+    vtkWarningMacro("The compute traversal does not build in this OpenGL context; its cells are "
+                    "rasterized instead. The compiler says: "
+      << log);
+    if (renWin == this->QueriedContext)
+    {
+      this->BuildFailed = true;
+    }
     return nullptr;
   }
   this->Programs[source] = program;
@@ -189,7 +198,7 @@ bool vtkSPTComputeTraversal::PrepareSums(vtkOpenGLRenderWindow* renWin, int widt
   {
     if (renWin != this->Context)
     {
-      this->ReleaseGraphicsResources(this->Context);
+      this->ReleaseContextResources(this->Context);
       this->Context = renWin;
     }
     else if (this->Sums->GetHandle())
@@ -259,6 +268,13 @@ size_t vtkSPTComputeTraversal::GetGPUMemorySize() const
 
 void vtkSPTComputeTraversal::ReleaseGraphicsResources(vtkWindow* window)
 {
+  this->ReleaseContextResources(window);
+  // A later window may have this one's address: it is asked again.
+  this->QueriedContext = nullptr;
+}
+
+void vtkSPTComputeTraversal::ReleaseContextResources(vtkWindow* window)
+{
   if (window)
   {
     for (auto& entry : this->Programs)
@@ -272,7 +288,6 @@ void vtkSPTComputeTraversal::ReleaseGraphicsResources(vtkWindow* window)
   this->AddSumsQuads[1].reset();
   this->Width = this->Height = 0;
   this->Context = nullptr;
-  this->QueriedContext = nullptr;
 }
 
 void vtkSPTComputeTraversal::PrintSelf(ostream& os, vtkIndent indent)

@@ -75,14 +75,15 @@ public:
   /**
    * Whether frames in this context compute their small cells: on any renderer with
    * `onAnyRenderer` (a mapper's COMPUTE_TRAVERSAL_ON), else only on a software rasterizer
-   * (COMPUTE_TRAVERSAL_AUTO); never without compute shaders. The context is asked once, not
-   * every frame.
+   * (COMPUTE_TRAVERSAL_AUTO); never without compute shaders, nor after a program failed to
+   * build in the context. The context is asked once, not every frame.
    */
   bool IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer);
 
   /**
    * The program built from this compute shader source, compiled once per source and context;
-   * nullptr (with the compiler's log as an error) if it does not compile.
+   * nullptr (with the compiler's log as a warning) if it does not build, and from then on
+   * IsWanted() is false in this context: the caller rasterizes those cells instead.
    */
   vtkShaderProgram* GetProgram(vtkOpenGLRenderWindow* renWin, const std::string& source);
 
@@ -136,10 +137,15 @@ private:
   vtkSPTComputeTraversal(const vtkSPTComputeTraversal&) = delete;
   void operator=(const vtkSPTComputeTraversal&) = delete;
 
+  // Release what was built in `window` (programs, sums), keeping what IsWanted() learned of the
+  // context it queried last.
+  void ReleaseContextResources(vtkWindow* window);
+
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkOpenGLRenderWindow* QueriedContext = nullptr; // the context the next two describe
   bool Supported = false;
   bool Software = false;
+  bool BuildFailed = false;
   std::map<std::string, vtkSmartPointer<vtkShaderProgram>> Programs;
   int Width = 0;
   int Height = 0;

@@ -326,8 +326,11 @@ bool vtkSPTFrame::ReadyPrograms(
         vtkShaderProgram* program = this->ReadyComputeProgram(cellScalars, kind, lanes, halves);
         if (!program)
         {
-          vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT compute traversal.");
-          return false;
+          // The traversal warned and will not be asked again in this context. The rasterizer
+          // takes its cells from this group on (the same estimate: the sums differ by the fixed
+          // point's rounding), so every program is chosen again.
+          this->ComputeCellCounts.assign(this->Volumes.size(), 0);
+          return this->ReadyPrograms(needed, lanes, first, count, halves);
         }
         this->ComputePrograms[k][cellScalars ? 1 : 0] = program;
         vtkSPTComputeTraversal::Use(this->Window, program);

@@ -180,7 +180,8 @@ private:
   bool Computes(PassKind kind) const;
   // Whether a group's traversals visit at least half of the frame's cells in a compute pass.
   bool ComputesMostCells() const;
-  // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars.
+  // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars. Where a
+  // compute program does not build, the rasterizer takes its cells.
   bool ReadyPrograms(
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
   // One traversal of every volume with the program of that pass kind.

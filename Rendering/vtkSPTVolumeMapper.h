@@ -146,6 +146,8 @@ public:
    *   has a cost per sample, and an invocation loops over its cell's samples).
    * - COMPUTE_TRAVERSAL_ON: every cell drawn as a point, on any renderer.
    * - COMPUTE_TRAVERSAL_OFF: none.
+   * Where a driver offers compute shaders but does not build these programs, the mapper warns
+   * once with the compiler's message and rasterizes those cells in that context.
    */
   vtkSetClampMacro(ComputeTraversal, int, COMPUTE_TRAVERSAL_OFF, COMPUTE_TRAVERSAL_AUTO);
   vtkGetMacro(ComputeTraversal, int);
