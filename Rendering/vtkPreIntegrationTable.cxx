@@ -151,51 +151,74 @@ void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out
 
   // Front to back, step by step, every length at once. Step m of length k has the optical
   // depth tau_m * (k / (L - 1))^2 * MaxLength / steps = c_m k^2, so its transmittance is
-  // a^(k^2) with a = exp(-c_m), and k^2 grows by 2k + 1: each length's factor follows from the
-  // last by products, and each complement by sums of positive terms, exact to rounding where
-  // c_m is tiny (no 1 - x of an x near 1). One exponential per step instead of one per step
-  // and length.
+  // a^(k^2) with a = exp(-c_m): each length's factor follows from the one two lengths before
+  // by products, and each complement by sums of positive terms, exact to rounding where c_m is
+  // tiny (no 1 - x of an x near 1). One exponential and one expm1 per step instead of one per
+  // step and length.
   const int lengths = this->LengthResolution;
-  std::vector<double> transmittance(lengths, 1.0);
-  std::vector<double> rgb(3 * size_t(lengths), 0.0);
+  // Lengths in pairs, even then odd, each pair's color sums and transmittances side by side:
+  // the even and the odd lengths' products are two chains that do not wait for each other.
+  struct Pair
+  {
+    double Red[2] = { 0.0, 0.0 };
+    double Green[2] = { 0.0, 0.0 };
+    double Blue[2] = { 0.0, 0.0 };
+    double Transmittance[2] = { 1.0, 1.0 };
+  };
+  std::vector<Pair> pairs((lengths + 1) / 2);
   const double intervals = lengths > 1 ? double(lengths - 1) : 1.0;
   const double perUnitDepth = this->MaxLength / (intervals * intervals * steps);
-  for (int m = 0; m < steps; ++m)
+  // A longer segment keeps less light at every step: the lengths whose light is not spent
+  // (transmittance above 1e-7) are the first `lit`, and only they take more steps, as a ray
+  // stops; the pairs of lengths below take the one after an odd `lit` along (a length more, or
+  // the spare one of the last pair), which only makes it more exact.
+  int lit = lengths;
+  for (int m = 0; m < steps && lit > 0; ++m)
   {
-    const double c = tau[m] * perUnitDepth;
-    double kept = 1.0;          // a^(k^2): the step's transmittance at length k
-    double stopped = 0.0;       // 1 - a^(k^2): its opacity
-    double next = std::exp(-c); // a^(2k + 1): from length k to k + 1
-    double nextComplement = -std::expm1(-c);
-    const double square = std::exp(-2.0 * c); // a^2
-    const double squareComplement = -std::expm1(-2.0 * c);
-    const double* stepColor = color.data() + 3 * m;
-    for (int k = 0; k < lengths; ++k)
+    // From length k to k + 2 the factor grows by a^(4k + 4), which grows by a^8. The powers
+    // of a are products, their complements 1 - a^2n = (1 - a^n)(1 + a^n).
+    const double a = std::exp(-tau[m] * perUnitDepth);
+    const double a1 = -std::expm1(-tau[m] * perUnitDepth); // 1 - a
+    const double a2 = a * a, a4 = a2 * a2, a8 = a4 * a4;
+    const double c2 = a1 * (1.0 + a), c4 = c2 * (1.0 + a2), c8 = c4 * (1.0 + a4);
+    double factor[2] = { 1.0, a };         // a^(k^2) for the chain's length k
+    double complement[2] = { 0.0, a1 };    // 1 - a^(k^2)
+    double next[2] = { a4, a8 };           // a^(4k + 4): from k to k + 2
+    double nextComplement[2] = { c4, c8 }; // 1 - a^(4k + 4)
+    const double r = color[3 * m];
+    const double g = color[3 * m + 1];
+    const double b = color[3 * m + 2];
+    const int litPairs = (lit + 1) / 2;
+    for (int pair = 0; pair < litPairs; ++pair)
     {
-      // A length whose light is spent takes no more steps, as a ray stops.
-      if (transmittance[k] > 1.0e-7)
+      Pair& p = pairs[pair];
+      for (int chain = 0; chain < 2; ++chain)
       {
-        const double weight = transmittance[k] * stopped;
-        for (int ch = 0; ch < 3; ++ch)
-        {
-          rgb[3 * k + ch] += weight * stepColor[ch];
-        }
-        transmittance[k] *= kept;
+        const double weight = p.Transmittance[chain] * complement[chain];
+        p.Red[chain] += weight * r;
+        p.Green[chain] += weight * g;
+        p.Blue[chain] += weight * b;
+        p.Transmittance[chain] *= factor[chain];
+        complement[chain] += factor[chain] * nextComplement[chain];
+        factor[chain] *= next[chain];
+        nextComplement[chain] += next[chain] * c8;
+        next[chain] *= a8;
       }
-      stopped += kept * nextComplement;
-      kept *= next;
-      nextComplement += next * squareComplement;
-      next *= square;
+    }
+    while (lit > 0 && pairs[(lit - 1) / 2].Transmittance[(lit - 1) % 2] <= 1.0e-7)
+    {
+      --lit;
     }
   }
   const size_t slice = size_t(this->ScalarResolution) * this->ScalarResolution * 4;
   for (int k = 0; k < lengths; ++k)
   {
+    const Pair& p = pairs[k / 2];
     float* entry = out + k * slice;
-    entry[0] = float(rgb[3 * k]);
-    entry[1] = float(rgb[3 * k + 1]);
-    entry[2] = float(rgb[3 * k + 2]);
-    entry[3] = float(1.0 - transmittance[k]);
+    entry[0] = float(p.Red[k % 2]);
+    entry[1] = float(p.Green[k % 2]);
+    entry[2] = float(p.Blue[k % 2]);
+    entry[3] = float(1.0 - p.Transmittance[k % 2]);
   }
 }
 
