@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <sstream>
 
@@ -43,13 +44,33 @@ double vtkPreIntegrationTable::GetLength(int k) const
 bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double scalarRange[2],
   double maxLength, int scalarResolution, int lengthResolution)
 {
+  bool pending = false;
+  if (!this->Prepare(property, scalarRange, maxLength, scalarResolution, lengthResolution, pending))
+  {
+    return false;
+  }
+  if (pending)
+  {
+    std::vector<float> pairs(
+      size_t(this->GetNumberOfScalarPairs()) * this->GetValuesPerScalarPair());
+    this->IntegrateScalarPairs(0, this->GetNumberOfScalarPairs(), pairs.data());
+    this->SetIntegrated(pairs.data());
+  }
+  return true;
+}
+
+bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double scalarRange[2],
+  double maxLength, int scalarResolution, int lengthResolution, bool& pending)
+{
   this->LastError.clear();
+  pending = false;
   if (!property)
   {
     this->LastError = "No volume property to pre-integrate.";
     return false;
   }
-  const bool unchanged = property == this->LastProperty && this->CheckTime > property->GetMTime() &&
+  const bool unchanged = !this->Pending && property == this->LastProperty &&
+    this->CheckTime > property->GetMTime() &&
     this->HasAxes(scalarRange, maxLength, scalarResolution, lengthResolution);
   if (unchanged)
   {
@@ -70,7 +91,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     std::max(this->Samples->GetColorTime(), this->Samples->GetAttenuationTime());
   const bool sameAxes =
     this->HasAxes(scalarRange, maxLength, resolution, std::max(2, lengthResolution));
-  if (sameAxes && !this->Table.empty() && sampled <= this->IntegratedSamples)
+  if (!this->Pending && sameAxes && !this->Table.empty() && sampled <= this->IntegratedSamples)
   {
     this->LastProperty = property;
     this->CheckTime.Modified();
@@ -81,11 +102,51 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   this->MaxLength = maxLength;
   this->ScalarResolution = resolution;
   this->LengthResolution = std::max(2, lengthResolution);
-  this->IntegratedSamples = sampled;
+  this->Pending = true;
+  this->PendingProperty = property;
+  this->PendingSamples = sampled;
+  pending = true;
+  return true;
+}
 
+vtkIdType vtkPreIntegrationTable::GetNumberOfScalarPairs() const
+{
+  return vtkIdType(this->ScalarResolution) * this->ScalarResolution;
+}
+
+void vtkPreIntegrationTable::IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out) const
+{
+  const int per = this->GetValuesPerScalarPair();
+  vtkSMPTools::For(first, last,
+    [this, first, out, per](vtkIdType begin, vtkIdType end)
+    {
+      const int n = this->ScalarResolution;
+      for (vtkIdType pair = begin; pair < end; ++pair)
+      {
+        this->IntegrateScalarPair(int(pair % n), int(pair / n), out + (pair - first) * per, 4);
+      }
+    });
+}
+
+void vtkPreIntegrationTable::SetIntegrated(const float* pairs)
+{
+  // From each pair's lengths to the texture's layout: front scalar fastest, then back scalar,
+  // then length.
+  const vtkIdType count = this->GetNumberOfScalarPairs();
+  const int lengths = this->LengthResolution;
+  std::vector<float> table(size_t(count) * lengths * 4);
+  for (vtkIdType pair = 0; pair < count; ++pair)
+  {
+    const float* from = pairs + pair * 4 * lengths;
+    for (int k = 0; k < lengths; ++k)
+    {
+      std::copy(from + 4 * k, from + 4 * k + 4, table.begin() + 4 * (k * count + pair));
+    }
+  }
   ++this->IntegrationCount;
-  std::vector<float> table = this->IntegrateTable();
-  this->LastProperty = property;
+  this->Pending = false;
+  this->IntegratedSamples = this->PendingSamples;
+  this->LastProperty = this->PendingProperty;
   this->CheckTime.Modified();
   // A property can be touched without a change of its functions (VTK creates default
   // functions on first access): the build time, which callers cache by, moves only when the
@@ -96,7 +157,29 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     this->BuildTime.Modified();
     this->Modified();
   }
-  return true;
+}
+
+std::uint64_t vtkPreIntegrationTable::GetSignature() const
+{
+  // FNV-1a over the bytes of the samples and of the axes.
+  std::uint64_t hash = 14695981039346656037ull;
+  auto add = [&hash](const void* data, size_t bytes)
+  {
+    const unsigned char* byte = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; ++i)
+    {
+      hash = (hash ^ byte[i]) * 1099511628211ull;
+    }
+  };
+  const std::vector<double>& color = this->Samples->GetColor();
+  const std::vector<double>& attenuation = this->Samples->GetAttenuation();
+  add(color.data(), color.size() * sizeof(double));
+  add(attenuation.data(), attenuation.size() * sizeof(double));
+  add(this->ScalarRange, sizeof(this->ScalarRange));
+  add(&this->MaxLength, sizeof(this->MaxLength));
+  add(&this->ScalarResolution, sizeof(this->ScalarResolution));
+  add(&this->LengthResolution, sizeof(this->LengthResolution));
+  return hash;
 }
 
 bool vtkPreIntegrationTable::HasAxes(
@@ -111,24 +194,7 @@ bool vtkPreIntegrationTable::HasAxes(
     scalarResolution == this->ScalarResolution && lengthResolution == this->LengthResolution;
 }
 
-std::vector<float> vtkPreIntegrationTable::IntegrateTable() const
-{
-  const int ns = this->ScalarResolution;
-  const size_t slice = size_t(ns) * ns * 4;
-  std::vector<float> table(slice * this->LengthResolution, 0.0f);
-  vtkSMPTools::For(0, ns * ns,
-    [this, &table](vtkIdType begin, vtkIdType end)
-    {
-      const int n = this->ScalarResolution;
-      for (vtkIdType pair = begin; pair < end; ++pair)
-      {
-        this->IntegrateScalarPair(int(pair % n), int(pair / n), table.data() + 4 * pair);
-      }
-    });
-  return table;
-}
-
-void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out) const
+void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out, int stride) const
 {
   // The color and attenuation at the middle of each step; the same for every length.
   const int steps = 1 + StepsPerCell * std::abs(back - front);
@@ -210,11 +276,10 @@ void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out
       --lit;
     }
   }
-  const size_t slice = size_t(this->ScalarResolution) * this->ScalarResolution * 4;
   for (int k = 0; k < lengths; ++k)
   {
     const Pair& p = pairs[k / 2];
-    float* entry = out + k * slice;
+    float* entry = out + k * stride;
     entry[0] = float(p.Red[k % 2]);
     entry[1] = float(p.Green[k % 2]);
     entry[2] = float(p.Blue[k % 2]);

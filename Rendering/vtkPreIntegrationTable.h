@@ -26,8 +26,9 @@
 #include "vtkTimeStamp.h"               // For the build time
 #include "vtkTransferFunctionSamples.h" // For the samples
 
-#include <string> // For the error
-#include <vector> // For the table
+#include <cstdint> // For the signature
+#include <string>  // For the error
+#include <vector>  // For the table
 
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
@@ -52,6 +53,30 @@ public:
   bool Update(vtkVolumeProperty* property, const double scalarRange[2], double maxLength,
     int scalarResolution, int lengthResolution);
   const std::string& GetLastError() const { return this->LastError; }
+
+  ///@{
+  /**
+   * Update() in steps, for callers that share the integration (the ranks of a parallel render
+   * each integrate a part of the scalar pairs). Prepare() samples the functions for these
+   * axes and says whether the table must be integrated again (`pending`; false with
+   * GetLastError() as Update()). Then IntegrateScalarPairs() integrates the pairs
+   * [first, last) of GetNumberOfScalarPairs() (front scalar fastest) into `out`, each pair's
+   * GetValuesPerScalarPair() floats after the last's (its lengths, RGBA), and SetIntegrated()
+   * takes every pair's values, in that layout. Update() does all three.
+   */
+  bool Prepare(vtkVolumeProperty* property, const double scalarRange[2], double maxLength,
+    int scalarResolution, int lengthResolution, bool& pending);
+  vtkIdType GetNumberOfScalarPairs() const;
+  int GetValuesPerScalarPair() const { return 4 * this->LengthResolution; }
+  void IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out) const;
+  void SetIntegrated(const float* pairs);
+  ///@}
+
+  /**
+   * A digest of what the last Prepare() or Update() sampled, and of the axes: tables with
+   * equal signatures integrate to the same values.
+   */
+  std::uint64_t GetSignature() const;
 
   /**
    * When the contents of the table last changed.
@@ -113,9 +138,8 @@ private:
   // Whether the table has these axes.
   bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
     int lengthResolution) const;
-  // The whole table for the current axes and samples, its scalar pairs in parallel.
-  std::vector<float> IntegrateTable() const;
-  void IntegrateScalarPair(int front, int back, float* out) const;
+  // One scalar pair's lengths, the k-th at out + k * stride.
+  void IntegrateScalarPair(int front, int back, float* out, int stride) const;
 
   int ScalarResolution = 0;
   int LengthResolution = 0;
@@ -126,6 +150,10 @@ private:
   // when those the table holds changed last.
   vtkNew<vtkTransferFunctionSamples> Samples;
   vtkMTimeType IntegratedSamples = 0;
+  // Prepared but not integrated yet: the axes above are the pending ones.
+  bool Pending = false;
+  vtkVolumeProperty* PendingProperty = nullptr; // identity only
+  vtkMTimeType PendingSamples = 0;
 
   std::vector<float> Table;
   std::string LastError;

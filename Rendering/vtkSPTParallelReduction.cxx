@@ -6,6 +6,7 @@
 #include "vtkSPTOpenGL.h"
 #include "vtkTextureObject.h"
 
+#include "vtkPreIntegrationTable.h"
 #include "vtkSPTDepthKeyBuffer.h"
 
 #include <algorithm>
@@ -306,6 +307,63 @@ bool vtkSPTParallelReduction::ReduceSums(
       WriteTexture(texture, GL_RGBA, root ? global : std::vector<float>(local.size(), 0.0f));
     }
   }
+  return true;
+}
+
+bool vtkSPTParallelReduction::ShareTable(
+  vtkPreIntegrationTable* table, bool prepared, bool pending, std::string& error)
+{
+  // One record per rank: prepared, pending, and the samples' signature in two 32-bit halves
+  // (exact in doubles).
+  const int ranks = this->Controller->GetNumberOfProcesses();
+  const std::uint64_t signature = prepared ? table->GetSignature() : 0;
+  const double local[4] = { prepared ? 1.0 : 0.0, pending ? 1.0 : 0.0, double(signature >> 32),
+    double(signature & 0xffffffffull) };
+  std::vector<double> records(4 * size_t(ranks));
+  this->Bytes += sizeof(local);
+  if (!this->Controller->AllGather(local, records.data(), 4))
+  {
+    error = "The ranks could not exchange their transfer functions";
+    return false;
+  }
+  bool anyPending = false;
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* record = &records[4 * size_t(r)];
+    if (record[0] == 0.0)
+    {
+      return true;
+    }
+    if (record[2] != records[2] || record[3] != records[3])
+    {
+      std::ostringstream message;
+      message << "Rank " << r << "'s transfer function differs from rank 0's";
+      error = message.str();
+      return false;
+    }
+    anyPending = anyPending || record[1] != 0.0;
+  }
+  if (!anyPending)
+  {
+    return true;
+  }
+  // Equal shares of the pairs (the last ranks' padded), gathered in rank order: the pairs in
+  // their order.
+  const vtkIdType pairs = table->GetNumberOfScalarPairs();
+  const vtkIdType share = (pairs + ranks - 1) / ranks;
+  const vtkIdType first = std::min(pairs, this->Controller->GetLocalProcessId() * share);
+  const vtkIdType last = std::min(pairs, first + share);
+  const size_t values = size_t(share) * size_t(table->GetValuesPerScalarPair());
+  std::vector<float> mine(values, 0.0f);
+  table->IntegrateScalarPairs(first, last, mine.data());
+  std::vector<float> all(values * size_t(ranks));
+  this->Bytes += values * sizeof(float);
+  if (!this->Controller->AllGather(mine.data(), all.data(), vtkIdType(values)))
+  {
+    error = "The ranks could not exchange their parts of the pre-integration table";
+    return false;
+  }
+  table->SetIntegrated(all.data());
   return true;
 }
 

@@ -31,6 +31,7 @@
 #include <vector>  // For the settings
 
 class vtkMultiProcessController;
+class vtkPreIntegrationTable;
 class vtkSPTDepthKeyBuffer;
 class vtkTextureObject;
 
@@ -102,6 +103,18 @@ public:
    * again. A texture of another size (not allocated after a failure) adds zeros. Collective.
    */
   bool ReduceSums(const std::vector<vtkTextureObject*>& textures, size_t texels);
+
+  /**
+   * Integrate a prepared pre-integration table across the ranks (see
+   * vtkPreIntegrationTable::Prepare(); `prepared` says whether this rank's Prepare() succeeded,
+   * `pending` whether its table must be integrated again): where every rank prepared the
+   * same samples and some rank's table is pending, each integrates an equal share of the
+   * scalar pairs and every rank receives all of them. False on every rank, with the first rank
+   * whose transfer function differs from rank 0's in `error`, when they differ. Where a rank
+   * could not prepare, nothing is shared: each integrates its own and reports its own error.
+   * Collective.
+   */
+  bool ShareTable(vtkPreIntegrationTable* table, bool prepared, bool pending, std::string& error);
 
   /// The minimum of each of `count` values over the ranks, on every rank. Collective.
   bool AllMinimum(int* values, int count);

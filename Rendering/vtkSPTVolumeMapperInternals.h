@@ -100,6 +100,12 @@ public:
   // The mesh of one piece, prepared and described.
   static void DescribeMesh(
     vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkSPTParallelReduction::Piece& piece);
+  // The volume's pre-integration table over the agreed axes, its scalar pairs integrated in
+  // equal shares by the ranks (`reduction`'s), every rank receiving all. False on every rank,
+  // with the reason in `error`, where the ranks' transfer functions differ. Collective.
+  bool ShareTable(vtkSPTVolumeMapper* self, vtkVolume* vol,
+    const vtkSPTParallelReduction::Agreement& agreement, vtkSPTParallelReduction* reduction,
+    std::string& error);
   // The piece in the ranks' shared frame, ready to draw; false when it has nothing to draw.
   bool PrepareSharedPiece(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, const vtkSPTParallelReduction::Agreement& agreement,

@@ -84,6 +84,19 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribeMemb
     { volume + "PreIntegrationThicknessResolution", mapper->PreIntegrationThicknessResolution } };
 }
 
+bool vtkSPTVolumeMapper::vtkInternals::ShareTable(vtkSPTVolumeMapper* self, vtkVolume* vol,
+  const vtkSPTParallelReduction::Agreement& agreement, vtkSPTParallelReduction* reduction,
+  std::string& error)
+{
+  // The axes PrepareSharedPiece() gives the table: the pieces' shared scalar range and longest
+  // edge. A rank that cannot prepare reports why when it prepares its piece.
+  bool pending = false;
+  const bool prepared =
+    this->Table->Prepare(vol->GetProperty(), agreement.ScalarRange, agreement.MaxEdgeLength,
+      self->PreIntegrationScalarResolution, self->PreIntegrationThicknessResolution, pending);
+  return reduction->ShareTable(this->Table, prepared, pending, error);
+}
+
 bool vtkSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* self,
   vtkRenderer* ren, vtkVolume* vol, RenderTarget& target,
   const vtkSPTParallelReduction::Agreement& agreement, vtkSPTFrame::Volume& out)
@@ -141,6 +154,18 @@ void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
     {
       agreed = false;
       error = "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
+    }
+  }
+  // Each volume's table, in shares: every rank takes part (the agreement is the same on all),
+  // whether its piece has cells or not.
+  for (size_t v = 0; v < shared.size() && agreed; ++v)
+  {
+    vtkSPTVolumeMapper* mapper = shared[v].second;
+    if (agreements[v].AnyCells &&
+      !mapper->Internals->ShareTable(mapper, shared[v].first, agreements[v], reduction, error))
+    {
+      agreed = false;
+      error = v > 0 ? "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error : error;
     }
   }
   if (!agreed)

@@ -29,6 +29,8 @@ def parse() -> argparse.Namespace:
                         help="a second SPT volume: the mesh moved by SECOND_OFFSET")
     parser.add_argument("--other-seed-on", type=int, default=-1,
                         help="this rank renders with seed 7")
+    parser.add_argument("--other-opacity-on", type=int, default=-1,
+                        help="this rank's opacity transfer function is half the others'")
     parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
     parser.add_argument("--opaque-on", type=int, default=-1,
                         help="this rank draws an opaque sphere in the middle of the mesh")
@@ -91,6 +93,24 @@ def opaque_sphere(bounds):
     return actor
 
 
+def halved_opacity(volume_property):
+    """A copy of ``volume_property`` whose scalar opacity is half as high everywhere."""
+    from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+    from vtkmodules.vtkRenderingCore import vtkVolumeProperty
+
+    copy = vtkVolumeProperty()
+    copy.DeepCopy(volume_property)
+    opacity = vtkPiecewiseFunction()
+    opacity.DeepCopy(volume_property.GetScalarOpacity())
+    for i in range(opacity.GetSize()):
+        node = [0.0] * 4
+        opacity.GetNodeValue(i, node)
+        node[1] *= 0.5
+        opacity.SetNodeValue(i, node)
+    copy.SetScalarOpacity(opacity)
+    return copy
+
+
 def main() -> None:
     arguments = parse()
     from spt import meshes, render, scenes
@@ -110,6 +130,8 @@ def main() -> None:
         return piece
 
     seed = 7 if rank == arguments.other_seed_on else arguments.seed
+    volume_property = (halved_opacity(scene.property) if rank == arguments.other_opacity_on
+                       else scene.property)
     window, renderer = render.make_window(arguments.size, arguments.size)
     mappers, pieces = [], []
     for second in ((False, True) if arguments.second_volume else (False,)):
@@ -121,7 +143,7 @@ def main() -> None:
         if controller is not None:
             mapper.SetController(controller)
         piece = piece_of(grid, renamed=second == arguments.second_volume)
-        volume = render.add_volume(renderer, piece, scene.property, mapper)
+        volume = render.add_volume(renderer, piece, volume_property, mapper)
         if second:
             volume.SetPosition(*second_offset(grid.GetBounds()))
         mappers.append(mapper)

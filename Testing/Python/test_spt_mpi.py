@@ -9,8 +9,9 @@ tetrahedra, numbered as its cells). The images are compared at 8 bits: at most o
 (the reductions add the same float terms in another order, which may move a sum by an ulp and a
 pixel across a rounding boundary; measured: identical).
 
-Ranks that disagree (another scalar array, another seed) give one error naming the rank and
-draw nothing, without a hang (each run has a timeout).
+Ranks that disagree (another scalar array, another seed, another transfer function) give one
+error naming the rank and draw nothing, without a hang (each run has a timeout). The ranks
+integrate the pre-integration table in shares and gather it.
 
 With an error target (TargetError), rank 0 estimates the noise of the whole image from the
 halves' global sums after each step, and every rank follows it: the ranks draw the repetitions
@@ -146,6 +147,22 @@ def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
     assert expected <= report["bytes"] <= expected + 4096
 
 
+def test_ranks_share_the_table(have_display, tmp_path, renders):
+    """Three ranks integrate the pre-integration table's 128 x 128 scalar pairs in shares of
+    5,462 (the last rank's padded) and gather them: the first frame moves each rank's share
+    (64 lengths of RGBA floats per pair) besides the frame's keys and sums, and the image is
+    one process's."""
+    serial, _, _ = renders[0]
+    three, report, errors = run(tmp_path / "three.npy", 3, "--frames", "1")
+    assert "ERR" not in errors, errors
+    assert serial[0][..., 3].max() > 0.2, "the image is empty"
+    assert largest_difference(serial[0], three[0]) <= 1.0
+    samples = SIZE * SIZE
+    table = 5462 * 64 * 4 * 4
+    expected = samples * (4 * REPETITIONS + 32) + table
+    assert expected <= report["bytes"] <= expected + 4096
+
+
 def test_an_empty_piece_takes_part(have_display, tmp_path):
     """Rank 1 has no cells: rank 0's half of the mesh is drawn, with no error."""
     images, _, errors = run(tmp_path / "empty.npy", 2, "--empty-rank", "1")
@@ -172,6 +189,7 @@ def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path
     (("--other-array-on", "1"), "Rank 1 renders the point array 'another name' of 1 "
                                 "component(s), but rank 0 renders the point array 'field'"),
     (("--other-seed-on", "1"), "Rank 1 has Seed 7 but rank 0 has 0"),
+    (("--other-opacity-on", "1"), "Rank 1's transfer function differs from rank 0's"),
 ])
 def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, message):
     images, _, errors = run(tmp_path / "differ.npy", 2, *options)
