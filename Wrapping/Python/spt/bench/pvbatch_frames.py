@@ -37,16 +37,33 @@ def parse():
     return parser.parse_args()
 
 
-def largest_over_ranks(values):
-    """Each of ``values``, the largest over the ranks (every rank runs this script)."""
+def over_ranks(values, operation):
+    """Each of ``values`` reduced over the ranks with ``operation`` (every rank runs this
+    script)."""
     controller = vtkProcessModule.GetProcessModule().GetGlobalController()
     local, result = vtkDoubleArray(), vtkDoubleArray()
     for value in values:
         local.InsertNextValue(value)
     if controller is None or controller.GetNumberOfProcesses() == 1:
         return list(values)
-    controller.AllReduce(local, result, vtkCommunicator.MAX_OP)
+    controller.AllReduce(local, result, operation)
     return [result.GetValue(i) for i in range(result.GetNumberOfTuples())]
+
+
+def largest_over_ranks(values):
+    """Each of ``values``, the largest over the ranks."""
+    return over_ranks(values, vtkCommunicator.MAX_OP)
+
+
+def rescale_to_the_whole(array):
+    """The array's color and opacity functions over the range of every rank's data: in
+    symmetric mode each rank's data information is its own piece's, and ranks that rescale to
+    it draw with transfer functions of their own (SPT refuses them)."""
+    low, high = array.GetRange()
+    low = over_ranks([low], vtkCommunicator.MIN_OP)[0]
+    high = largest_over_ranks([high])[0]
+    simple.GetColorTransferFunction(array.Name).RescaleTransferFunction(low, high)
+    simple.GetOpacityTransferFunction(array.Name).RescaleTransferFunction(low, high)
 
 
 def set_property(display, name, value):
@@ -80,7 +97,7 @@ def main():
     cpu_seconds = [time.process_time() - cpu]
     arrays = reader.PointData.keys()
     simple.ColorBy(display, ("POINTS", arrays[0]))
-    display.RescaleTransferFunctionToDataRange(False, True)
+    rescale_to_the_whole(reader.PointData[arrays[0]])
     display.SetRepresentationType(arguments.representation)
     work = dict(FIXED_WORK)
     work["Volume (SPT)"] = {"RepetitionLevel": arguments.repetitions,
