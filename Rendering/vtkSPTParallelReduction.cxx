@@ -337,7 +337,9 @@ bool vtkSPTParallelReduction::ShareTable(
     if (record[2] != records[2] || record[3] != records[3])
     {
       std::ostringstream message;
-      message << "Rank " << r << "'s transfer function differs from rank 0's";
+      message << "Rank " << r
+              << "'s transfer function differs from rank 0's over the shared scalar range "
+                 "(every rank needs the same color and opacity functions)";
       error = message.str();
       return false;
     }
