@@ -51,10 +51,20 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   }
   if (pending)
   {
-    std::vector<float> pairs(
-      size_t(this->GetNumberOfScalarPairs()) * this->GetValuesPerScalarPair());
-    this->IntegrateScalarPairs(0, this->GetNumberOfScalarPairs(), pairs.data());
-    this->SetIntegrated(pairs.data());
+    // In one process each pair's lengths go straight to the texture's layout: no copy.
+    const vtkIdType count = this->GetNumberOfScalarPairs();
+    std::vector<float> table(size_t(count) * this->LengthResolution * 4);
+    vtkSMPTools::For(0, count,
+      [this, count, &table](vtkIdType begin, vtkIdType end)
+      {
+        const int n = this->ScalarResolution;
+        for (vtkIdType pair = begin; pair < end; ++pair)
+        {
+          this->IntegrateScalarPair(
+            int(pair % n), int(pair / n), table.data() + 4 * pair, 4 * count);
+        }
+      });
+    this->Commit(table);
   }
   return true;
 }
@@ -143,6 +153,11 @@ void vtkPreIntegrationTable::SetIntegrated(const float* pairs)
       std::copy(from + 4 * k, from + 4 * k + 4, table.begin() + 4 * (k * count + pair));
     }
   }
+  this->Commit(table);
+}
+
+void vtkPreIntegrationTable::Commit(std::vector<float>& table)
+{
   ++this->IntegrationCount;
   this->Pending = false;
   this->IntegratedSamples = this->PendingSamples;
@@ -194,7 +209,8 @@ bool vtkPreIntegrationTable::HasAxes(
     scalarResolution == this->ScalarResolution && lengthResolution == this->LengthResolution;
 }
 
-void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out, int stride) const
+void vtkPreIntegrationTable::IntegrateScalarPair(
+  int front, int back, float* out, vtkIdType stride) const
 {
   // The color and attenuation at the middle of each step; the same for every length.
   const int steps = 1 + StepsPerCell * std::abs(back - front);
@@ -279,7 +295,7 @@ void vtkPreIntegrationTable::IntegrateScalarPair(int front, int back, float* out
   for (int k = 0; k < lengths; ++k)
   {
     const Pair& p = pairs[k / 2];
-    float* entry = out + k * stride;
+    float* entry = out + vtkIdType(k) * stride;
     entry[0] = float(p.Red[k % 2]);
     entry[1] = float(p.Green[k % 2]);
     entry[2] = float(p.Blue[k % 2]);

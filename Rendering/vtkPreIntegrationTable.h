@@ -139,7 +139,10 @@ private:
   bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
     int lengthResolution) const;
   // One scalar pair's lengths, the k-th at out + k * stride.
-  void IntegrateScalarPair(int front, int back, float* out, int stride) const;
+  void IntegrateScalarPair(int front, int back, float* out, vtkIdType stride) const;
+  // Takes the integrated table (texture layout; swapped in when it differs) as the pending
+  // axes' and samples'.
+  void Commit(std::vector<float>& table);
 
   int ScalarResolution = 0;
   int LengthResolution = 0;

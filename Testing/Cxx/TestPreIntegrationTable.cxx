@@ -257,6 +257,43 @@ int CheckCaching(vtkPreIntegrationTable* table, TransferFunctions& functions)
   }
   return failures;
 }
+
+// The steps the ranks of a parallel render take, each integrating a share of the scalar pairs
+// (here three uneven shares), give Update()'s table bit for bit, and the same signature.
+int CheckShares(vtkVolumeProperty* property)
+{
+  vtkNew<vtkPreIntegrationTable> whole;
+  vtkNew<vtkPreIntegrationTable> table;
+  bool pending = false;
+  if (!UpdateTable(whole, property) ||
+    !table->Prepare(property, Range, MaxLength, ScalarResolution, LengthResolution, pending) ||
+    !pending)
+  {
+    std::cerr << "Update() failed, or Prepare() on a new table did not ask for the integration.\n";
+    return 1;
+  }
+  const vtkIdType pairs = table->GetNumberOfScalarPairs();
+  const size_t per = size_t(table->GetValuesPerScalarPair());
+  std::vector<float> values(size_t(pairs) * per, -1.0f);
+  const vtkIdType cuts[4] = { 0, 7, pairs / 2 + 3, pairs };
+  for (int share = 0; share < 3; ++share)
+  {
+    table->IntegrateScalarPairs(cuts[share], cuts[share + 1], &values[cuts[share] * per]);
+  }
+  table->SetIntegrated(values.data());
+  int failures = 0;
+  if (table->GetTable() != whole->GetTable())
+  {
+    ++failures;
+    std::cerr << "The table integrated in shares differs from Update()'s.\n";
+  }
+  if (table->GetSignature() != whole->GetSignature())
+  {
+    ++failures;
+    std::cerr << "The table integrated in shares has another signature.\n";
+  }
+  return failures;
+}
 }
 
 int TestPreIntegrationTable(int, char*[])
@@ -279,6 +316,7 @@ int TestPreIntegrationTable(int, char*[])
   failures += CheckHomogeneous(table, functions);
   failures += CheckOpacityGrowsWithLength(table);
   failures += CheckCaching(table, functions);
+  failures += CheckShares(functions.Property);
 
   // A unit distance that is not positive is refused with a reason that names it.
   functions.Property->SetScalarOpacityUnitDistance(0.0);
