@@ -20,6 +20,19 @@ namespace
 // for homogeneous segments; the error elsewhere is second order in the step.
 constexpr int TransferFunctionSamplesPerCell = 8;
 constexpr int StepsPerCell = 2;
+// The largest table integrated: 1 GiB of RGBA floats (1024 x 1024 scalar pairs of 64 lengths),
+// held once on the host and once as a texture, and at most 100 times the integration work of
+// the default table (128 x 128 x 64, about a quarter of a second on two cores).
+constexpr double MaxTableBytes = double(1 << 30);
+constexpr double MaxRelativeWork = 100.0;
+
+// The integration's work: for every scalar pair, a quadrature step per table cell its scalars
+// sweep (a third of the axis on average) and every length.
+double IntegrationWork(int scalarResolution, int lengthResolution)
+{
+  const double n = scalarResolution;
+  return n * n * (1.0 + StepsPerCell * n / 3.0) * lengthResolution;
+}
 }
 
 vtkStandardNewMacro(vtkPreIntegrationTable);
@@ -77,6 +90,22 @@ bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double s
   if (!property)
   {
     this->LastError = "No volume property to pre-integrate.";
+    return false;
+  }
+  const int scalars = std::max(2, scalarResolution);
+  const int lengths = std::max(2, lengthResolution);
+  const double bytes = 16.0 * scalars * scalars * lengths;
+  const double work = IntegrationWork(scalars, lengths) / IntegrationWork(128, 64);
+  if (bytes > MaxTableBytes || work > MaxRelativeWork)
+  {
+    std::ostringstream message;
+    message << "A pre-integration table of " << scalars << " x " << scalars << " x " << lengths
+            << " samples would take " << bytes / (1 << 20) << " MiB (at most "
+            << MaxTableBytes / (1 << 20) << ") and " << std::ceil(work)
+            << " times the integration time of the default 128 x 128 x 64 (at most "
+            << MaxRelativeWork
+            << "): lower PreIntegrationScalarResolution or PreIntegrationThicknessResolution.";
+    this->LastError = message.str();
     return false;
   }
   const bool unchanged = !this->Pending && property == this->LastProperty &&

@@ -327,5 +327,23 @@ int TestPreIntegrationTable(int, char*[])
     std::cerr << "A zero unit distance was not refused with a clear error.\n";
   }
 
+  // A table too large to integrate in reasonable time and memory is refused, naming the
+  // settings to lower, before anything is allocated.
+  functions.Property->SetScalarOpacityUnitDistance(0.7);
+  vtkNew<vtkPreIntegrationTable> huge;
+  if (huge->Update(functions.Property, Range, MaxLength, 1024, 1024) ||
+    huge->GetLastError().find("PreIntegrationThicknessResolution") == std::string::npos ||
+    !huge->GetTable().empty())
+  {
+    ++failures;
+    std::cerr << "A 1024 x 1024 x 1024 table was not refused with a clear error.\n";
+  }
+  if (huge->Update(functions.Property, Range, MaxLength, 1024, 64) ||
+    huge->GetLastError().find("times the integration time") == std::string::npos)
+  {
+    ++failures;
+    std::cerr << "A 1024 x 1024 x 64 table (minutes of integration) was not refused.\n";
+  }
+
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
