@@ -282,7 +282,7 @@ std::vector<float> vtkEnsembleBuffer::DrawNoise(
 
   std::vector<float> values(size_t(2) * size_t(this->Width) * size_t(this->Height));
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  ostate->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1); // through VTK's state cache, which it keeps
   glReadPixels(0, 0, this->Width, this->Height, GL_RG, GL_FLOAT, values.data());
   ostate->PopFramebufferBindings();
   return values;
