@@ -246,6 +246,13 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
   vtkSmartPointer<vtkDataArray> tetrahedraScalars = scalars;
   vtkSmartPointer<vtkDataArray> ids =
     this->UseGlobalIds ? input->GetCellData()->GetGlobalIds() : nullptr;
+  if (ids && ids->GetNumberOfTuples() < input->GetNumberOfCells())
+  {
+    return this->Fail("The cell data GlobalIds array '" +
+      std::string(ids->GetName() ? ids->GetName() : "") + "' has " +
+      std::to_string(ids->GetNumberOfTuples()) + " values for " +
+      std::to_string(input->GetNumberOfCells()) + " cells.");
+  }
   vtkSmartPointer<vtkDataSet> tetrahedra =
     this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1, ids);
   if (!tetrahedraScalars)

@@ -64,6 +64,19 @@ def test_point_ids_out_of_range_are_a_clear_error(have_display):
     assert image.max() == 0.0
 
 
+def test_short_global_ids_are_a_clear_error(have_display):
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)],
+                      [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, 0.5])
+    ids = vtk.vtkIdTypeArray()
+    ids.SetName("ids")
+    ids.InsertNextValue(7)
+    grid.GetCellData().SetGlobalIds(ids)
+    image, _, messages = draw(grid)
+    assert len(messages.errors) == 1, messages.errors
+    assert "GlobalIds array 'ids' has 1 values for 2 cells" in messages.errors[0]
+    assert image.max() == 0.0
+
+
 def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
     points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
     for bad in (math.nan, math.inf):
