@@ -21,6 +21,7 @@ namespace
 enum Field
 {
   Ready,
+  EmptyImage,
   HasCells,
   Components,
   CellScalars,
@@ -41,6 +42,7 @@ std::vector<double> Record(
 {
   std::vector<double> record(FirstSetting + settings.size());
   record[Ready] = piece.Ready;
+  record[EmptyImage] = piece.EmptyImage;
   record[HasCells] = piece.HasCells;
   record[Components] = piece.Components;
   record[CellScalars] = piece.CellScalars;
@@ -151,7 +153,7 @@ bool vtkSPTParallelReduction::Agree(
   }
   this->Bytes += (record.size() * sizeof(double) + name.size()) * size_t(ranks);
   error = Compare(settings, records, names, ranks);
-  if (!error.empty())
+  if (!error.empty() || records[EmptyImage] != 0.0)
   {
     return false;
   }
@@ -164,15 +166,11 @@ std::string vtkSPTParallelReduction::Compare(const Settings& settings,
 {
   const size_t size = FirstSetting + settings.size();
   std::ostringstream reason;
-  int reference = -1; // the first rank with cells: the others' scalars must be its
-  for (int r = 0; r < ranks; ++r)
+  // The settings first: a rank that cannot prepare may do so because its settings differ
+  // (an image of another size).
+  for (int r = 1; r < ranks; ++r)
   {
     const double* record = &records[r * size];
-    if (record[Ready] == 0.0)
-    {
-      reason << "Rank " << r << " could not prepare its piece (see its own error)";
-      return reason.str();
-    }
     for (size_t i = 0; i < settings.size(); ++i)
     {
       if (record[FirstSetting + i] != records[FirstSetting + i])
@@ -181,6 +179,20 @@ std::string vtkSPTParallelReduction::Compare(const Settings& settings,
                << " but rank 0 has " << records[FirstSetting + i];
         return reason.str();
       }
+    }
+  }
+  int reference = -1; // the first rank with cells: the others' scalars must be its
+  for (int r = 0; r < ranks; ++r)
+  {
+    const double* record = &records[r * size];
+    if (record[EmptyImage] != 0.0)
+    {
+      return std::string(); // the same image size on every rank: none has pixels to draw
+    }
+    if (record[Ready] == 0.0)
+    {
+      reason << "Rank " << r << " could not prepare its piece (see its own error)";
+      return reason.str();
     }
     if (record[HasCells] == 0.0)
     {

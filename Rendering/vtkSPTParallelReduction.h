@@ -49,9 +49,10 @@ public:
   /// What one rank brings to a frame.
   struct Piece
   {
-    bool Ready = true;     // the rank could prepare its part (window, input, table)
-    bool HasCells = false; // its piece has tetrahedra to draw
-    std::string ArrayName; // the scalars selected (pieces with cells only)
+    bool Ready = true;       // the rank could prepare its part (window, input, table)
+    bool EmptyImage = false; // its viewport has no pixels: nothing to draw, not an error
+    bool HasCells = false;   // its piece has tetrahedra to draw
+    std::string ArrayName;   // the scalars selected (pieces with cells only)
     int Components = 0;
     bool CellScalars = false;
     bool GlobalIds = false;   // the piece has global cell ids
@@ -80,7 +81,8 @@ public:
   /**
    * Exchange every rank's settings and piece. True when they agree, with the union of the
    * pieces in `agreement`; else false on every rank, with the same reason in `error` (the
-   * first rank that differs, and how). A collective call.
+   * first rank that differs, and how), which is empty when the ranks agree on an image with
+   * no pixels. A collective call.
    */
   bool Agree(
     const Settings& settings, const Piece& piece, Agreement& agreement, std::string& error);

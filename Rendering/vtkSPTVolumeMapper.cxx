@@ -2,8 +2,10 @@
 #include "vtkSPTVolumeMapperInternals.h"
 
 #include "vtkAbstractVolumeMapper.h"
+#include "vtkCullerCollection.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkFrustumCoverageCuller.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLError.h"
@@ -64,10 +66,9 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
 }
 
 vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
-  vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self)
+  vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps)
 {
-  SharedList shared;
-  bool listed = false;
+  SharedList visible;
   vtkPropCollection* props = ren->GetViewProps();
   vtkCollectionSimpleIterator it;
   props->InitTraversal(it);
@@ -77,17 +78,35 @@ vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::S
     auto* mapper = volume ? vtkSPTVolumeMapper::SafeDownCast(volume->GetMapper()) : nullptr;
     if (mapper && volume->GetVisibility() && volume->GetProperty())
     {
-      // A prop may draw its mapper through a vtkVolume of its own (ParaView's vtkPVLODVolume
-      // renders through its vtkLODProp3D's), with the prop's matrix and property: the volume
-      // drawn stands for the prop of its mapper.
-      const bool own = volume == vol || mapper == self;
-      shared.emplace_back(own ? vol : volume, mapper);
+      visible.emplace_back(volume, mapper);
+    }
+  }
+  // A mapper holds one mesh, one table and one set of matrices, so it stands for one volume
+  // of a frame: a mapper that several props draw draws each of them in a frame of its own.
+  const auto propsOf = [&visible](const vtkSPTVolumeMapper* mapper)
+  {
+    return static_cast<int>(std::count_if(visible.begin(), visible.end(),
+      [mapper](const std::pair<vtkVolume*, vtkSPTVolumeMapper*>& v)
+      { return v.second == mapper; }));
+  };
+  selfProps = propsOf(self);
+  SharedList shared;
+  bool listed = false;
+  for (const auto& entry : visible)
+  {
+    // A prop may draw its mapper through a vtkVolume of its own (ParaView's vtkPVLODVolume
+    // renders through its vtkLODProp3D's), with the prop's matrix and property: the volume
+    // drawn stands for the prop of its mapper.
+    const bool own = entry.first == vol || entry.second == self;
+    if (selfProps <= 1 && propsOf(entry.second) == 1)
+    {
+      shared.emplace_back(own ? vol : entry.first, entry.second);
       listed = listed || own;
     }
   }
   if (!listed)
   {
-    shared.assign(1, { vol, self }); // drawn outside the renderer's props: on its own
+    shared.assign(1, { vol, self }); // drawn outside the renderer's props, or by several: alone
   }
   return shared;
 }
@@ -270,10 +289,22 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
   // wherever they overlap: the first of them draws them all, with its own settings.
-  const auto shared = vtkInternals::SharedVolumes(ren, vol, this);
+  int props = 0;
+  const auto shared = vtkInternals::SharedVolumes(ren, vol, this, props);
+  if (props > 1 && !this->Internals->WarnedSharedMapper)
+  {
+    vtkWarningMacro("This mapper is drawn by "
+      << props
+      << " volumes of one renderer: each is drawn in a frame of its own, composited over the "
+         "image before it as VTK's other volume mappers do, and not interleaved with the "
+         "others where they overlap. Give each volume its own vtkSPTVolumeMapper (they may "
+         "share the input) to composite them exactly.");
+  }
+  this->Internals->WarnedSharedMapper = props > 1;
   const bool first = shared.front().second == this;
   if (first && this->Internals->Reduction->GetController())
   {
+    this->WarnOfCulling(ren);
     return this->Internals->RenderParallel(this, ren, shared);
   }
   RenderTarget target;
@@ -327,6 +358,29 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   ensemble->Resolve(target.X, target.Y, this->GetAccumulatedRepetitions(),
     this->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+void vtkSPTVolumeMapper::WarnOfCulling(vtkRenderer* ren)
+{
+  // Every rank must render every frame: VTK's frustum culler would skip the render of a rank
+  // whose piece lies outside the view, and the others would wait for it in the first exchange.
+  bool culls = false;
+  vtkCullerCollection* cullers = ren->GetCullers();
+  vtkCollectionSimpleIterator it;
+  cullers->InitTraversal(it);
+  while (vtkCuller* culler = cullers->GetNextCuller(it))
+  {
+    culls = culls || vtkFrustumCoverageCuller::SafeDownCast(culler) != nullptr;
+  }
+  if (culls && !this->Internals->WarnedCulling)
+  {
+    vtkWarningMacro("The renderer culls props outside the view (vtkFrustumCoverageCuller): a "
+                    "rank whose piece lies outside it would not render, and the others would "
+                    "wait for it. Remove the renderer's cullers "
+                    "(renderer->GetCullers()->RemoveAllItems()), as ParaView's parallel "
+                    "rendering does.");
+  }
+  this->Internals->WarnedCulling = culls;
 }
 
 void vtkSPTVolumeMapper::SetController(vtkMultiProcessController* controller)

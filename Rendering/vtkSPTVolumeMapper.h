@@ -42,7 +42,10 @@
  * with its own input, transfer functions and vtkVolume transform: nothing in a frame depends
  * on order (an atomic minimum of depth keys, then sums), so the first visible SPT volume of
  * the renderer draws them all into one set of buffers, with its own sampling settings
- * (RepetitionLevel, Seed, TargetError, ...), and the others draw nothing themselves.
+ * (RepetitionLevel, Seed, TargetError, ...), and the others draw nothing themselves. A
+ * mapper stands for one volume of such a frame: one that several vtkVolumes draw draws each of
+ * them in a frame of its own, composited over the image before it as VTK's other mappers do
+ * (a warning says so); give each vtkVolume its own mapper, sharing the input if need be.
  *
  * For the same reason, the ranks of a parallel job draw their own pieces of one data set as
  * they are (any shape, interleaved, with overlapping bounds), with no redistribution and no
@@ -280,8 +283,11 @@ public:
    * nothing is drawn. TargetError, ProgressiveRefinement and AutoAdjustRepetitions apply as in
    * one process: rank 0 estimates the noise of the whole image (the halves' sums move to it
    * after each step) and every rank follows its estimate; the ranks continue an accumulation
-   * only if all do, and draw the fewest repetitions any rank's time budget allows. One SPT
-   * volume per renderer is combined. Needs image load/store (OpenGL 4.4) on every process.
+   * only if all do, and draw the fewest repetitions any rank's time budget allows. Every SPT
+   * volume of the renderer is combined. A renderer's frustum culler would skip the render of
+   * a rank whose piece lies outside the view while the others wait for it: remove it
+   * (renderer->GetCullers()->RemoveAllItems(), as ParaView's parallel rendering does; a
+   * warning says so). Needs image load/store (OpenGL 4.4) on every process.
    */
   void SetController(vtkMultiProcessController* controller);
   vtkMultiProcessController* GetController();
@@ -329,6 +335,9 @@ protected:
 private:
   vtkSPTVolumeMapper(const vtkSPTVolumeMapper&) = delete;
   void operator=(const vtkSPTVolumeMapper&) = delete;
+
+  // Warn once when a parallel render's renderer may cull this rank's piece.
+  void WarnOfCulling(vtkRenderer* ren);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -36,7 +36,9 @@ public:
   vtkVolumeViewMatrices Matrices;
   vtkNew<vtkSPTParallelReduction> Reduction;
   bool WarnedNoGlobalIds = false;
-  std::string ParallelError; // reported once, until the ranks agree again
+  bool WarnedSharedMapper = false; // while several volumes of the renderer draw this mapper
+  bool WarnedCulling = false;      // while a parallel render's renderer has a frustum culler
+  std::string ParallelError;       // reported once, until the ranks agree again
 
   vtkSPTFrame::TargetState Target; // progress towards TargetError
   bool WarnedNoImageAtomics = false;
@@ -47,17 +49,20 @@ public:
 
   // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order.
   using SharedList = std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>;
-  // The renderer's; vol alone when it is not among them.
-  static SharedList SharedVolumes(vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self);
+  // The renderer's; vol alone when it is not among them, or when `selfProps` (set to the
+  // number of the renderer's visible volumes that draw `self`) is more than one. A mapper that
+  // several volumes draw is left out of the others' frames.
+  static SharedList SharedVolumes(
+    vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps);
   // Bring a volume's mesh, table and matrices up to date and onto the GPU.
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, vtkSPTFrame::Volume& out);
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
-  // Prepare every shared volume that can be drawn; false when none can.
   // What the mappers of the frame report of its render.
   void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
     const vtkSPTFrame& frame) const;
+  // Prepare every shared volume that can be drawn; false when none can.
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 

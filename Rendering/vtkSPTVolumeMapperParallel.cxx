@@ -55,6 +55,7 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
   piece.OpaqueScene = HasOpaqueScene(ren);
   piece.Ready = self->BeginFrame(ren, target) && vol->GetProperty() &&
     self->GetEnsemble()->Prepare(target.Window, target.Width, target.Height, self->SubpixelLevel);
+  piece.EmptyImage = target.Width <= 0 || target.Height <= 0;
   DescribeMesh(self, vol, piece);
   const bool atomics = target.Window && vtkSPTDepthKeyBuffer::IsSupported(target.Window);
   return { { "RepetitionLevel", self->RepetitionLevel },
@@ -63,6 +64,9 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
     { "Estimator", self->Estimator }, { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
     { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
     { "ReuseNoiseEstimate", self->ReuseNoiseEstimate ? 1 : 0 },
+    { "TargetError", self->TargetError },
+    { "ProgressiveRefinement", self->ProgressiveRefinement ? 1 : 0 },
+    { "MaximumProgressiveRepetitions", self->MaximumProgressiveRepetitions },
     { "PreIntegrationScalarResolution", self->PreIntegrationScalarResolution },
     { "PreIntegrationThicknessResolution", self->PreIntegrationThicknessResolution },
     { "image width", target.Width }, { "image height", target.Height },
@@ -167,6 +171,10 @@ void vtkSPTVolumeMapper::vtkInternals::RenderParallel(
       agreed = false;
       error = v > 0 ? "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error : error;
     }
+  }
+  if (!agreed && error.empty())
+  {
+    return; // an image with no pixels on every rank: nothing to draw
   }
   if (!agreed)
   {

@@ -34,6 +34,14 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
     parser.add_argument("--opaque-on", type=int, default=-1,
                         help="this rank draws an opaque sphere in the middle of the mesh")
+    parser.add_argument("--other-target-on", type=int, default=-1,
+                        help="this rank renders with TargetError 0.01 (the others without, "
+                             "unless --target-error)")
+    parser.add_argument("--empty-viewport-on", default="",
+                        help="this rank's renderer (or every rank's: 'all') has a viewport "
+                             "with no pixels")
+    parser.add_argument("--keep-cullers", action="store_true",
+                        help="keep VTK's frustum culler, which may skip a rank's render")
     parser.add_argument("--frames", type=int, default=2)
     parser.add_argument("--target-error", type=float, default=None,
                         help="TargetError; --repetitions is then the cap")
@@ -133,10 +141,15 @@ def main() -> None:
     volume_property = (halved_opacity(scene.property) if rank == arguments.other_opacity_on
                        else scene.property)
     window, renderer = render.make_window(arguments.size, arguments.size)
+    if not arguments.keep_cullers:
+        # Every rank renders every frame, whatever its piece: a culler could skip one.
+        renderer.GetCullers().RemoveAllItems()
+    if arguments.empty_viewport_on in ("all", str(rank)):
+        renderer.SetViewport(0.0, 0.0, 0.0, 0.0)
     mappers, pieces = [], []
     for second in ((False, True) if arguments.second_volume else (False,)):
-        mapper = render.spt_mapper(arguments.repetitions, seed=seed,
-                                   target_error=arguments.target_error)
+        target_error = 0.01 if rank == arguments.other_target_on else arguments.target_error
+        mapper = render.spt_mapper(arguments.repetitions, seed=seed, target_error=target_error)
         mapper.SetProgressiveRefinement(arguments.progressive)
         if arguments.update_rate > 0.0:
             mapper.SetAutoAdjustRepetitions(True)

@@ -190,6 +190,8 @@ def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path
                                 "component(s), but rank 0 renders the point array 'field'"),
     (("--other-seed-on", "1"), "Rank 1 has Seed 7 but rank 0 has 0"),
     (("--other-opacity-on", "1"), "Rank 1's transfer function differs from rank 0's"),
+    (("--other-target-on", "1"), "Rank 1 has TargetError 0.01 but rank 0 has 0"),
+    (("--empty-viewport-on", "1"), "Rank 1 has image width 0 but rank 0 has 128"),
 ])
 def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, message):
     images, _, errors = run(tmp_path / "differ.npy", 2, *options)
@@ -325,3 +327,18 @@ def test_a_later_volume_that_differs_gives_one_error(have_display, tmp_path):
     assert errors.count(message) == 1, errors
     assert errors.count("ERR") == 1, errors
     assert images[..., 3].max() == 0.0
+
+
+def test_an_empty_viewport_on_every_rank_draws_nothing_without_error(have_display, tmp_path):
+    images, _, errors = run(tmp_path / "no_pixels.npy", 2, "--empty-viewport-on", "all")
+    assert "ERR" not in errors and "Warning" not in errors, errors
+    assert images.max() == 0.0
+
+
+def test_a_renderer_that_culls_gets_a_warning(have_display, tmp_path, renders):
+    """VTK's frustum culler would skip the render of a rank whose piece lies outside the view,
+    and the others would wait for it: each rank says so once (the pieces here are interleaved,
+    so every rank still renders)."""
+    _, _, errors = run(tmp_path / "culls.npy", 2, "--keep-cullers")
+    assert errors.count("Remove the renderer's cullers") == 2, errors
+    assert "Remove the renderer's cullers" not in renders[2][2]

@@ -132,3 +132,33 @@ def test_the_order_of_the_volumes_does_not_matter(have_display):
     # The same segments and random numbers per cell; only the cell ids' offsets swap.
     assert metrics.rmse(forward, backward) <= 0.01
     assert forward[..., 3].max() > 0.2
+
+
+def test_one_mapper_drawn_by_two_volumes_draws_each_once(have_display):
+    """A mapper holds one mesh, table and set of matrices: two vtkVolumes that share it are
+    drawn one frame each, side by side here, each exactly as when it is the only one shown,
+    with one warning."""
+    from robustness_support import watch
+    s = _scene("default")
+    b = s.grid.GetBounds()
+    mapper = _spt()
+    messages = watch(mapper)
+    window, renderer = render.make_window(SIZE, SIZE)
+    volumes = [render.add_volume(renderer, s.grid, s.property, mapper) for _ in range(2)]
+    volumes[1].SetPosition(1.5 * (b[1] - b[0]), 0.0, 0.0)
+    renderer.ResetCamera()
+
+    def shown(*visible):
+        for volume, on in zip(volumes, visible):
+            volume.SetVisibility(on)
+        window.Render()
+        return render.read_rgba(window)
+
+    first, second = shown(True, False), shown(False, True)
+    assert not messages.warnings
+    both = shown(True, True)
+    window.Finalize()
+    assert first[..., 3].max() > 0.2 and second[..., 3].max() > 0.2
+    assert not np.any((first[..., 3] > 0) & (second[..., 3] > 0)), "the volumes overlap"
+    assert np.abs(both - (first + second)).max() <= 1.0 / 255.0 + 1e-6
+    assert len(messages.warnings) == 1 and "drawn by 2 volumes" in messages.warnings[0]
