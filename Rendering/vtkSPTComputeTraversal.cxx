@@ -123,16 +123,20 @@ bool vtkSPTComputeTraversal::IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin)
   return false;
 }
 
-bool vtkSPTComputeTraversal::IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer)
+bool vtkSPTComputeTraversal::IsWanted(
+  vtkOpenGLRenderWindow* renWin, bool onAnyRenderer, int width, int height)
 {
   if (renWin != this->QueriedContext)
   {
     this->Supported = IsSupported(renWin);
     this->Software = IsSoftwareRasterizer(renWin);
+    this->MaxSize = this->Supported ? vtkSPTOpenGL::Max3DTextureSize() : 0;
     this->QueriedContext = renWin;
     this->BuildFailed = false;
   }
-  return this->Supported && !this->BuildFailed && (onAnyRenderer || this->Software);
+  // The sums are a 3D texture of (term, sample): a larger pass rasterizes every cell.
+  const bool fits = std::max({ Layers, width, height }) <= this->MaxSize;
+  return this->Supported && !this->BuildFailed && fits && (onAnyRenderer || this->Software);
 }
 
 vtkShaderProgram* vtkSPTComputeTraversal::GetProgram(

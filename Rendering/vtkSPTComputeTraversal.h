@@ -76,9 +76,11 @@ public:
    * Whether frames in this context compute their small cells: on any renderer with
    * `onAnyRenderer` (a mapper's COMPUTE_TRAVERSAL_ON), else only on a software rasterizer
    * (COMPUTE_TRAVERSAL_AUTO); never without compute shaders, nor after a program failed to
-   * build in the context. The context is asked once, not every frame.
+   * build in the context, nor for a pass of `width` x `height` samples larger than the
+   * context's 3D textures, which hold the sums (GL_MAX_3D_TEXTURE_SIZE). The context is asked
+   * once, not every frame.
    */
-  bool IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer);
+  bool IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer, int width, int height);
 
   /**
    * The program built from this compute shader source, compiled once per source and context;
@@ -142,9 +144,10 @@ private:
   void ReleaseContextResources(vtkWindow* window);
 
   vtkOpenGLRenderWindow* Context = nullptr;
-  vtkOpenGLRenderWindow* QueriedContext = nullptr; // the context the next two describe
+  vtkOpenGLRenderWindow* QueriedContext = nullptr; // the context the next three describe
   bool Supported = false;
   bool Software = false;
+  int MaxSize = 0; // texels per side of a 3D texture
   bool BuildFailed = false;
   std::map<std::string, vtkSmartPointer<vtkShaderProgram>> Programs;
   int Width = 0;

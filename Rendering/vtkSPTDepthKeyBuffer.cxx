@@ -12,6 +12,7 @@
 #include "vtkSPTSurvivorsFS.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <string>
 
 vtkStandardNewMacro(vtkSPTDepthKeyBuffer);
@@ -54,6 +55,18 @@ bool vtkSPTDepthKeyBuffer::Prepare(vtkOpenGLRenderWindow* renWin, int width, int
     // Another size: the survivors' shaders still serve.
     this->Keys->ReleaseGraphicsResources(renWin);
     this->Width = this->Height = this->Layers = this->AllocatedLayers = 0;
+  }
+  const int maxSize = vtkSPTOpenGL::Max3DTextureSize();
+  if (std::max({ allocated, width, height }) > maxSize)
+  {
+    vtkErrorMacro("The depth keys of " << width << " x " << height << " samples and " << allocated
+                                       << " repetitions are more than this OpenGL's 3D textures "
+                                          "hold per side ("
+                                       << maxSize
+                                       << ", GL_MAX_3D_TEXTURE_SIZE): render a smaller image "
+                                          "(the viewport times SubpixelLevel).");
+    this->ReleaseGraphicsResources(renWin);
+    return false;
   }
   this->Keys->SetContext(renWin);
   this->Keys->SetInternalFormat(GL_R32UI);

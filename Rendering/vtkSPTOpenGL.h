@@ -49,6 +49,15 @@ inline bool HasVersion(int major, int minor)
   return contextMajor > major || (contextMajor == major && contextMinor >= minor);
 }
 
+/// The most texels a side of a 3D texture may have in the current context
+/// (GL_MAX_3D_TEXTURE_SIZE: 2048 on Mesa's llvmpipe and many GPUs).
+inline int Max3DTextureSize()
+{
+  GLint size = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &size);
+  return size;
+}
+
 /// Whether the current context lists the extension (GL_EXTENSIONS, one by one: core profile).
 inline bool HasExtension(const char* name)
 {

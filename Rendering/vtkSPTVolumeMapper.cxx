@@ -29,6 +29,7 @@
 #include "vtkVolumeViewMatrices.h"
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -217,7 +218,38 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     settings.Estimator = SURVIVOR_ESTIMATOR;
     return 1;
   }
-  return RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
+  // The depth keys are a 3D texture of (repetition, sample): for a larger pass, the depth test
+  // finds each repetition's survivor instead, one repetition per traversal pair.
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  const int samples = std::max(ensemble->GetPassWidth(), ensemble->GetPassHeight());
+  const int maxSize = vtkSPTOpenGL::Max3DTextureSize();
+  const bool keysFit = samples <= maxSize;
+  if (!keysFit && !this->WarnedLargeImage)
+  {
+    std::ostringstream message;
+    message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
+            << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
+            << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
+    if (self->TargetError > 0.0)
+    {
+      vtkErrorWithObjectMacro(self, << message.str()
+                                    << ". TargetError needs them: nothing is drawn. Render a "
+                                       "smaller image (the viewport times SubpixelLevel), or "
+                                       "set TargetError to 0.");
+    }
+    else
+    {
+      vtkWarningWithObjectMacro(self, << message.str()
+                                      << ": drawing one repetition per traversal pair (the "
+                                         "same image, more traversals).");
+    }
+  }
+  this->WarnedLargeImage = !keysFit;
+  if (!keysFit && self->TargetError > 0.0)
+  {
+    return 0;
+  }
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble) : 1;
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
@@ -326,6 +358,10 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   vtkSPTFrame::Settings settings;
   const int perPass = internals.ChooseTraversal(this, renWin, settings);
+  if (perPass < 1)
+  {
+    return;
+  }
   const vtkInternals::FramePlan plan = internals.Plan(this, vol, perPass,
     settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
   if (plan.Cheapest)
@@ -340,7 +376,8 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
     [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
   settings.Compute = this->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
-      internals.Compute->IsWanted(renWin, this->ComputeTraversal == COMPUTE_TRAVERSAL_ON)
+      internals.Compute->IsWanted(renWin, this->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
+        ensemble->GetPassWidth(), ensemble->GetPassHeight())
     ? internals.Compute.Get()
     : nullptr;
   settings.ComputeEveryPoint = this->ComputeTraversal == COMPUTE_TRAVERSAL_ON;

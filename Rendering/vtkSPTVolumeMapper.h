@@ -89,7 +89,10 @@ public:
    * by binary search), so one traversal of many repetitions costs little more than one of a few.
    * Where the keys would pass 128 MiB (256 repetitions at 256 x 256 take 64 MiB), fewer are
    * drawn per traversal, but never fewer than 16. Needs OpenGL 4.4 (image load/store, clear
-   * texture); without it the mapper falls back to 1 and to the survivor estimator. With
+   * texture); without it the mapper falls back to 1 and to the survivor estimator. The keys
+   * are a 3D texture of (repetition, sample): an image of more samples per side than the
+   * context's 3D textures hold (GL_MAX_3D_TEXTURE_SIZE, 2048 on llvmpipe) draws with 1 (the
+   * same image, a warning says so), and with TargetError, which needs the keys, is an error. With
    * AutoAdjustRepetitions, the time allotted is spent in whole traversals of RepetitionsPerPass
    * repetitions while one fits; else, with the visibility estimator, in repetitions drawn one
    * per pair of traversals (the depth test finds the survivor, with exact coverage, unless a
@@ -150,7 +153,9 @@ public:
    * - COMPUTE_TRAVERSAL_ON: every cell drawn as a point, on any renderer.
    * - COMPUTE_TRAVERSAL_OFF: none.
    * Where a driver offers compute shaders but does not build these programs, the mapper warns
-   * once with the compiler's message and rasterizes those cells in that context.
+   * once with the compiler's message and rasterizes those cells in that context. Its sums are
+   * a 3D texture of (term, sample): an image of more samples per side than the context's 3D
+   * textures hold rasterizes every cell.
    */
   vtkSetClampMacro(ComputeTraversal, int, COMPUTE_TRAVERSAL_OFF, COMPUTE_TRAVERSAL_AUTO);
   vtkGetMacro(ComputeTraversal, int);

@@ -42,7 +42,8 @@ public:
 
   vtkSPTFrame::TargetState Target; // progress towards TargetError
   bool WarnedNoImageAtomics = false;
-  bool CoverageDrawn = false; // the coverage buffer belongs to the accumulated sum
+  bool WarnedLargeImage = false; // while the pass is too large for the depth keys
+  bool CoverageDrawn = false;    // the coverage buffer belongs to the accumulated sum
   // Rank 0's: the opaque scene of all ranks, composited when the accumulation started, that
   // the volume is resolved over (RGBA bytes per pixel; empty when no rank draws one).
   std::vector<unsigned char> SceneColor;
@@ -69,7 +70,8 @@ public:
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
   // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
   static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble);
-  // Repetitions per traversal that the context allows, and the estimator with them.
+  // Repetitions per traversal that the context and the image size allow, and the estimator
+  // with them; 0 (with an error) when the frame cannot be drawn.
   int ChooseTraversal(
     vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
 

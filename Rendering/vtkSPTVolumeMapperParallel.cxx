@@ -277,8 +277,9 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
   settings.OpaqueScene = agreement.OpaqueScene;
   settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
   settings.Compute = self->ComputeTraversal != vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_OFF &&
-      this->Compute->IsWanted(
-        target.Window, self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON)
+      this->Compute->IsWanted(target.Window,
+        self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON,
+        self->GetEnsemble()->GetPassWidth(), self->GetEnsemble()->GetPassHeight())
     ? this->Compute.Get()
     : nullptr;
   settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;

@@ -253,3 +253,31 @@ def test_input_changes_release_windows_and_resizes(have_display):
     window.Render()
     # The same mapper in a second window.
     check_second_window(volume, SIZE, messages)
+
+
+def test_an_image_wider_than_3d_textures_draws_the_same_image(have_display):
+    """The depth keys of several repetitions and the compute traversal's sums are 3D textures
+    of (lane, sample), at most GL_MAX_3D_TEXTURE_SIZE per side (2048 on llvmpipe). A wider
+    image draws one repetition per traversal pair, with the depth test, and rasterizes every
+    cell: the image of RepetitionsPerPass 1, with a warning. The error target needs the keys:
+    a clear error there."""
+    grid = data.make_default_mesh()
+    prop = data.default_transfer_function(grid)
+    size = (2100, 48)
+    view = render.View(30, 30, zoom=4.0)
+    grouped = render.spt_mapper(4, seed=1)
+    grouped.SetComputeTraversal(grouped.COMPUTE_TRAVERSAL_ON)
+    messages = watch(grouped)
+    image = render.render(grid, prop, grouped, view, size).image
+    single = render.render(grid, prop, render.spt_mapper(4, seed=1, per_pass=1), view, size).image
+    assert not messages.errors, messages.errors
+    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert np.abs(image - single).max() <= 1.0 / 255.0 + 1e-6
+    if not messages.warnings:
+        pytest.skip("this OpenGL's 3D textures hold 2100 texels per side")
+    assert len(messages.warnings) == 1 and "GL_MAX_3D_TEXTURE_SIZE" in messages.warnings[0]
+    target = render.spt_mapper(16, seed=1, target_error=0.01)
+    target_messages = watch(target)
+    blank = render.render(grid, prop, target, view, size).image
+    assert target_messages.errors and "GL_MAX_3D_TEXTURE_SIZE" in target_messages.errors[0]
+    assert blank.max() == 0.0
