@@ -420,7 +420,9 @@ bool vtkPBVRParticleGenerator::Generate(
   }
 
   vtkSMPTools::For(0, numberOfBlocks, 1, sampler);
-  if (sampler.Exceeded)
+  // Each block checks against the blocks finished before it: blocks on other threads may
+  // pass the limit together.
+  if (sampler.Exceeded || static_cast<size_t>(sampler.Accepted.load()) > settings.MaximumParticles)
   {
     std::ostringstream reason;
     reason << "The particles would not fit: more than " << settings.MaximumParticles
