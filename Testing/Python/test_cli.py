@@ -141,6 +141,16 @@ def test_missing_data_is_a_clear_error(tmp_path):
     assert "SPT_DATA_DIR" in result.stderr and "Traceback" not in result.stderr
 
 
+def test_a_damaged_data_file_is_a_clear_error(tmp_path):
+    """A Git LFS pointer in place of a data set: the error names the file, no traceback."""
+    (tmp_path / "spx.vtk").write_text(
+        "version https://git-lfs.github.com/spec/v1\noid sha256:0\nsize 1\n")
+    result = run("demo", "--dataset", "spx", "--output", str(tmp_path / "out"), cwd=tmp_path,
+                 SPT_DATA_DIR=str(tmp_path))
+    assert result.returncode == 1, result.stderr
+    assert str(tmp_path / "spx.vtk") in result.stderr and "Traceback" not in result.stderr
+
+
 def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
     """The sorting figure on the default mesh only, tiny and with few repetitions."""
     output = tmp_path / "sorting"

@@ -127,6 +127,14 @@ def test_unreadable_cache_file_is_replaced(cache_folder):
     assert meshes.load_cached(path) is not None
 
 
+def test_a_cache_that_cannot_be_written_keeps_the_mesh(monkeypatch):
+    """/proc takes no new folders, even for root: the mesh is returned, with a warning."""
+    monkeypatch.setenv("SPT_CACHE_DIR", "/proc/spt-cache")
+    with pytest.warns(UserWarning, match="could not be cached at /proc/spt-cache"):
+        mesh = meshes.generate_arrays("drill", 10_000)
+    assert len(mesh.tetrahedra) > 0
+
+
 def test_seed_moves_the_field_not_the_mesh():
     points, _ = meshes.surface_arrays("drill", 16)
     a, b = meshes.field("drill", points, 0), meshes.field("drill", points, 1)

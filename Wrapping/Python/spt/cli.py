@@ -356,8 +356,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                else _FIGURES[arguments.figure])
     try:
         command(arguments)
-    except (OSError, ValueError) as error:
-        # Missing data sets, unwritable output folders, data the figures cannot use.
+    except (OSError, ValueError, RuntimeError) as error:
+        # Missing or unreadable data sets, unwritable output folders, data the figures cannot
+        # use, no OpenGL, a mesher that fails: each error says which and why.
         print(f"python3 -m spt: error: {error}", file=sys.stderr)
         return 1
     return 0

@@ -123,31 +123,36 @@ def _data_file(filename: str) -> str:
 # Readers: each returns a vtkDataSet with the wanted point array present
 # --------------------------------------------------------------------------
 
-def _read_legacy_ug(filename: str) -> vtkDataSet:
-    reader = vtkUnstructuredGridReader()
-    reader.SetFileName(_data_file(filename))
-    reader.ReadAllScalarsOn()
+class UnreadableDataError(RuntimeError):
+    """VTK's reader could not read a data file that is present."""
+
+
+def _read_legacy(reader, filename: str, all_scalars: bool = True) -> vtkDataSet:
+    """The output of one of VTK's legacy readers; UnreadableDataError, naming the file, when
+    the reader fails or reads no cells (a truncated file, or a Git LFS pointer in its place)."""
+    path = _data_file(filename)
+    reader.SetFileName(path)
+    if all_scalars:
+        reader.ReadAllScalarsOn()
     reader.Update()
-    return reader.GetOutput()
+    output = reader.GetOutput()
+    if reader.GetErrorCode() or output is None or output.GetNumberOfCells() == 0:
+        raise UnreadableDataError(
+            f"VTK's legacy reader read no cells from {path}: the file is damaged, truncated, "
+            "or not the data set itself (a Git LFS pointer, for one)")
+    return output
+
+
+def _read_legacy_ug(filename: str) -> vtkDataSet:
+    return _read_legacy(vtkUnstructuredGridReader(), filename)
 
 
 def _read_legacy_sg(filename: str) -> vtkDataSet:
-    reader = vtkStructuredGridReader()
-    reader.SetFileName(_data_file(filename))
-    reader.ReadAllScalarsOn()
-    reader.Update()
-    return reader.GetOutput()
+    return _read_legacy(vtkStructuredGridReader(), filename)
 
 
 def _read_legacy_image(filename: str) -> vtkDataSet:
-    reader = vtkStructuredPointsReader()
-    reader.SetFileName(_data_file(filename))
-    reader.Update()
-    return reader.GetOutput()
-
-
-class UnreadableDataError(RuntimeError):
-    """VTK's reader could not read a data file that is present."""
+    return _read_legacy(vtkStructuredPointsReader(), filename, all_scalars=False)
 
 
 def _read_xml_ug(filename: str) -> vtkDataSet:
@@ -211,7 +216,8 @@ def _read_plot3d(stem: str, function: Optional[int],
     reader.Update()
     grid = reader.GetOutput().GetBlock(0)
     if grid is None or grid.GetNumberOfCells() == 0:
-        raise RuntimeError(f"PLOT3D reader produced no grid for {stem}")
+        raise UnreadableDataError(f"VTK's PLOT3D reader read no grid from "
+                                  f"{_data_file(stem + 'xyz.bin')} and its q file")
     flag_hidden_cells(grid)
     return grid
 
@@ -290,7 +296,7 @@ def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
     (set as active scalars) and the ``spt_hidden`` cell array, if any."""
     scalars = dataset.GetPointData().GetArray(array_name)
     if scalars is None:
-        raise KeyError(f"point array {array_name!r} not found")
+        raise UnreadableDataError(f"the data set has no point array {array_name!r}")
     stripped = dataset.NewInstance()
     stripped.CopyStructure(dataset)
     stripped.GetPointData().AddArray(scalars)

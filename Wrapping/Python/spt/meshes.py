@@ -26,6 +26,7 @@ import math
 import os
 import pathlib
 import tempfile
+import warnings
 import zipfile
 from dataclasses import dataclass
 from typing import Callable, List, Optional, Tuple
@@ -435,7 +436,11 @@ def generate_arrays(shape: str, cells: int, seed: int = 0, cache: bool = True) -
     points, tetrahedra = tetrahedralize(shape, cells)
     mesh = MeshArrays(points, tetrahedra, field(shape, points, seed))
     if cache:
-        _save(path, mesh)
+        try:
+            _save(path, mesh)
+        except OSError as error:
+            # The cache only spares the next run the meshing; this mesh is still good.
+            warnings.warn(f"the mesh could not be cached at {path}: {error}", stacklevel=2)
     return mesh
 
 
