@@ -49,10 +49,11 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /**
-   * One unit of the sums' fixed point: 2^16, so that a sample's sums up to 65,536 fit in 32
-   * bits (the optical depth of thousands of nearly opaque segments; the colors of a group's
-   * repetitions, at most the group's size times the sum of the opacities along the ray), with
-   * a rounding of 2^-17 per term.
+   * One unit of the sums' fixed point: 2^16, so that a sample's sums within +-32,768 fit in
+   * 32 bits as signed integers (the optical depth of about 2,000 nearly opaque segments; the
+   * colors of a group's repetitions, at most the group's size times the sum of the opacities
+   * along the ray; a depth slab's control variate may subtract), with a rounding of 2^-17 per
+   * term.
    */
   static constexpr double FixedPointOne = 65536.0;
 

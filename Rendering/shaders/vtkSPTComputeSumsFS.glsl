@@ -6,14 +6,14 @@
 // 0 to 3 into the first target and, with SPT_SECOND_HALF, layers 4 to 7 into the second.
 //SPT::Defines::Dec
 in vec2 texCoord;
-uniform usampler3D sums; // (term, pixel): fixed point, SPT_FIXED_ONE per unit
+uniform usampler3D sums; // (term, pixel): signed fixed point, SPT_FIXED_ONE per unit
 
 vec4 sumsAt(int layer, ivec2 pixel)
 {
-  return vec4(texelFetch(sums, ivec3(layer, pixel), 0).r,
-           texelFetch(sums, ivec3(layer + 1, pixel), 0).r,
-           texelFetch(sums, ivec3(layer + 2, pixel), 0).r,
-           texelFetch(sums, ivec3(layer + 3, pixel), 0).r) /
+  return vec4(int(texelFetch(sums, ivec3(layer, pixel), 0).r),
+           int(texelFetch(sums, ivec3(layer + 1, pixel), 0).r),
+           int(texelFetch(sums, ivec3(layer + 2, pixel), 0).r),
+           int(texelFetch(sums, ivec3(layer + 3, pixel), 0).r)) /
     SPT_FIXED_ONE;
 }
 

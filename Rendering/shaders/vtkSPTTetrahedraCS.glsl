@@ -19,15 +19,17 @@ uniform int cellCount;
 #if defined(SPT_WRITE_COVERAGE) || defined(SPT_COMPUTE_COLORS)
 layout(r32ui) coherent uniform uimage3D sums; // (term, pixel): fixed point
 
-// Add four non-negative terms to the sums of layers [layer, layer + 4) of a sample.
+// Add four terms to the sums of layers [layer, layer + 4) of a sample. A term may be negative
+// (a depth slab's control variate shifts colors): its two's complement, added modulo 2^32,
+// subtracts it, and the sums are read as signed integers (vtkSPTComputeSumsFS.glsl).
 void addToSums(int layer, vec4 terms, ivec2 pixel)
 {
-  uvec4 fixedTerms = uvec4(round(terms * SPT_FIXED_ONE));
+  ivec4 fixedTerms = ivec4(round(terms * SPT_FIXED_ONE));
   for (int k = 0; k < 4; ++k)
   {
-    if (fixedTerms[k] != 0u)
+    if (fixedTerms[k] != 0)
     {
-      imageAtomicAdd(sums, ivec3(layer + k, pixel), fixedTerms[k]);
+      imageAtomicAdd(sums, ivec3(layer + k, pixel), uint(fixedTerms[k]));
     }
   }
 }
