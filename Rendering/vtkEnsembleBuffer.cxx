@@ -353,14 +353,28 @@ bool vtkEnsembleBuffer::BeginCoveragePass()
       return false;
     }
   }
+  this->BindCoverage();
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  return true;
+}
+
+bool vtkEnsembleBuffer::BindCoverage()
+{
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
+    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
   this->CoverageFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   this->CoverageFramebuffer->ActivateDrawBuffers(1);
   ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it
   ostate->vtkglViewport(0, 0, w, h);
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
   return true;
 }
 

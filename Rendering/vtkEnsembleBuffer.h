@@ -105,6 +105,12 @@ public:
   bool BeginCoveragePass();
 
   /**
+   * Bind the coverage buffer for drawing as BeginCoveragePass() does, without clearing it,
+   * for a pass that changes what it holds. False if it is not allocated at the pass's size.
+   */
+  bool BindCoverage();
+
+  /**
    * Bind the sum for drawing, as BeginSumPass() does but without the passes' depth buffer, so
    * that the caller can read it (GetPassDepthTexture()). With `coverage`, the coverage buffer
    * is allocated and cleared as BeginCoveragePass() does and bound as draw buffer 1, for a

@@ -10,6 +10,12 @@
  * minimum it holds. Two traversals for N repetitions instead of N, and the result is the same
  * image as N single passes with the same random numbers.
  *
+ * With depth slabs (vtkSPTVolumeMapper::SetDepthSlabs()), each sample has one run of layers
+ * per slab, slab after slab, and a second r32ui image holds per sample and slab the
+ * SlabTerms sums of its segments' optical depth tau and tau-weighted color (tau, tau r,
+ * tau g, tau b), in fixed point (GetSlabFixedOne() per unit), which DrawSlabsMeanColor()
+ * turns into what the color traversals weight and correct a slab's segments with.
+ *
  * Private helper of the SPT module; not wrapped.
  */
 
@@ -21,6 +27,7 @@
 #include "vtkObject.h"
 
 #include <memory> // For the quad
+#include <string> // For the slabs' defines
 #include <vector> // For Read()
 
 class vtkOpenGLQuadHelper;
@@ -42,11 +49,31 @@ public:
   static bool IsSupported(vtkOpenGLRenderWindow* renWin);
 
   /**
-   * Size the buffer: width x height samples, one layer per repetition of a pass. The texture
-   * holds GetCompiledLanes(layers) layers, and reallocates only when that, the size or the
-   * context changes. Returns false (with an error) when the texture cannot be allocated.
+   * Size the buffer: width x height samples, one layer per repetition of a pass and depth
+   * slab. The texture holds GetCompiledLanes(layers) layers per slab, and reallocates only
+   * when that, the size or the context changes; the slabs' optical depths only when the size,
+   * the slabs or the context change, so that they last for the frames of one image. Returns
+   * false (with an error) when a texture cannot be allocated.
    */
-  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers);
+  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers, int slabs = 1);
+
+  /**
+   * The fixed-point unit of the slabs' optical depths: their sums are the same in any order.
+   */
+  static constexpr unsigned int GetSlabFixedOne() { return 1u << 16; }
+
+  /// The sums per slab and sample: tau and the three of tau times color.
+  static constexpr int SlabTerms = 4;
+
+  ///@{
+  /**
+   * Set every slab's sums to zero, and bind them as image unit `unit` (with Prepare()'s
+   * slabs > 1).
+   */
+  void ClearSlabs();
+  void BindSlabImage(int unit);
+
+  ///@}
 
   /**
    * The repetitions a shader is compiled for when it draws `repetitions` at once: the next
@@ -74,23 +101,41 @@ public:
    * One full-screen pass over the keys bound as image unit `unit`, between a group's keys
    * traversal and its color traversal, for the first `repetitions` layers:
    * - with `sortKeys`, sort each sample's keys in increasing order, layers [0, secondHalfFrom)
-   *   and [secondHalfFrom, repetitions) apart (a color traversal that only counts the
-   *   survivors behind a fragment then needs log2(repetitions) loads, not one per layer);
+   *   and [secondHalfFrom, repetitions) apart (of each slab) (a color traversal that only counts
+   * the survivors behind a fragment then needs log2(repetitions) loads, not one per layer);
    * - write into the bound framebuffer's depth, per sample, a depth no nearer than the nearest
-   *   survivor of each layer (the far plane where one kept nothing). A traversal that tests
-   *   against it skips the fragments behind all the survivors before shading them. The caller
-   *   sets the depth test and mask, or disables the test when it wants no depth.
+   *   survivor of each layer (the far plane where one kept nothing); with slabs, of each
+   *   layer of the last slab that holds segments, as the slabs' controls bound as image unit
+   *   `slabsUnit` tell (DrawSlabsMeanColor()). A traversal that tests against it skips the
+   *   fragments behind all the survivors before shading them. The caller sets the depth test
+   *   and mask, or disables the test when it wants no depth.
    * False if the shader does not compile.
    */
-  bool PrepareSurvivors(int unit, int repetitions, int secondHalfFrom, bool sortKeys);
+  bool PrepareSurvivors(
+    int unit, int slabsUnit, int repetitions, int secondHalfFrom, bool sortKeys);
+
+  /**
+   * One full-screen pass (vtkSPTSlabsMeanFS.glsl) over the slabs' sums bound as image unit
+   * `unit`: it turns them into the slabs' controls, in place, and writes into the bound
+   * framebuffer the mean color of the slabs' control variate per sample. `defines` are the
+   * slabs' shader defines. The caller sets the blending. False if the shader does not compile.
+   */
+  bool DrawSlabsMeanColor(int unit, const std::string& defines);
+
+  /// The depth slabs of the last Prepare(); each has GetCompiledLanes(layers) layers.
+  int GetSlabs() const { return this->Slabs; }
 
   ///@{
   /**
    * Read the keys of the layers in use back to the host (sample by sample, each sample's
-   * layers in order), and write keys of the same size back; for reductions across processes.
+   * layers in order; with slabs, all allocated layers), and write keys of the same size back;
+   * for reductions across processes.
    */
   std::vector<unsigned int> Read();
   void Write(const std::vector<unsigned int>& keys);
+  /// The same for the slabs' sums (sample by sample, each sample's slabs and terms in order).
+  std::vector<unsigned int> ReadSlabs();
+  void WriteSlabs(const std::vector<unsigned int>& sums);
   ///@}
 
   /**
@@ -111,11 +156,20 @@ private:
   vtkOpenGLRenderWindow* Context = nullptr;
   int Width = 0;
   int Height = 0;
-  int Layers = 0;          // in use: the group's repetitions
-  int AllocatedLayers = 0; // held: GetCompiledLanes(Layers)
+  int Layers = 0;          // in use: the group's repetitions (all allocated ones with slabs)
+  int AllocatedLayers = 0; // held: GetCompiledLanes(repetitions) per slab
+  int Slabs = 1;
   vtkNew<vtkTextureObject> Keys;
+  vtkNew<vtkTextureObject> SlabDepths; // (SlabTerms * slab + term, sample): sums, controls
+  int SlabWidth = 0;
+  int SlabHeight = 0;
+  int SlabCount = 0; // of the allocated SlabDepths
+  std::unique_ptr<vtkOpenGLQuadHelper> SlabsMean;
+  std::string SlabsMeanDefines;                      // what SlabsMean is compiled with
   std::unique_ptr<vtkOpenGLQuadHelper> Survivors[2]; // by sortKeys
   int SurvivorsLanes[2] = { 0, 0 };                  // what each is compiled for
+  int SurvivorsSlabs[2] = { 1, 1 };
+  bool PrepareSlabs(vtkOpenGLRenderWindow* renWin, int width, int height, int slabs);
 };
 
 #endif

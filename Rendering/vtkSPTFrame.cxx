@@ -17,6 +17,7 @@
 #include "vtkVolumeViewMatrices.h"
 
 #include "vtkHashRandom.h"
+#include "vtkSPTDepthSlabs.h"
 #include "vtkSPTFacePlane.h"
 #include "vtkSPTPassColorsFS.h"
 #include "vtkSPTPassCoverageFS.h"
@@ -42,6 +43,11 @@ namespace
 constexpr int DepthKeyImageUnit = 0;
 // The compute traversal's fixed-point sums.
 constexpr int SumsImageUnit = 1;
+// The depth slabs' sums, then their controls.
+constexpr int SlabDepthsImageUnit = 2;
+// A slab whose optical depth reaches this hides what lies behind it to within float precision
+// (exp(-40) = 4e-18): it adds no more.
+constexpr int SlabDepthCap = 40;
 // The compute traversal takes the cells drawn as points that are about this many pixels across
 // or less: an invocation loops over its cell's samples and each sample's lanes, and invocations
 // whose loops differ in length run side by side, where a point's fragments are neighbours with
@@ -113,7 +119,61 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
   {
     this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
   }
+  this->FrameSettings.DepthSlabs =
+    std::max(1, std::min(this->FrameSettings.DepthSlabs, MaximumDepthSlabs));
   this->ChooseSmallCells();
+  this->ChooseSlabs();
+}
+
+void vtkSPTFrame::ChooseSlabs()
+{
+  // Any split of each ray between its segments composites exactly in expectation; equal parts
+  // of the depth the volumes' bounds span within the clipping range are a split that every
+  // volume of the frame (and every rank, whose bounds are the whole's) agrees on.
+  const int slabs = this->FrameSettings.DepthSlabs;
+  std::fill(std::begin(this->SlabStarts), std::end(this->SlabStarts), 2.0f);
+  if (slabs <= 1 || this->Volumes.empty())
+  {
+    return;
+  }
+  const vtkVolumeViewMatrices& view = *this->Volumes.front().Matrices;
+  double nearest = VTK_DOUBLE_MAX;
+  double farthest = -VTK_DOUBLE_MAX;
+  for (const Volume& volume : this->Volumes)
+  {
+    nearest = std::min(nearest, volume.Matrices->BoundsDistance[0]);
+    farthest = std::max(farthest, volume.Matrices->BoundsDistance[1]);
+  }
+  nearest = std::max(nearest, view.ClippingDistance[0]);
+  farthest = std::min(farthest, view.ClippingDistance[1]);
+  if (!(nearest < farthest) || view.ViewScale <= 0.0)
+  {
+    return; // nothing in view: one slab
+  }
+  for (int k = 1; k < slabs; ++k)
+  {
+    const double distance = nearest + (farthest - nearest) * k / slabs;
+    // The window depth of that distance, through the first volume's projection.
+    const double z = -distance / view.ViewScale;
+    const double clipZ = view.ViewToClip[2][2] * z + view.ViewToClip[2][3];
+    const double clipW = view.ViewToClip[3][2] * z + view.ViewToClip[3][3];
+    const double depth = clipW != 0.0 ? 0.5 * clipZ / clipW + 0.5 : 2.0;
+    this->SlabStarts[k - 1] = static_cast<float>(std::max(0.0, std::min(depth, 1.0)));
+  }
+}
+
+std::string vtkSPTFrame::SlabDefines(PassKind kind) const
+{
+  const bool groups =
+    kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
+  if (!groups || this->FrameSettings.DepthSlabs <= 1)
+  {
+    return "";
+  }
+  return "#define SPT_DEPTH_SLABS " + std::to_string(this->FrameSettings.DepthSlabs) +
+    "\n#define SPT_SLAB_FIXED_ONE " + std::to_string(vtkSPTDepthKeyBuffer::GetSlabFixedOne()) +
+    "u\n#define SPT_SLAB_DEPTH_CAP " + std::to_string(SlabDepthCap) + "u\n#define SPT_SLAB_TERMS " +
+    std::to_string(vtkSPTDepthKeyBuffer::SlabTerms) + "\n";
 }
 
 void vtkSPTFrame::ChooseSmallCells()
@@ -201,7 +261,8 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
   vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
 
-  std::string defines = common + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  std::string defines =
+    common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
   if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
   {
     defines += "\n#define SPT_WRITE_COVERAGE";
@@ -218,10 +279,14 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   const bool atomics =
     kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
   std::string fragment = vtkSPTTetrahedraFS;
+  // The slabs' controls are kept as float bits in an integer image.
+  const std::string slabs =
+    this->SlabDefines(kind).empty() ? "" : "\n#extension GL_ARB_shader_bit_encoding : require";
   vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
-    atomics ? "#extension GL_ARB_shader_image_load_store : require" : "");
+    atomics ? "#extension GL_ARB_shader_image_load_store : require" + slabs : "");
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
   vtkShaderProgram::Substitute(fragment, "//SPT::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
   return this->Window->GetShaderCache()->ReadyShaderProgram(
     vertex.c_str(), fragment.c_str(), geometry.c_str());
@@ -236,6 +301,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
   defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += this->SlabDefines(kind);
   defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
   defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
   defines += colors ? "#define SPT_COMPUTE_COLORS\n" : "";
@@ -251,6 +317,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   vtkShaderProgram::Substitute(source, "//VTK::Output::Dec", "");
   vtkShaderProgram::Substitute(source, "//SPT::Pass::Dec", defines);
   vtkShaderProgram::Substitute(source, "//SPT::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(source, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
   vtkShaderProgram::Substitute(source, "//SPT::Pass::Impl",
     std::string(colors ? vtkSPTPassColorsFS : vtkSPTPassKeysFS) + vtkSPTTetrahedraCS);
   vtkShaderProgram::Substitute(source, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
@@ -468,10 +535,12 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // combine keys, the error target counts two halves, or a compute pass takes most of the
   // cells: there a group of one, whose keys and colors it computes, costs less than two
   // rasterized traversals).
+  // Depth slabs need a survivor per slab: keys, whatever the repetitions, except for the
+  // paper's single passes.
   const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys;
   const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
   const bool depthSurvivors = oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR &&
-    !halves && !this->ComputesMostCells();
+    !halves && !this->ComputesMostCells() && this->FrameSettings.DepthSlabs == 1;
   const bool keys = !single && !depthSurvivors;
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,
@@ -484,8 +553,8 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   if (!this->ReadyPrograms(
         needed, vtkSPTDepthKeyBuffer::GetCompiledLanes(lanes), first, count, halves) ||
     (keys &&
-      !this->DepthKeys->Prepare(
-        this->Window, this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight(), lanes)))
+      !this->DepthKeys->Prepare(this->Window, this->Ensemble->GetPassWidth(),
+        this->Ensemble->GetPassHeight(), lanes, this->FrameSettings.DepthSlabs)))
   {
     return false;
   }
@@ -609,6 +678,17 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   ostate->vtkglDisable(GL_DEPTH_TEST);
   ostate->vtkglDepthMask(GL_FALSE);
   this->DepthKeys->BindImage(DepthKeyImageUnit);
+  const bool slabs = this->FrameSettings.DepthSlabs > 1;
+  if (slabs)
+  {
+    // Drawn with the coverage, in the image's first key traversal; kept for its later groups
+    // and frames.
+    if (coverage)
+    {
+      this->DepthKeys->ClearSlabs();
+    }
+    this->DepthKeys->BindSlabImage(SlabDepthsImageUnit);
+  }
   bool ok = true;
   for (int r = first; ok && r < first + count; r += perPass)
   {
@@ -633,8 +713,12 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
     ok = ok && this->TraverseAdding(keysKind, r, inGroup, withCoverage, false);
     if (ok && this->FrameSettings.AfterKeys)
     {
-      ok = this->FrameSettings.AfterKeys(this->DepthKeys);
+      ok = this->FrameSettings.AfterKeys(this->DepthKeys, slabs && withCoverage);
       vtkSPTDepthKeyBuffer::Barrier();
+    }
+    if (ok && slabs && withCoverage)
+    {
+      ok = this->WriteSlabsMeanColor();
     }
     if (ok)
     {
@@ -656,10 +740,39 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
     }
   }
   vtkSPTDepthKeyBuffer::UnbindImage(DepthKeyImageUnit);
+  if (slabs)
+  {
+    vtkSPTDepthKeyBuffer::UnbindImage(SlabDepthsImageUnit);
+  }
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDepthMask(GL_TRUE);
   return ok;
+}
+
+bool vtkSPTFrame::WriteSlabsMeanColor()
+{
+  // The coverage's color becomes m * sum(tau) (vtkSPTSlabsMeanFS.glsl): blended, it is read
+  // nowhere while it is written.
+  vtkOpenGLState* ostate = this->Window->GetState();
+  if (!this->Ensemble->BindCoverage())
+  {
+    vtkErrorWithObjectMacro(this->Reporter, "The coverage of the depth slabs is not allocated.");
+    return false;
+  }
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendFuncSeparate(GL_DST_ALPHA, GL_ZERO, GL_ZERO, GL_ONE);
+  const bool written =
+    this->DepthKeys->DrawSlabsMeanColor(SlabDepthsImageUnit, this->SlabDefines(PassKind::Colors));
+  vtkSPTDepthKeyBuffer::Barrier();
+  if (!written)
+  {
+    vtkErrorWithObjectMacro(this->Reporter,
+      "Could not compile the shader of the depth slabs' mean color; the frame is not drawn.");
+  }
+  return written;
 }
 
 bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled)
@@ -684,8 +797,8 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled
     ostate->vtkglDepthFunc(GL_ALWAYS);
     ostate->vtkglDepthMask(GL_TRUE);
   }
-  const bool done =
-    this->DepthKeys->PrepareSurvivors(DepthKeyImageUnit, inGroup, secondHalfFrom, sortKeys);
+  const bool done = this->DepthKeys->PrepareSurvivors(
+    DepthKeyImageUnit, SlabDepthsImageUnit, inGroup, secondHalfFrom, sortKeys);
   vtkSPTDepthKeyBuffer::Barrier();
   if (!cull || !done)
   {
@@ -805,6 +918,15 @@ void vtkSPTFrame::SetFrameUniforms(
   if (program->IsUniformUsed("depthKeys"))
   {
     program->SetUniformi("depthKeys", DepthKeyImageUnit);
+  }
+  if (program->IsUniformUsed("slabSums"))
+  {
+    program->SetUniformi("slabSums", SlabDepthsImageUnit);
+  }
+  if (program->IsUniformUsed("slabStartsLow"))
+  {
+    program->SetUniform4f("slabStartsLow", this->SlabStarts);
+    program->SetUniform4f("slabStartsHigh", this->SlabStarts + 4);
   }
 }
 

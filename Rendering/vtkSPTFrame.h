@@ -25,6 +25,7 @@
 
 #include <cstddef>    // For size_t
 #include <functional> // For the keys' reduction
+#include <string>     // For the shaders' defines
 #include <vector>     // For the volumes
 
 class vtkObject;
@@ -88,15 +89,20 @@ public:
     /// Draw even one repetition per traversal with depth keys, never the single passes.
     bool AlwaysKeys = false;
     /// Called after each key traversal, before the color traversal reads the keys (the ranks
-    /// of a parallel render take their minimum there); false stops the frame.
-    std::function<bool(vtkSPTDepthKeyBuffer*)> AfterKeys;
+    /// of a parallel render take their minimum there, and with `slabsDrawn`, the sum of the
+    /// depth slabs' optical depths that traversal drew); false stops the frame.
+    std::function<bool(vtkSPTDepthKeyBuffer*, bool slabsDrawn)> AfterKeys;
     /// Where set, a group's keys and color traversals visit the cells drawn as points in a compute
     /// pass (vtkSPTComputeTraversal) instead of rasterizing their points.
     vtkSPTComputeTraversal* Compute = nullptr;
     /// With Compute: every cell drawn as a point, rather than only the smallest ones where they
     /// are many.
     bool ComputeEveryPoint = false;
+    /// The depth slabs of a group's traversals (1 to 8; see vtkSPTVolumeMapper::SetDepthSlabs()).
+    /// Their optical depths are drawn with the coverage, before any color traversal of the image.
+    int DepthSlabs = 1;
   };
+  static constexpr int MaximumDepthSlabs = 8;
 
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
     vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
@@ -163,6 +169,9 @@ public:
   static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
     bool coverage, double target, TargetState& state);
 
+  /// The depth slabs this frame draws (Settings::DepthSlabs, clamped).
+  int GetDepthSlabs() const { return this->FrameSettings.DepthSlabs; }
+
   /// How many tetrahedra of a volume the traversals draw as points.
   vtkIdType GetPointCellCount(size_t volume) const;
 
@@ -207,6 +216,15 @@ private:
   // could not be sorted: the color traversal would count the survivors wrongly.
   bool PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled);
   void SetFrameUniforms(vtkShaderProgram* program, int first, int count, bool halves) const;
+  // After the image's coverage and slab sums: the coverage's color becomes the slabs' mean
+  // color times its optical depth (vtkSPTSlabsMeanFS.glsl). False if its shader fails.
+  bool WriteSlabsMeanColor();
+  // The defines of a pass kind's depth slabs; empty for one slab or a kind without them.
+  std::string SlabDefines(PassKind kind) const;
+  // Split the depth range of the volumes' bounds, as the camera sees it, into equal slabs.
+  void ChooseSlabs();
+  // The window depths where slabs 1 to 7 start, and 2 where none does (two vec4 uniforms).
+  float SlabStarts[MaximumDepthSlabs] = { 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f, 2.0f };
   static void SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume);
 
   vtkOpenGLRenderWindow* Window;

@@ -3,6 +3,7 @@
 #include "vtkMultiProcessController.h"
 
 #include "vtkEnsembleBuffer.h"
+#include "vtkSPTDepthKeyBuffer.h"
 #include "vtkSPTParallelReduction.h"
 
 #include <algorithm>
@@ -23,10 +24,11 @@ vtkSPTFrame::Settings vtkSPTParallelFrame::WithExchanges(
   vtkSPTFrame::Settings settings, vtkSPTParallelReduction* reduction, int* exchanges)
 {
   settings.AlwaysKeys = true; // the keys are what the ranks combine
-  settings.AfterKeys = [reduction, exchanges](vtkSPTDepthKeyBuffer* keys)
+  settings.AfterKeys = [reduction, exchanges](vtkSPTDepthKeyBuffer* keys, bool slabsDrawn)
   {
     ++*exchanges;
-    return reduction->ReduceKeys(keys);
+    const bool reduced = reduction->ReduceKeys(keys);
+    return (!slabsDrawn || reduction->ReduceSlabs(keys)) && reduced;
   };
   return settings;
 }
@@ -35,13 +37,23 @@ void vtkSPTParallelFrame::Draw(int first, int count, int perPass, bool coverage,
 {
   const int before = this->Exchanges;
   this->Ok = this->Ok && this->Frame.DrawRepetitions(first, count, perPass, coverage, halves);
-  // The exchanges the other ranks make: one per group of `lanes` repetitions. A rank whose
-  // drawing failed (before or within its groups) makes those it missed with nothing kept.
+  // The exchanges the other ranks make: one per group of `lanes` repetitions, and with depth
+  // slabs, the first group's slab sums with the coverage. A rank whose drawing failed (before
+  // or within its groups) makes those it missed with nothing kept.
   const int lanes = std::max(1, std::min(perPass, count));
   const int groups = (count + lanes - 1) / lanes;
+  const int slabs = this->Frame.GetDepthSlabs();
   for (; this->Exchanges - before < groups; ++this->Exchanges)
   {
-    this->Reduction->ReduceNothingKept(this->Samples * size_t(lanes));
+    const size_t layers = slabs > 1
+      ? size_t(vtkSPTDepthKeyBuffer::GetCompiledLanes(lanes)) * size_t(slabs)
+      : size_t(lanes);
+    this->Reduction->ReduceNothingKept(this->Samples * layers);
+    if (slabs > 1 && coverage && this->Exchanges == before)
+    {
+      this->Reduction->ReduceNoSlabs(
+        this->Samples * size_t(vtkSPTDepthKeyBuffer::SlabTerms * slabs));
+    }
   }
   this->SumsPending = true;
   this->CoveragePending = this->CoveragePending || coverage;

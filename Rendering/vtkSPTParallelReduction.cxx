@@ -290,6 +290,29 @@ bool vtkSPTParallelReduction::ReduceNothingKept(size_t keys)
            local.data(), global.data(), vtkIdType(keys), vtkCommunicator::MIN_OP) != 0;
 }
 
+bool vtkSPTParallelReduction::ReduceSlabs(vtkSPTDepthKeyBuffer* keys)
+{
+  const std::vector<unsigned int> local = keys->ReadSlabs();
+  std::vector<unsigned int> global(local.size());
+  if (!this->Controller->AllReduce(
+        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::SUM_OP))
+  {
+    return false;
+  }
+  this->Bytes += local.size() * sizeof(unsigned int);
+  keys->WriteSlabs(global);
+  return true;
+}
+
+bool vtkSPTParallelReduction::ReduceNoSlabs(size_t sums)
+{
+  const std::vector<unsigned int> local(sums, 0u);
+  std::vector<unsigned int> global(sums);
+  this->Bytes += sums * sizeof(unsigned int);
+  return this->Controller->AllReduce(
+           local.data(), global.data(), vtkIdType(sums), vtkCommunicator::SUM_OP) != 0;
+}
+
 bool vtkSPTParallelReduction::AllSucceeded(bool ok)
 {
   const int local = ok ? 1 : 0;

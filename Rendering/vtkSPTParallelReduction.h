@@ -130,6 +130,13 @@ public:
   /// This rank's part of a key reduction it could not draw: `keys` keys of "nothing kept".
   bool ReduceNothingKept(size_t keys);
 
+  /// The sum of the depth slabs' optical depths (fixed point, the same in any order), on
+  /// every rank. Collective.
+  bool ReduceSlabs(vtkSPTDepthKeyBuffer* keys);
+
+  /// This rank's part of a slab reduction it could not draw: `sums` zeros.
+  bool ReduceNoSlabs(size_t sums);
+
   /// Whether `ok` holds on every rank. Collective.
   bool AllSucceeded(bool ok);
 

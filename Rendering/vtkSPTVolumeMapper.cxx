@@ -36,16 +36,29 @@
 vtkStandardNewMacro(vtkSPTVolumeMapper);
 
 int vtkSPTVolumeMapper::vtkInternals::RepetitionsPerTraversal(
-  int asked, const vtkEnsembleBuffer* ensemble)
+  int asked, const vtkEnsembleBuffer* ensemble, int slabs)
 {
   // A traversal of many repetitions costs little more than one of a single repetition, so at
   // the sizes where memory allows, a frame of 256 repetitions is one pair of traversals
-  // instead of sixteen.
+  // instead of sixteen. Depth slabs share the keys' memory.
   constexpr size_t budget = size_t(128) << 20;
   const size_t samples =
     std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
-  const int fits = static_cast<int>(std::min<size_t>(budget / (4 * samples), 256));
-  return std::min(asked, std::max(fits, 16));
+  const size_t perSlab = budget / (4 * samples * size_t(std::max(slabs, 1)));
+  const int fits = static_cast<int>(std::min<size_t>(perSlab, 256));
+  return std::min(asked, std::max(fits, 16 / std::max(slabs, 1)));
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DepthSlabsThatFit(
+  int asked, const vtkEnsembleBuffer* ensemble)
+{
+  // The slabs' sums take 16 bytes per slab and sample, besides the keys: at most 128 MB, so
+  // that a large image draws fewer slabs (the same expectation, more noise) rather than fail.
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const size_t perSlab = 4 * size_t(vtkSPTDepthKeyBuffer::SlabTerms) * samples;
+  return static_cast<int>(std::max<size_t>(1, std::min<size_t>(size_t(asked), budget / perSlab)));
 }
 
 vtkSPTVolumeMapper::vtkSPTVolumeMapper()
@@ -205,7 +218,9 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
   // The survivors of several repetitions per traversal, and every repetition of the visibility
   // estimator, are found with image atomics; without them, one survivor per traversal.
   settings.Estimator = self->Estimator;
-  if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR) &&
+  settings.DepthSlabs = 1;
+  if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR ||
+        self->DepthSlabs > 1) &&
     !vtkSPTDepthKeyBuffer::IsSupported(renWin))
   {
     if (self->Estimator != SURVIVOR_ESTIMATOR && !this->WarnedNoImageAtomics)
@@ -214,6 +229,12 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
         "The visibility estimator needs image load/store (OpenGL 4.4); drawing with the "
         "survivor estimator.");
       this->WarnedNoImageAtomics = true;
+    }
+    if (self->DepthSlabs > 1 && !this->WarnedNoSlabs)
+    {
+      vtkWarningWithObjectMacro(
+        self, "Depth slabs need image load/store (OpenGL 4.4); drawing without them.");
+      this->WarnedNoSlabs = true;
     }
     settings.Estimator = SURVIVOR_ESTIMATOR;
     return 1;
@@ -230,12 +251,14 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
             << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
             << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
-    if (self->TargetError > 0.0)
+    if (self->TargetError > 0.0 || self->DepthSlabs > 1)
     {
-      vtkErrorWithObjectMacro(self, << message.str()
-                                    << ". TargetError needs them: nothing is drawn. Render a "
-                                       "smaller image (the viewport times SubpixelLevel), or "
-                                       "set TargetError to 0.");
+      const char* setting = self->TargetError > 0.0 ? "TargetError" : "DepthSlabs";
+      const char* off = self->TargetError > 0.0 ? "0" : "1";
+      vtkErrorWithObjectMacro(self, << message.str() << ". " << setting
+                                    << " needs them: nothing is drawn. Render a smaller image "
+                                       "(the viewport times SubpixelLevel), or set "
+                                    << setting << " to " << off << ".");
     }
     else
     {
@@ -245,11 +268,13 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     }
   }
   this->WarnedLargeImage = !keysFit;
-  if (!keysFit && self->TargetError > 0.0)
+  if (!keysFit && (self->TargetError > 0.0 || self->DepthSlabs > 1))
   {
     return 0;
   }
-  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble) : 1;
+  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
+                 : 1;
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
@@ -312,8 +337,10 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
   // it, and a new accumulation starts without it.
+  // Depth slabs weight their colors by the slabs' optical depths, which the coverage
+  // traversal adds up: drawn for them even without the exact coverage.
   const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
-  plan.Coverage = self->ExactCoverage && !coverageDrawn && !plan.Cheapest;
+  plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
   return plan;
 }
 
@@ -367,6 +394,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.DepthSlabs = 1;
   }
   settings.StratifiedSampling = this->StratifiedSampling != 0;
   settings.SmallCellSize = this->SmallCellSize;
@@ -465,6 +493,7 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ComputeTraversal: " << computeModes[this->ComputeTraversal] << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
   os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
+  os << indent << "DepthSlabs: " << this->DepthSlabs << "\n";
   os << indent
      << "Estimator: " << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility")
      << "\n";

@@ -42,6 +42,7 @@ public:
 
   vtkSPTFrame::TargetState Target; // progress towards TargetError
   bool WarnedNoImageAtomics = false;
+  bool WarnedNoSlabs = false;
   bool WarnedLargeImage = false; // while the pass is too large for the depth keys
   bool CoverageDrawn = false;    // the coverage buffer belongs to the accumulated sum
   // Rank 0's: the opaque scene of all ranks, composited when the accumulation started, that
@@ -69,7 +70,9 @@ public:
 
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
   // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
-  static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble);
+  static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble, int slabs);
+  // The depth slabs, of `asked`, whose sums fit the memory allotted to them.
+  static int DepthSlabsThatFit(int asked, const vtkEnsembleBuffer* ensemble);
   // Repetitions per traversal that the context and the image size allow, and the estimator
   // with them; 0 (with an error) when the frame cannot be drawn.
   int ChooseTraversal(

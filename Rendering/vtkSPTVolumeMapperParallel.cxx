@@ -62,7 +62,7 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
     { "RepetitionsPerPass", self->RepetitionsPerPass }, { "SmallCellSize", self->SmallCellSize },
     { "Seed", self->Seed }, { "SubpixelLevel", self->SubpixelLevel },
     { "Estimator", self->Estimator }, { "ExactCoverage", self->ExactCoverage ? 1 : 0 },
-    { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
+    { "DepthSlabs", self->DepthSlabs }, { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
     { "ReuseNoiseEstimate", self->ReuseNoiseEstimate ? 1 : 0 },
     { "TargetError", self->TargetError },
     { "ProgressiveRefinement", self->ProgressiveRefinement ? 1 : 0 },
@@ -257,7 +257,7 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
                                : Traversal::Single;
   plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
   const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
-  plan.Coverage = self->ExactCoverage && !coverageDrawn && !plan.Cheapest;
+  plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
   return plan;
 }
 
@@ -284,11 +284,14 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vt
     : nullptr;
   settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;
   // Every rank has the same ensemble size, so the same repetitions per traversal.
-  const int perPass = RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble());
+  settings.DepthSlabs = DepthSlabsThatFit(self->DepthSlabs, self->GetEnsemble());
+  const int perPass =
+    RepetitionsPerTraversal(self->RepetitionsPerPass, self->GetEnsemble(), settings.DepthSlabs);
   const FramePlan plan = this->PlanParallel(self, vol, perPass, Signature(ren, all, target));
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR; // one repetition per group, with keys
+    settings.DepthSlabs = 1;                 // and no coverage for the slabs
   }
   this->DrawParallelFrame(self, target, volumes, owners, all, settings, plan);
   vtkOpenGLCheckErrorMacro("failed after Render");

@@ -194,6 +194,26 @@ void vtkVolumeViewMatrices::Compute(
   this->NearPlaneCutsBounds = box.NearCut;
   ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
     this->NDCPerLength, this->TypicalNDCPerLength);
+  const double* bounds = mesh->GetNormalizedBounds();
+  this->BoundsDistance[0] = VTK_DOUBLE_MAX;
+  this->BoundsDistance[1] = -VTK_DOUBLE_MAX;
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const double point[3] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
+      bounds[4 + ((corner >> 2) & 1)] };
+    const double* row = this->ModelToView[2];
+    const double distance =
+      -(row[0] * point[0] + row[1] * point[1] + row[2] * point[2] + row[3]) * this->ViewScale;
+    this->BoundsDistance[0] = std::min(this->BoundsDistance[0], distance);
+    this->BoundsDistance[1] = std::max(this->BoundsDistance[1], distance);
+  }
+  for (int side = 0; side < 2; ++side)
+  {
+    const double ndc[4] = { 0.0, 0.0, side == 0 ? -1.0 : 1.0, 1.0 };
+    double view[4];
+    clipToView->MultiplyPoint(ndc, view);
+    this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
+  }
   vtkMath::Invert3x3(linear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)
   {

@@ -45,6 +45,10 @@ struct SPTRENDERING_EXPORT vtkVolumeViewMatrices
   /// The same for a segment across the view at the depth of the bounds' centre: the typical
   /// extent rather than a bound (zero when the near plane cuts the bounds).
   double TypicalNDCPerLength[2] = { 0.0, 0.0 };
+  /// The distances along the view direction (camera units, in front of the eye positive) of
+  /// the mesh's bounds' nearest and farthest corners, and of the near and far planes.
+  double BoundsDistance[2] = { 0.0, 0.0 };
+  double ClippingDistance[2] = { 0.0, 1.0 };
   /// Whether model -> view mirrors space (negative determinant), which swaps the facing of
   /// triangles on the screen.
   bool Mirrored = false;

@@ -8,7 +8,10 @@
 // - otherwise (the survivor estimator), its color written opaque once for each repetition
 //   whose survivor it is.
 // With SPT_SECOND_HALF (the ensemble's noise is estimated), what the repetitions from
-// secondHalfStart on add also goes to the second half's sum (the second draw buffer). Which
+// secondHalfStart on add also goes to the second half's sum (the second draw buffer).
+// With SPT_DEPTH_SLABS, the survivors are those of the fragment's slab, and what it adds is
+// weighted by the exact transmittance of the slabs in front of it and corrected by its slab's
+// control variate (vtkSPTDepthSlabs.glsl). Which
 // repetitions it adds to follows from the depth keys alone, so a fragment that adds to none is
 // discarded before its pre-integrated color is looked up.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
@@ -54,24 +57,35 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+#ifdef SPT_DEPTH_SLABS
+  // The survivors of the fragment's slab decide, behind the slabs in front of it.
+  int slab = slabOf(segment);
+  int base = slab * SPT_REPETITIONS_PER_PASS;
+#else
+  int base = 0;
+#endif
 #ifdef SPT_VISIBILITY_WEIGHTED
   // Each half's keys are sorted (vtkSPTSurvivorsFS.glsl): the survivors not in front of the
   // fragment are the tail of each half.
   int split = clamp(secondHalfStart - repetition, 0, lanes);
-  int inSecondHalf = survivorsNotInFront(key, pixel, split, lanes);
-  int count = survivorsNotInFront(key, pixel, 0, split) + inSecondHalf;
+  int inSecondHalf = survivorsNotInFront(key, pixel, base + split, base + lanes);
+  int count = survivorsNotInFront(key, pixel, base, base + split) + inSecondHalf;
   if (count == 0)
   {
     return false;
   }
   vec4 color = preIntegrated(segment);
+#ifdef SPT_DEPTH_SLABS
+  vec4 control = slabControl(slab, pixel);
+  color = control.x * vec4(color.rgb + control.yzw * color.a, color.a);
+#endif
   sum = float(count) * color;
   secondHalf = float(inSecondHalf) * color;
 #else
   bool holdsOne = false; // the minimum of some repetition is this fragment's key
   for (int r = 0; r < lanes; ++r)
   {
-    holdsOne = holdsOne || imageLoad(depthKeys, ivec3(r, pixel)).r == key;
+    holdsOne = holdsOne || imageLoad(depthKeys, ivec3(base + r, pixel)).r == key;
   }
   if (!holdsOne)
   {
@@ -84,13 +98,18 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   int inSecondHalf = 0;
   for (int r = 0; r < lanes; ++r)
   {
-    int wins = imageLoad(depthKeys, ivec3(r, pixel)).r == key &&
+    int wins = imageLoad(depthKeys, ivec3(base + r, pixel)).r == key &&
         threshold(uint(repetition + r)) < color.a ? 1 : 0;
     count += wins;
     inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
   }
-  sum = float(count) * vec4(color.rgb / color.a, 1.0);
-  secondHalf = float(inSecondHalf) * vec4(color.rgb / color.a, 1.0);
+  vec4 opaque = vec4(color.rgb / color.a, 1.0);
+#ifdef SPT_DEPTH_SLABS
+  vec4 control = slabControl(slab, pixel);
+  opaque = control.x * vec4(opaque.rgb + control.yzw, 1.0);
+#endif
+  sum = float(count) * opaque;
+  secondHalf = float(inSecondHalf) * opaque;
 #endif
   return true;
 }

@@ -2,7 +2,8 @@
 // the fragment takes the atomic minimum of its depth key, so that after the pass every sample
 // holds each repetition's nearest survivor. With SPT_WRITE_COVERAGE the same traversal also
 // adds the segment's optical depth terms (additive blending into the coverage buffer);
-// otherwise the color mask is off.
+// otherwise the color mask is off. With SPT_DEPTH_SLABS, the fragment's slab's layers hold
+// its keys, and with the coverage it adds its optical depth terms to its slab's.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 
 // Repetition `lane` of the group keeps the fragment. A kept fragment behind the nearest
@@ -17,7 +18,7 @@ void keep(int lane, uint key, ivec2 pixel)
 
 // The group's repetitions that keep the fragment, found from the strata below its opacity:
 // the same repetitions as testing each one, at a cost that follows alpha, not the group.
-void keepByStrata(float alpha, uint key, ivec2 pixel, int lanes)
+void keepByStrata(float alpha, uint key, ivec2 pixel, int base, int lanes)
 {
   uint first = uint(repetition);
   uint n = uint(stratumCount);
@@ -29,7 +30,7 @@ void keepByStrata(float alpha, uint key, ivec2 pixel, int lanes)
       uint r;
       if (keptRepetition(block, stratum, alpha, r) && r - first < uint(lanes))
       {
-        keep(int(r - first), key, pixel);
+        keep(base + int(r - first), key, pixel);
       }
     }
   }
@@ -49,9 +50,15 @@ bool keysAtSample(out vec4 coverageTerms)
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+#ifdef SPT_DEPTH_SLABS
+  int slab = slabOf(segment);
+  int base = slab * SPT_REPETITIONS_PER_PASS;
+#else
+  int base = 0;
+#endif
   if (fewStrataKeep(color.a, repetition, lanes))
   {
-    keepByStrata(color.a, key, pixel, lanes);
+    keepByStrata(color.a, key, pixel, base, lanes);
   }
   else
   {
@@ -59,12 +66,15 @@ bool keysAtSample(out vec4 coverageTerms)
     {
       if (threshold(uint(repetition + r)) < color.a)
       {
-        keep(r, key, pixel);
+        keep(base + r, key, pixel);
       }
     }
   }
 #ifdef SPT_WRITE_COVERAGE
   coverageTerms = opticalDepthTerms(color);
+#ifdef SPT_DEPTH_SLABS
+  addSlabTerms(slab, coverageTerms, pixel);
+#endif
 #else
   coverageTerms = vec4(0.0);
 #endif

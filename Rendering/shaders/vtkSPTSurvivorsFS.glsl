@@ -1,5 +1,6 @@
 //VTK::System::Dec
 #extension GL_ARB_shader_image_load_store : require
+#extension GL_ARB_shader_bit_encoding : require
 //VTK::Output::Dec
 //SPT::Survivors::Dec
 
@@ -11,16 +12,21 @@
 //   counts them by binary search, in log2 of the repetitions' loads instead of one per
 //   repetition. The survivor estimator asks which repetitions a fragment won, so its keys keep
 //   their order.
-// - It writes a depth no nearer than every repetition's nearest survivor, and no color. The
-//   color traversal tests its fragments against it before shading them (early depth test): a
-//   fragment behind the survivors of all its repetitions adds nothing there. Where some
-//   repetition kept nothing, the far plane.
+// - It writes a depth no nearer than every repetition's nearest survivor (of the last depth
+//   slab that holds segments), and no color. The color traversal tests its fragments against it before shading
+//   them (early depth test): a fragment behind the survivors of all its repetitions adds
+//   nothing there. Where some repetition kept nothing, the far plane.
 
 in vec2 texCoord; // the quad covers the pass: pixel centers
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 uniform int repetitionsInGroup;
 uniform int secondHalfFrom; // the first repetition of the group in the second half
 uniform vec2 passSize; // pixels
+#ifdef SPT_SLAB_TERMS
+// The slabs' controls (vtkSPTDepthSlabs.glsl): a slab whose weight is negative holds no
+// segment that adds anything.
+layout(r32ui) coherent uniform uimage3D slabSums;
+#endif
 
 #ifdef SPT_SORT_KEYS
 // Two buffers of the group's keys for a bottom-up merge sort, which reads one and writes the
@@ -69,41 +75,56 @@ void main()
   ivec2 pixel = ivec2(floor(texCoord * passSize));
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   uint farthest = 0u;
-#ifdef SPT_SORT_KEYS
-  // Only the kept keys are sorted: each half's are gathered at its start, and the rest of the
-  // half is "nothing kept", the largest key, as a sort of the whole half would leave it. Where
-  // few repetitions keep anything (thin parts of the volume, and outside its footprint, where
-  // none does) that is far less work than sorting every repetition's key.
-  int split = clamp(secondHalfFrom, 0, lanes);
-  int kept[2] = int[2](0, 0);
-#endif
-  for (int r = 0; r < lanes; ++r)
+  // With depth slabs, each slab's layers are sorted apart, and only the survivors of the last
+  // slab that holds segments at the sample bound what the color traversal may skip: a segment
+  // of an earlier slab adds its color whatever lies behind it.
+  int lastSlab = SPT_DEPTH_SLABS - 1;
+#ifdef SPT_SLAB_TERMS
+  while (lastSlab > 0 &&
+    uintBitsToFloat(imageLoad(slabSums, ivec3(SPT_SLAB_TERMS * lastSlab, pixel)).r) < 0.0)
   {
-    uint key = imageLoad(depthKeys, ivec3(r, pixel)).r;
-    farthest = max(farthest, key);
-#ifdef SPT_SORT_KEYS
-    if (key != 0xFFFFFFFFu)
-    {
-      int part = r < split ? 0 : 1;
-      keys[part * split + kept[part]] = key;
-      ++kept[part];
-    }
-#endif
+    --lastSlab;
   }
-#ifdef SPT_SORT_KEYS
-  if (kept[0] + kept[1] > 0)
+#endif
+  for (int slab = 0; slab < SPT_DEPTH_SLABS; ++slab)
   {
-    int firstHalf = sortKeys(0, kept[0]) * N;
-    int secondHalf = sortKeys(split, split + kept[1]) * N;
+    int base = slab * SPT_REPETITIONS_PER_PASS;
+#ifdef SPT_SORT_KEYS
+    // Only the kept keys are sorted: each half's are gathered at its start, and the rest of
+    // the half is "nothing kept", the largest key, as a sort of the whole half would leave it.
+    // Where few repetitions keep anything (thin parts of the volume, and outside its
+    // footprint, where none does) that is far less work than sorting every repetition's key.
+    int split = clamp(secondHalfFrom, 0, lanes);
+    int kept[2] = int[2](0, 0);
+#endif
     for (int r = 0; r < lanes; ++r)
     {
-      bool second = r >= split;
-      bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
-      uint key = keys[(second ? secondHalf : firstHalf) + r];
-      imageStore(depthKeys, ivec3(r, pixel), uvec4(isKept ? key : 0xFFFFFFFFu));
-    }
-  }
+      uint key = imageLoad(depthKeys, ivec3(base + r, pixel)).r;
+      farthest = slab == lastSlab ? max(farthest, key) : farthest;
+#ifdef SPT_SORT_KEYS
+      if (key != 0xFFFFFFFFu)
+      {
+        int part = r < split ? 0 : 1;
+        keys[part * split + kept[part]] = key;
+        ++kept[part];
+      }
 #endif
+    }
+#ifdef SPT_SORT_KEYS
+    if (kept[0] + kept[1] > 0)
+    {
+      int firstHalf = sortKeys(0, kept[0]) * N;
+      int secondHalf = sortKeys(split, split + kept[1]) * N;
+      for (int r = 0; r < lanes; ++r)
+      {
+        bool second = r >= split;
+        bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
+        uint key = keys[(second ? secondHalf : firstHalf) + r];
+        imageStore(depthKeys, ivec3(base + r, pixel), uvec4(isKept ? key : 0xFFFFFFFFu));
+      }
+    }
+#endif
+  }
   // A key holds the depth in its upper 24 bits, rounded down; the next two steps up cover the
   // rounding of the key and of this division.
   float depth = float((farthest >> 8u) + 2u) / 16777215.0;

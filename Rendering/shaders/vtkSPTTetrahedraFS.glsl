@@ -302,6 +302,15 @@ uint depthKey(Segment segment)
   return (uint(segment.frontDepth * 16777215.0) << 8u) | (cellId() & 0xFFu);
 }
 
+#ifdef SPT_DEPTH_SLABS
+//SPT::Slabs::Impl
+
+int slabOf(Segment segment)
+{
+  return slabOfDepth(segment.frontDepth);
+}
+#endif
+
 float unitFloat(uint bits)
 {
   return float(bits >> 8u) * (1.0 / 16777216.0);

@@ -90,7 +90,7 @@ int Check(vtkOpenGLRenderWindow* context, vtkSPTDepthKeyBuffer* buffer, int laye
   ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   buffer->BindImage(Unit);
   vtkSPTDepthKeyBuffer::Barrier();
-  const bool ran = buffer->PrepareSurvivors(Unit, repetitions, split, sort);
+  const bool ran = buffer->PrepareSurvivors(Unit, Unit + 1, repetitions, split, sort);
   vtkSPTDepthKeyBuffer::Barrier();
   vtkSPTDepthKeyBuffer::UnbindImage(Unit);
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);

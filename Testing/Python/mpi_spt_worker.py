@@ -42,6 +42,7 @@ def parse() -> argparse.Namespace:
                              "with no pixels")
     parser.add_argument("--keep-cullers", action="store_true",
                         help="keep VTK's frustum culler, which may skip a rank's render")
+    parser.add_argument("--depth-slabs", type=int, default=1, help="DepthSlabs")
     parser.add_argument("--frames", type=int, default=2)
     parser.add_argument("--target-error", type=float, default=None,
                         help="TargetError; --repetitions is then the cap")
@@ -151,6 +152,7 @@ def main() -> None:
         target_error = 0.01 if rank == arguments.other_target_on else arguments.target_error
         mapper = render.spt_mapper(arguments.repetitions, seed=seed, target_error=target_error)
         mapper.SetProgressiveRefinement(arguments.progressive)
+        mapper.SetDepthSlabs(arguments.depth_slabs)
         if arguments.update_rate > 0.0:
             mapper.SetAutoAdjustRepetitions(True)
         if controller is not None:

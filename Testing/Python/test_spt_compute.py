@@ -9,7 +9,8 @@ two images may differ only by that rounding, at most one 8-bit level, and the co
 image is the same from one render to the next. The tests compare them pixel by pixel on the
 test scenes and in every mode that changes the fragment code (cell scalars, opaque geometry, a
 zoom that cuts squares at the viewport, parallel projection, the survivor estimator, the error
-target's two halves, two volumes in one view), and check where the compute pass is not used.
+target's two halves, depth slabs, whose control variate adds negative terms, two volumes in one
+view), and check where the compute pass is not used.
 """
 
 from functools import lru_cache
@@ -39,7 +40,8 @@ def _render(name, compute, case="", level=16):
     if case == "parallel":
         view = render.View(view.azimuth, view.elevation, parallel=True)
     options = {"survivor": {"estimator": "survivor"},
-               "error target": {"target_error": 0.004}}.get(case, {})
+               "error target": {"target_error": 0.004},
+               "depth slabs": {"depth_slabs": 8}}.get(case, {})
     mapper = render.spt_mapper(level, seed=3, **options)
     mapper.SetSmallCellSize(ALL_SMALL)
     mapper.SetComputeTraversal(compute)
@@ -69,7 +71,7 @@ def test_compute_and_points_draw_the_same_image(name, have_display):
 
 
 @pytest.mark.parametrize("case", ["cell scalars", "opaque", "zoomed", "parallel", "survivor",
-                                  "error target"])
+                                  "error target", "depth slabs"])
 def test_compute_draws_the_same_image_in_every_mode(case, have_display):
     _check_same_image("default", case)
 

@@ -133,6 +133,34 @@ def test_bytes_moved(renders):
     assert expected <= report["bytes"] <= expected + 4096
 
 
+@pytest.fixture(scope="module")
+def slab_renders(have_display, tmp_path_factory):
+    directory = tmp_path_factory.mktemp("spt_mpi_slabs")
+    return {ranks: run(directory / f"slabs{ranks}.npy", ranks, "--depth-slabs", str(SLABS))
+            for ranks in (0, 2)}
+
+
+#: Depth slabs: the ranks add up each slab's sums before the color traversal.
+SLABS = 8
+
+
+def test_depth_slabs_on_two_ranks_equal_one_process(slab_renders, renders):
+    """The slabs' sums are fixed point, the same in any order: the 2-rank image is the one
+    of one process. The slabs change the image (its noise), and it stays the volume."""
+    serial, _, _ = slab_renders[0]
+    two, report, errors = slab_renders[2]
+    assert largest_difference(serial[0], two[0]) <= 1.0
+    assert largest_difference(two[0], two[1]) == 0.0
+    assert "ERR" not in errors, errors
+    assert largest_difference(two[0], renders[2][0][0]) >= 2.0
+    reference = scene_support.reference("default", SIZE)
+    assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
+    # Per sample: each slab's keys, the sums and coverage, and each slab's four sums.
+    samples = SIZE * SIZE
+    expected = samples * (4 * REPETITIONS * SLABS + 32 + 16 * SLABS)
+    assert expected <= report["bytes"] <= expected + 4096
+
+
 def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
     """The keys of 12 repetitions lie in a buffer of 16 layers (the shaders are compiled for
     a power of two): the ranks exchange the 12 layers in use, and combine them as one process

@@ -97,6 +97,26 @@ def test_two_volumes_composite_as_their_union(name, have_display):
         f"SPT {two_error:.4f}, VTK PT with two volumes {sorted_one_by_one:.4f}")
 
 
+def test_two_volumes_with_depth_slabs_composite_as_their_union(have_display):
+    """The slabs split the depth range of both volumes' bounds: two volumes with slabs draw
+    the image of their union drawn as one grid with slabs, to within the noise."""
+    name = "default"
+    reference = _reference(name)
+
+    def slabs(seed=1):
+        return render.spt_mapper(REPETITIONS, seed=seed, depth_slabs=8)
+
+    two = _two_volumes(name, slabs)
+    s = _scene(name)
+    one = render.render(_union(name), s.property, slabs(), s.view, (SIZE, SIZE)).image
+    second_seed = render.render(_union(name), s.property, slabs(2), s.view, (SIZE, SIZE)).image
+    noise = statistics.estimate(one, second_seed, reference, REPETITIONS)
+    one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
+    assert two[..., 3].max() > 0.2, "the image is (almost) empty"
+    assert two_error <= one_error + 4.0 * np.sqrt(noise.noise), (
+        f"two volumes {two_error:.4f}, one grid {one_error:.4f}")
+
+
 def test_one_repetition_per_pass_draws_the_groups_image(have_display):
     """Two interpenetrating volumes, one repetition per pass (each survivor found by the depth
     test over both) against groups (found from depth keys): the same image."""

@@ -73,15 +73,19 @@ DEFAULT_TARGET_ERROR = 0.005
 def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                stratified: Optional[bool] = None, per_pass: Optional[int] = None,
                estimator: Optional[str] = None, exact_coverage: Optional[bool] = None,
-               target_error: Optional[float] = None) -> vtkSPTVolumeMapper:
+               target_error: Optional[float] = None,
+               depth_slabs: Optional[int] = None) -> vtkSPTVolumeMapper:
     """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``,
-    ``per_pass``, ``estimator`` ("survivor" or "visibility") and ``exact_coverage`` set
-    StratifiedSampling, RepetitionsPerPass, Estimator and ExactCoverage (None keeps the
-    mapper's defaults). The time budget is off. Without ``target_error`` the image has
-    exactly ``repetitions`` repetitions; with it, rendering stops once the noise the mapper
-    estimates is at most ``target_error``, and ``repetitions`` is the cap."""
+    ``per_pass``, ``estimator`` ("survivor" or "visibility"), ``exact_coverage`` and
+    ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
+    ExactCoverage and DepthSlabs (None keeps the mapper's defaults). The time budget is off.
+    Without ``target_error`` the image has exactly ``repetitions`` repetitions; with it,
+    rendering stops once the noise the mapper estimates is at most ``target_error``, and
+    ``repetitions`` is the cap."""
     if target_error is not None and not 0.0 <= target_error <= 1.0:
         raise ValueError(f"the target error must be in 0..1, not {target_error}")
+    if depth_slabs is not None and not 1 <= depth_slabs <= 8:
+        raise ValueError(f"the depth slabs must be 1 to 8, not {depth_slabs}")
     mapper = vtkSPTVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
@@ -100,6 +104,8 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
         mapper.SetExactCoverage(exact_coverage)
     if target_error is not None:
         mapper.SetTargetError(target_error)
+    if depth_slabs is not None:
+        mapper.SetDepthSlabs(depth_slabs)
     return mapper
 
 
