@@ -35,7 +35,7 @@ SETTINGS = {
           "RepetitionsPerPass": 256, "ComputeTraversal": 1, "StratifiedSampling": 1,
           "ReuseNoiseEstimate": 0,
           "Estimator": 1,
-          "ExactCoverage": 1, "ProgressiveRefinement": 0,
+          "ExactCoverage": 1, "DepthSlabs": 1, "ProgressiveRefinement": 0,
           "AutoAdjustRepetitions": 1},
     HAVS: {"KBufferSize": 4, "KBufferSynchronization": 0,
            "HAVSPreIntegrationScalarResolution": 96, "HAVSPreIntegrationThicknessResolution": 64},

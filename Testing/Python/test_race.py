@@ -123,7 +123,7 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     rows = result["rows"]
     methods = {row["method"] for row in rows}
     assert {"pt", "havs2", "havs3", "havs4", "havs5", "havs6", "spt", "spt-paper-sampling",
-            "pbvr"} <= methods
+            "spt-slabs", "pbvr"} <= methods
     assert result["host_source"] in ("perf", "thread_time")
     floor = rows[0]["read_back_floor"]
     assert 0.0005 < floor < 0.002  # about 1 / 255 / sqrt(12)
@@ -143,7 +143,7 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     assert reference.shape == (48, 48, 4) and reference[..., 3].max() > 0.1
     again = race.cached_reference(race.race_scene("default"), 48, tmp_path / "references")
     assert np.array_equal(again, reference)
-    assert len(result["summary"]) == 3 + 2 * race.has_error_target()
+    assert len(result["summary"]) == 4 + 3 * race.has_error_target()
     if race.has_error_target():
         for name in ("spt-target", "spt-target-turned"):
             target = next(r for r in rows if r["method"] == name)

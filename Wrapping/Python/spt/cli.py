@@ -276,9 +276,11 @@ def _demo(arguments: argparse.Namespace) -> None:
     _print_table(figures.DEMO_TABLE_HEADER, rows)
     race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
     turned = next(row for row in rows if row[0] == figures.TURNED_LABEL)
+    slabs = next(row for row in rows if row[0] == figures.SLABS_LABEL)
     print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
           f"({race[6]} repetitions); after another view, in {turned[5]:.2f} x "
-          f"({turned[6]} repetitions).")
+          f"({turned[6]} repetitions); with {figures.DEMO_DEPTH_SLABS} depth slabs, in "
+          f"{slabs[5]:.2f} x ({slabs[6]} repetitions).")
     print(f"Images and comparison.png written to {arguments.output}")
 
 

@@ -2,18 +2,19 @@
 side in one process, and each stochastic method's time to reach a given error.
 
 For each scene, at 256 x 256 from azimuth 35 and elevation 25 by default: VTK's projected
-tetrahedra, HAVS-like with k = 2 to 6, PBVR, SPT at its defaults and SPT with the paper's
-sampling, the stochastic ones at L = 1, 2, 4, ... up to a cap, each time the best of two
-frames. A stochastic method's time to reach an error is the time of the smallest L measured
-whose RMSE (premultiplied RGBA against the reference) is at most that error, as a multiple of
-VTK PT's frame; "not reached" if none is. Each method's host CPU time per frame (the
-application thread outside the OpenGL driver) comes with it: the part a GPU would not take
-over. Where the mapper has an error target, SPT also runs with VTK PT's error as its target:
-a new mapper, whose first image estimates its noise from 16 repetitions per half, and a mapper
-that has drawn the scene from another view (azimuth 10 degrees further), whose first step aims
-with the noise per repetition measured there. Every image is read back through 8 bits per
-channel, so each row also records the least error an 8-bit image can have against the
-reference (``read_back_floor``): a method whose error is near it is exact to the read-back.
+tetrahedra, HAVS-like with k = 2 to 6, PBVR, SPT at its defaults, SPT with 8 depth slabs and
+SPT with the paper's sampling, the stochastic ones at L = 1, 2, 4, ... up to a cap, each time
+the best of two frames. A stochastic method's time to reach an error is the time of the
+smallest L measured whose RMSE (premultiplied RGBA against the reference) is at most that
+error, as a multiple of VTK PT's frame; "not reached" if none is. Each method's host CPU time
+per frame (the application thread outside the OpenGL driver) comes with it: the part a GPU
+would not take over. Where the mapper has an error target, SPT also runs with VTK PT's error as
+its target: a new mapper, whose first image estimates its noise from 16 repetitions per half, a
+mapper that has drawn the scene from another view (azimuth 10 degrees further), whose first
+step aims with the noise per repetition measured there, and a new mapper with 8 depth slabs.
+Every image is read back through 8 bits per channel, so each row also records the least error
+an 8-bit image can have against the reference (``read_back_floor``): a method whose error is
+near it is exact to the read-back.
 """
 
 from __future__ import annotations
@@ -45,11 +46,16 @@ TARGETS = (0.005, 0.002)
 #: The generated drill at the race's sizes.
 DRILLS = {"drill-0.2M": 200_000, "drill-1M": 1_000_000, "drill-3M": 3_000_000}
 
+#: The depth slabs of the race's "SPT, depth slabs" (vtkSPTVolumeMapper::SetDepthSlabs()).
+RACE_DEPTH_SLABS = 8
+
 EXACT_METHODS: Tuple[Method, ...] = (METHODS["pt"],) + tuple(havs_method(k) for k in range(2, 7))
 STOCHASTIC_METHODS: Tuple[Method, ...] = (
     Method("spt", "SPT", lambda r, s: render.spt_mapper(r, s), True),
     Method("spt-paper-sampling", "SPT, paper's sampling",
            lambda r, s: render.spt_mapper(r, s, **render.PAPER_SAMPLING), True),
+    Method("spt-slabs", f"SPT, {RACE_DEPTH_SLABS} depth slabs",
+           lambda r, s: render.spt_mapper(r, s, depth_slabs=RACE_DEPTH_SLABS), True),
     Method("pbvr", "PBVR", lambda r, s: render.pbvr_mapper(r, s), True),
 )
 
@@ -279,13 +285,23 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
         row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
         rows.append(row)
         progress.step(f"{name} SPT at VTK PT's error after another view")
+        # With depth slabs, from scratch.
+        slabs = Method(
+            "spt-slabs-target",
+            f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
+            lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
+                                            depth_slabs=RACE_DEPTH_SLABS), True)
+        row = measure(lap, slabs, settings.race_max_repetitions, target_error=pt_error)
+        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
+        rows.append(row)
+        progress.step(f"{name} SPT at VTK PT's error with depth slabs")
     return rows
 
 
 def steps(settings: Settings) -> int:
     """The progress steps of the race."""
     per_scene = (1 + len(EXACT_METHODS) + len(STOCHASTIC_METHODS)
-                 * len(levels(settings.race_max_repetitions)) + 2 * int(has_error_target()))
+                 * len(levels(settings.race_max_repetitions)) + 3 * int(has_error_target()))
     return len(settings.race_scenes) * per_scene
 
 
