@@ -267,50 +267,48 @@ bool vtkSPTParallelReduction::CompositeScene(
   return true;
 }
 
+bool vtkSPTParallelReduction::AllReduceWords(
+  const std::vector<unsigned int>& local, int operation, std::vector<unsigned int>& global)
+{
+  global.resize(local.size());
+  this->Bytes += local.size() * sizeof(unsigned int);
+  return this->Controller->AllReduce(
+           local.data(), global.data(), vtkIdType(local.size()), operation) != 0;
+}
+
 bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys)
 {
-  const std::vector<unsigned int> local = keys->Read();
-  std::vector<unsigned int> global(local.size());
-  if (!this->Controller->AllReduce(
-        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::MIN_OP))
+  std::vector<unsigned int> global;
+  if (!this->AllReduceWords(keys->Read(), vtkCommunicator::MIN_OP, global))
   {
     return false;
   }
-  this->Bytes += local.size() * sizeof(unsigned int);
   keys->Write(global);
   return true;
 }
 
 bool vtkSPTParallelReduction::ReduceNothingKept(size_t keys)
 {
-  const std::vector<unsigned int> local(keys, 0xFFFFFFFFu);
-  std::vector<unsigned int> global(keys);
-  this->Bytes += keys * sizeof(unsigned int);
-  return this->Controller->AllReduce(
-           local.data(), global.data(), vtkIdType(keys), vtkCommunicator::MIN_OP) != 0;
+  std::vector<unsigned int> global;
+  return this->AllReduceWords(
+    std::vector<unsigned int>(keys, 0xFFFFFFFFu), vtkCommunicator::MIN_OP, global);
 }
 
 bool vtkSPTParallelReduction::ReduceSlabs(vtkSPTDepthKeyBuffer* keys)
 {
-  const std::vector<unsigned int> local = keys->ReadSlabs();
-  std::vector<unsigned int> global(local.size());
-  if (!this->Controller->AllReduce(
-        local.data(), global.data(), vtkIdType(local.size()), vtkCommunicator::SUM_OP))
+  std::vector<unsigned int> global;
+  if (!this->AllReduceWords(keys->ReadSlabs(), vtkCommunicator::SUM_OP, global))
   {
     return false;
   }
-  this->Bytes += local.size() * sizeof(unsigned int);
   keys->WriteSlabs(global);
   return true;
 }
 
 bool vtkSPTParallelReduction::ReduceNoSlabs(size_t sums)
 {
-  const std::vector<unsigned int> local(sums, 0u);
-  std::vector<unsigned int> global(sums);
-  this->Bytes += sums * sizeof(unsigned int);
-  return this->Controller->AllReduce(
-           local.data(), global.data(), vtkIdType(sums), vtkCommunicator::SUM_OP) != 0;
+  std::vector<unsigned int> global;
+  return this->AllReduceWords(std::vector<unsigned int>(sums, 0u), vtkCommunicator::SUM_OP, global);
 }
 
 bool vtkSPTParallelReduction::AllSucceeded(bool ok)

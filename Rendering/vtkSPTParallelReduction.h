@@ -163,6 +163,9 @@ private:
 
   vtkMultiProcessController* Controller = nullptr;
   size_t Bytes = 0;
+  // The element-wise reduction of `local` over the ranks into `global`, on every rank.
+  bool AllReduceWords(
+    const std::vector<unsigned int>& local, int operation, std::vector<unsigned int>& global);
 };
 
 #endif

@@ -57,13 +57,9 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
-#ifdef SPT_DEPTH_SLABS
   // The survivors of the fragment's slab decide, behind the slabs in front of it.
-  int slab = slabOf(segment);
-  int base = slab * SPT_REPETITIONS_PER_PASS;
-#else
-  int base = 0;
-#endif
+  int slab;
+  int base = firstLayerOfSlab(segment, slab);
 #ifdef SPT_VISIBILITY_WEIGHTED
   // Each half's keys are sorted (vtkSPTSurvivorsFS.glsl): the survivors not in front of the
   // fragment are the tail of each half.

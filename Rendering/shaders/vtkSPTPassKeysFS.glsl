@@ -50,12 +50,8 @@ bool keysAtSample(out vec4 coverageTerms)
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
   int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
-#ifdef SPT_DEPTH_SLABS
-  int slab = slabOf(segment);
-  int base = slab * SPT_REPETITIONS_PER_PASS;
-#else
-  int base = 0;
-#endif
+  int slab;
+  int base = firstLayerOfSlab(segment, slab);
   if (fewStrataKeep(color.a, repetition, lanes))
   {
     keepByStrata(color.a, key, pixel, base, lanes);

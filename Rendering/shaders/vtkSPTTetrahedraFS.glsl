@@ -305,11 +305,18 @@ uint depthKey(Segment segment)
 #ifdef SPT_DEPTH_SLABS
 //SPT::Slabs::Impl
 
-int slabOf(Segment segment)
-{
-  return slabOfDepth(segment.frontDepth);
-}
 #endif
+
+// The segment's depth slab (0 without slabs), and the first of its key layers.
+int firstLayerOfSlab(Segment segment, out int slab)
+{
+#ifdef SPT_DEPTH_SLABS
+  slab = slabOfDepth(segment.frontDepth);
+#else
+  slab = 0;
+#endif
+  return slab * SPT_REPETITIONS_PER_PASS;
+}
 
 float unitFloat(uint bits)
 {
