@@ -535,12 +535,13 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // combine keys, the error target counts two halves, or a compute pass takes most of the
   // cells: there a group of one, whose keys and colors it computes, costs less than two
   // rasterized traversals).
-  // Depth slabs need a survivor per slab: keys, whatever the repetitions, except for the
-  // paper's single passes.
-  const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys;
+  // Depth slabs need a survivor per slab, and their sums drawn with the coverage: keys,
+  // whatever the repetitions (the mapper's cheapest frame draws no slabs).
+  const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys &&
+    this->FrameSettings.DepthSlabs == 1;
   const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
   const bool depthSurvivors = oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR &&
-    !halves && !this->ComputesMostCells() && this->FrameSettings.DepthSlabs == 1;
+    !halves && !this->ComputesMostCells();
   const bool keys = !single && !depthSurvivors;
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,

@@ -244,9 +244,9 @@ public:
    * several repetitions are wanted and the cells are small on the screen; on a mesh of large
    * cells that one repetition renders well enough, they cost more than they save. The slabs'
    * sums take 16 bytes per sample and slab, at most 128 MB: a larger image draws fewer slabs.
-   * The image's first key traversal draws the coverage even with ExactCoverage off. The
-   * paper's single passes (the survivor estimator one repetition at a time, and the cheapest
-   * frame of a time budget) have no slabs. Default 1: none.
+   * The image's first key traversal draws the coverage even with ExactCoverage off. With
+   * slabs, even one repetition at a time is drawn with keys; only the cheapest frame of a time
+   * budget (the paper's single passes) draws no slabs. Default 1: none.
    */
   vtkSetClampMacro(DepthSlabs, int, 1, 8);
   vtkGetMacro(DepthSlabs, int);

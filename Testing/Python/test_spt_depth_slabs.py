@@ -11,6 +11,7 @@ slabs change is the noise. The tests check that
 - the survivor estimator with slabs is unbiased too;
 - the noise of a repetition is a fraction of one slab's;
 - opaque geometry still hides and cuts the volume;
+- one repetition per render, refined progressively, keeps the first render's slab sums;
 - a split into any number of slabs gives the same expectation (2, 3 and 8).
 """
 
@@ -94,3 +95,27 @@ def test_opaque_geometry_hides_and_cuts_the_volume_with_slabs(have_display):
     check_opaque_geometry_hides_and_cuts_the_volume(
         lambda level, subpixels, seed: render.spt_mapper(level, subpixels, seed,
                                                          depth_slabs=SLABS), SIZE)
+
+
+def test_one_repetition_at_a_time_with_slabs(have_display):
+    """The survivor estimator one repetition per render, refined progressively: with slabs
+    each is a group of one with keys; the first render draws the slabs' sums with the
+    coverage, the later ones use them, and the image is as close to the reference as a render
+    of all its repetitions at once."""
+    s = scene("default")
+    window, renderer = render.make_window(SIZE, SIZE)
+    mapper = render.spt_mapper(1, seed=1, estimator="survivor", depth_slabs=SLABS)
+    mapper.SetProgressiveRefinement(True)
+    render.add_volume(renderer, s.grid, s.property, mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    for _ in range(16):
+        window.Render()
+    progressive = render.read_rgba(window)
+    window.Finalize()
+    at_once = _spt("default", 16, 1, SLABS, "survivor")
+    e = statistics.estimate(at_once, _spt("default", 16, 2, SLABS, "survivor"),
+                            reference("default", SIZE), 16)
+    error = np.sqrt(np.mean((progressive - reference("default", SIZE)) ** 2))
+    at_once_error = np.sqrt(np.mean((at_once - reference("default", SIZE)) ** 2))
+    assert error <= at_once_error + 4.0 * np.sqrt(e.noise), (
+        f"progressive {error:.4f}, at once {at_once_error:.4f}")
