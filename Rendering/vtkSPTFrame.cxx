@@ -119,8 +119,8 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
   {
     this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
   }
-  this->FrameSettings.DepthSlabs =
-    std::max(1, std::min(this->FrameSettings.DepthSlabs, MaximumDepthSlabs));
+  const int mostSlabs = MaximumDepthSlabs; // a value: std::min takes references
+  this->FrameSettings.DepthSlabs = std::max(1, std::min(this->FrameSettings.DepthSlabs, mostSlabs));
   this->ChooseSmallCells();
   this->ChooseSlabs();
 }
