@@ -73,6 +73,37 @@ inline bool HasExtension(const char* name)
   }
   return false;
 }
+
+/// The bits per channel of the color buffer that the bound draw framebuffer draws into first
+/// (its draw buffer 0): 8 for RGBA8; 0 for floating-point channels, which round nothing that
+/// matters. 8 when the context does not tell.
+inline int DrawColorBits()
+{
+  GLint framebuffer = 0;
+  GLint buffer = GL_NONE;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  glGetIntegerv(GL_DRAW_BUFFER0, &buffer);
+  // The default framebuffer names its attachments by side: a double-buffered window draws
+  // into GL_BACK, whose channels are GL_BACK_LEFT's.
+  if (framebuffer == 0 && (buffer == GL_BACK || buffer == GL_FRONT))
+  {
+    buffer = buffer == GL_BACK ? GL_BACK_LEFT : GL_FRONT_LEFT;
+  }
+  GLint bits = 0;
+  GLint type = GL_NONE;
+  if (glGetError() == GL_NO_ERROR && buffer != GL_NONE)
+  {
+    glGetFramebufferAttachmentParameteriv(
+      GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(buffer), GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE, &bits);
+    glGetFramebufferAttachmentParameteriv(GL_DRAW_FRAMEBUFFER, static_cast<GLenum>(buffer),
+      GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &type);
+  }
+  if (glGetError() != GL_NO_ERROR || bits <= 0)
+  {
+    return 8;
+  }
+  return type == GL_FLOAT ? 0 : bits;
+}
 }
 
 #endif

@@ -29,6 +29,7 @@
 #include "vtkVolumeViewMatrices.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -184,7 +185,7 @@ void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
 {
   for (size_t v = 0; v < mappers.size(); ++v)
   {
-    mappers[v]->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+    mappers[v]->EstimatedError = this->ImageError(self);
     mappers[v]->LastRepetitionCount = self->GetAccumulatedRepetitions();
     mappers[v]->LastPointCellCount = frame.GetPointCellCount(v);
     mappers[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
@@ -298,13 +299,50 @@ bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
   return true;
 }
 
+double vtkSPTVolumeMapper::vtkInternals::RoundingError() const
+{
+  // Rounding to b bits spreads a value's error evenly over one level, 1 / (2^b - 1): its root
+  // mean square is a level over sqrt(12) (0.00113 for 8 bits, what an exact image read back
+  // through 8 bits is off by).
+  return this->ColorBits > 0 ? 1.0 / ((std::ldexp(1.0, this->ColorBits) - 1.0) * std::sqrt(12.0))
+                             : 0.0;
+}
+
+double vtkSPTVolumeMapper::vtkInternals::NoiseTarget(vtkSPTVolumeMapper* self)
+{
+  // The image shown is the rounded one: its error is the noise and the rounding, independent,
+  // so the noise may have what the rounding leaves of the target.
+  const double rounding = this->RoundingError();
+  const double left = self->TargetError * self->TargetError - rounding * rounding;
+  const bool reachable = left > 0.0;
+  if (!reachable && !this->WarnedTargetBelowRounding)
+  {
+    vtkWarningWithObjectMacro(self,
+      "TargetError " << self->TargetError << " is not above the error of rounding the image to "
+                     << this->ColorBits << " bits per channel (" << rounding
+                     << "): no noise meets it, so every image draws RepetitionLevel repetitions.");
+  }
+  this->WarnedTargetBelowRounding = !reachable;
+  return reachable ? std::sqrt(left) : 0.0;
+}
+
+double vtkSPTVolumeMapper::vtkInternals::ImageError(vtkSPTVolumeMapper* self) const
+{
+  if (self->TargetError <= 0.0 || this->Target.Estimate < 0.0)
+  {
+    return -1.0;
+  }
+  const double rounding = this->RoundingError();
+  return std::sqrt(this->Target.Estimate * this->Target.Estimate + rounding * rounding);
+}
+
 int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
   vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
 {
   self->StartTiming();
   const int drawn = self->TargetError > 0.0
     ? frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
-        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), self->TargetError,
+        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
         this->Target)
     : (frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count
                                                                                   : -1);
@@ -383,6 +421,7 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
+  internals.ColorBits = vtkSPTOpenGL::DrawColorBits(); // where the image will be resolved
   vtkSPTFrame::Settings settings;
   const int perPass = internals.ChooseTraversal(this, renWin, settings);
   if (perPass < 1)

@@ -254,13 +254,17 @@ public:
 
   ///@{
   /**
-   * Error target: the noise (root mean square of premultiplied RGBA over the image's
-   * footprint) at which a render stops adding repetitions; RepetitionLevel becomes a cap.
-   * The noise is estimated from the image itself, never from a reference: the repetitions are
-   * drawn as two independent halves of equal size, and the mean of both has a quarter of the
-   * variance of their difference. The first image draws one sixteenth of a group per half
-   * (16 + 16 repetitions with 256 per traversal, 1 + 1 with 16 or fewer: a group costs little
-   * more than a few repetitions); a new image after it, as many as the noise per repetition
+   * Error target: the error of the image shown (root mean square of premultiplied RGBA over
+   * the image's footprint) at which a render stops adding repetitions; RepetitionLevel becomes
+   * a cap. The error is the noise and the rounding of the image to the bits per channel of the
+   * framebuffer it is drawn into (a level over sqrt(12), 0.00113 for 8 bits, none for floating
+   * point), which add in variance: the noise is allowed what the rounding leaves of the
+   * target, and a target not above the rounding draws RepetitionLevel repetitions, with a
+   * warning. The noise is estimated from the image itself, never from a reference: the
+   * repetitions are drawn as two independent halves of equal size, and the mean of both has
+   * a quarter of the variance of their difference. The first image draws one sixteenth of a group
+   * per half (16 + 16 repetitions with 256 per traversal, 1 + 1 with 16 or fewer: a group costs
+   * little more than a few repetitions); a new image after it, as many as the noise per repetition
    * measured before predicts (ReuseNoiseEstimate). Then each step draws as
    * many as the estimate predicts for a noise a quarter below the target in variance (the
    * noise falling as one over the square root of the repetitions; each step costs a traversal
@@ -291,8 +295,9 @@ public:
   ///@}
 
   /**
-   * The noise estimated for the image of the last render, on the scale of TargetError; -1
-   * when none was (TargetError off, fewer than two repetitions, or nothing drawn).
+   * The error estimated for the image of the last render, as TargetError counts it (its noise
+   * and its rounding); -1 when none was (TargetError off, fewer than two repetitions, or
+   * nothing drawn).
    */
   vtkGetMacro(EstimatedError, double);
 

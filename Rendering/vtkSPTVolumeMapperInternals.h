@@ -41,6 +41,10 @@ public:
   std::string ParallelError;       // reported once, until the ranks agree again
 
   vtkSPTFrame::TargetState Target; // progress towards TargetError
+  // Bits per channel of the framebuffer the image is resolved into (0: floating point), read
+  // when the render starts.
+  int ColorBits = 8;
+  bool WarnedTargetBelowRounding = false; // while TargetError is not above the rounding
   bool WarnedNoImageAtomics = false;
   bool WarnedNoSlabs = false;
   bool WarnedLargeImage = false; // while the pass is too large for the depth keys
@@ -94,6 +98,14 @@ public:
   // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
   bool StartAccumulation(
     vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage);
+  // The root mean square error of rounding the image to ColorBits bits per channel.
+  double RoundingError() const;
+  // The noise that TargetError leaves once the rounding has taken its share (the two add in
+  // variance); 0, with a warning, when the rounding alone takes all of it.
+  double NoiseTarget(vtkSPTVolumeMapper* self);
+  // The image's estimated error for GetEstimatedError(): its noise and its rounding; -1 when
+  // the noise is not estimated.
+  double ImageError(vtkSPTVolumeMapper* self) const;
   // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
   int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 

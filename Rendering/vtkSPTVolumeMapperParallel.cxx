@@ -58,6 +58,10 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
   piece.EmptyImage = target.Width <= 0 || target.Height <= 0;
   DescribeMesh(self, vol, piece);
   const bool atomics = target.Window && vtkSPTDepthKeyBuffer::IsSupported(target.Window);
+  if (target.Window)
+  {
+    this->ColorBits = vtkSPTOpenGL::DrawColorBits(); // where the image will be resolved
+  }
   return { { "RepetitionLevel", self->RepetitionLevel },
     { "RepetitionsPerPass", self->RepetitionsPerPass }, { "SmallCellSize", self->SmallCellSize },
     { "Seed", self->Seed }, { "SubpixelLevel", self->SubpixelLevel },
@@ -65,6 +69,7 @@ vtkSPTParallelReduction::Settings vtkSPTVolumeMapper::vtkInternals::DescribePiec
     { "DepthSlabs", self->DepthSlabs }, { "StratifiedSampling", self->StratifiedSampling ? 1 : 0 },
     { "ReuseNoiseEstimate", self->ReuseNoiseEstimate ? 1 : 0 },
     { "TargetError", self->TargetError },
+    { "bits per color channel of the image", this->ColorBits },
     { "ProgressiveRefinement", self->ProgressiveRefinement ? 1 : 0 },
     { "MaximumProgressiveRepetitions", self->MaximumProgressiveRepetitions },
     { "PreIntegrationScalarResolution", self->PreIntegrationScalarResolution },
@@ -336,7 +341,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   if (plan.Count > 0 && self->TargetError > 0.0)
   {
     drawn = frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
-      self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), self->TargetError,
+      self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
       this->Target);
   }
   else if (plan.Count > 0)
@@ -367,7 +372,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* sel
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
   for (vtkSPTVolumeMapper* mapper : all)
   {
-    mapper->EstimatedError = self->TargetError > 0.0 ? this->Target.Estimate : -1.0;
+    mapper->EstimatedError = this->ImageError(self);
     mapper->LastRepetitionCount = self->GetAccumulatedRepetitions();
   }
   if (root)

@@ -19,6 +19,7 @@ import pytest
 
 from spt import metrics, render, statistics
 
+from robustness_support import watch
 from scene_support import reference, render_at_still_rate, scene, window_with
 from statistics_checks import Z
 
@@ -28,6 +29,8 @@ CAP = 256
 #: against the reference is the noise.
 TARGETS = {"default": 0.006, "spx": 0.006, "bluntfin": 0.005, "post": 0.01}
 SCENES = list(TARGETS)
+#: The root mean square error of rounding to 8 bits: a level over sqrt(12).
+ROUNDING_8_BITS = 1.0 / (255.0 * np.sqrt(12.0))
 
 
 def _scene(name):
@@ -85,15 +88,17 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f}")
 
 
-def _render_to_target(s, mapper, name):
+def _render_to_target(s, mapper, name, target=None):
     """One render of scene ``s`` through ``mapper``, which must stop with an estimate at or
-    below the scene's target: the image, the repetitions drawn, the estimate and the error
-    measured against the reference."""
+    below ``target`` (the scene's by default) and below the cap: the image, the repetitions
+    drawn, the estimate and the error measured against the reference."""
+    target = TARGETS[name] if target is None else target
     image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
     level = mapper.GetLastRepetitionCount()
     estimated = mapper.GetEstimatedError()
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
-    assert 0.0 < estimated <= TARGETS[name]
+    assert level < CAP, f"drew the cap of {CAP} repetitions"
+    assert 0.0 < estimated <= target
     return image, level, estimated, metrics.rmse(image, _reference(name))
 
 
@@ -179,12 +184,32 @@ def test_stopped_images_are_unbiased(name, have_display):
 
 
 def test_repetition_level_caps_an_unreachable_target(have_display):
+    """A target below what rounding to 8 bits costs an exact image cannot be met: a warning
+    says so, the render draws the cap, and its estimate is at least that rounding's."""
     mapper = _mapper(8, 1, 1.0e-5)
+    messages = watch(mapper)
     window, _ = window_with(mapper, SIZE)
     window.Render()
     assert mapper.GetLastRepetitionCount() == 8
-    assert mapper.GetEstimatedError() > 1.0e-5
+    assert mapper.GetEstimatedError() >= ROUNDING_8_BITS
+    assert any("bits per channel" in text for text in messages.warnings), messages.warnings
     window.Finalize()
+
+
+@pytest.mark.parametrize("name", ["spx", "bluntfin"])
+def test_a_target_near_the_rounding_is_met_against_the_reference(name, have_display):
+    """The image shown is rounded to 8 bits, whose error adds to the noise in variance: a
+    target near that rounding's (0.00113) leaves the noise less than itself. The estimate
+    counts both, and the error measured against the exact reference meets the target.
+    Counting the noise alone would stop where the measured error is sqrt(target^2 + 0.00113^2),
+    a quarter above the target here."""
+    target = 0.0015
+    s = _scene(name)
+    _, level, estimated, measured = _render_to_target(s, _mapper(CAP, 1, target), name, target)
+    assert measured <= 1.1 * target, (
+        f"measured {measured:.5f} for the target {target} at {level} repetitions")
+    assert measured / 1.15 <= estimated <= 1.15 * measured, (
+        f"estimated {estimated:.5f}, measured {measured:.5f} at {level} repetitions")
 
 
 def test_no_estimate_without_a_target_or_with_one_repetition(have_display):

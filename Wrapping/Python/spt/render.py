@@ -80,7 +80,8 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
     ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
     ExactCoverage and DepthSlabs (None keeps the mapper's defaults). The time budget is off.
     Without ``target_error`` the image has exactly ``repetitions`` repetitions; with it,
-    rendering stops once the noise the mapper estimates is at most ``target_error``, and
+    rendering stops once the error the mapper estimates (its noise and the rounding to the
+    framebuffer's bits) is at most ``target_error``, and
     ``repetitions`` is the cap."""
     if target_error is not None and not 0.0 <= target_error <= 1.0:
         raise ValueError(f"the target error must be in 0..1, not {target_error}")
