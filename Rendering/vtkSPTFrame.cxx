@@ -103,6 +103,27 @@ int FirstHalfToTarget(double noisePerRepetition, double target, int most)
   const double half = std::ceil(0.5 * 1.25 * ratio * ratio);
   return static_cast<int>(std::max(1.0, std::min(half, double(most))));
 }
+
+// The noise of one repetition that the first image of a mapper assumes before it has measured
+// any (RMSE of premultiplied RGBA): a little above the largest measured on the benchmark's
+// scenes at their defaults (0.025 on the torus, 0.020 to 0.023 on the Oxygen Post and the
+// drill; 0.004 to 0.006 on Blunt Fin and SPX). At the default target of 0.005 it draws 16 + 16.
+constexpr double FirstImageNoisePerRepetition = 0.0275;
+
+// The repetitions per half of a first image's first step: as many as the assumed noise of one
+// repetition predicts for the target (no margin: the assumption is already a pessimistic
+// one), at most one traversal pair. A low target gets them in one traversal pair where a few
+// repetitions would take a second pair, and a high one does not pay for lanes it does not need.
+int FirstHalfWithoutMeasurement(double target, int most)
+{
+  if (!(target > 0.0))
+  {
+    return most;
+  }
+  const double ratio = FirstImageNoisePerRepetition / target;
+  const double half = std::ceil(0.5 * ratio * ratio);
+  return static_cast<int>(std::max(1.0, std::min(half, double(most))));
+}
 }
 
 vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
@@ -846,14 +867,13 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
   int drawn = 0;
   // Each step aims beyond the target. The first of an image aims with the noise per
   // repetition of the images before it (the noise changes little with the view, and any
-  // shortfall takes one more step); the first image's first estimate comes from a sixteenth of
-  // a group per half (16 + 16 of 256): a traversal of a whole group costs little more than one
-  // of a few repetitions.
+  // shortfall takes one more step); the first image's first step aims with an assumed noise
+  // per repetition, in at most one traversal pair.
   if (state.HalfCount == 0 && state.FirstHalf == 0 && count >= 2)
   {
     state.FirstHalf = state.NoisePerRepetition > 0.0
       ? FirstHalfToTarget(state.NoisePerRepetition, target, count / 2)
-      : std::max(1, std::min({ perPass, count, 256 }) / 16);
+      : FirstHalfWithoutMeasurement(target, std::max(1, std::min(perPass, count) / 2));
   }
   int half = state.HalfCount > 0 ? RepetitionsToTarget(state.HalfCount, state.Estimate, target)
                                  : state.FirstHalf;

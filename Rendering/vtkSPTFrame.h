@@ -161,10 +161,10 @@ public:
    * The steps of an error target, whoever draws them (one process, or ranks that share each
    * estimate). Each step draws as many as the noise per repetition predicts for a quarter below
    * the target in variance, until the estimate meets the target or count is drawn; the first
-   * step of an image takes that noise from the images before it, and of the first image, draws
-   * a sixteenth of a group per half (at least one). Where only one repetition fits, it is drawn
-   * alone and the halves are no longer balanced (no estimate). Returns how many were drawn, or -1
-   * on failure.
+   * step of an image takes that noise from the images before it; the first image's assumes a
+   * pessimistic one, in at most one group (at least one per half). Where only one repetition fits,
+   * it is drawn alone and the halves are no longer balanced (no estimate). Returns how many were
+   * drawn, or -1 on failure.
    */
   static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
     bool coverage, double target, TargetState& state);

@@ -262,10 +262,11 @@ public:
    * target, and a target not above the rounding draws RepetitionLevel repetitions, with a
    * warning. The noise is estimated from the image itself, never from a reference: the
    * repetitions are drawn as two independent halves of equal size, and the mean of both has
-   * a quarter of the variance of their difference. The first image draws one sixteenth of a group
-   * per half (16 + 16 repetitions with 256 per traversal, 1 + 1 with 16 or fewer: a group costs
-   * little more than a few repetitions); a new image after it, as many as the noise per repetition
-   * measured before predicts (ReuseNoiseEstimate). Then each step draws as
+   * a quarter of the variance of their difference. The first image's first step draws as many
+   * as an assumed noise per repetition (0.0275, a little above the largest the benchmark's
+   * meshes measure) predicts for the target, in at most one traversal pair (16 + 16 at a
+   * target of 0.005); a new image after it, as many as the noise per repetition measured
+   * before predicts (ReuseNoiseEstimate). Then each step draws as
    * many as the estimate predicts for a noise a quarter below the target in variance (the
    * noise falling as one over the square root of the repetitions; each step costs a traversal
    * pair, so a step that falls just short is the costlier mistake), until the estimate is at most
@@ -286,8 +287,8 @@ public:
    * (nothing that shapes it changed) repeats that image's steps, so it gives the same image.
    * The cost: an image then depends on what was drawn before it, so the same seed and view
    * can stop at other repetition counts in another window or after other views. Off, every
-   * image starts from one sixteenth of a group per half, and the same seed and view always
-   * give the same image. Default on.
+   * image starts as a first image does (from the assumed noise per repetition), and the same
+   * seed and view always give the same image. Default on.
    */
   vtkSetMacro(ReuseNoiseEstimate, vtkTypeBool);
   vtkGetMacro(ReuseNoiseEstimate, vtkTypeBool);
