@@ -96,32 +96,25 @@ int RepetitionsToTarget(int half, double estimate, double target)
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
 }
 
-// The repetitions per half of an image's first step, from the noise of one repetition.
-int FirstHalfToTarget(double noisePerRepetition, double target, int most)
-{
-  const double ratio = noisePerRepetition / target;
-  const double half = std::ceil(0.5 * 1.25 * ratio * ratio);
-  return static_cast<int>(std::max(1.0, std::min(half, double(most))));
-}
-
 // The noise of one repetition that the first image of a mapper assumes before it has measured
 // any (RMSE of premultiplied RGBA): a little above the largest measured on the benchmark's
 // scenes at their defaults (0.025 on the torus, 0.020 to 0.023 on the Oxygen Post and the
 // drill; 0.004 to 0.006 on Blunt Fin and SPX). At the default target of 0.005 it draws 16 + 16.
 constexpr double FirstImageNoisePerRepetition = 0.0275;
 
-// The repetitions per half of a first image's first step: as many as the assumed noise of one
-// repetition predicts for the target (no margin: the assumption is already a pessimistic
-// one), at most one traversal pair. A low target gets them in one traversal pair where a few
-// repetitions would take a second pair, and a high one does not pay for lanes it does not need.
-int FirstHalfWithoutMeasurement(double target, int most)
+// The repetitions per half of an image's first step: as many as the noise of one repetition
+// predicts for the target, times `margin` in variance, at least one and at most `most`. A
+// measured noise gets the margin of every step (1.25); the first image's assumed one gets none,
+// as the assumption is already a pessimistic one. A target of 0 (one below the rounding) draws
+// `most`.
+int FirstHalfToTarget(double noisePerRepetition, double target, double margin, int most)
 {
   if (!(target > 0.0))
   {
     return most;
   }
-  const double ratio = FirstImageNoisePerRepetition / target;
-  const double half = std::ceil(0.5 * ratio * ratio);
+  const double ratio = noisePerRepetition / target;
+  const double half = std::ceil(0.5 * margin * ratio * ratio);
   return static_cast<int>(std::max(1.0, std::min(half, double(most))));
 }
 }
@@ -872,8 +865,9 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
   if (state.HalfCount == 0 && state.FirstHalf == 0 && count >= 2)
   {
     state.FirstHalf = state.NoisePerRepetition > 0.0
-      ? FirstHalfToTarget(state.NoisePerRepetition, target, count / 2)
-      : FirstHalfWithoutMeasurement(target, std::max(1, std::min(perPass, count) / 2));
+      ? FirstHalfToTarget(state.NoisePerRepetition, target, 1.25, count / 2)
+      : FirstHalfToTarget(
+          FirstImageNoisePerRepetition, target, 1.0, std::max(1, std::min(perPass, count) / 2));
   }
   int half = state.HalfCount > 0 ? RepetitionsToTarget(state.HalfCount, state.Estimate, target)
                                  : state.FirstHalf;
