@@ -84,15 +84,19 @@ private:
   std::vector<vtkTextureObject*> Textures;
 };
 
-// The repetitions to add to each half for the noise to fall from `estimate` to a quarter below
+// How far beyond the target a step with a measured noise aims, in variance: a step costs a
+// traversal pair whatever its repetitions (up to a group), and the estimate is itself noisy:
+// aiming at the target exactly falls short about half the time, and a step of a few
+// repetitions more costs another pair.
+constexpr double StepMargin = 1.25;
+
+// The repetitions to add to each half for the noise to fall from `estimate` to StepMargin below
 // `target` in variance, if it falls as one over the square root of the repetitions: at least
-// one, at most 16 times what each half holds. A step costs a traversal pair whatever its
-// repetitions (up to a group), and the estimate is itself noisy: aiming at the target exactly
-// falls short about half the time, and a step of a few repetitions more costs another pair.
+// one, at most 16 times what each half holds.
 int RepetitionsToTarget(int half, double estimate, double target)
 {
   const double ratio = estimate / target;
-  const double more = std::ceil(half * (1.25 * ratio * ratio - 1.0));
+  const double more = std::ceil(half * (StepMargin * ratio * ratio - 1.0));
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
 }
 
@@ -104,7 +108,7 @@ constexpr double FirstImageNoisePerRepetition = 0.0275;
 
 // The repetitions per half of an image's first step: as many as the noise of one repetition
 // predicts for the target, times `margin` in variance, at least one and at most `most`. A
-// measured noise gets the margin of every step (1.25); the first image's assumed one gets none,
+// measured noise gets the margin of every step (StepMargin); the first image's assumed one none,
 // as the assumption is already a pessimistic one. A target of 0 (one below the rounding) draws
 // `most`.
 int FirstHalfToTarget(double noisePerRepetition, double target, double margin, int most)
@@ -865,7 +869,7 @@ int vtkSPTFrame::StepToTarget(const TargetSteps& steps, int first, int count, in
   if (state.HalfCount == 0 && state.FirstHalf == 0 && count >= 2)
   {
     state.FirstHalf = state.NoisePerRepetition > 0.0
-      ? FirstHalfToTarget(state.NoisePerRepetition, target, 1.25, count / 2)
+      ? FirstHalfToTarget(state.NoisePerRepetition, target, StepMargin, count / 2)
       : FirstHalfToTarget(
           FirstImageNoisePerRepetition, target, 1.0, std::max(1, std::min(perPass, count) / 2));
   }
