@@ -5,9 +5,9 @@
  * The cells that SPT draws as points (one point per cell, a square that holds its projection)
  * cover a few samples each. On a software rasterizer such as llvmpipe, setting up and binning
  * one point per cell runs on the application's thread and is most of a traversal of a large
- * mesh. A compute pass does the same work per (cell, sample) on every core: one invocation per
- * cell visits the samples whose centres lie in the cell's square and runs the keys pass's or
- * the colors pass's fragment code there (vtkSPTTetrahedraCS.glsl).
+ * mesh. A compute pass does the same work per (cell, sample) on every core: a work group finds
+ * its cells, one per invocation, then shares out the samples whose centres lie in their squares
+ * and runs the keys pass's or the colors pass's fragment code there (vtkSPTTetrahedraCS.glsl).
  *
  * The results are the points' results: the depth keys are atomic minima, the same in any
  * order, and what the fragments add by blending (the exact coverage's optical depth terms, the

@@ -49,11 +49,10 @@ constexpr int SlabDepthsImageUnit = 2;
 // (exp(-40) = 4e-18): it adds no more.
 constexpr int SlabDepthCap = 40;
 // The compute traversal takes the cells drawn as points that are about this many pixels across
-// or less: an invocation loops over its cell's samples and each sample's lanes, and invocations
-// whose loops differ in length run side by side, where a point's fragments are neighbours with
-// similar work. At 256 repetitions per traversal on a 200,000-cell TetGen mesh, computing all
-// its points (up to 8 pixels across) took 1.17 to 1.23 of the points' frame, those up to 4
-// pixels 0.97 to 0.99; on the 1M-cell one, 4 pixels take nearly all its points.
+// or less: a sample's work grows with the group's lanes, and at 256 repetitions per traversal on
+// a 200,000-cell TetGen mesh, computing all its points (up to 8 pixels across) took 1.13 to 1.17
+// of the frame that computes those up to 4 pixels (0.69 to 0.88 at 2 to 32 repetitions); on the
+// 1M-cell one, 4 pixels take nearly all its points.
 constexpr double ComputedCellSize = 4.0;
 // ... and only where they are at least this many per sample of the image.
 constexpr double ComputedCellsPerSample = 0.25;

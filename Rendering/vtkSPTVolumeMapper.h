@@ -138,8 +138,9 @@ public:
   ///@{
   /**
    * Visit cells drawn as points (see SmallCellSize) in compute passes in the keys and color
-   * traversals of a group, where the context has compute shaders (OpenGL 4.3): one invocation
-   * per cell runs the points' fragment work on the samples of its square. The keys are the
+   * traversals of a group, where the context has compute shaders (OpenGL 4.3): a work group's
+   * invocations find one cell each, then share out the (cell, sample) pairs of their cells'
+   * squares evenly and run the points' fragment work on each. The keys are the
    * same; what the fragments add by blending (the exact coverage's terms, the colors) is added
    * in fixed point (2^-16 per term), so the image differs from the points' by at most an 8-bit
    * level and stays the same from run to run. It pays on a software rasterizer such as
@@ -149,7 +150,7 @@ public:
    * - COMPUTE_TRAVERSAL_AUTO (default): where the OpenGL renderer is a software rasterizer
    *   (Mesa's llvmpipe or softpipe, SwiftShader), the points about 4 pixels across or less,
    *   where they are at least a quarter as many as the image's samples (a compute traversal
-   *   has a cost per sample, and an invocation loops over its cell's samples).
+   *   has a cost per sample, and a sample's work grows with the group's repetitions).
    * - COMPUTE_TRAVERSAL_ON: every cell drawn as a point, on any renderer.
    * - COMPUTE_TRAVERSAL_OFF: none.
    * Where a driver offers compute shaders but does not build these programs, the mapper warns

@@ -1,6 +1,6 @@
-// SPT's traversals of the cells that are drawn as points, as a compute pass: one invocation per
-// cell visits the samples whose centres lie in the square that holds the cell's projection
-// (those its point would cover) and does there what the point's fragments do: the keys pass's
+// SPT's traversals of the cells that are drawn as points, as a compute pass: a work group visits
+// the samples whose centres lie in the squares that hold its cells' projections (those their
+// points would cover) and does there what the points' fragments do: the keys pass's
 // keysAtSample() (vtkSPTPassKeysFS.glsl) or, with SPT_COMPUTE_COLORS, the colors pass's
 // colorsAtSample() (vtkSPTPassColorsFS.glsl). The keys' atomic minima give the same keys in
 // any order. What the fragments add by blending (the exact coverage's optical depth terms, the
@@ -47,58 +47,137 @@ uniform sampler2D farthestSurvivor; // window depth, one texel per sample
 //SPT::FacePlane::Impl
 //SPT::PointCell::Impl
 
-void main()
+// A work group's cells, one per invocation, and the list of their (cell, sample) pairs: cell c
+// holds the pairs [samplesEnd[c - 1], samplesEnd[c]) of the group's list, its square's samples
+// row by row. The invocations first find their cells, then share out the list: llvmpipe runs
+// neighbouring invocations in the lanes of one vector, so that a loop over each cell's own
+// samples (0 to 16, 3 on average on the large meshes) runs as long as the longest of its
+// lanes, where a share of the list is the same length in every lane.
+shared vec4 groupPlanes[SPT_COMPUTE_GROUP_SIZE * 5]; // a cell's four face planes, its scalar plane
+shared ivec2 groupFirstSample[SPT_COMPUTE_GROUP_SIZE]; // the lowest corner of a cell's square
+shared int groupSquareWidth[SPT_COMPUTE_GROUP_SIZE];  // samples per row of a cell's square
+shared int samplesEnd[SPT_COMPUTE_GROUP_SIZE];        // inclusive sums of the squares' samples
+#ifdef SPT_COMPUTE_COLORS
+shared float groupNearestDepth[SPT_COMPUTE_GROUP_SIZE]; // a cell's nearest vertex, window depth
+#endif
+
+// Finds the invocation's cell and publishes it to the group; no samples for an invocation
+// past the range, a flat cell, or one outside the viewport.
+void shareCell(int local)
 {
   int cell = int(gl_GlobalInvocationID.x);
+  vec4 planes[4];
+  vec4 scalarPlane;
   vec2 low;
   vec2 high;
   float nearest;
-  if (cell >= cellCount ||
-    !pointCell(firstCell + cell, facePlaneNDC, scalarPlaneNDC, low, high, nearest))
+  int samples = 0;
+  if (cell < cellCount && pointCell(firstCell + cell, planes, scalarPlane, low, high, nearest))
   {
-    return;
-  }
-  tetrahedronId = firstCell + cell;
-  vec2 windowLow = (low * 0.5 + 0.5) * passSizeInPixels;
-  vec2 windowHigh = (high * 0.5 + 0.5) * passSizeInPixels;
-  ivec2 first = max(ivec2(ceil(windowLow - 0.5)), ivec2(0));
-  ivec2 last = min(ivec2(floor(windowHigh - 0.5)), ivec2(passSizeInPixels) - 1);
-#ifdef SPT_COMPUTE_COLORS
-  // The depth the point is rasterized at (vtkSPTTetrahedraPointsVS.glsl), in window depth.
-  float nearestDepth = clamp(nearest, -1.0, 1.0) * 0.5 + 0.5;
-#endif
-  for (int y = first.y; y <= last.y; ++y)
-  {
-    for (int x = first.x; x <= last.x; ++x)
+    vec2 windowLow = (low * 0.5 + 0.5) * passSizeInPixels;
+    vec2 windowHigh = (high * 0.5 + 0.5) * passSizeInPixels;
+    ivec2 first = max(ivec2(ceil(windowLow - 0.5)), ivec2(0));
+    ivec2 last = min(ivec2(floor(windowHigh - 0.5)), ivec2(passSizeInPixels) - 1);
+    ivec2 size = max(last - first + 1, ivec2(0));
+    samples = size.x * size.y;
+    for (int k = 0; k < 4; ++k)
     {
-      samplePosition = vec2(x, y) + 0.5;
-      // The random numbers' caches belong to one (sample, cell).
-      hashGroup = 0xFFFFFFFFu;
-      orderBlock = 0xFFFFFFFFu;
-#ifdef SPT_COMPUTE_COLORS
-      if (behindSurvivorsSkipped != 0 &&
-        nearestDepth > texelFetch(farthestSurvivor, ivec2(x, y), 0).r)
-      {
-        continue;
-      }
-      vec4 sum;
-      vec4 secondHalf;
-      if (colorsAtSample(sum, secondHalf))
-      {
-        addToSums(0, sum, ivec2(x, y));
-#ifdef SPT_SECOND_HALF
-        addToSums(4, secondHalf, ivec2(x, y));
-#endif
-      }
-#else
-      vec4 coverageTerms;
-      if (keysAtSample(coverageTerms))
-      {
-#ifdef SPT_WRITE_COVERAGE
-        addToSums(0, coverageTerms, ivec2(x, y));
-#endif
-      }
-#endif
+      groupPlanes[local * 5 + k] = planes[k];
     }
+    groupPlanes[local * 5 + 4] = scalarPlane;
+    groupFirstSample[local] = first;
+    groupSquareWidth[local] = size.x;
+#ifdef SPT_COMPUTE_COLORS
+    // The depth the point is rasterized at (vtkSPTTetrahedraPointsVS.glsl), in window depth.
+    groupNearestDepth[local] = clamp(nearest, -1.0, 1.0) * 0.5 + 0.5;
+#endif
+  }
+  samplesEnd[local] = samples;
+}
+
+// The inclusive prefix sums of the group's sample counts, in place (Hillis and Steele: log2 of
+// the group's size steps).
+void sumSamples(int local)
+{
+  for (int offset = 1; offset < SPT_COMPUTE_GROUP_SIZE; offset *= 2)
+  {
+    int before = local >= offset ? samplesEnd[local - offset] : 0;
+    barrier();
+    samplesEnd[local] += before;
+    barrier();
+  }
+}
+
+// The group's cell that holds pair `pair` of the list: the first whose samples end after it
+// (a binary search over the group's power-of-two size).
+int cellOfPair(int pair)
+{
+  int cell = 0;
+  for (int step = SPT_COMPUTE_GROUP_SIZE / 2; step > 0; step /= 2)
+  {
+    if (samplesEnd[cell + step - 1] <= pair)
+    {
+      cell += step;
+    }
+  }
+  return cell;
+}
+
+// The pass's work at one sample of one cell: what the point's fragment there does.
+void visitSample(ivec2 pixel)
+{
+  samplePosition = vec2(pixel) + 0.5;
+  // The random numbers' caches belong to one (sample, cell).
+  hashGroup = 0xFFFFFFFFu;
+  orderBlock = 0xFFFFFFFFu;
+#ifdef SPT_COMPUTE_COLORS
+  vec4 sum;
+  vec4 secondHalf;
+  if (colorsAtSample(sum, secondHalf))
+  {
+    addToSums(0, sum, pixel);
+#ifdef SPT_SECOND_HALF
+    addToSums(4, secondHalf, pixel);
+#endif
+  }
+#else
+  vec4 coverageTerms;
+  if (keysAtSample(coverageTerms))
+  {
+#ifdef SPT_WRITE_COVERAGE
+    addToSums(0, coverageTerms, pixel);
+#endif
+  }
+#endif
+}
+
+void main()
+{
+  int local = int(gl_LocalInvocationID.x);
+  shareCell(local);
+  barrier();
+  sumSamples(local);
+  int pairs = samplesEnd[SPT_COMPUTE_GROUP_SIZE - 1];
+  int groupFirstCell = firstCell + int(gl_WorkGroupID.x) * SPT_COMPUTE_GROUP_SIZE;
+  for (int pair = local; pair < pairs; pair += SPT_COMPUTE_GROUP_SIZE)
+  {
+    int cell = cellOfPair(pair);
+    int inSquare = pair - (cell > 0 ? samplesEnd[cell - 1] : 0);
+    int width = groupSquareWidth[cell];
+    ivec2 pixel = groupFirstSample[cell] + ivec2(inSquare % width, inSquare / width);
+#ifdef SPT_COMPUTE_COLORS
+    if (behindSurvivorsSkipped != 0 &&
+      groupNearestDepth[cell] > texelFetch(farthestSurvivor, pixel, 0).r)
+    {
+      continue;
+    }
+#endif
+    tetrahedronId = groupFirstCell + cell;
+    for (int k = 0; k < 4; ++k)
+    {
+      facePlaneNDC[k] = groupPlanes[cell * 5 + k];
+    }
+    scalarPlaneNDC = groupPlanes[cell * 5 + 4];
+    visitSample(pixel);
   }
 }
