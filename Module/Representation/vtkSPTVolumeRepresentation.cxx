@@ -7,10 +7,10 @@
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPSPTVolumeMapper.h"
 #include "vtkPVRenderView.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
-#include "vtkSPTVolumeMapper.h"
 #include "vtkTetrahedralVolumeMapper.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolumeProperty.h"
@@ -57,7 +57,7 @@ void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
 vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
 {
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  const bool parallel = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper) && controller &&
+  const bool parallel = vtkPSPTVolumeMapper::SafeDownCast(this->VolumeMapper) && controller &&
     controller->GetNumberOfProcesses() > 1;
   return parallel ? controller : nullptr;
 }
@@ -126,7 +126,7 @@ int vtkSPTVolumeRepresentation::ProcessViewRequest(
     const bool distributed = view &&
       (lod ? view->GetUseDistributedRenderingForLODRender()
            : view->GetUseDistributedRenderingForRender());
-    if (auto* mapper = vtkSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
+    if (auto* mapper = vtkPSPTVolumeMapper::SafeDownCast(this->VolumeMapper))
     {
       mapper->SetController(distributed ? controller : nullptr);
       if (distributed && controller)

@@ -16,6 +16,7 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkNew.h"
+#include "vtkOpenGLLoader.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -25,7 +26,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
-#include "vtkSPTOpenGL.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkStructuredGrid.h"
@@ -221,7 +221,7 @@ public:
     this->Right->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
     this->Right->ResetCamera();
     this->Window->AddRenderer(this->Right);
-    if (!this->Window->IsA("vtkSPTEGLRenderWindow"))
+    if (!this->Window->IsA("vtkHeadlessEGLRenderWindow"))
     {
       // An X interactor (for -I): the EGL window has no X window for one.
       this->Interactor->SetRenderWindow(this->Window);

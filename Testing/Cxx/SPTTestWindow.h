@@ -1,16 +1,16 @@
 // The render window of the C++ tests: VTK's own (X, GLX) when there is an X display, else
-// vtkSPTEGLRenderWindow, so that the whole suite also runs without X.
+// vtkHeadlessEGLRenderWindow, so that the whole suite also runs without X.
 
 #ifndef SPTTestWindow_h
 #define SPTTestWindow_h
 
+#include "vtkHeadlessEGLRenderWindow.h"
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSPTEGLRenderWindow.h"
 #include "vtkSmartPointer.h"
 
 #include <cstdlib>
@@ -29,7 +29,7 @@ inline vtkSmartPointer<vtkRenderWindow> New()
   {
     return vtkSmartPointer<vtkRenderWindow>::New();
   }
-  return vtkSmartPointer<vtkSPTEGLRenderWindow>::New();
+  return vtkSmartPointer<vtkHeadlessEGLRenderWindow>::New();
 }
 
 // For tests that make OpenGL calls of their own: a rendered window's context, current, with

@@ -6,7 +6,7 @@ import vtk
 
 from spt import data, render, scenes
 
-from conftest import load_or_skip
+from spt_pytest_fixtures import load_or_skip
 
 
 @lru_cache(maxsize=None)

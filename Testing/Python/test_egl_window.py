@@ -1,4 +1,4 @@
-"""Rendering without X: spt.vtkSPTEGLRenderWindow, and its automatic choice when there is no
+"""Rendering without X: spt.vtkHeadlessEGLRenderWindow, and its automatic choice when there is no
 DISPLAY. The renders without X run in a child process whose environment has no DISPLAY; the
 image is compared with the same scene rendered through X when this process has a display, and
 with the exact reference (spt.raycast) in any case.
@@ -54,8 +54,8 @@ def without_x(tmp_path_factory):
 
 def test_without_display_the_egl_window_is_chosen_and_prints_nothing(without_x):
     _, window, stderr = without_x
-    assert window == {"class": "vtkSPTEGLRenderWindow", "platform": "surfaceless"} or \
-        window == {"class": "vtkSPTEGLRenderWindow", "platform": "device"}
+    assert window == {"class": "vtkHeadlessEGLRenderWindow", "platform": "surfaceless"} or \
+        window == {"class": "vtkHeadlessEGLRenderWindow", "platform": "device"}
     # No spurious message (GLEW's "could not be initialized" among them): nothing at all.
     assert stderr == ""
 
@@ -82,7 +82,7 @@ def test_without_display_the_image_is_the_one_x_renders(without_x):
 
 
 def test_settings_and_print_self():
-    window = spt.vtkSPTEGLRenderWindow()
+    window = spt.vtkHeadlessEGLRenderWindow()
     assert window.GetDeviceIndex() == -1
     window.SetDeviceIndex(100)
     assert window.GetDeviceIndex() == 63
@@ -93,8 +93,8 @@ def test_settings_and_print_self():
 
 
 BAD_DEVICE = """
-from spt import vtkSPTEGLRenderWindow
-window = vtkSPTEGLRenderWindow()
+from spt import vtkHeadlessEGLRenderWindow
+window = vtkHeadlessEGLRenderWindow()
 window.SetDeviceIndex(63)
 window.Render()
 print("supported", window.SupportsOpenGL())
@@ -110,8 +110,8 @@ def test_a_missing_device_is_a_clear_error_not_a_crash():
 
 X_INTERACTOR = """
 import vtk
-from spt import vtkSPTEGLRenderWindow
-window = vtkSPTEGLRenderWindow()
+from spt import vtkHeadlessEGLRenderWindow
+window = vtkHeadlessEGLRenderWindow()
 interactor = vtk.vtkRenderWindowInteractor()
 interactor.SetRenderWindow(window)
 window.Render()

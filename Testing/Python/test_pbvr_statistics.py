@@ -24,7 +24,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 
 from spt import data, render, scenes, statistics
 
-from conftest import load_or_skip
+from spt_pytest_fixtures import load_or_skip
 from scene_support import reference, scene
 from statistics_checks import (Z, check_alpha_noise_is_bernoulli, check_images_are_volumes,
                                check_noise_falls_as_one_over_repetitions,

@@ -104,7 +104,7 @@ def test_reference_of_the_torus_has_no_holes(have_display):
     """VTK's ray caster loses rays in the torus as stored (about half its tetrahedra inverted,
     30 flat): black holes, RMSE 0.08 against VTK's projected tetrahedra. From the repaired copy
     that render() gives it, 0.017."""
-    from conftest import load_or_skip
+    from spt_pytest_fixtures import load_or_skip
 
     torus = load_or_skip("torus")
     prop = data.transfer_function(torus)

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from spt import render
-from spt.SPTRendering import vtkSPTVolumeMapper
+from spt import vtkSPTVolumeMapper
 
 from scene_support import opaque_plane, scene, with_cell_scalars
 

@@ -20,7 +20,7 @@ import scene_support
 from spt import metrics, render, scenes, statistics
 from vtkmodules.vtkRenderingCore import vtkVolume, vtkVolumeProperty
 
-from conftest import load_or_skip
+from spt_pytest_fixtures import load_or_skip
 
 SIZE = 128
 REPETITIONS = 32

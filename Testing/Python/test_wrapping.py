@@ -12,7 +12,17 @@ import spt
 def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     mapper = spt.vtkSPTVolumeMapper()
     assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
-    assert mapper.GetClassName() == "vtkSPTVolumeMapper"
+    # The package loads the parallel module, which overrides the mapper in VTK's factory.
+    assert isinstance(mapper, spt.vtkSPTVolumeMapper)
+    assert mapper.GetClassName() == "vtkPSPTVolumeMapper"
+
+
+def test_former_names_still_work():
+    """The EGL window's and the single rendering module's former names, kept for a release."""
+    window = spt.vtkSPTEGLRenderWindow()
+    assert isinstance(window, spt.vtkHeadlessEGLRenderWindow)
+    from spt.SPTRendering import vtkSPTVolumeMapper
+    assert vtkSPTVolumeMapper is spt.vtkSPTVolumeMapper
 
 
 @pytest.mark.parametrize("name, default, low, high", [
@@ -87,9 +97,9 @@ def test_installed_package_imports_from_any_directory(tmp_path):
 CONSUMER_CMAKE = """
 cmake_minimum_required(VERSION 3.16)
 project(consumer CXX)
-find_package(SPT REQUIRED)
+find_package(SPT REQUIRED COMPONENTS {component})
 add_executable(consumer main.cxx)
-target_link_libraries(consumer PRIVATE SPT::Rendering)
+target_link_libraries(consumer PRIVATE SPT::{component})
 """
 
 CONSUMER_MAIN = """
@@ -104,11 +114,13 @@ int main()
 """
 
 
-def test_installed_cmake_package_builds_a_cxx_program(tmp_path):
-    """After `make install`, find_package(SPT) gives SPT::Rendering to a C++ project."""
+@pytest.mark.parametrize("component", ["RenderingSPT", "Rendering"])
+def test_installed_cmake_package_builds_a_cxx_program(tmp_path, component):
+    """After `make install`, find_package(SPT) gives SPT::RenderingSPT to a C++ project, which
+    then links neither MPI nor libEGL; SPT::Rendering (every rendering module) still works."""
     if os.environ.get("SPT_TEST_INSTALLED") != "1":
         pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
-    (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE)
+    (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE.format(component=component))
     (tmp_path / "main.cxx").write_text(CONSUMER_MAIN)
     build = tmp_path / "build"
     for command in (["cmake", "-S", str(tmp_path), "-B", str(build)],
@@ -116,3 +128,9 @@ def test_installed_cmake_package_builds_a_cxx_program(tmp_path):
                     [str(build / "consumer")]):
         result = subprocess.run(command, capture_output=True, text=True, check=False)
         assert result.returncode == 0, result.stdout + result.stderr
+    if component == "RenderingSPT":
+        libraries = subprocess.run(["ldd", str(build / "consumer")], capture_output=True,
+                                   text=True, check=True).stdout
+        assert "libSPTRenderingSPT" in libraries, libraries
+        for other in ("libEGL", "libmpi", "libvtkParallelCore", "libSPTRenderingParallel"):
+            assert other not in libraries, libraries

@@ -7,7 +7,7 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     baseline = spt.vtkHAVSVolumeMapper() # sorted baseline: HAVS (Callahan et al. 2005)
     particles = spt.vtkPBVRVolumeMapper() # sorting-free baseline: particles (PBVR)
     mesher = spt.vtkTetGenMesher()        # closed triangulated surface -> tetrahedra (TetGen)
-    window = spt.vtkSPTEGLRenderWindow()  # a render window without X (EGL)
+    window = spt.vtkHeadlessEGLRenderWindow()  # a render window without X (EGL)
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
 generated drill and torus meshes at any size, cached on disk), ``spt.render``
@@ -20,12 +20,19 @@ from vtkmodules import vtkCommonExecutionModel as _vtkCommonExecutionModel  # no
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
 from vtkmodules import vtkRenderingOpenGL2 as _vtkRenderingOpenGL2  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
+from vtkmodules import vtkParallelCore as _vtkParallelCore  # noqa: F401
 
 from .SPTMeshing import vtkTetGenMesher
-from .SPTRendering import (vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTEGLRenderWindow,
-                           vtkSPTVolumeMapper)
+from .SPTRenderingBaselines import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper
+from .SPTRenderingCore import vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper
+from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow, vtkSPTEGLRenderWindow
+# Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
+# vtkSPTVolumeMapper() then makes the mapper that also renders across MPI ranks.
+from .SPTRenderingParallel import vtkPSPTVolumeMapper
+from .SPTRenderingSPT import vtkSPTVolumeMapper
 
 __all__ = [
-    "vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper", "vtkSPTEGLRenderWindow", "vtkSPTVolumeMapper",
-    "vtkTetGenMesher"]
+    "vtkHAVSVolumeMapper", "vtkHeadlessEGLRenderWindow", "vtkPBVRVolumeMapper",
+    "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow", "vtkSPTVolumeMapper",
+    "vtkStochasticVolumeMapper", "vtkTetGenMesher", "vtkTetrahedralVolumeMapper"]
 __version__ = "0.1.0"

@@ -39,8 +39,8 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics, raycast
-from .SPTRendering import (vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTEGLRenderWindow,
-                           vtkSPTVolumeMapper)
+from . import (vtkHAVSVolumeMapper, vtkHeadlessEGLRenderWindow, vtkPBVRVolumeMapper,
+               vtkSPTVolumeMapper)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -251,12 +251,12 @@ MAPPERS: Dict[str, Callable[[], vtkAbstractVolumeMapper]] = {
 
 def new_render_window() -> vtkRenderWindow:
     """A render window for this process: VTK's own (X, GLX) when there is an X display, else
-    the EGL window, which needs no X server (``spt.vtkSPTEGLRenderWindow``). Without X, a
+    the EGL window, which needs no X server (``spt.vtkHeadlessEGLRenderWindow``). Without X, a
     RuntimeError names what is missing when EGL gives no OpenGL 3.2 context: nothing could
     be drawn, and VTK would read back uninitialized pixels."""
     if os.environ.get("DISPLAY"):
         return vtkRenderWindow()
-    window = vtkSPTEGLRenderWindow()
+    window = vtkHeadlessEGLRenderWindow()
     if not window.SupportsOpenGL():
         raise RuntimeError("no DISPLAY, and no OpenGL through EGL either: "
                            + window.GetOpenGLSupportMessage())

@@ -29,7 +29,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from .. import metrics, render, scenes
 from ..progress import Progress
-from ..SPTRendering import vtkSPTVolumeMapper
+from .. import vtkSPTVolumeMapper
 from . import host
 from .methods import METHODS, Method, havs_method
 from .settings import RACE_SCENES, Settings

@@ -1,0 +1,579 @@
+// The proof that the GPU k-buffer of vtkHAVSVolumeMapper runs its read-modify-write one
+// fragment at a time, in primitive order: its image must equal a CPU simulation of the same
+// algorithm fed with the same fragments in the same order.
+//
+// The CPU rasterizes the mapper's own faces (vtkHAVSFaceBuffers, same mesh, same sort) at the
+// pixel centers in the mapper's draw order, interpolates scalar and eye distance as the GPU
+// does, runs the same k-buffer insertion, flush and early termination, and composites through
+// the same pre-integration table with trilinear filtering. Pixels whose center lies within
+// 0.01 pixels of a triangle edge (where coverage is a matter of rasterizer precision) are left
+// out of the comparison.
+//
+// The test can fail: the CPU image with a perturbed order (consecutive fragments of each pixel
+// swapped, or every fourth fragment's update lost, as in a read-modify-write race) differs
+// clearly from the GPU image, and the test checks that it does.
+//
+// Two meshes, every k-buffer size from 2 to 6 (k = 2 keeps one entry per pixel and draws no
+// flush pass; an odd k leaves half of the last target unused), and every synchronization mode
+// that the context has:
+// a soup of 40 overlapping random tetrahedra (every face on the boundary, fragments far from
+// sorted) and a jittered block of tetrahedra with a slot cut out (non-convex, gaps).
+
+#include "HAVSKBufferModel.h"
+
+#include "vtkHAVSFaceBuffers.h"
+#include "vtkHAVSKBuffer.h"
+#include "vtkHAVSVolumeMapper.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOpenGLLoader.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkTesting.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+#include "vtkWindowToImageFilter.h"
+
+#include "SPTTestWindow.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <random>
+#include <vector>
+
+namespace
+{
+using namespace HAVSKBufferModel;
+
+constexpr int Size = 96;
+constexpr double EdgeMargin = 0.01; // pixels (llvmpipe snaps vertices to 1/256 pixel)
+
+// What the CPU rasterizer found for one pixel: its fragments in draw order.
+struct PixelFragments
+{
+  std::vector<Entry> Fragments;
+  bool Ambiguous = false;
+  float LengthScale = 0.0f;
+};
+
+enum class Perturbation
+{
+  None,
+  SwapPairs,
+  LoseEveryFourth
+};
+
+vtkSmartPointer<vtkUnstructuredGrid> MakeSoup()
+{
+  std::mt19937 random(2005);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalars;
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  for (int t = 0; t < 40; ++t)
+  {
+    const double center[3] = { uniform(random), uniform(random), uniform(random) };
+    vtkIdType ids[4];
+    for (vtkIdType& id : ids)
+    {
+      id = points->InsertNextPoint(center[0] + 0.5 * (uniform(random) - 0.5),
+        center[1] + 0.5 * (uniform(random) - 0.5), center[2] + 0.5 * (uniform(random) - 0.5));
+      scalars->InsertNextValue(static_cast<float>(uniform(random)));
+    }
+    grid->InsertNextCell(VTK_TETRA, 4, ids);
+  }
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(scalars);
+  return grid;
+}
+
+// 5 x 5 x 3 jittered cubes, 5 tetrahedra each, without the cubes of a slot through the middle.
+vtkSmartPointer<vtkUnstructuredGrid> MakeSlottedBlock()
+{
+  const int n[3] = { 5, 5, 3 };
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkFloatArray> scalars;
+  for (int k = 0; k <= n[2]; ++k)
+  {
+    for (int j = 0; j <= n[1]; ++j)
+    {
+      for (int i = 0; i <= n[0]; ++i)
+      {
+        points->InsertNextPoint(i + jitter(random), j + jitter(random), k + jitter(random));
+        scalars->InsertNextValue(
+          static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
+      }
+    }
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->GetPointData()->SetScalars(scalars);
+  auto id = [&](int i, int j, int k) { return vtkIdType(i + (n[0] + 1) * (j + (n[1] + 1) * k)); };
+  const int tets[2][5][4] = { { { 0, 1, 3, 5 }, { 0, 2, 6, 3 }, { 0, 4, 5, 6 }, { 3, 5, 6, 7 },
+                                { 0, 3, 6, 5 } },
+    { { 1, 0, 2, 4 }, { 1, 3, 7, 2 }, { 1, 5, 4, 7 }, { 2, 4, 7, 6 }, { 1, 2, 7, 4 } } };
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      for (int i = 0; i < n[0]; ++i)
+      {
+        if (i == 2 && k > 0)
+        {
+          continue; // the slot
+        }
+        vtkIdType c[8];
+        for (int corner = 0; corner < 8; ++corner)
+        {
+          c[corner] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
+        }
+        for (const auto& tet : tets[(i + j + k) % 2])
+        {
+          const vtkIdType ids[4] = { c[tet[0]], c[tet[1]], c[tet[2]], c[tet[3]] };
+          grid->InsertNextCell(VTK_TETRA, 4, ids);
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double unitDistance)
+{
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(range[0], 0.1, 0.3, 1.0);
+  color->AddRGBPoint(0.5 * (range[0] + range[1]), 0.2, 1.0, 0.3);
+  color->AddRGBPoint(range[1], 1.0, 0.3, 0.1);
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(range[0], 0.1);
+  opacity->AddPoint(range[1], 0.6);
+  auto property = vtkSmartPointer<vtkVolumeProperty>::New();
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  property->SetScalarOpacityUnitDistance(unitDistance);
+  return property;
+}
+
+// A face of the mapper in view and window coordinates, with its clip w and scalars.
+struct ProjectedFace
+{
+  glm::dvec3 VC[3];
+  glm::dvec2 Window[3];
+  double W[3];
+  double Scalar[3];
+  double Area; // twice the signed window area: positive counter-clockwise
+};
+
+ProjectedFace ProjectFace(vtkHAVSFaceBuffers* faces, unsigned int face,
+  const glm::mat4& modelToView, const glm::mat4& viewToClip)
+{
+  ProjectedFace f;
+  for (int v = 0; v < 3; ++v)
+  {
+    const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
+    f.VC[v] = glm::dvec3(
+      modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
+    const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(f.VC[v], 1.0);
+    f.W[v] = clip.w;
+    f.Window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
+    f.Scalar[v] = faces->GetVertexScalars()[id];
+  }
+  const glm::dvec2 e01 = f.Window[1] - f.Window[0], e02 = f.Window[2] - f.Window[0];
+  f.Area = e01.x * e02.y - e01.y * e02.x;
+  return f;
+}
+
+// The pixels with their length scale from view to model distance along their rays.
+std::vector<PixelFragments> MakePixels(const vtkVolumeViewMatrices& m)
+{
+  const glm::mat4 clipToView = glm::make_mat4(m.DCVC);
+  const glm::mat3 viewToModel = glm::make_mat3(m.VCMCLinear);
+  std::vector<PixelFragments> pixels(Size * Size);
+  for (int y = 0; y < Size; ++y)
+  {
+    for (int x = 0; x < Size; ++x)
+    {
+      const glm::vec2 ndc((x + 0.5f) / Size * 2.0f - 1.0f, (y + 0.5f) / Size * 2.0f - 1.0f);
+      const glm::vec4 nearVC = clipToView * glm::vec4(ndc, -1.0f, 1.0f);
+      const glm::vec4 farVC = clipToView * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 ray = m.ParallelProjection
+        ? glm::vec3(0.0f, 0.0f, -1.0f)
+        : glm::normalize(glm::vec3(farVC) / farVC.w - glm::vec3(nearVC) / nearVC.w);
+      pixels[y * Size + x].LengthScale = glm::length(viewToModel * ray);
+    }
+  }
+  return pixels;
+}
+
+// Barycentric weights of the window point p in the face. Returns whether p is covered (within
+// EdgeMargin pixels of the inside); onEdge tells whether it is that close to an edge.
+bool Cover(const ProjectedFace& f, glm::dvec2 p, double barycentric[3], bool& onEdge)
+{
+  double nearest = 1e30;
+  bool inside = true;
+  for (int v = 0; v < 3; ++v)
+  {
+    const glm::dvec2 a = f.Window[(v + 1) % 3], b = f.Window[(v + 2) % 3];
+    const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / f.Area;
+    barycentric[v] = edge;
+    const double pixelsFromEdge = edge * std::abs(f.Area) / glm::length(b - a);
+    nearest = std::min(nearest, std::abs(pixelsFromEdge));
+    inside = inside && pixelsFromEdge > -EdgeMargin;
+  }
+  onEdge = nearest < EdgeMargin;
+  return inside;
+}
+
+// The fragment at the barycentric weights: scalar (with the crossing code of a boundary face)
+// and eye distance, interpolated perspective-correct, as the GPU does.
+Entry Interpolate(const ProjectedFace& f, const double barycentric[3], bool parallel)
+{
+  const bool boundary = f.Scalar[0] > 1.5;
+  // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
+  const float crossing = boundary ? (f.Area < 0.0 ? 2.0f : 4.0f) : 0.0f;
+  double sum = 0.0, weights[3];
+  for (int v = 0; v < 3; ++v)
+  {
+    weights[v] = barycentric[v] / f.W[v];
+    sum += weights[v];
+  }
+  glm::dvec3 positionVC(0.0);
+  double s = 0.0;
+  for (int v = 0; v < 3; ++v)
+  {
+    positionVC += weights[v] / sum * f.VC[v];
+    s += weights[v] / sum * f.Scalar[v];
+  }
+  const double distance = parallel ? -positionVC.z : glm::length(positionVC);
+  const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
+  return Entry{ code, float(distance) };
+}
+
+void RasterizeFace(const ProjectedFace& f, bool parallel, std::vector<PixelFragments>& pixels)
+{
+  const double lo[2] = { std::min({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
+    std::min({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
+  const double hi[2] = { std::max({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
+    std::max({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
+  for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(Size - 1, int(hi[1]) + 1); ++y)
+  {
+    for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(Size - 1, int(hi[0]) + 1); ++x)
+    {
+      double barycentric[3];
+      bool onEdge = false;
+      if (!Cover(f, glm::dvec2(x + 0.5, y + 0.5), barycentric, onEdge))
+      {
+        continue;
+      }
+      PixelFragments& pixel = pixels[y * Size + x];
+      if (onEdge)
+      {
+        pixel.Ambiguous = true;
+        continue;
+      }
+      pixel.Fragments.push_back(Interpolate(f, barycentric, parallel));
+    }
+  }
+}
+
+// The fragments of the mapper's faces, in its draw order, at every pixel center.
+std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m)
+{
+  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
+  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
+  std::vector<PixelFragments> pixels = MakePixels(m);
+  for (unsigned int face : faces->GetOrder())
+  {
+    const ProjectedFace f = ProjectFace(faces, face, modelToView, viewToClip);
+    if (f.Area != 0.0)
+    {
+      RasterizeFace(f, m.ParallelProjection, pixels);
+    }
+  }
+  return pixels;
+}
+
+std::vector<glm::vec4> Simulate(const std::vector<PixelFragments>& pixels, int kbufferSize,
+  const vtkPreIntegrationTable* table, float thicknessToTable, Perturbation perturbation)
+{
+  std::vector<glm::vec4> image(pixels.size());
+  for (size_t p = 0; p < pixels.size(); ++p)
+  {
+    std::vector<Entry> fragments = pixels[p].Fragments;
+    if (perturbation == Perturbation::SwapPairs)
+    {
+      for (size_t i = 0; i + 1 < fragments.size(); i += 2)
+      {
+        std::swap(fragments[i], fragments[i + 1]);
+      }
+    }
+    KBuffer kbuffer(kbufferSize, table, thicknessToTable, pixels[p].LengthScale);
+    for (size_t i = 0; i < fragments.size(); ++i)
+    {
+      if (perturbation != Perturbation::LoseEveryFourth || i % 4 != 3)
+      {
+        kbuffer.Insert(fragments[i]);
+      }
+    }
+    image[p] = kbuffer.Flush();
+  }
+  return image;
+}
+
+struct Comparison
+{
+  int Compared = 0;
+  int Layered = 0; // compared pixels with 4 fragments or more
+  int Ambiguous = 0;
+  int Off = 0;        // pixels off by more than the tolerance
+  double Largest = 0; // largest channel difference
+};
+
+Comparison Compare(const std::vector<PixelFragments>& pixels, const std::vector<glm::vec4>& cpu,
+  vtkUnsignedCharArray* gpu, double tolerance)
+{
+  Comparison result;
+  for (size_t p = 0; p < pixels.size(); ++p)
+  {
+    if (pixels[p].Ambiguous)
+    {
+      ++result.Ambiguous;
+      continue;
+    }
+    ++result.Compared;
+    result.Layered += pixels[p].Fragments.size() >= 4;
+    double difference = 0.0;
+    for (int c = 0; c < 4; ++c)
+    {
+      difference = std::max(difference, std::abs(gpu->GetValue(4 * p + c) / 255.0 - cpu[p][c]));
+    }
+    result.Off += difference > tolerance;
+    result.Largest = std::max(result.Largest, difference);
+  }
+  return result;
+}
+
+// Whether the current context offers the synchronization. Rasterization order is only claimed
+// for Mesa's llvmpipe; anywhere else it is a data race that this test would rightly fail.
+bool Offers(int access)
+{
+  switch (access)
+  {
+    case vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK:
+      return vtkHAVSKBuffer::HasExtension("GL_ARB_fragment_shader_interlock");
+    case vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH:
+      return vtkHAVSKBuffer::HasExtension("GL_EXT_shader_framebuffer_fetch");
+    default:
+    {
+      const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+      return vtkHAVSKBuffer::HasExtension("GL_ARB_shader_image_load_store") && renderer &&
+        std::strstr(renderer, "llvmpipe") != nullptr;
+    }
+  }
+}
+
+// Render the mesh with the mapper; returns its RGBA pixels (bottom row first), or nullptr if
+// the mapper could not draw.
+vtkSmartPointer<vtkUnsignedCharArray> RenderOnGPU(
+  vtkRenderWindow* window, vtkHAVSVolumeMapper* mapper)
+{
+  window->Render();
+  if (mapper->GetKBufferSynchronizationInUse() < 0)
+  {
+    return nullptr;
+  }
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGBA();
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  return vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+}
+
+// The mapper drawing the mesh alone, offscreen, onto a transparent background.
+struct GPUScene
+{
+  GPUScene(vtkUnstructuredGrid* grid, double unitDistance)
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetAlphaBitPlanes(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(Size, Size);
+    this->Renderer->SetBackground(0.0, 0.0, 0.0);
+    this->Renderer->SetBackgroundAlpha(0.0);
+    this->Window->AddRenderer(this->Renderer);
+    this->Mapper->SetInputData(grid);
+    double range[2];
+    grid->GetPointData()->GetScalars()->GetRange(range);
+    this->Property = MakeProperty(range, unitDistance);
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+    this->Renderer->GetActiveCamera()->SetPosition(2.0, -3.0, 2.5);
+    this->Renderer->GetActiveCamera()->SetViewUp(0.0, 0.0, 1.0);
+    this->Renderer->ResetCamera();
+    this->Window->Render(); // creates the context, for Offers()
+  }
+
+  vtkSmartPointer<vtkRenderWindow> Window = SPTTestWindow::New();
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkHAVSVolumeMapper> Mapper;
+  vtkSmartPointer<vtkVolumeProperty> Property;
+  vtkNew<vtkVolume> Volume;
+};
+
+// The CPU images for one k-buffer size: in draw order, and in the two perturbed orders.
+struct Simulations
+{
+  std::vector<glm::vec4> Expected;
+  std::vector<glm::vec4> Swapped;
+  std::vector<glm::vec4> Lost;
+};
+
+// The CPU side: the same mesh, faces, sort and table as the mapper, and the fragments.
+struct CPUScene
+{
+  CPUScene(vtkUnstructuredGrid* grid, GPUScene& gpu)
+  {
+    vtkTetrahedralMesh::ScalarSelection selection;
+    this->Mesh->Update(grid, selection);
+    this->Faces->Update(this->Mesh);
+    vtkVolumeViewMatrices matrices;
+    matrices.Compute(gpu.Renderer, gpu.Volume, this->Mesh);
+    this->Faces->Sort(matrices.MCVC, matrices.ParallelProjection);
+    this->Table->Update(gpu.Property, this->Mesh->GetScalarRange(),
+      this->Mesh->GetMaxEdgeLength() * this->Mesh->GetScale(),
+      gpu.Mapper->GetPreIntegrationScalarResolution(),
+      gpu.Mapper->GetPreIntegrationThicknessResolution());
+    this->ThicknessToTable = float(1.0 / this->Mesh->GetMaxEdgeLength());
+    this->Pixels = Rasterize(this->Faces, matrices);
+  }
+
+  Simulations Simulate(int k) const
+  {
+    Simulations images;
+    images.Expected =
+      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::None);
+    images.Swapped =
+      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::SwapPairs);
+    images.Lost = ::Simulate(
+      this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::LoseEveryFourth);
+    return images;
+  }
+
+  void Print(const char* name) const
+  {
+    size_t fragments = 0, longest = 0;
+    for (const PixelFragments& pixel : this->Pixels)
+    {
+      fragments += pixel.Fragments.size();
+      longest = std::max(longest, pixel.Fragments.size());
+    }
+    std::cout << name << ": " << this->Faces->GetNumberOfFaces() << " faces, " << fragments
+              << " fragments, up to " << longest << " per pixel\n";
+  }
+
+  vtkNew<vtkTetrahedralMesh> Mesh;
+  vtkNew<vtkHAVSFaceBuffers> Faces;
+  vtkNew<vtkPreIntegrationTable> Table;
+  float ThicknessToTable;
+  std::vector<PixelFragments> Pixels;
+};
+
+// The GPU image with one synchronization against the CPU k-buffer in draw order, and against
+// the perturbed orders, which it must tell apart. Returns the failures.
+int CheckSynchronization(GPUScene& gpu, const CPUScene& cpu, int k, int access,
+  const Simulations& simulated, int* modesRun)
+{
+  int failures = 0;
+  const double tolerance = 3.0 / 255.0;
+  gpu.Mapper->SetKBufferSynchronization(access);
+  vtkSmartPointer<vtkUnsignedCharArray> image = RenderOnGPU(gpu.Window, gpu.Mapper);
+  if (!image)
+  {
+    std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
+    return 1;
+  }
+  ++*modesRun;
+  const Comparison same = Compare(cpu.Pixels, simulated.Expected, image, tolerance);
+  const Comparison pairs = Compare(cpu.Pixels, simulated.Swapped, image, tolerance);
+  const Comparison races = Compare(cpu.Pixels, simulated.Lost, image, tolerance);
+  std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
+            << same.Compared << " pixels off (largest " << same.Largest << ", " << same.Ambiguous
+            << " on edges left out); perturbed orders, of " << same.Layered
+            << " pixels with 4 fragments or more: " << pairs.Off << " off with pairs swapped, "
+            << races.Off << " with every 4th update lost\n";
+  if (same.Off > 0 || same.Ambiguous > same.Compared / 20)
+  {
+    std::cerr << "FAILED: the GPU k-buffer differs from the CPU k-buffer fed in draw order.\n";
+    ++failures;
+  }
+  // A k-buffer of 6 absorbs swapped pairs; lost updates show at any size. Measured on
+  // llvmpipe: 70-80% (soup) and 28% (block) of the layered pixels off with lost updates,
+  // 92% and 94% with swapped pairs at k = 2; the bounds leave a factor of 2 or more.
+  if (races.Off < same.Layered / 8 || (k == 2 && pairs.Off < same.Layered / 4))
+  {
+    std::cerr << "FAILED: the comparison does not tell a perturbed order from the right one.\n";
+    ++failures;
+  }
+  return failures;
+}
+
+int CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance, int* modesRun)
+{
+  int failures = 0;
+  GPUScene gpu(grid, unitDistance);
+  const CPUScene cpu(grid, gpu);
+  cpu.Print(name);
+  for (int k = 2; k <= 6; ++k)
+  {
+    gpu.Mapper->SetKBufferSize(k);
+    const Simulations simulated = cpu.Simulate(k);
+    for (int access : { vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK,
+           vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH, vtkHAVSVolumeMapper::RASTERIZATION_ORDER })
+    {
+      if (!Offers(access))
+      {
+        std::cout << "  k=" << k << ", synchronization " << access << ": not in this context\n";
+        continue;
+      }
+      failures += CheckSynchronization(gpu, cpu, k, access, simulated, modesRun);
+    }
+  }
+  return failures;
+}
+}
+
+int TestHAVSKBufferOrdering(int, char*[])
+{
+  int modesRun = 0;
+  int failures = CheckMesh(MakeSoup(), "soup of 40 overlapping tetrahedra", 0.4, &modesRun);
+  failures += CheckMesh(MakeSlottedBlock(), "jittered block with a slot", 2.0, &modesRun);
+  if (modesRun == 0)
+  {
+    std::cout << "The context has no way to synchronize the k-buffer; nothing to test.\n";
+    return VTK_SKIP_RETURN_CODE;
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

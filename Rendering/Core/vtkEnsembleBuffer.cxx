@@ -1,0 +1,585 @@
+#include "vtkEnsembleBuffer.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
+#include "vtkOpenGLLoader.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkSavedGLState.h"
+#include "vtkSceneDepthTexture.h"
+
+#include "vtkEnsembleAccumulateFS.h"
+#include "vtkEnsembleFootprintFS.h"
+#include "vtkEnsembleNoiseFS.h"
+#include "vtkEnsembleResolveFS.h"
+#include "vtkEnsembleSceneFS.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkEnsembleBuffer);
+
+vtkEnsembleBuffer::vtkEnsembleBuffer() = default;
+
+vtkEnsembleBuffer::~vtkEnsembleBuffer() = default;
+
+bool vtkEnsembleBuffer::Prepare(
+  vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel)
+{
+  int hasDepth = 0;
+  const int depthFormat = vtkSceneDepthTexture::QueryFormat(&hasDepth);
+  if (renWin != this->Context || width != this->Width || height != this->Height ||
+    subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepth->GetFormat())
+  {
+    if (this->Context && this->Context != renWin)
+    {
+      this->ReleaseGraphicsResources(this->Context);
+    }
+    this->Width = width;
+    this->Height = height;
+    this->SubpixelLevel = subpixelLevel;
+    this->Allocate(renWin, depthFormat);
+  }
+  return this->Context != nullptr;
+}
+
+void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
+{
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  for (vtkTextureObject* texture :
+    { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
+  {
+    vtkSceneDepthTexture::UseNearestTexels(texture, renWin);
+  }
+  bool ok = this->PassColor->Allocate2D(w, h, 4, VTK_FLOAT) &&
+    this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
+    this->Sum->Allocate2D(w, h, 4, VTK_FLOAT) &&
+    this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
+
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->PushFramebufferBindings();
+  for (vtkOpenGLFramebufferObject* framebuffer :
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get() })
+  {
+    framebuffer->SetContext(renWin);
+  }
+  this->PassFramebuffer->Bind();
+  this->PassFramebuffer->AddColorAttachment(0, this->PassColor);
+  this->PassFramebuffer->AddDepthAttachment(this->PassDepth);
+  this->PassFramebuffer->ActivateDrawBuffers(1);
+  ok = ok && this->PassFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  this->SumFramebuffer->Bind();
+  this->SumFramebuffer->AddColorAttachment(0, this->Sum);
+  // The passes' depth is free while the sums are drawn: SPT's color traversal tests against it.
+  this->SumFramebuffer->AddDepthAttachment(this->PassDepth);
+  this->SumFramebuffer->ActivateDrawBuffers(1);
+  ok = ok && this->SumFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  ostate->PopFramebufferBindings();
+
+  if (!this->Accumulate)
+  {
+    // Adding a pass to the sum, or to both sums: a second output only where one is bound.
+    std::string one = vtkEnsembleAccumulateFS;
+    std::string both = vtkEnsembleAccumulateFS;
+    vtkShaderProgram::Substitute(one, "//Volume::Defines::Dec", "");
+    vtkShaderProgram::Substitute(both, "//Volume::Defines::Dec", "#define ENSEMBLE_SECOND_HALF");
+    this->Accumulate.reset(new vtkOpenGLQuadHelper(renWin, nullptr, one.c_str(), ""));
+    this->AccumulateBoth.reset(new vtkOpenGLQuadHelper(renWin, nullptr, both.c_str(), ""));
+    this->Mean.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkEnsembleResolveFS, ""));
+  }
+  ok = ok && this->Accumulate->Program && this->AccumulateBoth->Program && this->Mean->Program;
+  if (!ok)
+  {
+    vtkErrorMacro(
+      "Could not allocate the " << w << "x" << h << " float framebuffers of the ensemble.");
+    this->ReleaseGraphicsResources(renWin);
+    return;
+  }
+  this->Context = renWin;
+}
+
+void vtkEnsembleBuffer::ClearSum()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  // The renderer leaves the scissor box on its viewport, which need not cover these buffers.
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->PushDrawFramebufferBinding();
+  this->SumsFramebuffer(this->Halves)->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  ostate->PopDrawFramebufferBinding();
+}
+
+void vtkEnsembleBuffer::BeginPass()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->PassFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->PassFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClearDepth(1.0);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void vtkEnsembleBuffer::BeginSumPass(bool halves)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->SumsFramebuffer(halves)->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+}
+
+void vtkEnsembleBuffer::EndPass(bool secondHalf)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
+  this->SumsFramebuffer(secondHalf)->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  vtkOpenGLQuadHelper* accumulate =
+    secondHalf && this->Halves ? this->AccumulateBoth.get() : this->Accumulate.get();
+  this->Context->GetShaderCache()->ReadyShaderProgram(accumulate->Program);
+  this->PassColor->Activate();
+  accumulate->Program->SetUniformi("passTexture", this->PassColor->GetTextureUnit());
+  accumulate->Render();
+  this->PassColor->Deactivate();
+}
+
+vtkOpenGLFramebufferObject* vtkEnsembleBuffer::SumsFramebuffer(bool secondHalf)
+{
+  // Draw buffers are state of a framebuffer object: one object per set of sums.
+  return secondHalf && this->Halves ? this->HalvesFramebuffer.Get() : this->SumFramebuffer.Get();
+}
+
+bool vtkEnsembleBuffer::SetHalves(bool halves)
+{
+  this->Halves = false;
+  if (!halves)
+  {
+    if (this->HalvesSum)
+    {
+      this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
+      this->SecondHalf->ReleaseGraphicsResources(this->Context);
+      this->HalvesSum = 0;
+    }
+    return true;
+  }
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->SecondHalf->GetWidth()) == w &&
+    static_cast<int>(this->SecondHalf->GetHeight()) == h && this->SecondHalf->GetHandle() &&
+    this->HalvesSum == this->Sum->GetHandle())
+  {
+    this->Halves = true;
+    return true;
+  }
+  vtkSceneDepthTexture::UseNearestTexels(this->SecondHalf, this->Context);
+  bool ok = this->SecondHalf->Allocate2D(w, h, 4, VTK_FLOAT);
+  vtkOpenGLState* ostate = this->Context->GetState();
+  ostate->PushFramebufferBindings();
+  this->HalvesFramebuffer->SetContext(this->Context);
+  this->HalvesFramebuffer->Bind();
+  if (ok)
+  {
+    this->HalvesFramebuffer->AddColorAttachment(0, this->Sum);
+    this->HalvesFramebuffer->AddColorAttachment(1, this->SecondHalf);
+    this->HalvesFramebuffer->AddDepthAttachment(this->PassDepth);
+    this->HalvesFramebuffer->ActivateDrawBuffers(2);
+    ok = this->HalvesFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  }
+  ostate->PopFramebufferBindings();
+  if (!ok)
+  {
+    vtkErrorMacro(
+      "Could not allocate the " << w << "x" << h << " sum of the second half of the ensemble.");
+    this->SecondHalf->ReleaseGraphicsResources(this->Context);
+    this->HalvesFramebuffer->ReleaseGraphicsResources(this->Context);
+    return false;
+  }
+  this->HalvesSum = this->Sum->GetHandle();
+  this->Halves = true;
+  return true;
+}
+
+bool vtkEnsembleBuffer::AllocateNoise()
+{
+  if (static_cast<int>(this->Noise->GetWidth()) == this->Width &&
+    static_cast<int>(this->Noise->GetHeight()) == this->Height && this->Noise->GetHandle())
+  {
+    return true;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkSceneDepthTexture::UseNearestTexels(this->Noise, this->Context);
+  bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
+  ostate->PushFramebufferBindings();
+  this->NoiseFramebuffer->SetContext(this->Context);
+  this->NoiseFramebuffer->Bind();
+  if (ok)
+  {
+    this->NoiseFramebuffer->AddColorAttachment(0, this->Noise);
+    this->NoiseFramebuffer->ActivateDrawBuffers(1);
+    ok = this->NoiseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+  }
+  ostate->PopFramebufferBindings();
+  if (!ok)
+  {
+    vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height
+                                            << " buffer of the noise estimate.");
+    this->Noise->ReleaseGraphicsResources(this->Context);
+  }
+  return ok;
+}
+
+std::vector<float> vtkEnsembleBuffer::DrawNoise(
+  vtkShaderProgram* program, int halfCount, bool exactCoverage)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  ostate->PushFramebufferBindings();
+  this->NoiseFramebuffer->Bind();
+  this->NoiseFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_DEPTH_TEST);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglViewport(0, 0, this->Width, this->Height);
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  this->Sum->Activate();
+  this->SecondHalf->Activate();
+  vtkTextureObject* coverage = exactCoverage ? this->Coverage.Get() : this->Sum.Get();
+  coverage->Activate();
+  program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  program->SetUniformi("secondHalfTexture", this->SecondHalf->GetTextureUnit());
+  program->SetUniformi("coverageTexture", coverage->GetTextureUnit());
+  program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
+  program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformf("inverseHalfCount", 1.0f / float(halfCount));
+  this->NoiseQuad->Render();
+  coverage->Deactivate();
+  this->SecondHalf->Deactivate();
+  this->Sum->Deactivate();
+
+  std::vector<float> values(size_t(2) * size_t(this->Width) * size_t(this->Height));
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  ostate->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1); // through VTK's state cache, which it keeps
+  glReadPixels(0, 0, this->Width, this->Height, GL_RG, GL_FLOAT, values.data());
+  ostate->PopFramebufferBindings();
+  return values;
+}
+
+double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+{
+  if (!this->Halves || halfCount < 1 || !this->AllocateNoise())
+  {
+    return -1.0;
+  }
+  if (!this->NoiseQuad)
+  {
+    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleNoiseFS, ""));
+  }
+  vtkShaderProgram* program = this->NoiseQuad->Program;
+  if (!program)
+  {
+    vtkErrorMacro("Could not compile the shader of the noise estimate.");
+    return -1.0;
+  }
+  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
+  // Per pixel: the squared difference of the halves' means, and whether it is in the footprint.
+  const std::vector<float> values = this->DrawNoise(program, halfCount, exactCoverage);
+  double squares = 0.0;
+  size_t footprint = 0;
+  for (size_t i = 0; i < values.size(); i += 2)
+  {
+    if (values[i + 1] > 0.5f)
+    {
+      squares += values[i];
+      ++footprint;
+    }
+  }
+  if (footprint == 0)
+  {
+    return -1.0;
+  }
+  // The mean of the halves has a quarter of the variance of their difference; the mean over
+  // the four channels of the footprint's pixels.
+  return std::sqrt(squares / (4.0 * 4.0 * static_cast<double>(footprint)));
+}
+
+bool vtkEnsembleBuffer::BeginCoveragePass()
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
+    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  {
+    vtkSceneDepthTexture::UseNearestTexels(this->Coverage, this->Context);
+    ostate->PushFramebufferBindings();
+    this->CoverageFramebuffer->SetContext(this->Context);
+    this->CoverageFramebuffer->Bind();
+    bool ok = this->Coverage->Allocate2D(w, h, 4, VTK_FLOAT);
+    if (ok)
+    {
+      this->CoverageFramebuffer->AddColorAttachment(0, this->Coverage);
+      this->CoverageFramebuffer->ActivateDrawBuffers(1);
+      ok = this->CoverageFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
+    }
+    ostate->PopFramebufferBindings();
+    if (!ok)
+    {
+      vtkErrorMacro("Could not allocate the " << w << "x" << h << " coverage buffer.");
+      this->Coverage->ReleaseGraphicsResources(this->Context);
+      return false;
+    }
+  }
+  this->BindCoverage();
+  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
+  ostate->vtkglClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  ostate->vtkglClear(GL_COLOR_BUFFER_BIT);
+  return true;
+}
+
+bool vtkEnsembleBuffer::BindCoverage()
+{
+  const int w = this->GetPassWidth();
+  const int h = this->GetPassHeight();
+  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
+    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->CoverageFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  this->CoverageFramebuffer->ActivateDrawBuffers(1);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it
+  ostate->vtkglViewport(0, 0, w, h);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  return true;
+}
+
+bool vtkEnsembleBuffer::BeginSumBesideDepthPass(bool coverage)
+{
+  if (coverage && !this->BeginCoveragePass())
+  {
+    return false;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  // Draw buffers are state of a framebuffer object: one object for each set, never changed
+  // (VTK's state cache compares only the buffers asked for, so it would not shrink a set of
+  // two to one). Attaching a texture that is attached already does nothing.
+  vtkOpenGLFramebufferObject* framebuffer =
+    coverage ? this->SumAndCoverageFramebuffer : this->SumBesideDepthFramebuffer;
+  ostate->PushFramebufferBindings();
+  framebuffer->SetContext(this->Context);
+  framebuffer->Bind();
+  framebuffer->AddColorAttachment(0, this->Sum);
+  if (coverage)
+  {
+    framebuffer->AddColorAttachment(1, this->Coverage);
+  }
+  framebuffer->ActivateDrawBuffers(coverage ? 2 : 1);
+  ostate->PopFramebufferBindings();
+  framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
+  return true;
+}
+
+void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCoverage)
+{
+  exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
+  // The mean is premultiplied: "over" the scene.
+  vtkScopedOverBlending over(this->Context->GetState(), x, y, this->Width, this->Height);
+  vtkShaderProgram* program = this->Mean->Program;
+  this->Context->GetShaderCache()->ReadyShaderProgram(program);
+  this->Sum->Activate();
+  program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformf("inversePassCount", 1.0f / float(numberOfPasses));
+  program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
+  if (exactCoverage)
+  {
+    this->Coverage->Activate();
+  }
+  // The sampler must name a unit even when it is not read.
+  program->SetUniformi("coverageTexture",
+    exactCoverage ? this->Coverage->GetTextureUnit() : this->Sum->GetTextureUnit());
+  this->Mean->Render();
+  if (exactCoverage)
+  {
+    this->Coverage->Deactivate();
+  }
+  this->Sum->Deactivate();
+}
+
+void vtkEnsembleBuffer::MarkFootprint(int x, int y)
+{
+  vtkOpenGLState* ostate = this->Context->GetState();
+  if (!this->Footprint)
+  {
+    this->Footprint.reset(
+      new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleFootprintFS, ""));
+  }
+  if (!this->Footprint->Program)
+  {
+    return;
+  }
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglDisable(GL_BLEND);
+  this->Context->GetShaderCache()->ReadyShaderProgram(this->Footprint->Program);
+  this->Sum->Activate();
+  this->Footprint->Program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  this->Footprint->Program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  this->Footprint->Render();
+  this->Sum->Deactivate();
+}
+
+std::vector<unsigned char> vtkEnsembleBuffer::ReadSceneColor(int x, int y) const
+{
+  std::vector<unsigned char> color(size_t(this->Width) * size_t(this->Height) * 4);
+  if (!this->Context)
+  {
+    return color;
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  ostate->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, this->Width, this->Height, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  return color;
+}
+
+bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>& color)
+{
+  if (color.size() != size_t(this->Width) * size_t(this->Height) * 4)
+  {
+    return false;
+  }
+  if (!this->SceneQuad)
+  {
+    this->SceneQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleSceneFS, ""));
+  }
+  if (!this->SceneQuad->Program)
+  {
+    return false;
+  }
+  if (this->SceneColor->GetWidth() != static_cast<unsigned int>(this->Width) ||
+    this->SceneColor->GetHeight() != static_cast<unsigned int>(this->Height) ||
+    !this->SceneColor->GetHandle())
+  {
+    vtkSceneDepthTexture::UseNearestTexels(this->SceneColor, this->Context);
+    if (!this->SceneColor->Allocate2D(this->Width, this->Height, 4, VTK_UNSIGNED_CHAR))
+    {
+      return false;
+    }
+  }
+  vtkOpenGLState* ostate = this->Context->GetState();
+  this->SceneColor->Activate();
+  ostate->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexSubImage2D(this->SceneColor->GetTarget(), 0, 0, 0, this->Width, this->Height, GL_RGBA,
+    GL_UNSIGNED_BYTE, color.data());
+  vtkTextureObject* depth = this->SceneDepth->GetTexture();
+  depth->Activate();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
+  vtkOpenGLState::ScopedglViewport viewport(ostate);
+  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  this->Context->GetShaderCache()->ReadyShaderProgram(this->SceneQuad->Program);
+  this->SceneQuad->Program->SetUniformi("sceneColorTexture", this->SceneColor->GetTextureUnit());
+  this->SceneQuad->Program->SetUniformi("sceneDepthTexture", depth->GetTextureUnit());
+  this->SceneQuad->Render();
+  depth->Deactivate();
+  this->SceneColor->Deactivate();
+  return true;
+}
+
+size_t vtkEnsembleBuffer::GetGPUMemorySize() const
+{
+  if (!this->Context)
+  {
+    return 0;
+  }
+  const size_t samples = size_t(this->GetPassWidth()) * size_t(this->GetPassHeight());
+  const size_t pixels = size_t(this->Width) * size_t(this->Height);
+  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel,
+  // and the RGBA32F coverage when it is used; the composited scene's RGBA8 when it is drawn.
+  const size_t coverage = this->Coverage->GetHandle() ? 16 : 0;
+  const size_t secondHalf = this->SecondHalf->GetHandle() ? 16 : 0;
+  const size_t noise = this->Noise->GetHandle() ? 8 : 0;
+  const size_t sceneColor = this->SceneColor->GetHandle() ? 4 : 0;
+  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise + sceneColor);
+}
+
+void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Accumulate.reset();
+  this->Footprint.reset();
+  this->SceneQuad.reset();
+  this->AccumulateBoth.reset();
+  this->Mean.reset();
+  this->NoiseQuad.reset();
+  this->Halves = false;
+  this->HalvesSum = 0;
+  for (vtkOpenGLFramebufferObject* framebuffer :
+    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get(), this->CoverageFramebuffer.Get(),
+      this->SumBesideDepthFramebuffer.Get(), this->SumAndCoverageFramebuffer.Get(),
+      this->HalvesFramebuffer.Get(), this->NoiseFramebuffer.Get() })
+  {
+    framebuffer->ReleaseGraphicsResources(window);
+  }
+  for (vtkTextureObject* texture : { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get(),
+         this->Coverage.Get(), this->SecondHalf.Get(), this->Noise.Get(), this->SceneColor.Get() })
+  {
+    texture->ReleaseGraphicsResources(window);
+  }
+  this->SceneDepth->ReleaseGraphicsResources(window);
+  this->Context = nullptr;
+  this->Width = this->Height = this->SubpixelLevel = 0;
+}
+
+void vtkEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
+  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+}

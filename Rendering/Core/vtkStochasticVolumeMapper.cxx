@@ -1,0 +1,254 @@
+#include "vtkStochasticVolumeMapper.h"
+
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkDataSet.h"
+#include "vtkNew.h"
+#include "vtkOpenGLLoader.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkGPUFrameTimer.h"
+
+#include <algorithm>
+
+namespace
+{
+// When the prop last changed in a way that changes what it draws. vtkVolume::GetRedrawMTime()
+// of VTK 9.2 dereferences a null transfer function for point scalars of more than four
+// components (it asks the property for one per component), so volumes are handled here.
+vtkMTimeType RedrawTime(vtkProp* prop)
+{
+  vtkVolume* volume = vtkVolume::SafeDownCast(prop);
+  if (!volume)
+  {
+    return prop->GetRedrawMTime();
+  }
+  vtkMTimeType time = volume->GetMTime();
+  if (vtkVolumeProperty* property = volume->GetProperty())
+  {
+    time = std::max(time, property->GetMTime()); // includes its transfer functions
+  }
+  if (vtkAbstractVolumeMapper* mapper = volume->GetMapper())
+  {
+    time = std::max(time, mapper->GetMTime());
+    if (vtkDataSet* input = mapper->GetDataSetInput())
+    {
+      time = std::max(time, input->GetMTime());
+    }
+  }
+  return time;
+}
+}
+
+class vtkStochasticVolumeMapper::vtkSchedule
+{
+public:
+  // The time budget (AutoAdjustRepetitions). A traversal that draws several repetitions costs
+  // little more than one that draws one (llvmpipe, 48,000 tetrahedra at 200 x 200: 1 repetition
+  // 0.58 s, 16 repetitions 1.5 s), so cutting a group short saves little: the budget is spent in
+  // whole groups. When not even one group fits, one repetition at a time: in pairs of traversals
+  // where the mapper has them and one fits (SPT's visibility estimator, about two single passes,
+  // with an error some 40 times smaller than a single pass's on SPX), else in single passes, the
+  // cheapest frame there is (0.36 s there); as many as fit and at least one.
+  struct RepetitionBudget
+  {
+    double TimePerGroup = 0.0;      // seconds per traversal group of several repetitions
+    double TimePerPair = 0.0;       // seconds per repetition drawn one per pair of traversals
+    double TimePerSinglePass = 0.0; // seconds per repetition drawn one per traversal
+
+    // How many repetitions to draw, how many per traversal (perPass may drop to 1), and how.
+    int Choose(double allotted, int level, int& perPass, Traversal& kind) const
+    {
+      int most = level;
+      const bool belowGroups = perPass > 1;
+      if (belowGroups)
+      {
+        const int groups = (level + perPass - 1) / perPass;
+        if (this->TimePerGroup <= 0.0 || allotted >= groups * this->TimePerGroup)
+        {
+          kind = Traversal::Group;
+          return level;
+        }
+        if (allotted >= this->TimePerGroup)
+        {
+          kind = Traversal::Group;
+          return std::min(level, static_cast<int>(allotted / this->TimePerGroup) * perPass);
+        }
+        most = std::min(level, perPass);
+        perPass = 1;
+      }
+      if (belowGroups && kind == Traversal::Pair && this->TimePerPair > 0.0 &&
+        allotted < this->TimePerPair)
+      {
+        kind = Traversal::Single; // not even one pair fits
+      }
+      const double time = kind == Traversal::Pair ? this->TimePerPair : this->TimePerSinglePass;
+      if (time <= 0.0 || allotted >= most * time)
+      {
+        return time <= 0.0 && belowGroups ? 1 : most; // not timed yet: timed by this frame
+      }
+      return std::max(1, static_cast<int>(allotted / time));
+    }
+
+    void Measure(double seconds, int count, int perPass, Traversal kind)
+    {
+      if (kind == Traversal::Group)
+      {
+        this->TimePerGroup = seconds / ((count + perPass - 1) / perPass);
+      }
+      else if (kind == Traversal::Pair)
+      {
+        this->TimePerPair = seconds / count;
+      }
+      else
+      {
+        this->TimePerSinglePass = seconds / count;
+      }
+    }
+  };
+
+  std::vector<double> Signature; // what the accumulated image was drawn from
+  int Accumulated = 0;           // repetitions in it
+  RepetitionBudget Budget;
+  vtkGPUFrameTimer Timer;
+  vtkNew<vtkTimerLog> Clock;
+  bool Timed = false; // by the GPU timer
+};
+
+vtkStochasticVolumeMapper::vtkStochasticVolumeMapper()
+  : Ensemble(vtkSmartPointer<vtkEnsembleBuffer>::New())
+  , Schedule(new vtkSchedule)
+{
+}
+
+vtkStochasticVolumeMapper::~vtkStochasticVolumeMapper() = default;
+
+vtkEnsembleBuffer* vtkStochasticVolumeMapper::GetEnsemble() const
+{
+  return this->Ensemble;
+}
+
+int vtkStochasticVolumeMapper::ChooseRepetitions(
+  vtkVolume* vol, int level, int& perPass, Traversal& kind) const
+{
+  if (!this->AutoAdjustRepetitions)
+  {
+    kind = perPass > 1 ? Traversal::Group : kind;
+    return level;
+  }
+  return this->Schedule->Budget.Choose(vol->GetAllocatedRenderTime(), level, perPass, kind);
+}
+
+int vtkStochasticVolumeMapper::ContinueAccumulation(std::vector<double> signature, int& count)
+{
+  vtkSchedule& schedule = *this->Schedule;
+  int first = 0;
+  if (this->ProgressiveRefinement && signature == schedule.Signature && schedule.Accumulated > 0)
+  {
+    first = schedule.Accumulated;
+    count = std::min(count, this->MaximumProgressiveRepetitions - first);
+  }
+  schedule.Signature = std::move(signature);
+  return first;
+}
+
+bool vtkStochasticVolumeMapper::IsLastSignature(const std::vector<double>& signature) const
+{
+  return !signature.empty() && signature == this->Schedule->Signature;
+}
+
+void vtkStochasticVolumeMapper::ResetAccumulation()
+{
+  this->Schedule->Accumulated = 0;
+}
+
+void vtkStochasticVolumeMapper::ForgetAccumulation()
+{
+  this->Schedule->Accumulated = 0;
+  this->Schedule->Signature.clear();
+}
+
+int vtkStochasticVolumeMapper::GetAccumulatedRepetitions() const
+{
+  return this->Schedule->Accumulated;
+}
+
+void vtkStochasticVolumeMapper::AppendSceneSignature(
+  vtkRenderer* ren, const int viewport[4], std::vector<double>& signature)
+{
+  signature.insert(signature.end(), viewport, viewport + 4);
+  vtkMTimeType redraw = 0;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    redraw = std::max(redraw, prop->GetVisibility() ? RedrawTime(prop) : 0);
+  }
+  signature.push_back(double(redraw));
+}
+
+void vtkStochasticVolumeMapper::StartTiming()
+{
+  vtkSchedule& schedule = *this->Schedule;
+  schedule.Timed = this->AutoAdjustRepetitions && schedule.Timer.Start();
+  schedule.Clock->StartTimer();
+}
+
+double vtkStochasticVolumeMapper::StopTiming()
+{
+  vtkSchedule& schedule = *this->Schedule;
+  if (schedule.Timed)
+  {
+    schedule.Timed = false;
+    return schedule.Timer.Stop();
+  }
+  if (!this->AutoAdjustRepetitions)
+  {
+    return -1.0;
+  }
+  glFinish();
+  schedule.Clock->StopTimer();
+  return schedule.Clock->GetElapsedTime();
+}
+
+void vtkStochasticVolumeMapper::AddRepetitions(
+  int drawn, int perPass, Traversal kind, double seconds)
+{
+  vtkSchedule& schedule = *this->Schedule;
+  if (seconds >= 0.0 && drawn > 0)
+  {
+    this->TimePerRepetition = seconds / drawn;
+    schedule.Budget.Measure(seconds, drawn, perPass, kind);
+  }
+  schedule.Accumulated += drawn;
+  this->LastRepetitionCount = schedule.Accumulated;
+}
+
+void vtkStochasticVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Ensemble->ReleaseGraphicsResources(window);
+  vtkSchedule& schedule = *this->Schedule;
+  schedule.Signature.clear();
+  schedule.Accumulated = 0;
+  schedule.Budget = vtkSchedule::RepetitionBudget();
+  schedule.Timer.Release(window != nullptr);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkStochasticVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RepetitionLevel: " << this->RepetitionLevel << "\n";
+  os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off") << "\n";
+  os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions << "\n";
+  os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off") << "\n";
+  os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
+  os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
+}

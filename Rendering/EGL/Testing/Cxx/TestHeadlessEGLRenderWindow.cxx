@@ -1,0 +1,61 @@
+// vtkHeadlessEGLRenderWindow renders vtkSPTVolumeMapper without X: the scene of
+// TestSPTVolumeMapper (SPTTestScene.h), with the same settings and seeds, drawn in an EGL
+// window. Run with no DISPLAY (see CMakeLists.txt). Checks: the window made an OpenGL 3.2+
+// context on an EGL platform, each viewport shows a volume, no OpenGL error was raised, and the
+// image matches TestSPTVolumeMapper's baseline, which was rendered through X (GLX).
+
+#include "vtkHeadlessEGLRenderWindow.h"
+#include "vtkSPTVolumeMapper.h"
+
+#include "SPTTestScene.h"
+
+#include <cstring>
+
+using namespace SPTTestScene;
+
+namespace
+{
+// A failure unless the window made its context, on the EGL platform asked for:
+// SPT_EGL_DEVICE_INDEX=i asks for device i of EGL_EXT_device_enumeration (with Mesa, device 0
+// is its software rasterizer, which makes the device platform testable without a GPU).
+int CheckContext(vtkHeadlessEGLRenderWindow* window, bool deviceAsked)
+{
+  std::cout << "EGL platform: " << window->GetPlatformName()
+            << ", renderer: " << window->GetRendererName()
+            << ", OpenGL: " << window->GetOpenGLVersion() << "\n";
+  if (!window->SupportsOpenGL())
+  {
+    std::cerr << "No OpenGL through EGL: " << window->GetOpenGLSupportMessage() << "\n";
+    return 1;
+  }
+  const char* platform = window->GetPlatformName();
+  if (deviceAsked
+      ? std::strcmp(platform, "device") != 0
+      : std::strcmp(platform, "device") != 0 && std::strcmp(platform, "surfaceless") != 0)
+  {
+    std::cerr << "Unexpected EGL platform '" << platform << "'.\n";
+    return 1;
+  }
+  return 0;
+}
+}
+
+int TestHeadlessEGLRenderWindow(int argc, char* argv[])
+{
+  vtkSmartPointer<vtkUnstructuredGrid> shell = MakeShell();
+  vtkSmartPointer<vtkVolumeProperty> property = MakeProperty();
+
+  ShellVolumes<vtkSPTVolumeMapper> volumes(shell, property);
+
+  vtkNew<vtkHeadlessEGLRenderWindow> window;
+  const char* device = std::getenv("SPT_EGL_DEVICE_INDEX");
+  if (device)
+  {
+    window->SetDeviceIndex(std::atoi(device));
+  }
+  TwoViewports scene(400, 200, volumes.Point, volumes.Cell, window);
+  int failures = scene.Render();
+  failures += CheckContext(window, device != nullptr);
+  failures += scene.CheckCovered(Capture(scene.Window), 4000);
+  return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures);
+}

@@ -1,0 +1,625 @@
+// Unit test of the GPU projection and classification (Shirley-Tuchman's classes) of the SPT
+// geometry shader: the shader itself runs under transform feedback, and its triangles are
+// checked on the CPU (GLM) against the exact geometry, for the four classes and for random
+// tetrahedra, in perspective and parallel projection:
+// - the triangles cover exactly the projected outline (the convex hull of the four projected
+//   vertices), one triangle when it is a triangle and two when it is a quadrilateral: each
+//   point inside it lies in exactly one triangle, none outside;
+// - at every point, the front and back points and scalars that the fragment shader finds from
+//   the cell's face planes and scalar plane are the exact entry and exit of the view ray
+//   through the tetrahedron;
+// - the triangles lie no deeper than any of their segments' fronts (the early depth test).
+
+#include "vtkOpenGLLoader.h"
+
+#include "SPTTestWindow.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef SPT_SHADER_DIR
+#error "SPT_SHADER_DIR must name Rendering/SPT/shaders"
+#endif
+
+namespace
+{
+struct Tetrahedron
+{
+  std::array<glm::vec3, 4> Points; // view coordinates
+  std::array<float, 4> Scalars;
+  int ExpectedTriangles; // non-empty triangles, or 0 when not checked
+  const char* Name;
+};
+
+// One emitted vertex, as captured: clip position, then the cell's planes (flat outputs).
+struct Captured
+{
+  glm::vec4 Position;
+  glm::vec4 FacePlanes[4];
+  glm::vec4 ScalarPlane;
+};
+static_assert(sizeof(Captured) == 24 * sizeof(float), "captured vertices must be packed");
+
+std::string ReadShader(const char* name)
+{
+  std::ifstream file(std::string(SPT_SHADER_DIR) + "/" + name);
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string source = text.str();
+  auto replace = [&](const std::string& tag, const std::string& with)
+  {
+    const size_t at = source.find(tag);
+    if (at != std::string::npos)
+    {
+      source.replace(at, tag.size(), with);
+    }
+  };
+  replace("//VTK::System::Dec", "#version 150");
+  replace("//Volume::Defines::Dec", "");
+  if (source.find("//SPT::FacePlane::Impl") != std::string::npos)
+  {
+    replace("//SPT::FacePlane::Impl", ReadShader("vtkSPTFacePlane.glsl"));
+  }
+  return source;
+}
+
+GLuint Compile(GLenum type, const std::string& source)
+{
+  GLuint shader = glCreateShader(type);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok)
+  {
+    char log[4096];
+    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    std::cerr << "Shader compilation failed:\n" << log << "\n";
+    return 0;
+  }
+  return shader;
+}
+
+float Cross2(glm::vec2 a, glm::vec2 b, glm::vec2 c)
+{
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// Convex hull of four points, counter-clockwise (gift wrapping is plenty for four).
+std::vector<glm::vec2> Hull(const std::array<glm::vec2, 4>& p)
+{
+  std::vector<glm::vec2> hull;
+  int start = 0;
+  for (int i = 1; i < 4; ++i)
+  {
+    if (p[i].x < p[start].x || (p[i].x == p[start].x && p[i].y < p[start].y))
+    {
+      start = i;
+    }
+  }
+  int current = start;
+  do
+  {
+    hull.push_back(p[current]);
+    int next = (current + 1) % 4;
+    for (int i = 0; i < 4; ++i)
+    {
+      const float turn = Cross2(p[current], p[next], p[i]);
+      if (turn < 0.0f ||
+        (turn == 0.0f && glm::length(p[i] - p[current]) > glm::length(p[next] - p[current])))
+      {
+        next = i;
+      }
+    }
+    current = next;
+  } while (current != start && hull.size() < 5);
+  return hull;
+}
+
+// Signed distance-like margin of q inside a convex counter-clockwise polygon (>0 inside).
+float InsideMargin(const std::vector<glm::vec2>& polygon, glm::vec2 q)
+{
+  float margin = 1.0e30f;
+  for (size_t i = 0; i < polygon.size(); ++i)
+  {
+    const glm::vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+    const float edge = glm::length(b - a);
+    if (edge > 0.0f)
+    {
+      margin = std::min(margin, Cross2(a, b, q) / edge);
+    }
+  }
+  return margin;
+}
+
+// The exact entry and exit of a ray (origin o, direction d) through a tetrahedron, by clipping
+// the ray against its four face planes; scalars by barycentric interpolation.
+bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& front, glm::vec3& back,
+  float& frontScalar, float& backScalar)
+{
+  float enter = -1.0e30f, exit = 1.0e30f;
+  for (int f = 0; f < 4; ++f)
+  {
+    const glm::vec3 a = t.Points[(f + 1) % 4], b = t.Points[(f + 2) % 4], c = t.Points[(f + 3) % 4];
+    glm::vec3 n = glm::cross(b - a, c - a);
+    if (glm::dot(n, t.Points[f] - a) > 0.0f)
+    {
+      n = -n; // outward
+    }
+    const float denominator = glm::dot(n, d);
+    const float numerator = glm::dot(n, a - o);
+    if (denominator == 0.0f)
+    {
+      if (numerator < 0.0f)
+      {
+        return false;
+      }
+      continue;
+    }
+    const float s = numerator / denominator;
+    if (denominator < 0.0f)
+    {
+      enter = std::max(enter, s);
+    }
+    else
+    {
+      exit = std::min(exit, s);
+    }
+  }
+  if (enter > exit)
+  {
+    return false;
+  }
+  front = o + enter * d;
+  back = o + exit * d;
+  auto scalarAt = [&](glm::vec3 p)
+  {
+    const glm::mat3 m(
+      t.Points[1] - t.Points[0], t.Points[2] - t.Points[0], t.Points[3] - t.Points[0]);
+    const glm::vec3 w = glm::inverse(m) * (p - t.Points[0]);
+    return t.Scalars[0] * (1.0f - w.x - w.y - w.z) + t.Scalars[1] * w.x + t.Scalars[2] * w.y +
+      t.Scalars[3] * w.z;
+  };
+  frontScalar = scalarAt(front);
+  backScalar = scalarAt(back);
+  return true;
+}
+
+std::vector<Tetrahedron> MakeTetrahedra()
+{
+  std::vector<Tetrahedron> tetrahedra = {
+    { { glm::vec3(0.1f, 0.05f, -5.0f), glm::vec3(-1.0f, -0.8f, -6.0f),
+        glm::vec3(1.1f, -0.7f, -6.2f), glm::vec3(0.0f, 1.0f, -5.8f) },
+      { 0.2f, 0.9f, 0.4f, 0.6f }, 1, "class 1 (thick vertex in front)" },
+    { { glm::vec3(0.1f, 0.05f, -6.5f), glm::vec3(-1.0f, -0.8f, -5.0f),
+        glm::vec3(1.1f, -0.7f, -5.2f), glm::vec3(0.0f, 1.0f, -5.4f) },
+      { 0.7f, 0.1f, 0.3f, 0.5f }, 1, "class 1 (thick vertex behind)" },
+    { { glm::vec3(-1.0f, 0.1f, -5.0f), glm::vec3(1.0f, -0.1f, -5.1f), glm::vec3(0.1f, -1.0f, -6.0f),
+        glm::vec3(-0.1f, 1.0f, -6.3f) },
+      { 0.0f, 1.0f, 0.25f, 0.75f }, 2, "class 2" },
+    { { glm::vec3(0.0f, 0.0f, -5.0f), glm::vec3(-1.2f, 0.0f, -6.0f), glm::vec3(1.2f, 0.0f, -6.0f),
+        glm::vec3(0.0f, 1.0f, -6.0f) },
+      { 0.5f, 0.0f, 1.0f, 0.3f }, 1, "class 3 (vertex projects onto an edge)" },
+    { { glm::vec3(0.0f, 0.0f, -5.0f), glm::vec3(0.0f, 0.0f, -6.5f), glm::vec3(1.0f, 0.0f, -5.7f),
+        glm::vec3(0.0f, 1.0f, -5.9f) },
+      { 0.1f, 0.8f, 0.4f, 0.6f }, 1, "class 4 (two vertices on one ray)" },
+  };
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-1.5f, 1.5f), depth(-8.0f, -4.0f),
+    unit(0.0f, 1.0f);
+  for (int n = 0; n < 400; ++n)
+  {
+    Tetrahedron t{ {}, {}, 0, "random" };
+    for (int v = 0; v < 4; ++v)
+    {
+      t.Points[v] = glm::vec3(coordinate(random), coordinate(random), depth(random));
+      t.Scalars[v] = unit(random);
+    }
+    // Skip slivers, whose exact answer is ill-conditioned in single precision.
+    const float volume = std::abs(glm::dot(
+      t.Points[1] - t.Points[0], glm::cross(t.Points[2] - t.Points[0], t.Points[3] - t.Points[0])));
+    if (volume > 0.05f)
+    {
+      tetrahedra.push_back(t);
+    }
+  }
+  return tetrahedra;
+}
+
+// A tetrahedron's projected outline and the triangles emitted for it, in NDC.
+struct ScreenGeometry
+{
+  std::vector<glm::vec2> Hull;
+  float HullArea = 0.0f;
+  std::vector<std::array<glm::vec2, 3>> Triangles;
+};
+
+// The triangles cover the outline's area, with as many non-empty as the class asks.
+int CheckArea(const Tetrahedron& t, const ScreenGeometry& screen)
+{
+  int failures = 0;
+  float area = 0.0f;
+  int nonEmpty = 0;
+  for (const std::array<glm::vec2, 3>& s : screen.Triangles)
+  {
+    const float a = std::abs(0.5f * Cross2(s[0], s[1], s[2]));
+    area += a;
+    nonEmpty += a > 1.0e-5f * screen.HullArea;
+  }
+  if (std::abs(area - screen.HullArea) > 1.0e-4f * screen.HullArea + 1.0e-7f)
+  {
+    std::cerr << t.Name << ": triangles cover " << area << ", the outline " << screen.HullArea
+              << "\n";
+    ++failures;
+  }
+  if (t.ExpectedTriangles && nonEmpty != t.ExpectedTriangles)
+  {
+    std::cerr << t.Name << ": " << nonEmpty << " non-empty triangles, expected "
+              << t.ExpectedTriangles << "\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// Weights of q in every non-empty triangle; true if q is too close to any edge to call.
+bool Weights(const ScreenGeometry& screen, glm::vec2 q, std::vector<glm::vec3>& weights)
+{
+  weights.assign(screen.Triangles.size(), glm::vec3(-1.0f));
+  bool ambiguous = false;
+  for (size_t i = 0; i < screen.Triangles.size(); ++i)
+  {
+    const std::array<glm::vec2, 3>& s = screen.Triangles[i];
+    const float whole = Cross2(s[0], s[1], s[2]);
+    if (std::abs(whole) > 1.0e-5f * screen.HullArea)
+    {
+      weights[i] =
+        glm::vec3(Cross2(q, s[1], s[2]), Cross2(s[0], q, s[2]), Cross2(s[0], s[1], q)) / whole;
+      ambiguous = ambiguous ||
+        std::abs(std::min(weights[i].x, std::min(weights[i].y, weights[i].z))) < 1.0e-4f;
+    }
+  }
+  return ambiguous;
+}
+
+class Checker
+{
+public:
+  Checker(bool parallel)
+    : Parallel(parallel)
+  {
+    this->Projection = parallel ? glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 1.0f, 20.0f)
+                                : glm::perspective(glm::radians(40.0f), 1.0f, 1.0f, 20.0f);
+  }
+
+  // The view ray through an NDC point.
+  void Ray(glm::vec2 ndc, glm::vec3& origin, glm::vec3& direction) const
+  {
+    const glm::mat4 inverse = glm::inverse(this->Projection);
+    glm::vec4 nearPoint = inverse * glm::vec4(ndc, -1.0f, 1.0f);
+    glm::vec4 farPoint = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+    origin = glm::vec3(nearPoint) / nearPoint.w;
+    direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+  }
+
+  int Check(
+    const Tetrahedron& t, const std::vector<Captured>& triangles, std::mt19937& random) const;
+
+  bool Parallel;
+  glm::mat4 Projection;
+
+private:
+  ScreenGeometry Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const;
+  int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
+    const ScreenGeometry& screen, glm::vec2 q, float scale) const;
+  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const;
+  const char* ProjectionName() const { return this->Parallel ? " (parallel)" : " (perspective)"; }
+};
+
+ScreenGeometry Checker::Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const
+{
+  ScreenGeometry screen;
+  std::array<glm::vec2, 4> projected;
+  for (int v = 0; v < 4; ++v)
+  {
+    const glm::vec4 clip = this->Projection * glm::vec4(t.Points[v], 1.0f);
+    projected[v] = glm::vec2(clip) / clip.w;
+  }
+  screen.Hull = Hull(projected);
+  for (size_t i = 1; i + 1 < screen.Hull.size(); ++i)
+  {
+    screen.HullArea += 0.5f * Cross2(screen.Hull[0], screen.Hull[i], screen.Hull[i + 1]);
+  }
+  screen.Triangles.resize(vertices.size() / 3);
+  for (size_t i = 0; i < screen.Triangles.size(); ++i)
+  {
+    for (int v = 0; v < 3; ++v)
+    {
+      screen.Triangles[i][v] =
+        glm::vec2(vertices[3 * i + v].Position) / vertices[3 * i + v].Position.w;
+    }
+  }
+  return screen;
+}
+
+int Checker::Check(
+  const Tetrahedron& t, const std::vector<Captured>& vertices, std::mt19937& random) const
+{
+  const ScreenGeometry screen = this->Screen(t, vertices);
+  int failures = CheckArea(t, screen);
+
+  // Sample the outline's bounding box: coverage and the interpolated segment.
+  glm::vec2 lo(1.0e30f), hi(-1.0e30f);
+  for (const glm::vec2& p : screen.Hull)
+  {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  std::uniform_real_distribution<float> ux(lo.x, hi.x), uy(lo.y, hi.y);
+  const float scale = std::max(hi.x - lo.x, hi.y - lo.y);
+  for (int n = 0; n < 60; ++n)
+  {
+    const glm::vec2 q(ux(random), uy(random));
+    failures += this->CheckPoint(t, vertices, screen, q, scale);
+  }
+  return failures;
+}
+
+// A point inside the outline lies in exactly one triangle, a point outside in none.
+int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
+  const ScreenGeometry& screen, glm::vec2 q, float scale) const
+{
+  const float margin = InsideMargin(screen.Hull, q);
+  if (std::abs(margin) < 1.0e-3f * scale)
+  {
+    return 0; // too close to the outline to call
+  }
+  std::vector<glm::vec3> weights;
+  if (Weights(screen, q, weights))
+  {
+    return 0;
+  }
+  int failures = 0;
+  int containing = 0;
+  for (size_t i = 0; i < weights.size(); ++i)
+  {
+    const glm::vec3 w = weights[i];
+    if (std::min(w.x, std::min(w.y, w.z)) < 0.0f)
+    {
+      continue;
+    }
+    ++containing;
+    failures += this->CheckSegment(t, &vertices[3 * i], q);
+  }
+  const int expected = margin > 0.0f ? 1 : 0;
+  if (containing != expected)
+  {
+    std::cerr << t.Name << this->ProjectionName() << ": point (" << q.x << ", " << q.y << ") "
+              << (expected ? "inside" : "outside") << " the outline lies in " << containing
+              << " triangles\n";
+    ++failures;
+  }
+  return failures;
+}
+
+// What the fragment shader finds at q from the triangle's planes (as planeSegment() in
+// vtkSPTTetrahedraFS.glsl does) is the exact entry and exit of the view ray, and the triangle
+// lies no deeper than the entry.
+int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const
+{
+  float enter = -1.0f, leave = 1.0f;
+  for (const glm::vec4& plane : triangle[0].FacePlanes)
+  {
+    const float atZero = plane.x * q.x + plane.y * q.y + plane.w;
+    if (plane.z < 0.0f)
+    {
+      enter = std::max(enter, -atZero / plane.z);
+    }
+    else if (plane.z > 0.0f)
+    {
+      leave = std::min(leave, -atZero / plane.z);
+    }
+  }
+  const glm::mat4 inverse = glm::inverse(this->Projection);
+  const glm::vec4 front = inverse * glm::vec4(q, enter, 1.0f);
+  const glm::vec4 back = inverse * glm::vec4(q, leave, 1.0f);
+  const glm::vec3 frontPoint = glm::vec3(front) / front.w;
+  const glm::vec3 backPoint = glm::vec3(back) / back.w;
+  const float frontScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, enter, 1.0f)) / front.w;
+  const float backScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, leave, 1.0f)) / back.w;
+  glm::vec3 origin, direction, exactFront, exactBack;
+  float exactFrontScalar, exactBackScalar;
+  this->Ray(q, origin, direction);
+  if (!ExactSegment(t, origin, direction, exactFront, exactBack, exactFrontScalar, exactBackScalar))
+  {
+    return 0; // grazing ray
+  }
+  const float tolerance = 2.0e-3f;
+  const float thickness = enter < leave ? glm::distance(frontPoint, backPoint) : 0.0f;
+  const float exactThickness = glm::distance(exactFront, exactBack);
+  int failures = 0;
+  if (glm::distance(frontPoint, exactFront) > tolerance ||
+    glm::distance(backPoint, exactBack) > tolerance ||
+    std::abs(thickness - exactThickness) > tolerance ||
+    std::abs(frontScalar - exactFrontScalar) > tolerance ||
+    std::abs(backScalar - exactBackScalar) > tolerance)
+  {
+    std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
+              << "): thickness " << thickness << " vs exact " << exactThickness << ", scalars "
+              << frontScalar << " " << backScalar << " vs exact " << exactFrontScalar << " "
+              << exactBackScalar << "\n";
+    ++failures;
+  }
+  const glm::vec4 exactFrontDC = this->Projection * glm::vec4(exactFront, 1.0f);
+  const float exactFrontDepth = exactFrontDC.z / exactFrontDC.w;
+  for (int v = 0; v < 3; ++v)
+  {
+    const float depth = triangle[v].Position.z / triangle[v].Position.w;
+    if (depth > exactFrontDepth + 1.0e-5f)
+    {
+      std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
+                << "): a triangle at depth " << depth << " behind the segment's front at "
+                << exactFrontDepth << "\n";
+      ++failures;
+      break;
+    }
+  }
+  return failures;
+}
+
+// The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
+GLuint LinkProgram(GLuint vs, GLuint gs)
+{
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, gs);
+  const char* varyings[] = { "gl_Position", "facePlaneNDC[0]", "facePlaneNDC[1]", "facePlaneNDC[2]",
+    "facePlaneNDC[3]", "scalarPlaneNDC" };
+  glTransformFeedbackVaryings(program, 6, varyings, GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(program);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  if (!linked)
+  {
+    char log[4096];
+    glGetProgramInfoLog(program, sizeof(log), nullptr, log);
+    std::cerr << "Link failed:\n" << log << "\n";
+    return 0;
+  }
+  return program;
+}
+
+// Four vertices per tetrahedron in, up to two triangles each out.
+void UploadTetrahedra(
+  GLuint program, const std::vector<Tetrahedron>& tetrahedra, GLuint vao, const GLuint buffers[3])
+{
+  std::vector<float> points, scalars;
+  for (const Tetrahedron& t : tetrahedra)
+  {
+    for (int v = 0; v < 4; ++v)
+    {
+      points.insert(points.end(), { t.Points[v].x, t.Points[v].y, t.Points[v].z });
+      scalars.push_back(t.Scalars[v]);
+    }
+  }
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBufferData(GL_ARRAY_BUFFER, points.size() * sizeof(float), points.data(), GL_STATIC_DRAW);
+  GLint location = glGetAttribLocation(program, "vertexMC");
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
+  glBufferData(GL_ARRAY_BUFFER, scalars.size() * sizeof(float), scalars.data(), GL_STATIC_DRAW);
+  location = glGetAttribLocation(program, "scalarTF");
+  glEnableVertexAttribArray(location);
+  glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  const size_t capacity = tetrahedra.size() * 2 * 3; // at most two triangles each
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
+}
+
+// The n-th tetrahedron drawn alone, so that its triangles are known to be its own.
+std::vector<Captured> CaptureTriangles(GLuint query, size_t n)
+{
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+  glBeginTransformFeedback(GL_TRIANGLES);
+  glDrawArrays(GL_LINES_ADJACENCY, static_cast<GLint>(4 * n), 4);
+  glEndTransformFeedback();
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  glDisable(GL_RASTERIZER_DISCARD);
+  GLuint written = 0;
+  glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
+  std::vector<Captured> captured(3 * written);
+  glGetBufferSubData(
+    GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.size() * sizeof(Captured), captured.data());
+  return captured;
+}
+
+// Every tetrahedron in one projection, until the failures (counted on from those given) pass 20.
+int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>& tetrahedra,
+  bool parallel, std::mt19937& random, int failures)
+{
+  Checker checker(parallel);
+  glUseProgram(program);
+  const glm::mat4 identity(1.0f);
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
+  const glm::mat4 inverse = glm::inverse(checker.Projection);
+  glUniformMatrix4fv(
+    glGetUniformLocation(program, "DCVCMatrix"), 1, GL_FALSE, glm::value_ptr(inverse));
+  glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
+  for (size_t n = 0; n < tetrahedra.size(); ++n)
+  {
+    failures += checker.Check(tetrahedra[n], CaptureTriangles(query, n), random);
+    if (failures > 20)
+    {
+      break;
+    }
+  }
+  return failures;
+}
+}
+
+int TestSPTClassification(int, char*[])
+{
+  SPTTestWindow::RawContext raw(16);
+  if (!raw.Context)
+  {
+    std::cerr << "Needs an OpenGL render window.\n";
+    return 125;
+  }
+
+  GLuint vs = Compile(GL_VERTEX_SHADER, ReadShader("vtkSPTTetrahedraVS.glsl"));
+  GLuint gs = Compile(GL_GEOMETRY_SHADER, ReadShader("vtkSPTTetrahedraGS.glsl"));
+  const GLuint program = vs && gs ? LinkProgram(vs, gs) : 0;
+  if (!program)
+  {
+    return EXIT_FAILURE;
+  }
+
+  const std::vector<Tetrahedron> tetrahedra = MakeTetrahedra();
+  GLuint vao, buffers[3], query;
+  glGenVertexArrays(1, &vao);
+  glGenBuffers(3, buffers);
+  glGenQueries(1, &query);
+  UploadTetrahedra(program, tetrahedra, vao, buffers);
+
+  int failures = 0;
+  std::mt19937 random(11);
+  for (bool parallel : { false, true })
+  {
+    failures = CheckProjection(program, query, tetrahedra, parallel, random, failures);
+  }
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    std::cerr << "OpenGL error " << error << "\n";
+    ++failures;
+  }
+  glUseProgram(0);
+  glBindVertexArray(0);
+  glDeleteQueries(1, &query);
+  glDeleteBuffers(3, buffers);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(gs);
+  std::cout << tetrahedra.size() << " tetrahedra checked in two projections, " << failures
+            << " failures\n";
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

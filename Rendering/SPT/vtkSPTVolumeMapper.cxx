@@ -1,0 +1,497 @@
+#include "vtkSPTVolumeMapper.h"
+#include "vtkSPTVolumeMapperInternals.h"
+
+#include "vtkAbstractVolumeMapper.h"
+#include "vtkDataArray.h"
+#include "vtkDataSet.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLError.h"
+#include "vtkOpenGLLoader.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLState.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderer.h"
+#include "vtkTextureObject.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSPTDepthKeyBuffer.h"
+#include "vtkSPTFrame.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkSavedGLState.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+vtkObjectFactoryNewMacro(vtkSPTVolumeMapper);
+
+int vtkSPTVolumeMapper::vtkInternals::RepetitionsPerTraversal(
+  int asked, const vtkEnsembleBuffer* ensemble, int slabs)
+{
+  // A traversal of many repetitions costs little more than one of a single repetition, so at
+  // the sizes where memory allows, a frame of 256 repetitions is one pair of traversals
+  // instead of sixteen. Depth slabs share the keys' memory.
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const size_t perSlab = budget / (4 * samples * size_t(std::max(slabs, 1)));
+  const int fits = static_cast<int>(std::min<size_t>(perSlab, 256));
+  return std::min(asked, std::max(fits, 16 / std::max(slabs, 1)));
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DepthSlabsThatFit(
+  int asked, const vtkEnsembleBuffer* ensemble)
+{
+  // The slabs' sums take 16 bytes per slab and sample, besides the keys: at most 128 MB, so
+  // that a large image draws fewer slabs (the same expectation, more noise) rather than fail.
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const size_t perSlab = 4 * size_t(vtkSPTDepthKeyBuffer::SlabTerms) * samples;
+  return static_cast<int>(std::max<size_t>(1, std::min<size_t>(size_t(asked), budget / perSlab)));
+}
+
+vtkSPTVolumeMapper::vtkSPTVolumeMapper()
+  : Internals(new vtkInternals)
+{
+  // The random numbers follow the global cell ids where the input has them, so that any
+  // split of a data set into pieces (ranks, or one process) draws the same image.
+  this->GetMesh()->SetUseGlobalIds(true);
+}
+
+vtkSPTVolumeMapper::~vtkSPTVolumeMapper() = default;
+
+vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
+{
+  const vtkInternals& internals = *this->Internals;
+  return static_cast<vtkIdType>(internals.Buffers->GetGPUMemorySize() +
+    internals.Table->GetGPUMemorySize() + this->GetEnsemble()->GetGPUMemorySize() +
+    internals.DepthKeys->GetGPUMemorySize() + internals.Compute->GetGPUMemorySize());
+}
+
+vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
+  vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps)
+{
+  SharedList visible;
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    vtkVolume* volume = vtkVolume::SafeDownCast(prop);
+    auto* mapper = volume ? vtkSPTVolumeMapper::SafeDownCast(volume->GetMapper()) : nullptr;
+    if (mapper && volume->GetVisibility() && volume->GetProperty())
+    {
+      visible.emplace_back(volume, mapper);
+    }
+  }
+  // A mapper holds one mesh, one table and one set of matrices, so it stands for one volume
+  // of a frame: a mapper that several props draw draws each of them in a frame of its own.
+  const auto propsOf = [&visible](const vtkSPTVolumeMapper* mapper)
+  {
+    return static_cast<int>(std::count_if(visible.begin(), visible.end(),
+      [mapper](const std::pair<vtkVolume*, vtkSPTVolumeMapper*>& v)
+      { return v.second == mapper; }));
+  };
+  selfProps = propsOf(self);
+  SharedList shared;
+  bool listed = false;
+  for (const auto& entry : visible)
+  {
+    // A prop may draw its mapper through a vtkVolume of its own (ParaView's vtkPVLODVolume
+    // renders through its vtkLODProp3D's), with the prop's matrix and property: the volume
+    // drawn stands for the prop of its mapper.
+    const bool own = entry.first == vol || entry.second == self;
+    if (selfProps <= 1 && propsOf(entry.second) == 1)
+    {
+      shared.emplace_back(own ? vol : entry.first, entry.second);
+      listed = listed || own;
+    }
+  }
+  if (!listed)
+  {
+    shared.assign(1, { vol, self }); // drawn outside the renderer's props, or by several: alone
+  }
+  return shared;
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren,
+  vtkVolume* vol, RenderTarget& target, vtkSPTFrame::Volume& out)
+{
+  vtkInternals& internals = *mapper->Internals;
+  // Input and transfer functions: rebuilt only when they changed. The mesh is normalized on
+  // its own (a mapper drawn in parallel before was normalized with the other ranks' pieces).
+  mapper->GetMesh()->SetSharedFrame(nullptr, nullptr);
+  if (!mapper->BeginFrame(ren, target) || !mapper->PrepareMesh(vol, true) ||
+    !mapper->ComputeMatrices(ren, vol, internals.Matrices))
+  {
+    return false;
+  }
+  vtkTetrahedralMesh* mesh = mapper->GetMesh();
+  const double maxThickness = mesh->GetMaxEdgeLength();
+  if (!internals.Table->Update(vol->GetProperty(), mesh->GetScalarRange(),
+        maxThickness * mesh->GetScale(), mapper->PreIntegrationScalarResolution,
+        mapper->PreIntegrationThicknessResolution))
+  {
+    vtkErrorWithObjectMacro(mapper, << internals.Table->GetLastError());
+    return false;
+  }
+  if (!internals.Buffers->Upload(target.Window, mesh))
+  {
+    return false;
+  }
+  out.Buffers = internals.Buffers;
+  out.Table = internals.Table;
+  out.TableTexture = internals.Table->GetTexture(target.Window);
+  out.Matrices = &internals.Matrices;
+  out.MaxThickness = maxThickness;
+  return out.TableTexture != nullptr;
+}
+
+std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
+  vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
+{
+  // Everything that changes the expected image: each volume's matrices (camera, volume
+  // transform), input and table as built and mapper settings, the viewport, and whatever any
+  // prop of the renderer would draw differently (opaque geometry bounds the volume).
+  std::vector<double> signature;
+  for (vtkSPTVolumeMapper* mapper : mappers)
+  {
+    const vtkInternals& internals = *mapper->Internals;
+    signature.insert(signature.end(), internals.Matrices.MCVC, internals.Matrices.MCVC + 16);
+    signature.insert(signature.end(), internals.Matrices.VCDC, internals.Matrices.VCDC + 16);
+    signature.push_back(double(mapper->GetMesh()->GetBuildTime()));
+    signature.push_back(double(internals.Table->GetBuildTime()));
+    signature.push_back(double(mapper->GetMTime()));
+  }
+  const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
+  AppendSceneSignature(ren, viewport, signature);
+  return signature;
+}
+
+void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
+  const std::vector<vtkSPTVolumeMapper*>& mappers, const vtkSPTFrame& frame) const
+{
+  for (size_t v = 0; v < mappers.size(); ++v)
+  {
+    mappers[v]->EstimatedError = this->ImageError(self);
+    mappers[v]->LastRepetitionCount = self->GetAccumulatedRepetitions();
+    mappers[v]->LastPointCellCount = frame.GetPointCellCount(v);
+    mappers[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
+  }
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren, const SharedList& shared,
+  RenderTarget& target, std::vector<vtkSPTFrame::Volume>& volumes,
+  std::vector<vtkSPTVolumeMapper*>& mappers)
+{
+  unsigned int cellIds = 0;
+  for (const auto& member : shared)
+  {
+    vtkSPTFrame::Volume volume;
+    if (PrepareVolume(member.second, ren, member.first, target, volume))
+    {
+      // The volumes' cells are numbered one after another, so that each has random numbers
+      // of its own.
+      volume.CellIdOffset = cellIds;
+      cellIds += static_cast<unsigned int>(member.second->GetNumberOfTetrahedra());
+      volumes.push_back(volume);
+      mappers.push_back(member.second);
+    }
+  }
+  return !volumes.empty();
+}
+
+int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
+  vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings)
+{
+  // The survivors of several repetitions per traversal, and every repetition of the visibility
+  // estimator, are found with image atomics; without them, one survivor per traversal.
+  settings.Estimator = self->Estimator;
+  settings.DepthSlabs = 1;
+  if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR ||
+        self->DepthSlabs > 1) &&
+    !vtkSPTDepthKeyBuffer::IsSupported(renWin))
+  {
+    if (self->Estimator != SURVIVOR_ESTIMATOR && !this->WarnedNoImageAtomics)
+    {
+      vtkWarningWithObjectMacro(self,
+        "The visibility estimator needs image load/store (OpenGL 4.4); drawing with the "
+        "survivor estimator.");
+      this->WarnedNoImageAtomics = true;
+    }
+    if (self->DepthSlabs > 1 && !this->WarnedNoSlabs)
+    {
+      vtkWarningWithObjectMacro(
+        self, "Depth slabs need image load/store (OpenGL 4.4); drawing without them.");
+      this->WarnedNoSlabs = true;
+    }
+    settings.Estimator = SURVIVOR_ESTIMATOR;
+    return 1;
+  }
+  // The depth keys are a 3D texture of (repetition, sample): for a larger pass, the depth test
+  // finds each repetition's survivor instead, one repetition per traversal pair.
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  const int samples = std::max(ensemble->GetPassWidth(), ensemble->GetPassHeight());
+  const int maxSize = vtkOpenGLLoader::Max3DTextureSize();
+  const bool keysFit = samples <= maxSize;
+  if (!keysFit && !this->WarnedLargeImage)
+  {
+    std::ostringstream message;
+    message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
+            << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
+            << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
+    if (self->TargetError > 0.0 || self->DepthSlabs > 1)
+    {
+      const char* setting = self->TargetError > 0.0 ? "TargetError" : "DepthSlabs";
+      const char* off = self->TargetError > 0.0 ? "0" : "1";
+      vtkErrorWithObjectMacro(self, << message.str() << ". " << setting
+                                    << " needs them: nothing is drawn. Render a smaller image "
+                                       "(the viewport times SubpixelLevel), or set "
+                                    << setting << " to " << off << ".");
+    }
+    else
+    {
+      vtkWarningWithObjectMacro(self, << message.str()
+                                      << ": drawing one repetition per traversal pair (the "
+                                         "same image, more traversals).");
+    }
+  }
+  this->WarnedLargeImage = !keysFit;
+  if (!keysFit && (self->TargetError > 0.0 || self->DepthSlabs > 1))
+  {
+    return 0;
+  }
+  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
+                 : 1;
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(
+  vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage)
+{
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  ensemble->CaptureSceneDepth(target.X, target.Y);
+  self->ResetAccumulation();
+  this->CoverageDrawn = false;
+  this->Target.Restart(sameImage);
+  if (!self->ReuseNoiseEstimate)
+  {
+    this->Target.NoisePerRepetition = -1.0; // every image starts alike
+  }
+  if (!ensemble->SetHalves(halves))
+  {
+    self->ForgetAccumulation();
+    return false;
+  }
+  ensemble->ClearSum();
+  return true;
+}
+
+double vtkSPTVolumeMapper::vtkInternals::RoundingError() const
+{
+  // Rounding to b bits spreads a value's error evenly over one level, 1 / (2^b - 1): its root
+  // mean square is a level over sqrt(12) (0.00113 for 8 bits, what an exact image read back
+  // through 8 bits is off by).
+  return this->ColorBits > 0 ? 1.0 / ((std::ldexp(1.0, this->ColorBits) - 1.0) * std::sqrt(12.0))
+                             : 0.0;
+}
+
+double vtkSPTVolumeMapper::vtkInternals::NoiseTarget(vtkSPTVolumeMapper* self)
+{
+  // The image shown is the rounded one: its error is the noise and the rounding, independent,
+  // so the noise may have what the rounding leaves of the target.
+  const double rounding = this->RoundingError();
+  const double left = self->TargetError * self->TargetError - rounding * rounding;
+  const bool reachable = left > 0.0;
+  if (!reachable && !this->WarnedTargetBelowRounding)
+  {
+    vtkWarningWithObjectMacro(self,
+      "TargetError " << self->TargetError << " is not above the error of rounding the image to "
+                     << this->ColorBits << " bits per channel (" << rounding
+                     << "): no noise meets it, so every image draws RepetitionLevel repetitions.");
+  }
+  this->WarnedTargetBelowRounding = !reachable;
+  return reachable ? std::sqrt(left) : 0.0;
+}
+
+double vtkSPTVolumeMapper::vtkInternals::ImageError(vtkSPTVolumeMapper* self) const
+{
+  if (self->TargetError <= 0.0 || this->Target.Estimate < 0.0)
+  {
+    return -1.0;
+  }
+  const double rounding = this->RoundingError();
+  return std::sqrt(this->Target.Estimate * this->Target.Estimate + rounding * rounding);
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
+  vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
+{
+  self->StartTiming();
+  const int drawn = self->TargetError > 0.0
+    ? frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
+        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
+        this->Target)
+    : (frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count
+                                                                                  : -1);
+  const double seconds = self->StopTiming();
+  if (drawn < 0)
+  {
+    self->ForgetAccumulation();
+    return drawn;
+  }
+  self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
+  this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
+  return drawn;
+}
+
+vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Plan(
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs, std::vector<double> signature)
+{
+  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
+  // when refining progressively.
+  FramePlan plan;
+  plan.PerPass = perPass;
+  plan.Kind = pairs ? Traversal::Pair : Traversal::Single;
+  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
+  // When not even one group of repetitions fits, the visibility estimator one repetition at a
+  // time (a pair of traversals each, the coverage drawn with the colors). When not even one
+  // pair fits, the cheapest frame: the paper's single passes, one traversal each, unbiased too;
+  // the exact coverage waits for a later frame.
+  plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
+  plan.SameImage = self->IsLastSignature(signature);
+  plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
+  // The coverage is additive and needs nothing random: any frame of an accumulation may draw
+  // it, and a new accumulation starts without it.
+  // Depth slabs weight their colors by the slabs' optical depths, which the coverage
+  // traversal adds up: drawn for them even without the exact coverage.
+  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
+  plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
+  return plan;
+}
+
+void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
+  // wherever they overlap: the first of them draws them all, with its own settings.
+  int props = 0;
+  const auto shared = vtkInternals::SharedVolumes(ren, vol, this, props);
+  if (props > 1 && !this->Internals->WarnedSharedMapper)
+  {
+    vtkWarningMacro("This mapper is drawn by "
+      << props
+      << " volumes of one renderer: each is drawn in a frame of its own, composited over the "
+         "image before it as VTK's other volume mappers do, and not interleaved with the "
+         "others where they overlap. Give each volume its own vtkSPTVolumeMapper (they may "
+         "share the input) to composite them exactly.");
+  }
+  this->Internals->WarnedSharedMapper = props > 1;
+  const bool first = shared.front().second == this;
+  if (first && this->RenderAcrossRanks(ren, shared))
+  {
+    return;
+  }
+  RenderTarget target;
+  std::vector<vtkSPTFrame::Volume> volumes;
+  std::vector<vtkSPTVolumeMapper*> mappers;
+  if (!first || !vtkInternals::CollectVolumes(ren, shared, target, volumes, mappers))
+  {
+    return;
+  }
+  vtkInternals& internals = *this->Internals;
+  vtkOpenGLRenderWindow* renWin = target.Window;
+  vtkOpenGLClearErrorMacro();
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkSavedGLState savedState(ostate);
+  vtkEnsembleBuffer* ensemble = this->GetEnsemble();
+  if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel))
+  {
+    return;
+  }
+  internals.ColorBits = vtkOpenGLLoader::DrawColorBits(); // where the image will be resolved
+  vtkSPTFrame::Settings settings;
+  const int perPass = internals.ChooseTraversal(this, renWin, settings);
+  if (perPass < 1)
+  {
+    return;
+  }
+  const vtkInternals::FramePlan plan = internals.Plan(this, vol, perPass,
+    settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
+  if (plan.Cheapest)
+  {
+    settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.DepthSlabs = 1;
+  }
+  settings.StratifiedSampling = this->StratifiedSampling != 0;
+  settings.SmallCellSize = this->SmallCellSize;
+  settings.SubpixelLevel = this->SubpixelLevel;
+  settings.Seed = this->Seed;
+  settings.OpaqueScene = HasOpaqueScene(ren);
+  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
+    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
+  settings.Compute = this->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
+      internals.Compute->IsWanted(renWin, this->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
+        ensemble->GetPassWidth(), ensemble->GetPassHeight())
+    ? internals.Compute.Get()
+    : nullptr;
+  settings.ComputeEveryPoint = this->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
+  ostate->PushFramebufferBindings();
+  const bool started = plan.First > 0 ||
+    internals.StartAccumulation(this, target, this->TargetError > 0.0, plan.SameImage);
+  vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
+  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(this, frame, plan) >= 0);
+  ostate->PopFramebufferBindings();
+  if (!drawn)
+  {
+    return;
+  }
+  internals.Report(this, mappers, frame);
+  ensemble->Resolve(target.X, target.Y, this->GetAccumulatedRepetitions(),
+    this->ExactCoverage && internals.CoverageDrawn);
+  vtkOpenGLCheckErrorMacro("failed after Render");
+}
+
+bool vtkSPTVolumeMapper::RenderAcrossRanks(vtkRenderer*, const SharedVolumeList&)
+{
+  return false;
+}
+
+void vtkSPTVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  vtkInternals& internals = *this->Internals;
+  internals.Buffers->ReleaseGraphicsResources(window);
+  internals.Table->ReleaseGraphicsResources(window);
+  internals.DepthKeys->ReleaseGraphicsResources(window);
+  internals.Compute->ReleaseGraphicsResources(window);
+  internals.CoverageDrawn = false;
+  internals.Target.Restart(false); // keeps the noise per repetition, which all ranks share
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
+  os << indent << "SmallCellSize: " << this->SmallCellSize << "\n";
+  os << indent << "LastPointCellCount: " << this->LastPointCellCount << "\n";
+  const char* const computeModes[] = { "Off", "On", "Auto" };
+  os << indent << "ComputeTraversal: " << computeModes[this->ComputeTraversal] << "\n";
+  os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
+  os << indent << "ExactCoverage: " << (this->ExactCoverage ? "On" : "Off") << "\n";
+  os << indent << "DepthSlabs: " << this->DepthSlabs << "\n";
+  os << indent
+     << "Estimator: " << (this->Estimator == SURVIVOR_ESTIMATOR ? "Survivor" : "Visibility")
+     << "\n";
+  os << indent << "TargetError: " << this->TargetError << "\n";
+  os << indent << "ReuseNoiseEstimate: " << (this->ReuseNoiseEstimate ? "On" : "Off") << "\n";
+  os << indent << "EstimatedError: " << this->EstimatedError << "\n";
+  os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+}

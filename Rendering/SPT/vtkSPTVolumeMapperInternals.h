@@ -1,0 +1,106 @@
+/**
+ * @class   vtkSPTVolumeMapper::vtkInternals
+ * @brief   the state of vtkSPTVolumeMapper between renders, and the steps of a render
+ *
+ * Private to the SPT modules: vtkSPTVolumeMapper.cxx draws one process's frame with it, and
+ * vtkPSPTVolumeMapper.cxx (SPT::RenderingParallel) the frame of a parallel render. Not
+ * wrapped, not installed.
+ */
+
+#ifndef vtkSPTVolumeMapperInternals_h
+#define vtkSPTVolumeMapperInternals_h
+
+#include "vtkSPTVolumeMapper.h"
+
+#include "vtkNew.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSPTComputeTraversal.h"
+#include "vtkSPTDepthKeyBuffer.h"
+#include "vtkSPTFrame.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkVolumeViewMatrices.h"
+
+#include <string>  // For the errors
+#include <utility> // For the shared volumes
+#include <vector>  // For the volumes
+
+class vtkSPTVolumeMapper::vtkInternals
+{
+public:
+  vtkNew<vtkSPTMeshBuffers> Buffers;
+  vtkNew<vtkPreIntegrationTable> Table;
+  vtkNew<vtkSPTDepthKeyBuffer> DepthKeys;
+  vtkNew<vtkSPTComputeTraversal> Compute; // the keys traversal of the points (ComputeTraversal)
+  vtkVolumeViewMatrices Matrices;
+  bool WarnedNoGlobalIds = false;
+  bool WarnedSharedMapper = false; // while several volumes of the renderer draw this mapper
+
+  vtkSPTFrame::TargetState Target; // progress towards TargetError
+  // Bits per channel of the framebuffer the image is resolved into (0: floating point), read
+  // when the render starts.
+  int ColorBits = 8;
+  bool WarnedTargetBelowRounding = false; // while TargetError is not above the rounding
+  bool WarnedNoImageAtomics = false;
+  bool WarnedNoSlabs = false;
+  bool WarnedLargeImage = false; // while the pass is too large for the depth keys
+  bool CoverageDrawn = false;    // the coverage buffer belongs to the accumulated sum
+  // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order.
+  using SharedList = vtkSPTVolumeMapper::SharedVolumeList;
+  // The renderer's; vol alone when it is not among them, or when `selfProps` (set to the
+  // number of the renderer's visible volumes that draw `self`) is more than one. A mapper that
+  // several volumes draw is left out of the others' frames.
+  static SharedList SharedVolumes(
+    vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps);
+  // Bring a volume's mesh, table and matrices up to date and onto the GPU.
+  static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
+    RenderTarget& target, vtkSPTFrame::Volume& out);
+  static std::vector<double> Signature(
+    vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
+  // What the mappers of the frame report of its render.
+  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
+    const vtkSPTFrame& frame) const;
+  // Prepare every shared volume that can be drawn; false when none can.
+  static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
+    std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
+
+  // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
+  // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
+  static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble, int slabs);
+  // The depth slabs, of `asked`, whose sums fit the memory allotted to them.
+  static int DepthSlabsThatFit(int asked, const vtkEnsembleBuffer* ensemble);
+  // Repetitions per traversal that the context and the image size allow, and the estimator
+  // with them; 0 (with an error) when the frame cannot be drawn.
+  int ChooseTraversal(
+    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
+
+  // What one frame draws.
+  struct FramePlan
+  {
+    int First = 0;   // repetitions already accumulated
+    int Count = 0;   // repetitions to add
+    int PerPass = 1; // repetitions per traversal
+    vtkStochasticVolumeMapper::Traversal Kind = vtkStochasticVolumeMapper::Traversal::Group;
+    bool Cheapest = false;  // the paper's single passes, when nothing else fits the budget
+    bool Coverage = false;  // draw the exact coverage in this frame
+    bool SameImage = false; // all that shapes the image is as in the last render
+  };
+  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs,
+    std::vector<double> signature);
+  // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
+  bool StartAccumulation(
+    vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage);
+  // The root mean square error of rounding the image to ColorBits bits per channel.
+  double RoundingError() const;
+  // The noise that TargetError leaves once the rounding has taken its share (the two add in
+  // variance); 0, with a warning, when the rounding alone takes all of it.
+  double NoiseTarget(vtkSPTVolumeMapper* self);
+  // The image's estimated error for GetEstimatedError(): its noise and its rounding; -1 when
+  // the noise is not estimated.
+  double ImageError(vtkSPTVolumeMapper* self) const;
+  // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
+  int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
+};
+
+#endif
