@@ -86,12 +86,12 @@ bool vtkSPTParallelFrame::Estimate(int halfCount, bool exactCoverage, double& es
 }
 
 int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool coverage,
-  bool exactCoverage, double target, vtkSPTFrame::TargetState& state)
+  bool exactCoverage, double target, vtkSPTErrorTarget::State& state)
 {
   // The steps of one process, each decided by the shared estimate alone, so that every rank
   // takes them. A rank whose drawing failed goes on taking part; the ranks learn of it at the
   // next estimate.
-  vtkSPTFrame::TargetSteps steps;
+  vtkSPTErrorTarget::Steps steps;
   steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
   {
     this->Draw(from, repetitions, perPass, withCoverage, halves);
@@ -99,7 +99,7 @@ int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool co
   };
   steps.Estimate = [this, exactCoverage](int halfCount, double& estimate)
   { return this->Estimate(halfCount, exactCoverage, estimate); };
-  return vtkSPTFrame::StepToTarget(steps, first, count, perPass, coverage, target, state);
+  return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
 }
 
 bool vtkSPTParallelFrame::Finish()

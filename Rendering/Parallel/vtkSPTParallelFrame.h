@@ -56,7 +56,7 @@ public:
    * repetitions were drawn, or -1 on every rank when any rank failed. Collective.
    */
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
-    double target, vtkSPTFrame::TargetState& state);
+    double target, vtkSPTErrorTarget::State& state);
 
   /**
    * Move what was drawn since the last move to rank 0; true on every rank when every rank

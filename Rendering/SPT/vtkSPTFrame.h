@@ -13,6 +13,11 @@
  * coverage) and the colors (each fragment adds what it composites in the repetitions where it
  * is visible). The paper's single passes take one traversal per repetition.
  *
+ * Its traversals are in vtkSPTFrame.cxx, its programs and their uniforms in
+ * vtkSPTFramePrograms.cxx, the choice of what each traversal draws of each volume (points,
+ * compute pass, outlines) and of the depth slabs in vtkSPTFrameCells.cxx; the error target's
+ * steps are vtkSPTErrorTarget's.
+ *
  * Private helper of the SPT module; not wrapped.
  */
 
@@ -21,7 +26,8 @@
 
 #include "SPTRenderingSPTModule.h" // For export macro
 
-#include "vtkType.h" // For vtkIdType
+#include "vtkSPTErrorTarget.h" // For the error target's state
+#include "vtkType.h"           // For vtkIdType
 
 #include <cstddef>    // For size_t
 #include <functional> // For the keys' reduction
@@ -116,58 +122,13 @@ public:
    */
   bool DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves = false);
 
-  /// Progress towards an error target over the renders of one image.
-  struct TargetState
-  {
-    int HalfCount = 0;      // repetitions in each half
-    bool Balanced = true;   // the halves are of equal size
-    double Estimate = -1.0; // the last noise estimate; negative: none
-    /// The noise of one repetition, from the last estimate of this image or of an image
-    /// before it (it survives Restart()); negative: none yet.
-    double NoisePerRepetition = -1.0;
-    /// The repetitions per half of this image's first step; 0: not chosen yet.
-    int FirstHalf = 0;
-
-    /**
-     * A new image: nothing drawn. Its first step aims with the noise per repetition of the
-     * images before it, or repeats the last image's first step where everything that shapes
-     * the image is as it was (`sameImage`), so that the same render gives the same image.
-     */
-    void Restart(bool sameImage)
-    {
-      *this =
-        TargetState{ 0, true, -1.0, this->NoisePerRepetition, sameImage ? this->FirstHalf : 0 };
-    }
-  };
-
   /**
    * Draw at most count repetitions from first on, in rounds of two halves of equal size,
    * until the noise estimated from the halves is at most target. Returns how many were drawn,
    * or -1 on failure. `exactCoverage`: the coverage is (or is being) drawn for this image.
    */
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
-    double target, TargetState& state);
-
-  /// How an error target's steps draw and estimate; each returns false on failure.
-  struct TargetSteps
-  {
-    /// Draw repetitions [first, first + count), as two halves when `halves`.
-    std::function<bool(int first, int count, bool coverage, bool halves)> Draw;
-    /// The noise of the image whose halves hold `halfCount` repetitions each.
-    std::function<bool(int halfCount, double& estimate)> Estimate;
-  };
-
-  /**
-   * The steps of an error target, whoever draws them (one process, or ranks that share each
-   * estimate). Each step draws as many as the noise per repetition predicts for a quarter below
-   * the target in variance, until the estimate meets the target or count is drawn; the first
-   * step of an image takes that noise from the images before it; the first image's assumes a
-   * pessimistic one, in at most one group (at least one per half). Where only one repetition fits,
-   * it is drawn alone and the halves are no longer balanced (no estimate). Returns how many were
-   * drawn, or -1 on failure.
-   */
-  static int StepToTarget(const TargetSteps& steps, int first, int count, int perPass,
-    bool coverage, double target, TargetState& state);
+    double target, vtkSPTErrorTarget::State& state);
 
   /// The depth slabs this frame draws (Settings::DepthSlabs, clamped).
   int GetDepthSlabs() const { return this->FrameSettings.DepthSlabs; }
@@ -179,6 +140,16 @@ public:
   vtkIdType GetComputedCellCount(size_t volume) const;
 
 private:
+  // The image units of the frame's images (depth keys, the compute traversal's fixed-point
+  // sums, the depth slabs' sums and then their controls).
+  enum ImageUnit
+  {
+    DepthKeyImageUnit = 0,
+    SumsImageUnit = 1,
+    SlabDepthsImageUnit = 2
+  };
+
+  // The programs and their uniforms (vtkSPTFramePrograms.cxx).
   vtkShaderProgram* ReadyProgram(
     bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves);
   // The compute traversal's program of a keys or colors pass kind (vtkSPTTetrahedraCS.glsl).

@@ -37,7 +37,7 @@ public:
   bool WarnedNoGlobalIds = false;
   bool WarnedSharedMapper = false; // while several volumes of the renderer draw this mapper
 
-  vtkSPTFrame::TargetState Target; // progress towards TargetError
+  vtkSPTErrorTarget::State Target; // progress towards TargetError
   // Bits per channel of the framebuffer the image is resolved into (0: floating point), read
   // when the render starts.
   int ColorBits = 8;

@@ -1,0 +1,69 @@
+/**
+ * @class   vtkSPTErrorTarget
+ * @brief   the steps of SPT's error target: how many repetitions an image draws next
+ *
+ * vtkSPTVolumeMapper::SetTargetError() draws repetitions in two independent halves, whose
+ * difference estimates the image's noise, until the estimate meets the target. This class
+ * decides each step from the noise measured so far (or assumed, for a mapper's first image),
+ * whoever draws it: one process (vtkSPTFrame) or the ranks of a parallel render, which share
+ * each estimate (vtkSPTParallelFrame).
+ *
+ * Private helper of the SPT modules; not wrapped.
+ */
+
+#ifndef vtkSPTErrorTarget_h
+#define vtkSPTErrorTarget_h
+
+#include "SPTRenderingSPTModule.h" // For export macro
+
+#include <functional> // For the steps
+
+class SPTRENDERINGSPT_EXPORT vtkSPTErrorTarget
+{
+public:
+  /// Progress towards an error target over the renders of one image.
+  struct State
+  {
+    int HalfCount = 0;      // repetitions in each half
+    bool Balanced = true;   // the halves are of equal size
+    double Estimate = -1.0; // the last noise estimate; negative: none
+    /// The noise of one repetition, from the last estimate of this image or of an image
+    /// before it (it survives Restart()); negative: none yet.
+    double NoisePerRepetition = -1.0;
+    /// The repetitions per half of this image's first step; 0: not chosen yet.
+    int FirstHalf = 0;
+
+    /**
+     * A new image: nothing drawn. Its first step aims with the noise per repetition of the
+     * images before it, or repeats the last image's first step where everything that shapes
+     * the image is as it was (`sameImage`), so that the same render gives the same image.
+     */
+    void Restart(bool sameImage)
+    {
+      *this = State{ 0, true, -1.0, this->NoisePerRepetition, sameImage ? this->FirstHalf : 0 };
+    }
+  };
+
+  /// How an error target's steps draw and estimate; each returns false on failure.
+  struct Steps
+  {
+    /// Draw repetitions [first, first + count), as two halves when `halves`.
+    std::function<bool(int first, int count, bool coverage, bool halves)> Draw;
+    /// The noise of the image whose halves hold `halfCount` repetitions each.
+    std::function<bool(int halfCount, double& estimate)> Estimate;
+  };
+
+  /**
+   * The steps of an error target, whoever draws them (one process, or ranks that share each
+   * estimate). Each step draws as many as the noise per repetition predicts for a quarter below
+   * the target in variance, until the estimate meets the target or count is drawn; the first
+   * step of an image takes that noise from the images before it; the first image's assumes a
+   * pessimistic one, in at most one group (at least one per half). Where only one repetition fits,
+   * it is drawn alone and the halves are no longer balanced (no estimate). Returns how many were
+   * drawn, or -1 on failure.
+   */
+  static int StepToTarget(const Steps& steps, int first, int count, int perPass, bool coverage,
+    double target, State& state);
+};
+
+#endif

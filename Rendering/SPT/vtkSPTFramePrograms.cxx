@@ -1,0 +1,263 @@
+// The programs of an SPT frame and their uniforms: which shaders a pass kind and a volume's
+// kind of cells compile from, with which defines (vtkSPTFrame.h).
+#include "vtkSPTFrame.h"
+
+#include "vtkObject.h"
+#include "vtkOpenGLLoader.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkPreIntegrationTable.h"
+#include "vtkSPTComputeTraversal.h"
+#include "vtkSPTDepthKeyBuffer.h"
+#include "vtkSPTMeshBuffers.h"
+#include "vtkTetrahedralMesh.h"
+#include "vtkVolumeViewMatrices.h"
+
+#include "vtkHashRandom.h"
+#include "vtkSPTDepthSlabs.h"
+#include "vtkSPTFacePlane.h"
+#include "vtkSPTPassColorsFS.h"
+#include "vtkSPTPassCoverageFS.h"
+#include "vtkSPTPassDepthColorsFS.h"
+#include "vtkSPTPassKeysFS.h"
+#include "vtkSPTPassSingleFS.h"
+#include "vtkSPTPointCell.h"
+#include "vtkSPTTetrahedraCS.h"
+#include "vtkSPTTetrahedraFS.h"
+#include "vtkSPTTetrahedraGS.h"
+#include "vtkSPTTetrahedraPointsVS.h"
+#include "vtkSPTTetrahedraVS.h"
+
+#include <algorithm>
+#include <climits>
+#include <string>
+
+namespace
+{
+// A slab whose optical depth reaches this hides what lies behind it to within float precision
+// (exp(-40) = 4e-18): it adds no more.
+constexpr int SlabDepthCap = 40;
+}
+
+std::string vtkSPTFrame::SlabDefines(PassKind kind) const
+{
+  const bool groups =
+    kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
+  if (!groups || this->FrameSettings.DepthSlabs <= 1)
+  {
+    return "";
+  }
+  return "#define SPT_DEPTH_SLABS " + std::to_string(this->FrameSettings.DepthSlabs) +
+    "\n#define SPT_SLAB_FIXED_ONE " + std::to_string(vtkSPTDepthKeyBuffer::GetSlabFixedOne()) +
+    "u\n#define SPT_SLAB_DEPTH_CAP " + std::to_string(SlabDepthCap) + "u\n#define SPT_SLAB_TERMS " +
+    std::to_string(vtkSPTDepthKeyBuffer::SlabTerms) + "\n";
+}
+
+vtkShaderProgram*& vtkSPTFrame::ProgramOf(PassKind kind, size_t volume, bool points)
+{
+  const bool cellScalars = this->Volumes[volume].Buffers->GetMesh()->GetCellScalars();
+  return this->Programs[static_cast<int>(kind)][cellScalars ? 1 : 0][points ? 1 : 0];
+}
+
+vtkShaderProgram* vtkSPTFrame::ReadyProgram(
+  bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves)
+{
+  const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
+    vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS, vtkSPTPassDepthColorsFS,
+    vtkSPTPassDepthColorsFS };
+  // Both stages: scalars per cell, the path for cells that a clipping plane cuts (compiled in
+  // only while one cuts some volume's bounds: a fragment stage pays for its branches),
+  // and the scene depth (only when opaque geometry was drawn).
+  std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
+  common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  std::string vertex = points ? vtkSPTTetrahedraPointsVS : vtkSPTTetrahedraVS;
+  std::string geometry = points ? "" : vtkSPTTetrahedraGS;
+  vtkShaderProgram::Substitute(vertex, "//Volume::Defines::Dec", common);
+  vtkShaderProgram::Substitute(geometry, "//Volume::Defines::Dec", common);
+  vtkShaderProgram::Substitute(vertex, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
+
+  std::string defines =
+    common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
+  {
+    defines += "\n#define SPT_WRITE_COVERAGE";
+  }
+  if (kind == PassKind::Colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR)
+  {
+    defines += "\n#define SPT_VISIBILITY_WEIGHTED";
+  }
+  if (kind == PassKind::Colors && halves)
+  {
+    defines += "\n#define ENSEMBLE_SECOND_HALF"; // a second output only where one is bound
+  }
+  // VTK declares GLSL 1.50; image load/store comes as the extension.
+  const bool atomics =
+    kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
+  std::string fragment = vtkSPTTetrahedraFS;
+  // The slabs' controls are kept as float bits in an integer image.
+  const std::string slabs =
+    this->SlabDefines(kind).empty() ? "" : "\n#extension GL_ARB_shader_bit_encoding : require";
+  vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
+    atomics ? "#extension GL_ARB_shader_image_load_store : require" + slabs : "");
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
+  vtkShaderProgram::Substitute(fragment, "//Volume::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
+  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
+  return this->Window->GetShaderCache()->ReadyShaderProgram(
+    vertex.c_str(), fragment.c_str(), geometry.c_str());
+}
+
+vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
+  bool cellScalars, PassKind kind, int lanes, bool halves)
+{
+  // The pass's fragment code, with the cell's planes and the sample's position set by the
+  // compute pass's main() (vtkSPTTetrahedraCS.glsl) instead of read from the points.
+  const bool colors = kind == PassKind::Colors;
+  std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += this->SlabDefines(kind);
+  defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
+  defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
+  defines += colors ? "#define SPT_COMPUTE_COLORS\n" : "";
+  defines += colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR
+    ? "#define SPT_VISIBILITY_WEIGHTED\n"
+    : "";
+  defines += colors && halves ? "#define ENSEMBLE_SECOND_HALF\n" : "";
+  defines += "#define SPT_COMPUTE_GROUP_SIZE " + std::to_string(vtkSPTComputeTraversal::GroupSize) +
+    "\n#define SPT_FIXED_ONE " + std::to_string(vtkSPTComputeTraversal::FixedPointOne);
+  std::string source = vtkSPTTetrahedraFS;
+  vtkShaderProgram::Substitute(source, "//VTK::System::Dec", "#version 430\n#define SPT_COMPUTE");
+  vtkShaderProgram::Substitute(source, "//SPT::Extensions::Dec", "");
+  vtkShaderProgram::Substitute(source, "//VTK::Output::Dec", "");
+  vtkShaderProgram::Substitute(source, "//SPT::Pass::Dec", defines);
+  vtkShaderProgram::Substitute(source, "//Volume::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(source, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
+  vtkShaderProgram::Substitute(source, "//SPT::Pass::Impl",
+    std::string(colors ? vtkSPTPassColorsFS : vtkSPTPassKeysFS) + vtkSPTTetrahedraCS);
+  vtkShaderProgram::Substitute(source, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(source, "//SPT::PointCell::Impl", vtkSPTPointCell);
+  return this->FrameSettings.Compute->GetProgram(this->Window, source);
+}
+
+bool vtkSPTFrame::ReadyPrograms(
+  const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves)
+{
+  // Each call has uniforms of its own (first, count, halves).
+  for (auto& byScalars : this->Programs)
+  {
+    for (auto& byPrimitive : byScalars)
+    {
+      byPrimitive[0] = byPrimitive[1] = nullptr;
+    }
+  }
+  for (auto& byScalars : this->ComputePrograms)
+  {
+    byScalars[0] = byScalars[1] = nullptr;
+  }
+  for (int k = 0; k < NumberOfPassKinds; ++k)
+  {
+    for (size_t v = 0; v < this->Volumes.size(); ++v)
+    {
+      const PassKind kind = static_cast<PassKind>(k);
+      const bool cellScalars = this->Volumes[v].Buffers->GetMesh()->GetCellScalars();
+      if (needed[k] && this->Computes(kind, v) && !this->ComputePrograms[k][cellScalars ? 1 : 0])
+      {
+        vtkShaderProgram* program = this->ReadyComputeProgram(cellScalars, kind, lanes, halves);
+        if (!program)
+        {
+          // The traversal warned and will not be asked again in this context. The rasterizer
+          // takes its cells from this group on (the same estimate: the sums differ by the fixed
+          // point's rounding), so every program is chosen again.
+          this->ComputeCellCounts.assign(this->Volumes.size(), 0);
+          return this->ReadyPrograms(needed, lanes, first, count, halves);
+        }
+        this->ComputePrograms[k][cellScalars ? 1 : 0] = program;
+        vtkSPTComputeTraversal::Use(this->Window, program);
+        this->SetFrameUniforms(program, first, count, halves);
+        program->SetUniformi("sums", SumsImageUnit);
+      }
+      for (const bool points : { false, true })
+      {
+        vtkShaderProgram*& program = this->ProgramOf(kind, v, points);
+        if (!needed[k] || !this->Rasterizes(kind, v, points) || program)
+        {
+          continue;
+        }
+        program = this->ReadyProgram(this->Volumes[v].Buffers->GetMesh()->GetCellScalars(),
+          this->NearPlaneCuts, points, kind, lanes, halves);
+        if (!program)
+        {
+          vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");
+          return false;
+        }
+        this->SetFrameUniforms(program, first, count, halves);
+      }
+    }
+  }
+  return true;
+}
+
+void vtkSPTFrame::SetFrameUniforms(
+  vtkShaderProgram* program, int first, int count, bool halves) const
+{
+  vtkEnsembleBuffer* ensemble = this->Ensemble;
+  const float passSize[2] = { float(ensemble->GetPassWidth()), float(ensemble->GetPassHeight()) };
+  program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", this->FrameSettings.SubpixelLevel);
+  program->SetUniform2f("passSizeInPixels", passSize);
+  program->SetUniformi("seed", static_cast<int>(this->FrameSettings.Seed));
+  // Strata: the repetitions of this draw form one block (progressive renders add blocks),
+  // or two, one per half, so that the halves stay independent.
+  const int block = halves ? count / 2 : count;
+  program->SetUniformi("stratumCount", this->FrameSettings.StratifiedSampling ? block : 0);
+  program->SetUniformi("stratumOrigin", first);
+  program->SetUniformi("secondHalfStart", halves ? first + block : INT_MAX);
+  int bits = 0;
+  while ((1 << bits) < block)
+  {
+    ++bits;
+  }
+  program->SetUniformi("stratumMask", (1 << bits) - 1);
+  program->SetUniformi("stratumShift", std::max((bits + 1) / 2, 1));
+  if (program->IsUniformUsed("depthKeys"))
+  {
+    program->SetUniformi("depthKeys", DepthKeyImageUnit);
+  }
+  if (program->IsUniformUsed("slabSums"))
+  {
+    program->SetUniformi("slabSums", SlabDepthsImageUnit);
+  }
+  if (program->IsUniformUsed("slabStartsLow"))
+  {
+    program->SetUniform4f("slabStartsLow", this->SlabStarts);
+    program->SetUniform4f("slabStartsHigh", this->SlabStarts + 4);
+  }
+}
+
+void vtkSPTFrame::SetVolumeUniforms(vtkShaderProgram* program, const Volume& volume)
+{
+  const vtkVolumeViewMatrices& matrices = *volume.Matrices;
+  program->SetUniformMatrix4x4("MCVCMatrix", const_cast<float*>(matrices.MCVC));
+  program->SetUniformMatrix4x4("VCDCMatrix", const_cast<float*>(matrices.VCDC));
+  program->SetUniformMatrix4x4("DCVCMatrix", const_cast<float*>(matrices.DCVC));
+  program->SetUniformMatrix3x3("VCMCLinear", const_cast<float*>(matrices.VCMCLinear));
+  volume.Table->SetUniforms(program, volume.TableTexture, volume.MaxThickness);
+  const int scalarUnit = volume.Buffers->GetScalarTexture()->GetTextureUnit();
+  program->SetUniformi("scalars", scalarUnit);
+  program->SetUniformi("cellScalars", scalarUnit);
+  program->SetUniformi("points", volume.Buffers->GetPointTexture()->GetTextureUnit());
+  program->SetUniformi("tetrahedra", volume.Buffers->GetTetrahedronTexture()->GetTextureUnit());
+  program->SetUniformi("cellIdOffset", static_cast<int>(volume.CellIdOffset));
+  const bool parallel = matrices.ParallelProjection;
+  const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };
+  program->SetUniform4f("eyeVC", eyeVC);
+}
