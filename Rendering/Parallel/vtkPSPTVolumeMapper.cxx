@@ -49,6 +49,16 @@ public:
 
   // This rank's pieces of the shared volumes, combined with the other ranks' by reductions.
   void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared);
+  // The ranks agree on each volume's settings and axes and share its table; false on every
+  // rank where they do not (the reason in `error`, empty where the image has no pixels).
+  bool AgreeOnVolumes(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared,
+    RenderTarget& target, std::vector<vtkSPTParallelReduction::Piece>& pieces,
+    std::vector<vtkSPTParallelReduction::Agreement>& agreements, std::string& error);
+  // Prepare this rank's pieces that have cells, numbered as one process numbers the whole,
+  // and draw them with the other ranks'.
+  void DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared,
+    RenderTarget& target, const std::vector<vtkSPTParallelReduction::Piece>& pieces,
+    const std::vector<vtkSPTParallelReduction::Agreement>& agreements);
   // This rank's settings and piece of the frame's first volume, for the ranks to agree on;
   // prepares the mesh and the ensemble.
   static vtkSPTParallelReduction::Settings DescribePiece(vtkSPTVolumeMapper* self, vtkRenderer* ren,
@@ -80,6 +90,12 @@ public:
     const std::vector<vtkSPTFrame::Volume>& volumes, const std::vector<vtkSPTVolumeMapper*>& owners,
     const std::vector<vtkSPTVolumeMapper*>& all, vtkSPTFrame::Settings& settings,
     const FramePlan& plan);
+  // What the mappers of the frame report of its traversals: the cells drawn as points, and
+  // those computed, of this rank's pieces (`owners`); none for the others of `all`.
+  static void ReportCellCounts(const vtkSPTParallelFrame& frame,
+    const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all);
+  // Rank 0: the opaque geometry of every rank, then the volume resolved over it.
+  void ResolveOnRoot(vtkSPTVolumeMapper* self, const RenderTarget& target);
   // The single-process plan, the same on every rank: rank 0's signature need not match the
   // others', so the ranks continue an accumulation only if all do, and draw the fewest
   // repetitions any rank's time budget allows. A collective call.
@@ -280,11 +296,35 @@ void vtkPSPTVolumeMapper::vtkInternals::RenderParallel(
   reduction->ResetBytes();
   const bool root = reduction->GetController()->GetLocalProcessId() == 0;
   RenderTarget target;
-  // The ranks agree on the first volume, whose settings include the number of volumes, then
-  // on each later one: every rank makes the same collective calls, or stops at the same one.
   std::vector<vtkSPTParallelReduction::Piece> pieces(shared.size());
   std::vector<vtkSPTParallelReduction::Agreement> agreements(shared.size());
   std::string error;
+  const bool agreed = this->AgreeOnVolumes(self, ren, shared, target, pieces, agreements, error);
+  if (!agreed && error.empty())
+  {
+    return; // an image with no pixels on every rank: nothing to draw
+  }
+  if (!agreed)
+  {
+    if (root && error != this->ParallelError)
+    {
+      vtkErrorWithObjectMacro(self, << error << "; nothing is drawn on any rank.");
+    }
+    this->ParallelError = error;
+    return;
+  }
+  this->ParallelError.clear();
+  this->DrawPieces(self, ren, shared, target, pieces, agreements);
+}
+
+bool vtkPSPTVolumeMapper::vtkInternals::AgreeOnVolumes(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+  const SharedList& shared, RenderTarget& target,
+  std::vector<vtkSPTParallelReduction::Piece>& pieces,
+  std::vector<vtkSPTParallelReduction::Agreement>& agreements, std::string& error)
+{
+  // The ranks agree on the first volume, whose settings include the number of volumes, then
+  // on each later one: every rank makes the same collective calls, or stops at the same one.
+  vtkSPTParallelReduction* reduction = this->Reduction;
   bool agreed = true;
   for (size_t v = 0; v < shared.size() && agreed; ++v)
   {
@@ -315,20 +355,15 @@ void vtkPSPTVolumeMapper::vtkInternals::RenderParallel(
       error = v > 0 ? "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error : error;
     }
   }
-  if (!agreed && error.empty())
-  {
-    return; // an image with no pixels on every rank: nothing to draw
-  }
-  if (!agreed)
-  {
-    if (root && error != this->ParallelError)
-    {
-      vtkErrorWithObjectMacro(self, << error << "; nothing is drawn on any rank.");
-    }
-    this->ParallelError = error;
-    return;
-  }
-  this->ParallelError.clear();
+  return agreed;
+}
+
+void vtkPSPTVolumeMapper::vtkInternals::DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+  const SharedList& shared, RenderTarget& target,
+  const std::vector<vtkSPTParallelReduction::Piece>& pieces,
+  const std::vector<vtkSPTParallelReduction::Agreement>& agreements)
+{
+  const bool root = this->Reduction->GetController()->GetLocalProcessId() == 0;
   // What the frame draws: each rank's pieces that have cells. The volumes' cells are numbered
   // one after another by their counts over all ranks, as one process numbers the whole.
   vtkSPTParallelReduction::Agreement frame = agreements[0];
@@ -491,16 +526,7 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   // A failure on any rank is known to all at a shared decision: then no rank resolves.
   const bool ok = drawn >= 0 && frame.Finish();
   const double seconds = self->StopTiming();
-  for (vtkSPTVolumeMapper* mapper : all)
-  {
-    mapper->LastPointCellCount = 0;
-    mapper->LastComputedCellCount = 0;
-  }
-  for (size_t v = 0; v < owners.size(); ++v)
-  {
-    owners[v]->LastPointCellCount = frame.GetPointCellCount(v);
-    owners[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
-  }
+  ReportCellCounts(frame, owners, all);
   ostate->PopFramebufferBindings();
   if (!ok)
   {
@@ -516,14 +542,36 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   }
   if (root)
   {
-    if (!this->SceneColor.empty() && !ensemble->DrawScene(target.X, target.Y, this->SceneColor))
-    {
-      vtkErrorWithObjectMacro(self,
-        "Could not draw the opaque geometry of the other ranks: the "
-        "volume is shown over rank 0's alone.");
-    }
-    ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
-      self->ExactCoverage && spt.CoverageDrawn);
-    ensemble->MarkFootprint(target.X, target.Y);
+    this->ResolveOnRoot(self, target);
   }
+}
+
+void vtkPSPTVolumeMapper::vtkInternals::ReportCellCounts(const vtkSPTParallelFrame& frame,
+  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all)
+{
+  for (vtkSPTVolumeMapper* mapper : all)
+  {
+    mapper->LastPointCellCount = 0;
+    mapper->LastComputedCellCount = 0;
+  }
+  for (size_t v = 0; v < owners.size(); ++v)
+  {
+    owners[v]->LastPointCellCount = frame.GetPointCellCount(v);
+    owners[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
+  }
+}
+
+void vtkPSPTVolumeMapper::vtkInternals::ResolveOnRoot(
+  vtkSPTVolumeMapper* self, const RenderTarget& target)
+{
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  if (!this->SceneColor.empty() && !ensemble->DrawScene(target.X, target.Y, this->SceneColor))
+  {
+    vtkErrorWithObjectMacro(self,
+      "Could not draw the opaque geometry of the other ranks: the "
+      "volume is shown over rank 0's alone.");
+  }
+  ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
+    self->ExactCoverage && Of(self).CoverageDrawn);
+  ensemble->MarkFootprint(target.X, target.Y);
 }

@@ -378,6 +378,26 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   return plan;
 }
 
+void vtkSPTVolumeMapper::vtkInternals::CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+  vtkOpenGLRenderWindow* renWin, const std::vector<vtkSPTFrame::Volume>& volumes,
+  vtkSPTFrame::Settings& settings)
+{
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  settings.StratifiedSampling = self->StratifiedSampling != 0;
+  settings.SmallCellSize = self->SmallCellSize;
+  settings.SubpixelLevel = self->SubpixelLevel;
+  settings.Seed = self->Seed;
+  settings.OpaqueScene = HasOpaqueScene(ren);
+  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
+    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
+  settings.Compute = self->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
+      this->Compute->IsWanted(renWin, self->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
+        ensemble->GetPassWidth(), ensemble->GetPassHeight())
+    ? this->Compute.Get()
+    : nullptr;
+  settings.ComputeEveryPoint = self->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
+}
+
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
@@ -406,56 +426,51 @@ void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  vtkInternals& internals = *this->Internals;
+  this->Internals->DrawFrame(this, ren, vol, target, volumes, mappers);
+}
+
+void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren,
+  vtkVolume* vol, const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+  const std::vector<vtkSPTVolumeMapper*>& mappers)
+{
+  vtkInternals& internals = *this;
   vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSavedGLState savedState(ostate);
-  vtkEnsembleBuffer* ensemble = this->GetEnsemble();
-  if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel))
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  if (!ensemble->Prepare(renWin, target.Width, target.Height, self->SubpixelLevel))
   {
     return;
   }
   internals.ColorBits = vtkOpenGLLoader::DrawColorBits(); // where the image will be resolved
   vtkSPTFrame::Settings settings;
-  const int perPass = internals.ChooseTraversal(this, renWin, settings);
+  const int perPass = internals.ChooseTraversal(self, renWin, settings);
   if (perPass < 1)
   {
     return;
   }
-  const vtkInternals::FramePlan plan = internals.Plan(this, vol, perPass,
+  const vtkInternals::FramePlan plan = internals.Plan(self, vol, perPass,
     settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR;
     settings.DepthSlabs = 1;
   }
-  settings.StratifiedSampling = this->StratifiedSampling != 0;
-  settings.SmallCellSize = this->SmallCellSize;
-  settings.SubpixelLevel = this->SubpixelLevel;
-  settings.Seed = this->Seed;
-  settings.OpaqueScene = HasOpaqueScene(ren);
-  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
-    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
-  settings.Compute = this->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
-      internals.Compute->IsWanted(renWin, this->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
-        ensemble->GetPassWidth(), ensemble->GetPassHeight())
-    ? internals.Compute.Get()
-    : nullptr;
-  settings.ComputeEveryPoint = this->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
+  internals.CompleteSettings(self, ren, renWin, volumes, settings);
   ostate->PushFramebufferBindings();
   const bool started = plan.First > 0 ||
-    internals.StartAccumulation(this, target, this->TargetError > 0.0, plan.SameImage);
-  vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, this);
-  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(this, frame, plan) >= 0);
+    internals.StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
+  vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, self);
+  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(self, frame, plan) >= 0);
   ostate->PopFramebufferBindings();
   if (!drawn)
   {
     return;
   }
-  internals.Report(this, mappers, frame);
-  ensemble->Resolve(target.X, target.Y, this->GetAccumulatedRepetitions(),
-    this->ExactCoverage && internals.CoverageDrawn);
+  internals.Report(self, mappers, frame);
+  ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
+    self->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 

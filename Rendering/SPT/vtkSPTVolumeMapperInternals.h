@@ -99,6 +99,13 @@ public:
   // The image's estimated error for GetEstimatedError(): its noise and its rounding; -1 when
   // the noise is not estimated.
   double ImageError(vtkSPTVolumeMapper* self) const;
+  // The frame's settings that follow from the mapper's, the renderer and the volumes.
+  void CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin,
+    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
+  // One process's frame of the volumes that `self` leads: plan, draw and resolve it.
+  void DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
+    const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+    const std::vector<vtkSPTVolumeMapper*>& mappers);
   // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
   int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 };
