@@ -76,78 +76,88 @@ void vtkSPTFrame::Traverse(PassKind kind, int repetition, int inGroup)
 {
   for (size_t v = 0; v < this->Volumes.size(); ++v)
   {
-    const Volume& volume = this->Volumes[v];
     // The smallest cells in a compute pass, the other small cells as points, then triangles
     // for the others.
     for (const Primitive primitive :
       { Primitive::Computed, Primitive::Points, Primitive::Outlines })
     {
-      const bool compute = primitive == Primitive::Computed;
-      const bool points = primitive != Primitive::Outlines;
-      if (compute ? !this->Computes(kind, v) : !this->Rasterizes(kind, v, points))
-      {
-        continue;
-      }
-      // The ensemble's accumulation binds its own program between passes; uniforms go to the
-      // bound program.
-      const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
-      vtkShaderProgram* program = compute
-        ? this->ComputePrograms[static_cast<int>(kind)][cellScalars ? 1 : 0]
-        : this->ProgramOf(kind, v, points);
-      if (compute)
-      {
-        vtkSPTComputeTraversal::Use(this->Window, program);
-      }
-      else
-      {
-        this->Window->GetShaderCache()->ReadyShaderProgram(program);
-      }
-      ScopedTextures textures({ volume.TableTexture, volume.Buffers->GetScalarTexture(),
-        volume.Buffers->GetPointTexture(), volume.Buffers->GetTetrahedronTexture(),
-        volume.Buffers->GetMeshIndexTexture() });
-      std::unique_ptr<ScopedTextures> randomIds;
-      if (this->FrameSettings.GlobalIds)
-      {
-        randomIds.reset(new ScopedTextures({ volume.Buffers->GetRandomIdTexture() }));
-        program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
-      }
-      SetVolumeUniforms(program, volume);
-      if (kind == PassKind::DepthColors || kind == PassKind::DepthColorsAndCoverage)
-      {
-        // Active for the traversal (DrawDepthSurvivors()).
-        program->SetUniformi(
-          "survivorDepth", this->Ensemble->GetPassDepthTexture()->GetTextureUnit());
-      }
-      program->SetUniformi("repetition", repetition);
-      program->SetUniformi("repetitionsInGroup", inGroup);
-      program->SetUniformi("meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
-      if (compute)
-      {
-        // The points' fragments pass the depth test against the farthest survivor when the
-        // frame set one (PrepareSurvivors()): the compute pass makes the same test.
-        vtkTextureObject* survivors = this->Ensemble->GetPassDepthTexture();
-        const bool skipBehind = kind == PassKind::Colors &&
-          this->Window->GetState()->GetEnumState(GL_DEPTH_TEST) && survivors->GetHandle();
-        std::unique_ptr<ScopedTextures> farthest;
-        if (kind == PassKind::Colors)
-        {
-          program->SetUniformi("behindSurvivorsSkipped", skipBehind ? 1 : 0);
-        }
-        if (skipBehind)
-        {
-          farthest.reset(new ScopedTextures({ survivors }));
-          program->SetUniformi("farthestSurvivor", survivors->GetTextureUnit());
-        }
-        vtkSPTComputeTraversal::Dispatch(program, 0, this->ComputeCellCounts[v]);
-        this->ComputedCellCounts[v] = this->ComputeCellCounts[v];
-      }
-      else
-      {
-        this->DrawTetrahedra(
-          volume, program, points, this->FirstRasterizedPoint(kind, v), this->PointCellCounts[v]);
-      }
+      this->TraversePrimitive(kind, v, primitive, repetition, inGroup);
     }
   }
+}
+
+void vtkSPTFrame::TraversePrimitive(
+  PassKind kind, size_t v, Primitive primitive, int repetition, int inGroup)
+{
+  const Volume& volume = this->Volumes[v];
+  const bool compute = primitive == Primitive::Computed;
+  const bool points = primitive != Primitive::Outlines;
+  if (compute ? !this->Computes(kind, v) : !this->Rasterizes(kind, v, points))
+  {
+    return;
+  }
+  // The ensemble's accumulation binds its own program between passes; uniforms go to the
+  // bound program.
+  const bool cellScalars = volume.Buffers->GetMesh()->GetCellScalars();
+  vtkShaderProgram* program = compute
+    ? this->ComputePrograms[static_cast<int>(kind)][cellScalars ? 1 : 0]
+    : this->ProgramOf(kind, v, points);
+  if (compute)
+  {
+    vtkSPTComputeTraversal::Use(this->Window, program);
+  }
+  else
+  {
+    this->Window->GetShaderCache()->ReadyShaderProgram(program);
+  }
+  ScopedTextures textures(
+    { volume.TableTexture, volume.Buffers->GetScalarTexture(), volume.Buffers->GetPointTexture(),
+      volume.Buffers->GetTetrahedronTexture(), volume.Buffers->GetMeshIndexTexture() });
+  std::unique_ptr<ScopedTextures> randomIds;
+  if (this->FrameSettings.GlobalIds)
+  {
+    randomIds.reset(new ScopedTextures({ volume.Buffers->GetRandomIdTexture() }));
+    program->SetUniformi("randomIds", volume.Buffers->GetRandomIdTexture()->GetTextureUnit());
+  }
+  SetVolumeUniforms(program, volume);
+  if (kind == PassKind::DepthColors || kind == PassKind::DepthColorsAndCoverage)
+  {
+    // Active for the traversal (DrawDepthSurvivors()).
+    program->SetUniformi("survivorDepth", this->Ensemble->GetPassDepthTexture()->GetTextureUnit());
+  }
+  program->SetUniformi("repetition", repetition);
+  program->SetUniformi("repetitionsInGroup", inGroup);
+  program->SetUniformi("meshIndices", volume.Buffers->GetMeshIndexTexture()->GetTextureUnit());
+  if (compute)
+  {
+    this->DispatchComputed(program, kind, v);
+  }
+  else
+  {
+    this->DrawTetrahedra(
+      volume, program, points, this->FirstRasterizedPoint(kind, v), this->PointCellCounts[v]);
+  }
+}
+
+void vtkSPTFrame::DispatchComputed(vtkShaderProgram* program, PassKind kind, size_t v)
+{
+  // The points' fragments pass the depth test against the farthest survivor when the
+  // frame set one (PrepareSurvivors()): the compute pass makes the same test.
+  vtkTextureObject* survivors = this->Ensemble->GetPassDepthTexture();
+  const bool skipBehind = kind == PassKind::Colors &&
+    this->Window->GetState()->GetEnumState(GL_DEPTH_TEST) && survivors->GetHandle();
+  std::unique_ptr<ScopedTextures> farthest;
+  if (kind == PassKind::Colors)
+  {
+    program->SetUniformi("behindSurvivorsSkipped", skipBehind ? 1 : 0);
+  }
+  if (skipBehind)
+  {
+    farthest.reset(new ScopedTextures({ survivors }));
+    program->SetUniformi("farthestSurvivor", survivors->GetTextureUnit());
+  }
+  vtkSPTComputeTraversal::Dispatch(program, 0, this->ComputeCellCounts[v]);
+  this->ComputedCellCounts[v] = this->ComputeCellCounts[v];
 }
 
 void vtkSPTFrame::DrawTetrahedra(const Volume& volume, vtkShaderProgram* program, bool points,
@@ -320,7 +330,6 @@ bool vtkSPTFrame::TraverseAdding(
 bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, bool halves)
 {
   vtkOpenGLState* ostate = this->Window->GetState();
-  vtkEnsembleBuffer* ensemble = this->Ensemble;
   // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
   // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
   ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -341,50 +350,14 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   for (int r = first; ok && r < first + count; r += perPass)
   {
     const int inGroup = std::min(perPass, first + count - r);
-    this->DepthKeys->Clear();
-    vtkSPTDepthKeyBuffer::Barrier();
     // The first key traversal also adds up the coverage: it visits every segment anyway.
     const bool withCoverage = coverage && r == first;
-    if (withCoverage)
-    {
-      ok = ensemble->BeginCoveragePass();
-      ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-      ostate->vtkglEnable(GL_BLEND);
-    }
-    else
-    {
-      ensemble->BeginSumPass(); // written to nothing: the color mask is off
-      ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      ostate->vtkglDisable(GL_BLEND);
-    }
-    const PassKind keysKind = withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys;
-    ok = ok && this->TraverseAdding(keysKind, r, inGroup, withCoverage, false);
-    if (ok && this->FrameSettings.AfterKeys)
-    {
-      ok = this->FrameSettings.AfterKeys(this->DepthKeys, slabs && withCoverage);
-      vtkSPTDepthKeyBuffer::Barrier();
-    }
-    if (ok && slabs && withCoverage)
-    {
-      ok = this->WriteSlabsMeanColor();
-    }
+    ok = this->DrawGroupKeys(r, inGroup, withCoverage);
     if (ok)
     {
-      ensemble->BeginSumPass(halves);
       // The repetitions from first + count / 2 on form the second half.
       const int secondHalfFrom = halves ? std::max(first + count / 2 - r, 0) : inGroup;
-      bool culled = false;
-      ok = this->PrepareSurvivors(inGroup, secondHalfFrom, culled);
-      if (ok)
-      {
-        ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        ostate->vtkglEnable(GL_BLEND);
-        ok = this->TraverseAdding(PassKind::Colors, r, inGroup, true, halves);
-      }
-      if (culled)
-      {
-        ostate->vtkglDisable(GL_DEPTH_TEST);
-      }
+      ok = this->DrawGroupColors(r, inGroup, secondHalfFrom, halves);
     }
   }
   vtkSPTDepthKeyBuffer::UnbindImage(DepthKeyImageUnit);
@@ -395,6 +368,59 @@ bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, b
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglDepthMask(GL_TRUE);
+  return ok;
+}
+
+bool vtkSPTFrame::DrawGroupKeys(int r, int inGroup, bool withCoverage)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  vtkEnsembleBuffer* ensemble = this->Ensemble;
+  const bool slabs = this->FrameSettings.DepthSlabs > 1;
+  bool ok = true;
+  this->DepthKeys->Clear();
+  vtkSPTDepthKeyBuffer::Barrier();
+  if (withCoverage)
+  {
+    ok = ensemble->BeginCoveragePass();
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    ostate->vtkglEnable(GL_BLEND);
+  }
+  else
+  {
+    ensemble->BeginSumPass(); // written to nothing: the color mask is off
+    ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    ostate->vtkglDisable(GL_BLEND);
+  }
+  const PassKind keysKind = withCoverage ? PassKind::KeysAndCoverage : PassKind::Keys;
+  ok = ok && this->TraverseAdding(keysKind, r, inGroup, withCoverage, false);
+  if (ok && this->FrameSettings.AfterKeys)
+  {
+    ok = this->FrameSettings.AfterKeys(this->DepthKeys, slabs && withCoverage);
+    vtkSPTDepthKeyBuffer::Barrier();
+  }
+  if (ok && slabs && withCoverage)
+  {
+    ok = this->WriteSlabsMeanColor();
+  }
+  return ok;
+}
+
+bool vtkSPTFrame::DrawGroupColors(int r, int inGroup, int secondHalfFrom, bool halves)
+{
+  vtkOpenGLState* ostate = this->Window->GetState();
+  this->Ensemble->BeginSumPass(halves);
+  bool culled = false;
+  bool ok = this->PrepareSurvivors(inGroup, secondHalfFrom, culled);
+  if (ok)
+  {
+    ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    ostate->vtkglEnable(GL_BLEND);
+    ok = this->TraverseAdding(PassKind::Colors, r, inGroup, true, halves);
+  }
+  if (culled)
+  {
+    ostate->vtkglDisable(GL_DEPTH_TEST);
+  }
   return ok;
 }
 

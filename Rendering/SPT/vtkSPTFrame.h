@@ -166,6 +166,11 @@ private:
     const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
   // One traversal of every volume with the program of that pass kind.
   void Traverse(PassKind kind, int repetition, int inGroup);
+  enum class Primitive;
+  // The part of the traversal that draws the volume's cells of one primitive.
+  void TraversePrimitive(PassKind kind, size_t v, Primitive primitive, int repetition, int inGroup);
+  // The volume's smallest cells in a compute pass with the bound program.
+  void DispatchComputed(vtkShaderProgram* program, PassKind kind, size_t v);
   // Traverse(), for a pass that `adds` into the bound targets (the second too with
   // `secondTarget`): a compute traversal adds its fixed-point sums there after it. False if
   // its sums cannot be allocated or added.
@@ -176,6 +181,12 @@ private:
     vtkIdType firstPoint, vtkIdType pointCells);
   bool DrawSingles(int first, int count, bool coverage, bool halves);
   bool DrawGroups(int first, int count, int perPass, bool coverage, bool halves);
+  // A group's key traversal, from repetition r (with the coverage, and then the slabs' mean
+  // color, where `withCoverage`); its keys then reduced by Settings::AfterKeys.
+  bool DrawGroupKeys(int r, int inGroup, bool withCoverage);
+  // A group's color traversal, against its survivors; the repetitions from `secondHalfFrom`
+  // in the group on add to the second half's sum too, with `halves`.
+  bool DrawGroupColors(int r, int inGroup, int secondHalfFrom, bool halves);
   // The visibility estimator one repetition per traversal pair: the single pass's depth test
   // finds each survivor, and the color traversal (with the coverage, in the first) reads its
   // depth.
