@@ -82,16 +82,8 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
   return true;
 }
 
-bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double scalarRange[2],
-  double maxLength, int scalarResolution, int lengthResolution, bool& pending)
+bool vtkPreIntegrationTable::CheckSize(int scalarResolution, int lengthResolution)
 {
-  this->LastError.clear();
-  pending = false;
-  if (!property)
-  {
-    this->LastError = "No volume property to pre-integrate.";
-    return false;
-  }
   const int scalars = std::max(2, scalarResolution);
   const int lengths = std::max(2, lengthResolution);
   const double bytes = 16.0 * scalars * scalars * lengths;
@@ -106,6 +98,23 @@ bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double s
             << MaxRelativeWork
             << "): lower PreIntegrationScalarResolution or PreIntegrationThicknessResolution.";
     this->LastError = message.str();
+    return false;
+  }
+  return true;
+}
+
+bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double scalarRange[2],
+  double maxLength, int scalarResolution, int lengthResolution, bool& pending)
+{
+  this->LastError.clear();
+  pending = false;
+  if (!property)
+  {
+    this->LastError = "No volume property to pre-integrate.";
+    return false;
+  }
+  if (!this->CheckSize(scalarResolution, lengthResolution))
+  {
     return false;
   }
   const bool unchanged = !this->Pending && property == this->LastProperty &&
@@ -243,9 +252,30 @@ void vtkPreIntegrationTable::IntegrateScalarPair(
 {
   // The color and attenuation at the middle of each step; the same for every length.
   const int steps = 1 + StepsPerCell * std::abs(back - front);
+  std::vector<double> tau(steps), color(3 * steps);
+  this->SampleSteps(front, back, tau, color);
+  const int lengths = this->LengthResolution;
+  std::vector<LengthPair> pairs((lengths + 1) / 2);
+  const double intervals = lengths > 1 ? double(lengths - 1) : 1.0;
+  const double perUnitDepth = this->MaxLength / (intervals * intervals * steps);
+  IntegrateLengths(tau, color, perUnitDepth, lengths, pairs);
+  for (int k = 0; k < lengths; ++k)
+  {
+    const LengthPair& p = pairs[k / 2];
+    float* entry = out + vtkIdType(k) * stride;
+    entry[0] = float(p.Red[k % 2]);
+    entry[1] = float(p.Green[k % 2]);
+    entry[2] = float(p.Blue[k % 2]);
+    entry[3] = float(1.0 - p.Transmittance[k % 2]);
+  }
+}
+
+void vtkPreIntegrationTable::SampleSteps(
+  int front, int back, std::vector<double>& tau, std::vector<double>& color) const
+{
+  const int steps = static_cast<int>(tau.size());
   const double fineFront = double(front) * TransferFunctionSamplesPerCell;
   const double fineBack = double(back) * TransferFunctionSamplesPerCell;
-  std::vector<double> tau(steps), color(3 * steps);
   const std::vector<double>& attenuation = this->Samples->GetAttenuation();
   const std::vector<double>& colors = this->Samples->GetColor();
   for (int m = 0; m < steps; ++m)
@@ -259,30 +289,23 @@ void vtkPreIntegrationTable::IntegrateScalarPair(
       color[3 * m + c] = (1.0 - w) * colors[3 * i0 + c] + w * colors[3 * i0 + 3 + c];
     }
   }
+}
 
+void vtkPreIntegrationTable::IntegrateLengths(const std::vector<double>& tau,
+  const std::vector<double>& color, double perUnitDepth, int lengths,
+  std::vector<LengthPair>& pairs)
+{
   // Front to back, step by step, every length at once. Step m of length k has the optical
   // depth tau_m * (k / (L - 1))^2 * MaxLength / steps = c_m k^2, so its transmittance is
   // a^(k^2) with a = exp(-c_m): each length's factor follows from the one two lengths before
   // by products, and each complement by sums of positive terms, exact to rounding where c_m is
   // tiny (no 1 - x of an x near 1). One exponential and one expm1 per step instead of one per
   // step and length.
-  const int lengths = this->LengthResolution;
-  // Lengths in pairs, even then odd, each pair's color sums and transmittances side by side:
-  // the even and the odd lengths' products are two chains that do not wait for each other.
-  struct Pair
-  {
-    double Red[2] = { 0.0, 0.0 };
-    double Green[2] = { 0.0, 0.0 };
-    double Blue[2] = { 0.0, 0.0 };
-    double Transmittance[2] = { 1.0, 1.0 };
-  };
-  std::vector<Pair> pairs((lengths + 1) / 2);
-  const double intervals = lengths > 1 ? double(lengths - 1) : 1.0;
-  const double perUnitDepth = this->MaxLength / (intervals * intervals * steps);
   // A longer segment keeps less light at every step: the lengths whose light is not spent
   // (transmittance above 1e-7) are the first `lit`, and only they take more steps, as a ray
   // stops; the pairs of lengths below take the one after an odd `lit` along (a length more, or
   // the spare one of the last pair), which only makes it more exact.
+  const int steps = static_cast<int>(tau.size());
   int lit = lengths;
   for (int m = 0; m < steps && lit > 0; ++m)
   {
@@ -302,7 +325,7 @@ void vtkPreIntegrationTable::IntegrateScalarPair(
     const int litPairs = (lit + 1) / 2;
     for (int pair = 0; pair < litPairs; ++pair)
     {
-      Pair& p = pairs[pair];
+      LengthPair& p = pairs[pair];
       for (int chain = 0; chain < 2; ++chain)
       {
         const double weight = p.Transmittance[chain] * complement[chain];
@@ -320,15 +343,6 @@ void vtkPreIntegrationTable::IntegrateScalarPair(
     {
       --lit;
     }
-  }
-  for (int k = 0; k < lengths; ++k)
-  {
-    const Pair& p = pairs[k / 2];
-    float* entry = out + vtkIdType(k) * stride;
-    entry[0] = float(p.Red[k % 2]);
-    entry[1] = float(p.Green[k % 2]);
-    entry[2] = float(p.Blue[k % 2]);
-    entry[3] = float(1.0 - p.Transmittance[k % 2]);
   }
 }
 

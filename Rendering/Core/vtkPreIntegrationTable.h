@@ -135,11 +135,28 @@ private:
   vtkPreIntegrationTable(const vtkPreIntegrationTable&) = delete;
   void operator=(const vtkPreIntegrationTable&) = delete;
 
+  // False, with LastError naming the settings, for a table too large to integrate.
+  bool CheckSize(int scalarResolution, int lengthResolution);
   // Whether the table has these axes.
   bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
     int lengthResolution) const;
   // One scalar pair's lengths, the k-th at out + k * stride.
   void IntegrateScalarPair(int front, int back, float* out, vtkIdType stride) const;
+  // The attenuation (`tau`) and color at the middle of each step from scalar front to back.
+  void SampleSteps(int front, int back, std::vector<double>& tau, std::vector<double>& color) const;
+  // Lengths in pairs, even then odd, each pair's color sums and transmittances side by side:
+  // the even and the odd lengths' products are two chains that do not wait for each other.
+  struct LengthPair
+  {
+    double Red[2] = { 0.0, 0.0 };
+    double Green[2] = { 0.0, 0.0 };
+    double Blue[2] = { 0.0, 0.0 };
+    double Transmittance[2] = { 1.0, 1.0 };
+  };
+  // The steps' compositing front to back for every length at once, into `pairs`;
+  // `perUnitDepth` turns a step's attenuation into the optical depth c_m of length 1.
+  static void IntegrateLengths(const std::vector<double>& tau, const std::vector<double>& color,
+    double perUnitDepth, int lengths, std::vector<LengthPair>& pairs);
   // Takes the integrated table (texture layout; swapped in when it differs) as the pending
   // axes' and samples'.
   void Commit(std::vector<float>& table);

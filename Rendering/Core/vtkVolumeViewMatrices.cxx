@@ -194,7 +194,19 @@ void vtkVolumeViewMatrices::Compute(
   this->NearPlaneCutsBounds = box.NearCut;
   ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
     this->NDCPerLength, this->TypicalNDCPerLength);
-  const double* bounds = mesh->GetNormalizedBounds();
+  this->ComputeDistances(mesh->GetNormalizedBounds(), clipToView);
+  vtkMath::Invert3x3(linear, this->ViewToModelLinear);
+  for (int column = 0; column < 3; ++column)
+  {
+    for (int row = 0; row < 3; ++row)
+    {
+      this->VCMCLinear[3 * column + row] = static_cast<float>(this->ViewToModelLinear[row][column]);
+    }
+  }
+}
+
+void vtkVolumeViewMatrices::ComputeDistances(const double* bounds, vtkMatrix4x4* clipToView)
+{
   this->BoundsDistance[0] = VTK_DOUBLE_MAX;
   this->BoundsDistance[1] = -VTK_DOUBLE_MAX;
   for (int corner = 0; corner < 8; ++corner)
@@ -213,13 +225,5 @@ void vtkVolumeViewMatrices::Compute(
     double view[4];
     clipToView->MultiplyPoint(ndc, view);
     this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
-  }
-  vtkMath::Invert3x3(linear, this->ViewToModelLinear);
-  for (int column = 0; column < 3; ++column)
-  {
-    for (int row = 0; row < 3; ++row)
-    {
-      this->VCMCLinear[3 * column + row] = static_cast<float>(this->ViewToModelLinear[row][column]);
-    }
   }
 }

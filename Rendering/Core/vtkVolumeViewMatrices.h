@@ -12,6 +12,7 @@
 
 #include "SPTRenderingCoreModule.h" // For export macro
 
+class vtkMatrix4x4;
 class vtkRenderer;
 class vtkTetrahedralMesh;
 class vtkVolume;
@@ -58,6 +59,10 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
    * normalization.
    */
   void Compute(vtkRenderer* ren, vtkVolume* vol, const vtkTetrahedralMesh* mesh);
+
+private:
+  // BoundsDistance and ClippingDistance, from the normalized bounds and the inverse projection.
+  void ComputeDistances(const double* bounds, vtkMatrix4x4* clipToView);
 };
 
 #endif

@@ -90,6 +90,10 @@ public:
     const std::vector<vtkSPTFrame::Volume>& volumes, const std::vector<vtkSPTVolumeMapper*>& owners,
     const std::vector<vtkSPTVolumeMapper*>& all, vtkSPTFrame::Settings& settings,
     const FramePlan& plan);
+  // A new accumulation where the plan starts one, with the opaque scene of every rank
+  // composited; false where it cannot start. A collective call.
+  bool StartParallelAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target,
+    const vtkSPTFrame::Settings& settings, const FramePlan& plan);
   // What the mappers of the frame report of its traversals: the cells drawn as points, and
   // those computed, of this rank's pieces (`owners`); none for the others of `all`.
   static void ReportCellCounts(const vtkSPTParallelFrame& frame,
@@ -475,16 +479,12 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, v
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
-void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
-  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
-  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all,
-  vtkSPTFrame::Settings& settings, const FramePlan& plan)
+bool vtkPSPTVolumeMapper::vtkInternals::StartParallelAccumulation(vtkSPTVolumeMapper* self,
+  const RenderTarget& target, const vtkSPTFrame::Settings& settings, const FramePlan& plan)
 {
   vtkSPTParallelReduction* reduction = this->Reduction;
-  vtkOpenGLState* ostate = target.Window->GetState();
   vtkEnsembleBuffer* ensemble = self->GetEnsemble();
   const bool root = reduction->GetController()->GetLocalProcessId() == 0;
-  ostate->PushFramebufferBindings();
   // Every rank starts a new accumulation or none does (the plan is shared). Opaque geometry
   // on any rank hides the volume on every rank (the global minimum of the scene depth), and
   // rank 0 resolves the volume over every rank's geometry.
@@ -496,14 +496,28 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
       this->SceneColor = ensemble->ReadSceneColor(target.X, target.Y);
     }
   }
-  SPTInternals& spt = Of(self);
-  const bool started =
-    plan.First > 0 || spt.StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
+  const bool started = plan.First > 0 ||
+    Of(self).StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
   if (plan.First == 0 && settings.OpaqueScene &&
     (!reduction->CompositeScene(ensemble->GetSceneDepthTexture(), this->SceneColor) || !root))
   {
     this->SceneColor.clear();
   }
+  return started;
+}
+
+void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* self,
+  const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
+  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all,
+  vtkSPTFrame::Settings& settings, const FramePlan& plan)
+{
+  vtkSPTParallelReduction* reduction = this->Reduction;
+  vtkOpenGLState* ostate = target.Window->GetState();
+  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  const bool root = reduction->GetController()->GetLocalProcessId() == 0;
+  ostate->PushFramebufferBindings();
+  SPTInternals& spt = Of(self);
+  const bool started = this->StartParallelAccumulation(self, target, settings, plan);
   vtkSPTParallelFrame frame(
     target.Window, ensemble, spt.DepthKeys, volumes, settings, self, reduction);
   if (!started)

@@ -244,6 +244,22 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
   const bool keysFit = samples <= maxSize;
   if (!keysFit && !this->WarnedLargeImage)
   {
+    ReportLargeImage(self, maxSize);
+  }
+  this->WarnedLargeImage = !keysFit;
+  if (!keysFit && (self->TargetError > 0.0 || self->DepthSlabs > 1))
+  {
+    return 0;
+  }
+  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
+                 : 1;
+}
+
+void vtkSPTVolumeMapper::vtkInternals::ReportLargeImage(vtkSPTVolumeMapper* self, int maxSize)
+{
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  {
     std::ostringstream message;
     message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
             << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
@@ -264,14 +280,6 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
                                          "same image, more traversals).");
     }
   }
-  this->WarnedLargeImage = !keysFit;
-  if (!keysFit && (self->TargetError > 0.0 || self->DepthSlabs > 1))
-  {
-    return 0;
-  }
-  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
-  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
-                 : 1;
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::StartAccumulation(

@@ -74,6 +74,8 @@ public:
   // with them; 0 (with an error) when the frame cannot be drawn.
   int ChooseTraversal(
     vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
+  // The error or warning for an image of more samples per side than the 3D textures hold.
+  static void ReportLargeImage(vtkSPTVolumeMapper* self, int maxSize);
 
   // What one frame draws.
   struct FramePlan
