@@ -221,7 +221,7 @@ def test_spt_draws_the_pieces_as_read(images):
     _, two = images["two_ranks"]
     _, one = images["one_rank"]
     assert two["ranks"] == 2 and two["representation"] == SPT
-    assert two["mapper_class"] == "vtkSPTVolumeMapper"
+    assert two["mapper_class"] == "vtkPSPTVolumeMapper"
     assert two["cells"] == one["tetrahedra"] == 48000
     assert two["tetrahedra"] == 36000
     whole = np.array(one["mapper_input_bounds"]).reshape(3, 2)

@@ -22,7 +22,7 @@ from paraview import servermanager, simple
 # share are exposed with a prefix.
 METHODS = {
     "Volume (SPT)": {
-        "mapper": "vtkSPTVolumeMapper",
+        "mapper": "vtkPSPTVolumeMapper",
         "settings": {name: name for name in (
             "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed",
             "PreIntegrationScalarResolution",
