@@ -164,7 +164,7 @@ sanitize: deps
 	  $(XVFB) ctest --output-on-failure --timeout 1500
 
 # Every C++ source and header of the project, wherever it is (build trees left out).
-CXX_SOURCES = $(shell find Rendering Meshing Module Testing \( -name '*.h' -o -name '*.cxx' \
+CXX_SOURCES = $(shell find Rendering Meshing Plugin Testing \( -name '*.h' -o -name '*.cxx' \
 	-o -name '*.c' \) -not -path '*/build*' | sort)
 
 lint: deps

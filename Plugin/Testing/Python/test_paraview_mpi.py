@@ -63,7 +63,7 @@ def expat_workaround():
 
 def test_expat_workaround(tmp_path):
     """Debian 12's expat breaks VTK 9.2's XML reading, and ParaView's redistribution with it;
-    the preloaded library of Module/ExpatCompat repairs it."""
+    the preloaded library of Plugin/ExpatCompat repairs it."""
     if xml_reading_works(tmp_path):
         pytest.skip("VTK's XML reader works with this machine's expat")
     assert expat_workaround(), "expat breaks VTK's XML reader, but the workaround was not built"
@@ -221,7 +221,7 @@ def test_spt_draws_the_pieces_as_read(images):
     _, two = images["two_ranks"]
     _, one = images["one_rank"]
     assert two["ranks"] == 2 and two["representation"] == SPT
-    assert two["mapper_class"] == "vtkSPTVolumeMapper"
+    assert two["mapper_class"] == "vtkPSPTVolumeMapper"
     assert two["cells"] == one["tetrahedra"] == 48000
     assert two["tetrahedra"] == 36000
     whole = np.array(one["mapper_input_bounds"]).reshape(3, 2)

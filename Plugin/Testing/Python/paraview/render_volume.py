@@ -22,7 +22,7 @@ from paraview import servermanager, simple
 # share are exposed with a prefix.
 METHODS = {
     "Volume (SPT)": {
-        "mapper": "vtkSPTVolumeMapper",
+        "mapper": "vtkPSPTVolumeMapper",
         "settings": {name: name for name in (
             "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed",
             "PreIntegrationScalarResolution",
@@ -124,7 +124,7 @@ def property_groups(display):
 
 def mapper_object(display):
     """This process's mapper of the active representation (vtkPVCompositeRepresentation ->
-    vtkSPTVolumeRepresentation -> its volume mapper)."""
+    vtkTetrahedralVolumeRepresentation -> its volume mapper)."""
     active = display.GetClientSideObject().GetActiveRepresentation()
     return active.GetActiveVolumeMapper() if hasattr(active, "GetActiveVolumeMapper") else None
 

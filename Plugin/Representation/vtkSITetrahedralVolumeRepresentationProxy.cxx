@@ -1,31 +1,31 @@
-#include "vtkSISPTVolumeRepresentationProxy.h"
+#include "vtkSITetrahedralVolumeRepresentationProxy.h"
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkObjectFactory.h"
-#include "vtkSPTVolumeRepresentation.h"
+#include "vtkTetrahedralVolumeRepresentation.h"
 
-vtkStandardNewMacro(vtkSISPTVolumeRepresentationProxy);
-
-//------------------------------------------------------------------------------
-vtkSISPTVolumeRepresentationProxy::vtkSISPTVolumeRepresentationProxy() = default;
+vtkStandardNewMacro(vtkSITetrahedralVolumeRepresentationProxy);
 
 //------------------------------------------------------------------------------
-vtkSISPTVolumeRepresentationProxy::~vtkSISPTVolumeRepresentationProxy() = default;
+vtkSITetrahedralVolumeRepresentationProxy::vtkSITetrahedralVolumeRepresentationProxy() = default;
 
 //------------------------------------------------------------------------------
-bool vtkSISPTVolumeRepresentationProxy::CreateVTKObjects()
+vtkSITetrahedralVolumeRepresentationProxy::~vtkSITetrahedralVolumeRepresentationProxy() = default;
+
+//------------------------------------------------------------------------------
+bool vtkSITetrahedralVolumeRepresentationProxy::CreateVTKObjects()
 {
   if (!this->Superclass::CreateVTKObjects())
   {
     return false;
   }
 
-  auto* representation = vtkSPTVolumeRepresentation::SafeDownCast(this->GetVTKObject());
+  auto* representation = vtkTetrahedralVolumeRepresentation::SafeDownCast(this->GetVTKObject());
   if (!representation)
   {
     vtkErrorMacro(
       "Proxy " << (this->GetXMLName() ? this->GetXMLName() : "(unnamed)")
-               << ": its class must be vtkSPTVolumeRepresentation, not "
+               << ": its class must be vtkTetrahedralVolumeRepresentation, not "
                << (this->GetVTKObject() ? this->GetVTKObject()->GetClassName() : "(none)"));
     return false;
   }
@@ -45,7 +45,7 @@ bool vtkSISPTVolumeRepresentationProxy::CreateVTKObjects()
 }
 
 //------------------------------------------------------------------------------
-void vtkSISPTVolumeRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
+void vtkSITetrahedralVolumeRepresentationProxy::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
 }

@@ -1,12 +1,14 @@
 /**
- * @class   vtkSPTVolumeRepresentation
+ * @class   vtkTetrahedralVolumeRepresentation
  * @brief   ParaView's unstructured-grid volume representation, drawn by one of this project's
- * mappers
+ * tetrahedral mappers
  *
- * The representation types that the SPT plugin adds to ParaView ("Volume (SPT)", and one per
- * further mapper) are each a proxy of this class whose subproxy "VolumeMapper" is the mapper
- * that draws it (vtkSPTVolumeMapper, ...). vtkSISPTVolumeRepresentationProxy hands that mapper
- * over with SetVolumeMapper() on every process.
+ * One class for every representation type that the SPT plugin adds to ParaView ("Volume
+ * (SPT)", "Volume (HAVS-like)", "Volume (PBVR)"): each type is a proxy of this class whose
+ * subproxy "VolumeMapper" is the mapper that draws it, a vtkTetrahedralVolumeMapper
+ * (vtkPSPTVolumeMapper, vtkHAVSVolumeMapper, vtkPBVRVolumeMapper).
+ * vtkSITetrahedralVolumeRepresentationProxy hands that mapper over with SetVolumeMapper() on
+ * every process.
  *
  * Everything else is vtkUnstructuredGridVolumeRepresentation's: the split into tetrahedra, the
  * translucent-surface LOD, and, under MPI, the request for ordered compositing, for which
@@ -14,9 +16,9 @@
  * pieces' premultiplied images in visibility order. The sorted mappers (HAVS-like) and PBVR
  * keep that.
  *
- * vtkSPTVolumeMapper needs neither: under MPI with distributed rendering, this representation
- * asks for no redistribution and no ordered compositing, and hands the mapper the processes'
- * controller, so that each rank draws its own piece as it is and the ranks combine by
+ * SPT (vtkPSPTVolumeMapper) needs neither: under MPI with distributed rendering, this
+ * representation asks for no redistribution and no ordered compositing, and hands the mapper the
+ * processes' controller, so that each rank draws its own piece as it is and the ranks combine by
  * reductions; rank 0 resolves the image and marks its pixels in the depth buffer, and IceT's
  * depth compositing keeps them.
  *
@@ -25,11 +27,12 @@
  * own mapper.
  *
  * @sa
- * vtkUnstructuredGridVolumeRepresentation vtkSISPTVolumeRepresentationProxy vtkSPTVolumeMapper
+ * vtkUnstructuredGridVolumeRepresentation vtkSITetrahedralVolumeRepresentationProxy
+ * vtkTetrahedralVolumeMapper vtkPSPTVolumeMapper
  */
 
-#ifndef vtkSPTVolumeRepresentation_h
-#define vtkSPTVolumeRepresentation_h
+#ifndef vtkTetrahedralVolumeRepresentation_h
+#define vtkTetrahedralVolumeRepresentation_h
 
 #include "SPTParaViewRepresentationModule.h" // For export macro
 #include "vtkSmartPointer.h"                 // For the mapper
@@ -39,12 +42,12 @@ class vtkAbstractVolumeMapper;
 class vtkMultiProcessController;
 class vtkSPTVolumeMapper;
 
-class SPTPARAVIEWREPRESENTATION_EXPORT vtkSPTVolumeRepresentation
+class SPTPARAVIEWREPRESENTATION_EXPORT vtkTetrahedralVolumeRepresentation
   : public vtkUnstructuredGridVolumeRepresentation
 {
 public:
-  static vtkSPTVolumeRepresentation* New();
-  vtkTypeMacro(vtkSPTVolumeRepresentation, vtkUnstructuredGridVolumeRepresentation);
+  static vtkTetrahedralVolumeRepresentation* New();
+  vtkTypeMacro(vtkTetrahedralVolumeRepresentation, vtkUnstructuredGridVolumeRepresentation);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -69,8 +72,8 @@ public:
     vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
 
 protected:
-  vtkSPTVolumeRepresentation();
-  ~vtkSPTVolumeRepresentation() override;
+  vtkTetrahedralVolumeRepresentation();
+  ~vtkTetrahedralVolumeRepresentation() override;
 
   /**
    * The superclass's array and scalar-mode forwarding, plus the color map's vector mode
@@ -79,8 +82,8 @@ protected:
   void UpdateMapperParameters() override;
 
 private:
-  vtkSPTVolumeRepresentation(const vtkSPTVolumeRepresentation&) = delete;
-  void operator=(const vtkSPTVolumeRepresentation&) = delete;
+  vtkTetrahedralVolumeRepresentation(const vtkTetrahedralVolumeRepresentation&) = delete;
+  void operator=(const vtkTetrahedralVolumeRepresentation&) = delete;
 
   // The processes SPT combines across, or null when it draws alone.
   vtkMultiProcessController* ParallelController();

@@ -1,4 +1,4 @@
-#include "vtkSPTVolumeRepresentation.h"
+#include "vtkTetrahedralVolumeRepresentation.h"
 
 #include "vtkAbstractVolumeMapper.h"
 #include "vtkCellData.h"
@@ -15,16 +15,16 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolumeProperty.h"
 
-vtkStandardNewMacro(vtkSPTVolumeRepresentation);
+vtkStandardNewMacro(vtkTetrahedralVolumeRepresentation);
 
 //------------------------------------------------------------------------------
-vtkSPTVolumeRepresentation::vtkSPTVolumeRepresentation() = default;
+vtkTetrahedralVolumeRepresentation::vtkTetrahedralVolumeRepresentation() = default;
 
 //------------------------------------------------------------------------------
-vtkSPTVolumeRepresentation::~vtkSPTVolumeRepresentation() = default;
+vtkTetrahedralVolumeRepresentation::~vtkTetrahedralVolumeRepresentation() = default;
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::SetVolumeMapper(vtkAbstractVolumeMapper* mapper)
+void vtkTetrahedralVolumeRepresentation::SetVolumeMapper(vtkAbstractVolumeMapper* mapper)
 {
   if (this->VolumeMapper == mapper)
   {
@@ -45,16 +45,16 @@ void vtkSPTVolumeRepresentation::SetVolumeMapper(vtkAbstractVolumeMapper* mapper
 }
 
 //------------------------------------------------------------------------------
-vtkAbstractVolumeMapper* vtkSPTVolumeRepresentation::GetVolumeMapper()
+vtkAbstractVolumeMapper* vtkTetrahedralVolumeRepresentation::GetVolumeMapper()
 {
   return this->VolumeMapper;
 }
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
+void vtkTetrahedralVolumeRepresentation::SetActiveVolumeMapper(const char*) {}
 
 //------------------------------------------------------------------------------
-vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
+vtkMultiProcessController* vtkTetrahedralVolumeRepresentation::ParallelController()
 {
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const bool parallel = vtkPSPTVolumeMapper::SafeDownCast(this->VolumeMapper) && controller &&
@@ -63,7 +63,7 @@ vtkMultiProcessController* vtkSPTVolumeRepresentation::ParallelController()
 }
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::KeepPieceDrawn(
+void vtkTetrahedralVolumeRepresentation::KeepPieceDrawn(
   vtkSPTVolumeMapper* mapper, vtkMultiProcessController* controller)
 {
   // ParaView's volume does not call its mapper when the piece lacks the selected array, as an
@@ -101,7 +101,7 @@ void vtkSPTVolumeRepresentation::KeepPieceDrawn(
 }
 
 //------------------------------------------------------------------------------
-int vtkSPTVolumeRepresentation::ProcessViewRequest(
+int vtkTetrahedralVolumeRepresentation::ProcessViewRequest(
   vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
 {
   if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
@@ -139,7 +139,7 @@ int vtkSPTVolumeRepresentation::ProcessViewRequest(
 }
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::UpdateMapperParameters()
+void vtkTetrahedralVolumeRepresentation::UpdateMapperParameters()
 {
   this->Superclass::UpdateMapperParameters();
 
@@ -163,7 +163,7 @@ void vtkSPTVolumeRepresentation::UpdateMapperParameters()
 }
 
 //------------------------------------------------------------------------------
-void vtkSPTVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+void vtkTetrahedralVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "VolumeMapper: ";

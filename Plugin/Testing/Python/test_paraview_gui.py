@@ -51,7 +51,7 @@ def test_paraview_played_the_test_script_and_exited(session):
     assert not errors, "\n".join(path.read_text() for path in errors)
 
 
-METHODS = {"spt": ("Volume (SPT)", "vtkSPTVolumeMapper", {"RepetitionLevel": 6, "Seed": 7}),
+METHODS = {"spt": ("Volume (SPT)", "vtkPSPTVolumeMapper", {"RepetitionLevel": 6, "Seed": 7}),
            "havs": ("Volume (HAVS-like)", "vtkHAVSVolumeMapper", {"KBufferSize": 4}),
            "pbvr": ("Volume (PBVR)", "vtkPBVRVolumeMapper",
                     {"PBVRRepetitionLevel": 5, "PBVRSeed": 2})}
