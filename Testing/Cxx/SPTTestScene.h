@@ -29,11 +29,9 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkStructuredGrid.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include "SPTTestWindow.h"
 
@@ -157,21 +155,8 @@ inline vtkSmartPointer<vtkVolumeProperty> MakeProperty()
   return property;
 }
 
-// Pixels of a viewport that differ from the black background.
-
-// The window's back buffer as RGB bytes, rows from the bottom.
-inline std::vector<unsigned char> Capture(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  vtkUnsignedCharArray* rgb =
-    vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
-  return std::vector<unsigned char>(
-    rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
-}
+// The scene's image, RGB (SPTTestWindow.h).
+using SPTTestWindow::Capture;
 
 // Pixels of columns [x0, x1) of a capture that differ from the black background.
 inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0, int x1)
