@@ -10,6 +10,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
+#include "vtkFramebufferTextures.h"
 #include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"
 
@@ -99,32 +100,19 @@ void vtkHAVSKBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 {
   const int targets = this->GetNumberOfTargets();
   bool ok = true;
+  vtkTextureObject* colors[MaximumTargets];
   for (int t = 0; t < MaximumTargets; ++t)
   {
     this->Targets[t]->ReleaseGraphicsResources(renWin);
+    colors[t] = this->Targets[t];
   }
   for (int t = 0; t < targets; ++t)
   {
-    vtkSceneDepthTexture::UseNearestTexels(this->Targets[t], renWin);
-    ok = ok && this->Targets[t]->Allocate2D(this->Width, this->Height, 4, VTK_FLOAT);
+    ok = ok &&
+      vtkFramebufferTextures::AllocateFloat(this->Targets[t], renWin, this->Width, this->Height, 4);
   }
-  ok = ok && this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
-
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushFramebufferBindings();
-  this->Framebuffer->SetContext(renWin);
-  this->Framebuffer->Bind();
-  for (int t = 0; t < MaximumTargets; ++t)
-  {
-    this->Framebuffer->RemoveColorAttachment(t);
-  }
-  for (int t = 0; t < targets && ok; ++t)
-  {
-    this->Framebuffer->AddColorAttachment(t, this->Targets[t]);
-  }
-  this->Framebuffer->ActivateDrawBuffers(targets);
-  ok = ok && this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  ostate->PopFramebufferBindings();
+  ok = ok && this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat) &&
+    vtkFramebufferTextures::Attach(this->Framebuffer, renWin, colors, targets);
 
   if (!this->Copy)
   {

@@ -10,6 +10,7 @@
 #include "vtkShaderProgram.h"
 #include "vtkTextureObject.h"
 
+#include "vtkFramebufferTextures.h"
 #include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"
 
@@ -53,35 +54,16 @@ void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
 {
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  for (vtkTextureObject* texture :
-    { this->PassColor.Get(), this->PassDepth.Get(), this->Sum.Get() })
-  {
-    vtkSceneDepthTexture::UseNearestTexels(texture, renWin);
-  }
-  bool ok = this->PassColor->Allocate2D(w, h, 4, VTK_FLOAT) &&
+  vtkFramebufferTextures::UseNearestTexels(this->PassDepth, renWin);
+  bool ok = vtkFramebufferTextures::AllocateFloat(this->PassColor, renWin, w, h, 4) &&
     this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
-    this->Sum->Allocate2D(w, h, 4, VTK_FLOAT) &&
+    vtkFramebufferTextures::AllocateFloat(this->Sum, renWin, w, h, 4) &&
     this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
-
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushFramebufferBindings();
-  for (vtkOpenGLFramebufferObject* framebuffer :
-    { this->PassFramebuffer.Get(), this->SumFramebuffer.Get() })
-  {
-    framebuffer->SetContext(renWin);
-  }
-  this->PassFramebuffer->Bind();
-  this->PassFramebuffer->AddColorAttachment(0, this->PassColor);
-  this->PassFramebuffer->AddDepthAttachment(this->PassDepth);
-  this->PassFramebuffer->ActivateDrawBuffers(1);
-  ok = ok && this->PassFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  this->SumFramebuffer->Bind();
-  this->SumFramebuffer->AddColorAttachment(0, this->Sum);
   // The passes' depth is free while the sums are drawn: SPT's color traversal tests against it.
-  this->SumFramebuffer->AddDepthAttachment(this->PassDepth);
-  this->SumFramebuffer->ActivateDrawBuffers(1);
-  ok = ok && this->SumFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  ostate->PopFramebufferBindings();
+  ok = ok &&
+    vtkFramebufferTextures::Attach(
+      this->PassFramebuffer, renWin, { this->PassColor }, this->PassDepth) &&
+    vtkFramebufferTextures::Attach(this->SumFramebuffer, renWin, { this->Sum }, this->PassDepth);
 
   if (!this->Accumulate)
   {
@@ -183,28 +165,15 @@ bool vtkEnsembleBuffer::SetHalves(bool halves)
   }
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  if (static_cast<int>(this->SecondHalf->GetWidth()) == w &&
-    static_cast<int>(this->SecondHalf->GetHeight()) == h && this->SecondHalf->GetHandle() &&
+  if (vtkFramebufferTextures::HasSize(this->SecondHalf, w, h) &&
     this->HalvesSum == this->Sum->GetHandle())
   {
     this->Halves = true;
     return true;
   }
-  vtkSceneDepthTexture::UseNearestTexels(this->SecondHalf, this->Context);
-  bool ok = this->SecondHalf->Allocate2D(w, h, 4, VTK_FLOAT);
-  vtkOpenGLState* ostate = this->Context->GetState();
-  ostate->PushFramebufferBindings();
-  this->HalvesFramebuffer->SetContext(this->Context);
-  this->HalvesFramebuffer->Bind();
-  if (ok)
-  {
-    this->HalvesFramebuffer->AddColorAttachment(0, this->Sum);
-    this->HalvesFramebuffer->AddColorAttachment(1, this->SecondHalf);
-    this->HalvesFramebuffer->AddDepthAttachment(this->PassDepth);
-    this->HalvesFramebuffer->ActivateDrawBuffers(2);
-    ok = this->HalvesFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  }
-  ostate->PopFramebufferBindings();
+  const bool ok = vtkFramebufferTextures::AllocateFloat(this->SecondHalf, this->Context, w, h, 4) &&
+    vtkFramebufferTextures::Attach(
+      this->HalvesFramebuffer, this->Context, { this->Sum, this->SecondHalf }, this->PassDepth);
   if (!ok)
   {
     vtkErrorMacro(
@@ -220,24 +189,13 @@ bool vtkEnsembleBuffer::SetHalves(bool halves)
 
 bool vtkEnsembleBuffer::AllocateNoise()
 {
-  if (static_cast<int>(this->Noise->GetWidth()) == this->Width &&
-    static_cast<int>(this->Noise->GetHeight()) == this->Height && this->Noise->GetHandle())
+  if (vtkFramebufferTextures::HasSize(this->Noise, this->Width, this->Height))
   {
     return true;
   }
-  vtkOpenGLState* ostate = this->Context->GetState();
-  vtkSceneDepthTexture::UseNearestTexels(this->Noise, this->Context);
-  bool ok = this->Noise->Allocate2D(this->Width, this->Height, 2, VTK_FLOAT);
-  ostate->PushFramebufferBindings();
-  this->NoiseFramebuffer->SetContext(this->Context);
-  this->NoiseFramebuffer->Bind();
-  if (ok)
-  {
-    this->NoiseFramebuffer->AddColorAttachment(0, this->Noise);
-    this->NoiseFramebuffer->ActivateDrawBuffers(1);
-    ok = this->NoiseFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  }
-  ostate->PopFramebufferBindings();
+  const bool ok = vtkFramebufferTextures::AllocateFloat(
+                    this->Noise, this->Context, this->Width, this->Height, 2) &&
+    vtkFramebufferTextures::Attach(this->NoiseFramebuffer, this->Context, { this->Noise });
   if (!ok)
   {
     vtkErrorMacro("Could not allocate the " << this->Width << "x" << this->Height
@@ -331,21 +289,10 @@ bool vtkEnsembleBuffer::BeginCoveragePass()
   vtkOpenGLState* ostate = this->Context->GetState();
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
-    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  if (!vtkFramebufferTextures::HasSize(this->Coverage, w, h))
   {
-    vtkSceneDepthTexture::UseNearestTexels(this->Coverage, this->Context);
-    ostate->PushFramebufferBindings();
-    this->CoverageFramebuffer->SetContext(this->Context);
-    this->CoverageFramebuffer->Bind();
-    bool ok = this->Coverage->Allocate2D(w, h, 4, VTK_FLOAT);
-    if (ok)
-    {
-      this->CoverageFramebuffer->AddColorAttachment(0, this->Coverage);
-      this->CoverageFramebuffer->ActivateDrawBuffers(1);
-      ok = this->CoverageFramebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-    }
-    ostate->PopFramebufferBindings();
+    const bool ok = vtkFramebufferTextures::AllocateFloat(this->Coverage, this->Context, w, h, 4) &&
+      vtkFramebufferTextures::Attach(this->CoverageFramebuffer, this->Context, { this->Coverage });
     if (!ok)
     {
       vtkErrorMacro("Could not allocate the " << w << "x" << h << " coverage buffer.");
@@ -364,8 +311,7 @@ bool vtkEnsembleBuffer::BindCoverage()
 {
   const int w = this->GetPassWidth();
   const int h = this->GetPassHeight();
-  if (static_cast<int>(this->Coverage->GetWidth()) != w ||
-    static_cast<int>(this->Coverage->GetHeight()) != h || !this->Coverage->GetHandle())
+  if (!vtkFramebufferTextures::HasSize(this->Coverage, w, h))
   {
     return false;
   }
@@ -492,11 +438,9 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
   {
     return false;
   }
-  if (this->SceneColor->GetWidth() != static_cast<unsigned int>(this->Width) ||
-    this->SceneColor->GetHeight() != static_cast<unsigned int>(this->Height) ||
-    !this->SceneColor->GetHandle())
+  if (!vtkFramebufferTextures::HasSize(this->SceneColor, this->Width, this->Height))
   {
-    vtkSceneDepthTexture::UseNearestTexels(this->SceneColor, this->Context);
+    vtkFramebufferTextures::UseNearestTexels(this->SceneColor, this->Context);
     if (!this->SceneColor->Allocate2D(this->Width, this->Height, 4, VTK_UNSIGNED_CHAR))
     {
       return false;

@@ -1,5 +1,6 @@
 #include "vtkSceneDepthTexture.h"
 
+#include "vtkFramebufferTextures.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLLoader.h"
@@ -47,20 +48,10 @@ int vtkSceneDepthTexture::QueryFormat(int* hasDepth)
                     : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
 }
 
-void vtkSceneDepthTexture::UseNearestTexels(
-  vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin)
-{
-  texture->SetContext(renWin);
-  texture->SetMinificationFilter(vtkTextureObject::Nearest);
-  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-}
-
 bool vtkSceneDepthTexture::Allocate(
   vtkOpenGLRenderWindow* renWin, int width, int height, int format)
 {
-  UseNearestTexels(this->Texture, renWin);
+  vtkFramebufferTextures::UseNearestTexels(this->Texture, renWin);
   bool ok = this->Texture->AllocateDepth(width, height, format);
   vtkOpenGLState* ostate = renWin->GetState();
   ostate->PushFramebufferBindings();

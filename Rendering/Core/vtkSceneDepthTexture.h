@@ -55,12 +55,6 @@ public:
 
   vtkTextureObject* GetTexture() { return this->Texture; }
 
-  /**
-   * Nearest-texel filtering and clamping to the edge: how the mappers' framebuffer textures
-   * are read (one texel per pixel or sample).
-   */
-  static void UseNearestTexels(vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin);
-
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:

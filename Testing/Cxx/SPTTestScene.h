@@ -3,8 +3,8 @@
 // mappers split the hexahedra themselves), with a point and a cell scalar, in two viewports:
 // - left: perspective, with an opaque sphere inside the shell that hides part of it;
 // - right: parallel projection, the volume rotated and scaled as the test chooses.
-// Also the checks the three tests share: OpenGL errors, covered pixels per viewport, and the
-// baseline comparison.
+// Also the checks the three tests share: the input unmodified and split into tetrahedra, OpenGL
+// errors, covered pixels per viewport, and the baseline comparison.
 
 #ifndef SPTTestScene_h
 #define SPTTestScene_h
@@ -29,11 +29,9 @@
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
 #include "vtkStructuredGrid.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include "SPTTestWindow.h"
 
@@ -157,21 +155,32 @@ inline vtkSmartPointer<vtkVolumeProperty> MakeProperty()
   return property;
 }
 
-// Pixels of a viewport that differ from the black background.
-
-// The window's back buffer as RGB bytes, rows from the bottom.
-inline std::vector<unsigned char> Capture(vtkRenderWindow* window)
+// The shell and the property of a mapper's image test, with the shell's state before the
+// test, for CheckInputAndSplit().
+struct ShellInput
 {
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  vtkUnsignedCharArray* rgb =
-    vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
-  return std::vector<unsigned char>(
-    rgb->GetPointer(0), rgb->GetPointer(0) + rgb->GetNumberOfValues());
-}
+  vtkSmartPointer<vtkUnstructuredGrid> Shell = MakeShell();
+  vtkMTimeType Time = this->Shell->GetMTime();
+  vtkIdType Cells = this->Shell->GetNumberOfCells();
+  vtkSmartPointer<vtkVolumeProperty> Property = MakeProperty();
+
+  // A failure if the shell was modified, or if the mapper that made `tetrahedra` of it did not
+  // split each hexahedron into 5 or 6.
+  int CheckInputAndSplit(vtkIdType tetrahedra) const
+  {
+    if (this->Shell->GetMTime() != this->Time || this->Shell->GetNumberOfCells() != this->Cells ||
+      tetrahedra < 5 * this->Cells || tetrahedra > 6 * this->Cells)
+    {
+      std::cerr << "The input was modified, or its hexahedra not split into 5 or 6 tetrahedra "
+                << "each (" << tetrahedra << " tetrahedra for " << this->Cells << " hexahedra).\n";
+      return 1;
+    }
+    return 0;
+  }
+};
+
+// The scene's image, RGB (SPTTestWindow.h).
+using SPTTestWindow::Capture;
 
 // Pixels of columns [x0, x1) of a capture that differ from the black background.
 inline int CountCovered(const std::vector<unsigned char>& rgb, int width, int x0, int x1)

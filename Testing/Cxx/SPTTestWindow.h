@@ -1,19 +1,25 @@
 // The render window of the C++ tests: VTK's own (X, GLX) when there is an X display, else
-// vtkHeadlessEGLRenderWindow, so that the whole suite also runs without X.
+// vtkHeadlessEGLRenderWindow, so that the whole suite also runs without X. Also how the tests
+// read a rendered image back.
 
 #ifndef SPTTestWindow_h
 #define SPTTestWindow_h
 
 #include "vtkHeadlessEGLRenderWindow.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkWindowToImageFilter.h"
 
 #include <cstdlib>
+#include <vector>
 
 namespace SPTTestWindow
 {
@@ -30,6 +36,25 @@ inline vtkSmartPointer<vtkRenderWindow> New()
     return vtkSmartPointer<vtkRenderWindow>::New();
   }
   return vtkSmartPointer<vtkHeadlessEGLRenderWindow>::New();
+}
+
+// The window's back buffer as it was last rendered: RGB bytes, or RGBA with `alpha`, one pixel
+// after another from the bottom row up.
+inline std::vector<unsigned char> Capture(vtkRenderWindow* window, bool alpha = false)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  if (alpha)
+  {
+    grab->SetInputBufferTypeToRGBA();
+  }
+  grab->ReadFrontBufferOff();
+  grab->ShouldRerenderOff();
+  grab->Update();
+  vtkUnsignedCharArray* bytes =
+    vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+  return std::vector<unsigned char>(
+    bytes->GetPointer(0), bytes->GetPointer(0) + bytes->GetNumberOfValues());
 }
 
 // For tests that make OpenGL calls of their own: a rendered window's context, current, with

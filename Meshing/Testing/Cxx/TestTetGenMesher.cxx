@@ -22,6 +22,8 @@
 #include "vtkSphereSource.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "SPTTestChecks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -29,17 +31,6 @@
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
 double SixVolume(const double a[3], const double b[3], const double c[3], const double d[3])
 {
   double u[3], v[3], w[3];
@@ -109,11 +100,12 @@ TetStatistics Measure(vtkUnstructuredGrid* grid, double bound = VTK_DOUBLE_MAX)
   return statistics;
 }
 
-void TestVolumeAndOrientation(vtkPolyData* sphere)
+void TestVolumeAndOrientation(vtkPolyData* sphere, SPTTestChecks::FailureCount& failures)
 {
   const double polyhedron = EnclosedVolume(sphere);
   const double ball = 4.0 / 3.0 * vtkMath::Pi();
-  Check(polyhedron > 0.97 * ball && polyhedron < ball, "the sphere's polyhedron is near a ball");
+  failures.Check(
+    polyhedron > 0.97 * ball && polyhedron < ball, "the sphere's polyhedron is near a ball");
 
   const vtkMTimeType inputTime = sphere->GetMTime();
   const vtkIdType inputPoints = sphere->GetNumberOfPoints();
@@ -127,15 +119,15 @@ void TestVolumeAndOrientation(vtkPolyData* sphere)
             << " (polyhedron " << polyhedron << ", relative difference "
             << (tets.Total - polyhedron) / polyhedron << "), smallest " << tets.Smallest
             << ", switches " << mesher->GetTetGenSwitches() << "\n";
-  Check(grid->GetNumberOfCells() > 0, "the sphere gives tetrahedra");
-  Check(tets.NotTetra == 0, "every cell is a VTK_TETRA");
-  Check(tets.Smallest > 0.0, "every tetrahedron is positively oriented and not flat");
-  Check(std::abs(tets.Total - polyhedron) < 1e-6 * polyhedron,
+  failures.Check(grid->GetNumberOfCells() > 0, "the sphere gives tetrahedra");
+  failures.Check(tets.NotTetra == 0, "every cell is a VTK_TETRA");
+  failures.Check(tets.Smallest > 0.0, "every tetrahedron is positively oriented and not flat");
+  failures.Check(std::abs(tets.Total - polyhedron) < 1e-6 * polyhedron,
     "the tetrahedra fill the enclosed polyhedron");
-  Check(std::abs(mesher->GetEnclosedVolume() - polyhedron) < 1e-12 * polyhedron,
+  failures.Check(std::abs(mesher->GetEnclosedVolume() - polyhedron) < 1e-12 * polyhedron,
     "EnclosedVolume is the polyhedron's volume");
-  Check(grid->GetNumberOfPoints() >= inputPoints, "the surface's points are kept");
-  Check(sphere->GetMTime() == inputTime && sphere->GetNumberOfPoints() == inputPoints &&
+  failures.Check(grid->GetNumberOfPoints() >= inputPoints, "the surface's points are kept");
+  failures.Check(sphere->GetMTime() == inputTime && sphere->GetNumberOfPoints() == inputPoints &&
       sphere->GetNumberOfPolys() == inputPolys,
     "the input is not modified");
 
@@ -146,11 +138,12 @@ void TestVolumeAndOrientation(vtkPolyData* sphere)
   inwards->SetInputConnection(reverse->GetOutputPort());
   inwards->Update();
   const TetStatistics reversed = Measure(inwards->GetOutput());
-  Check(reversed.Smallest > 0.0 && std::abs(reversed.Total - polyhedron) < 1e-6 * polyhedron,
+  failures.Check(
+    reversed.Smallest > 0.0 && std::abs(reversed.Total - polyhedron) < 1e-6 * polyhedron,
     "a surface facing inwards gives the same positive tetrahedra");
 }
 
-void TestTargets(vtkPolyData* sphere)
+void TestTargets(vtkPolyData* sphere, SPTTestChecks::FailureCount& failures)
 {
   for (vtkIdType target : { vtkIdType(25000), vtkIdType(100000) })
   {
@@ -160,7 +153,7 @@ void TestTargets(vtkPolyData* sphere)
     mesher->Update();
     const vtkIdType count = mesher->GetOutput()->GetNumberOfCells();
     std::cout << "target " << target << ": " << count << " tets\n";
-    Check(count > target / 1.5 && count < target * 1.5,
+    failures.Check(count > target / 1.5 && count < target * 1.5,
       "TargetNumberOfCells " + std::to_string(target) + " gives " + std::to_string(count));
   }
 
@@ -173,9 +166,9 @@ void TestTargets(vtkPolyData* sphere)
   const TetStatistics tets = Measure(mesher->GetOutput(), bound);
   std::cout << "maximum volume " << bound << ": " << count << " tets, " << tets.OverBound
             << " larger, largest " << tets.Largest << "\n";
-  Check(tets.OverBound <= count / 200 && tets.Largest < 1.5 * bound,
+  failures.Check(tets.OverBound <= count / 200 && tets.Largest < 1.5 * bound,
     "MaximumVolume bounds the tetrahedra");
-  Check(mesher->GetAppliedMaximumVolume() == bound, "the bound applied is MaximumVolume");
+  failures.Check(mesher->GetAppliedMaximumVolume() == bound, "the bound applied is MaximumVolume");
 }
 } // namespace
 
@@ -188,10 +181,11 @@ int TestTetGenMesher(int, char*[])
   source->Update();
   vtkPolyData* sphere = source->GetOutput();
 
-  TestVolumeAndOrientation(sphere);
-  TestTargets(sphere);
+  SPTTestChecks::FailureCount failures;
+  TestVolumeAndOrientation(sphere, failures);
+  TestTargets(sphere, failures);
 
   vtkNew<vtkTetGenMesher> printed;
   printed->Print(std::cout);
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return failures.ExitStatus();
 }

@@ -19,6 +19,8 @@
 #include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "SPTTestChecks.h"
+
 #include <initializer_list>
 #include <iostream>
 #include <string>
@@ -26,8 +28,6 @@
 
 namespace
 {
-int Failures = 0;
-
 vtkSmartPointer<vtkPolyData> Sphere(double centerX)
 {
   vtkNew<vtkSphereSource> source;
@@ -80,7 +80,8 @@ vtkSmartPointer<vtkPolyData> Edited(vtkPolyData* sphere, bool reverseFirst, bool
   return surface;
 }
 
-void Expect(vtkPolyData* input, const std::string& expected, const std::string& name)
+void Expect(vtkPolyData* input, const std::string& expected, const std::string& name,
+  SPTTestChecks::FailureCount& failures)
 {
   vtkNew<vtkTetGenMesher> mesher;
   vtkNew<vtkTest::ErrorObserver> errors;
@@ -98,50 +99,45 @@ void Expect(vtkPolyData* input, const std::string& expected, const std::string& 
   const std::size_t object = message.find("): ");
   const std::size_t start = object == std::string::npos ? 0 : object + 3;
   std::cout << name << ": " << message.substr(start, message.find('\n', start) - start) << "\n";
-  if (message.find(expected) == std::string::npos)
-  {
-    std::cerr << "FAILED: " << name << ": expected an error with \"" << expected << "\", got \""
-              << message << "\"\n";
-    ++Failures;
-  }
-  if (cells != 0)
-  {
-    std::cerr << "FAILED: " << name << ": the output has " << cells << " cells\n";
-    ++Failures;
-  }
+  failures.Check(message.find(expected) != std::string::npos,
+    name + ": expected an error with \"" + expected + "\", got \"" + message + "\"");
+  failures.Check(cells == 0, name + ": the output has " + std::to_string(cells) + " cells");
 }
 } // namespace
 
 int TestTetGenMesherErrors(int, char*[])
 {
+  SPTTestChecks::FailureCount failures;
   auto sphere = Sphere(0.0);
   const std::vector<double> cube = { 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1,
     0, 1, 1 };
   const std::vector<double> twoTetrahedra = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0,
     -1 };
 
-  Expect(nullptr, "connections", "no input");
-  Expect(vtkNew<vtkPolyData>(), "no triangles", "empty surface");
+  Expect(nullptr, "connections", "no input", failures);
+  Expect(vtkNew<vtkPolyData>(), "no triangles", "empty surface", failures);
   Expect(Surface(cube,
            { { 0, 3, 2, 1 }, { 4, 5, 6, 7 }, { 0, 1, 5, 4 }, { 1, 2, 6, 5 }, { 2, 3, 7, 6 },
              { 3, 0, 4, 7 } }),
-    "6 polygons that are not triangles", "quadrilaterals");
+    "6 polygons that are not triangles", "quadrilaterals", failures);
   Expect(Surface(twoTetrahedra, { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 1, 3 } }),
-    "1 degenerate triangle", "degenerate triangle");
-  Expect(Edited(sphere, false, true), "open: 3 boundary edges", "open sphere");
+    "1 degenerate triangle", "degenerate triangle", failures);
+  Expect(Edited(sphere, false, true), "open: 3 boundary edges", "open sphere", failures);
   // Two tetrahedra sharing the edge 0-1: that edge has four triangles.
   Expect(Surface(twoTetrahedra,
            { { 0, 2, 1 }, { 0, 1, 3 }, { 0, 3, 2 }, { 1, 2, 3 }, { 0, 1, 4 }, { 0, 5, 1 },
              { 0, 4, 5 }, { 1, 5, 4 } }),
-    "not manifold: 1 edge", "non-manifold edge");
-  Expect(Edited(sphere, true, false), "not consistently oriented: 3 edges", "one flipped");
-  Expect(Surface(cube, { { 0, 1, 2 }, { 0, 2, 1 } }), "encloses no volume", "flat surface");
+    "not manifold: 1 edge", "non-manifold edge", failures);
+  Expect(
+    Edited(sphere, true, false), "not consistently oriented: 3 edges", "one flipped", failures);
+  Expect(
+    Surface(cube, { { 0, 1, 2 }, { 0, 2, 1 } }), "encloses no volume", "flat surface", failures);
 
   vtkNew<vtkAppendPolyData> overlapping;
   overlapping->AddInputData(sphere);
   overlapping->AddInputData(Sphere(0.5));
   overlapping->Update();
-  Expect(overlapping->GetOutput(), "intersect", "two overlapping spheres");
+  Expect(overlapping->GetOutput(), "intersect", "two overlapping spheres", failures);
 
   vtkNew<vtkTetGenMesher> mesher;
   mesher->SetInputData(Edited(sphere, false, true));
@@ -151,10 +147,7 @@ int TestTetGenMesherErrors(int, char*[])
   mesher->Update();
   mesher->SetInputData(sphere);
   mesher->Update();
-  if (mesher->GetOutput()->GetNumberOfCells() == 0)
-  {
-    std::cerr << "FAILED: after an error, a good sphere gives no tetrahedra\n";
-    ++Failures;
-  }
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  failures.Check(mesher->GetOutput()->GetNumberOfCells() != 0,
+    "after an error, a good sphere gives no tetrahedra");
+  return failures.ExitStatus();
 }

@@ -18,6 +18,8 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "SPTTestChecks.h"
+
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -31,17 +33,6 @@
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool condition, const char* what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
 // A block of nx x ny x nz unit cubes, each split into 5 tetrahedra (alternating so that faces
 // match), with a point scalar. With `invert`, every other tetrahedron is listed inverted.
 vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, bool invert)
@@ -101,18 +92,18 @@ glm::vec3 Vertex(const vtkHAVSFaceBuffers* faces, unsigned int id)
   return glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]);
 }
 
-void CheckFaces(
-  vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary, const char* name)
+void CheckFaces(vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary,
+  const char* name, SPTTestChecks::FailureCount& failures)
 {
   vtkNew<vtkTetrahedralMesh> mesh;
   vtkTetrahedralMesh::ScalarSelection selection;
-  Check(mesh->Update(grid, selection), "the mesh is accepted");
+  failures.Check(mesh->Update(grid, selection), "the mesh is accepted");
   vtkNew<vtkHAVSFaceBuffers> faces;
   faces->Update(mesh);
   std::cout << name << ": " << faces->GetNumberOfFaces() << " faces, "
             << faces->GetNumberOfBoundaryFaces() << " on the boundary\n";
-  Check(faces->GetNumberOfFaces() == expectedFaces, "number of unique faces");
-  Check(faces->GetNumberOfBoundaryFaces() == expectedBoundary, "number of boundary faces");
+  failures.Check(faces->GetNumberOfFaces() == expectedFaces, "number of unique faces");
+  failures.Check(faces->GetNumberOfBoundaryFaces() == expectedBoundary, "number of boundary faces");
 
   // The mesh is a union of unit cubes or tetrahedra whose centroid is inside: a boundary
   // face's outward normal points away from the centroid of its own tetrahedron, checked here
@@ -134,11 +125,12 @@ void CheckFaces(
         (!copy && (scalar < 0.0f || scalar > 1.0f));
     }
   }
-  Check(wrongOffsets == 0, "boundary faces (only they) use the offset vertex copies");
+  failures.Check(wrongOffsets == 0, "boundary faces (only they) use the offset vertex copies");
 }
 
 // Boundary faces of a convex mesh face away from its center.
-void CheckOutwardWinding(vtkUnstructuredGrid* grid, const char* name)
+void CheckOutwardWinding(
+  vtkUnstructuredGrid* grid, const char* name, SPTTestChecks::FailureCount& failures)
 {
   vtkNew<vtkTetrahedralMesh> mesh;
   vtkTetrahedralMesh::ScalarSelection selection;
@@ -165,10 +157,10 @@ void CheckOutwardWinding(vtkUnstructuredGrid* grid, const char* name)
     inward += glm::dot(normal, centroid - center) <= 0.0f;
   }
   std::cout << name << ": " << inward << " boundary faces wound inward\n";
-  Check(inward == 0, "boundary faces are wound to face out of the mesh");
+  failures.Check(inward == 0, "boundary faces are wound to face out of the mesh");
 }
 
-void CheckKeysAndRadixSort()
+void CheckKeysAndRadixSort(SPTTestChecks::FailureCount& failures)
 {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> uniform(-1000.0f, 1000.0f);
@@ -189,7 +181,7 @@ void CheckKeysAndRadixSort()
     const uint32_t kb = vtkHAVSFaceBuffers::SortableKey(b);
     misordered += (a < b && !(ka < kb)) || (a > b && !(ka > kb));
   }
-  Check(misordered == 0, "SortableKey keeps the order of floats");
+  failures.Check(misordered == 0, "SortableKey keeps the order of floats");
 
   std::vector<uint32_t> keys(values.size()), scratchKeys;
   std::vector<unsigned int> order(values.size()), scratchOrder;
@@ -207,11 +199,11 @@ void CheckKeysAndRadixSort()
       return vtkHAVSFaceBuffers::SortableKey(values[a]) <
         vtkHAVSFaceBuffers::SortableKey(values[b]);
     });
-  Check(order == expected, "the radix sort is the stable sort by key");
-  Check(std::is_sorted(keys.begin(), keys.end()), "the sorted keys are in order");
+  failures.Check(order == expected, "the radix sort is the stable sort by key");
+  failures.Check(std::is_sorted(keys.begin(), keys.end()), "the sorted keys are in order");
 }
 
-void CheckSortOrder(bool parallel)
+void CheckSortOrder(bool parallel, SPTTestChecks::FailureCount& failures)
 {
   vtkSmartPointer<vtkUnstructuredGrid> grid = MakeBlock(4, 3, 2, false);
   vtkNew<vtkTetrahedralMesh> mesh;
@@ -223,7 +215,7 @@ void CheckSortOrder(bool parallel)
     glm::lookAt(glm::vec3(1.3f, -2.0f, 1.7f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
   faces->Sort(glm::value_ptr(view), parallel);
   const std::vector<unsigned int>& order = faces->GetOrder();
-  Check(order.size() == size_t(faces->GetNumberOfFaces()), "every face is sorted");
+  failures.Check(order.size() == size_t(faces->GetNumberOfFaces()), "every face is sorted");
   double previous = -1e30;
   int misordered = 0;
   std::vector<char> seen(order.size(), 0);
@@ -238,22 +230,25 @@ void CheckSortOrder(bool parallel)
     misordered += key < previous - 1e-5;
     previous = std::max(previous, key);
   }
-  Check(misordered == 0, parallel ? "faces sorted by depth" : "faces sorted by eye distance");
-  Check(std::count(seen.begin(), seen.end(), 1) == long(seen.size()), "the order is a permutation");
-  Check(faces->GetLastSortTime() >= 0.0, "the sort time is measured");
+  failures.Check(
+    misordered == 0, parallel ? "faces sorted by depth" : "faces sorted by eye distance");
+  failures.Check(
+    std::count(seen.begin(), seen.end(), 1) == long(seen.size()), "the order is a permutation");
+  failures.Check(faces->GetLastSortTime() >= 0.0, "the sort time is measured");
 }
 }
 
 int TestHAVSFaceBuffers(int, char*[])
 {
+  SPTTestChecks::FailureCount failures;
   // One cube: 5 tetrahedra, 4 faces shared by the central one: 20 - 4 = 16 unique, 12 outside.
-  CheckFaces(MakeBlock(1, 1, 1, false), 16, 12, "one cube");
-  CheckFaces(MakeBlock(1, 1, 1, true), 16, 12, "one cube, inverted tetrahedra");
+  CheckFaces(MakeBlock(1, 1, 1, false), 16, 12, "one cube", failures);
+  CheckFaces(MakeBlock(1, 1, 1, true), 16, 12, "one cube, inverted tetrahedra", failures);
   // A 3x3x3 block: 27 cubes x 5 = 135 tetrahedra; boundary: 6 sides x 9 squares x 2 triangles;
   // unique faces = (4 x 135 + 108) / 2.
-  CheckFaces(MakeBlock(3, 3, 3, false), (4 * 135 + 108) / 2, 108, "3x3x3 cubes");
-  CheckOutwardWinding(MakeBlock(3, 3, 3, false), "3x3x3 cubes");
-  CheckOutwardWinding(MakeBlock(3, 3, 3, true), "3x3x3 cubes, inverted tetrahedra");
+  CheckFaces(MakeBlock(3, 3, 3, false), (4 * 135 + 108) / 2, 108, "3x3x3 cubes", failures);
+  CheckOutwardWinding(MakeBlock(3, 3, 3, false), "3x3x3 cubes", failures);
+  CheckOutwardWinding(MakeBlock(3, 3, 3, true), "3x3x3 cubes, inverted tetrahedra", failures);
 
   // Two disjoint tetrahedra.
   vtkNew<vtkUnstructuredGrid> two;
@@ -275,10 +270,10 @@ int TestHAVSFaceBuffers(int, char*[])
     scalars->InsertNextValue(float(i));
   }
   two->GetPointData()->SetScalars(scalars);
-  CheckFaces(two, 8, 8, "two disjoint tetrahedra");
+  CheckFaces(two, 8, 8, "two disjoint tetrahedra", failures);
 
-  CheckKeysAndRadixSort();
-  CheckSortOrder(false);
-  CheckSortOrder(true);
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  CheckKeysAndRadixSort(failures);
+  CheckSortOrder(false, failures);
+  CheckSortOrder(true, failures);
+  return failures.ExitStatus();
 }

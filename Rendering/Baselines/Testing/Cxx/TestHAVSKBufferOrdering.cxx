@@ -31,7 +31,6 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
-#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOpenGLLoader.h"
 #include "vtkPiecewiseFunction.h"
@@ -40,11 +39,9 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTesting.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include "SPTTestWindow.h"
 
@@ -350,7 +347,7 @@ struct Comparison
 };
 
 Comparison Compare(const std::vector<PixelFragments>& pixels, const std::vector<glm::vec4>& cpu,
-  vtkUnsignedCharArray* gpu, double tolerance)
+  const std::vector<unsigned char>& gpu, double tolerance)
 {
   Comparison result;
   for (size_t p = 0; p < pixels.size(); ++p)
@@ -365,7 +362,7 @@ Comparison Compare(const std::vector<PixelFragments>& pixels, const std::vector<
     double difference = 0.0;
     for (int c = 0; c < 4; ++c)
     {
-      difference = std::max(difference, std::abs(gpu->GetValue(4 * p + c) / 255.0 - cpu[p][c]));
+      difference = std::max(difference, std::abs(gpu[4 * p + c] / 255.0 - cpu[p][c]));
     }
     result.Off += difference > tolerance;
     result.Largest = std::max(result.Largest, difference);
@@ -392,23 +389,16 @@ bool Offers(int access)
   }
 }
 
-// Render the mesh with the mapper; returns its RGBA pixels (bottom row first), or nullptr if
-// the mapper could not draw.
-vtkSmartPointer<vtkUnsignedCharArray> RenderOnGPU(
-  vtkRenderWindow* window, vtkHAVSVolumeMapper* mapper)
+// Render the mesh with the mapper; returns its RGBA pixels (bottom row first), or none if the
+// mapper could not draw.
+std::vector<unsigned char> RenderOnGPU(vtkRenderWindow* window, vtkHAVSVolumeMapper* mapper)
 {
   window->Render();
   if (mapper->GetKBufferSynchronizationInUse() < 0)
   {
-    return nullptr;
+    return {};
   }
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGBA();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  return vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
+  return SPTTestWindow::Capture(window, true);
 }
 
 // The mapper drawing the mesh alone, offscreen, onto a transparent background.
@@ -509,8 +499,8 @@ int CheckSynchronization(GPUScene& gpu, const CPUScene& cpu, int k, int access,
   int failures = 0;
   const double tolerance = 3.0 / 255.0;
   gpu.Mapper->SetKBufferSynchronization(access);
-  vtkSmartPointer<vtkUnsignedCharArray> image = RenderOnGPU(gpu.Window, gpu.Mapper);
-  if (!image)
+  const std::vector<unsigned char> image = RenderOnGPU(gpu.Window, gpu.Mapper);
+  if (image.empty())
   {
     std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
     return 1;

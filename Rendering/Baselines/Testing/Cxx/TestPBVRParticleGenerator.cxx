@@ -18,6 +18,8 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "SPTTestChecks.h"
+
 #include <glm/glm.hpp>
 
 #include <cmath>
@@ -29,17 +31,6 @@
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
 // The unit corner tetrahedron (volume 1/6); its normalized coordinates are the same, shifted.
 vtkSmartPointer<vtkUnstructuredGrid> MakeTetrahedron(const double scalars[4])
 {
@@ -107,26 +98,27 @@ vtkPBVRParticleGenerator::Settings MakeSettings(
   return settings;
 }
 
-void TestConstantDensity(vtkTetrahedralMesh* mesh)
+void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(1000, 7);
   const double tau = 2.0;
-  Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
+  failures.Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "constant density: generation succeeds");
   const double meanPerSet = tau * Volume / Footprint;
   const double total = double(generator->GetNumberOfParticles());
   const double expected = meanPerSet * settings.Sets;
   std::cout << "constant density: " << total << " particles, expected " << expected << "\n";
-  Check(std::abs(total - expected) < 5.0 * std::sqrt(expected), "constant density: total count");
+  failures.Check(
+    std::abs(total - expected) < 5.0 * std::sqrt(expected), "constant density: total count");
 
   double sum = 0.0, sum2 = 0.0;
   for (int set = 0; set < settings.Sets; ++set)
   {
     const double count = double(generator->GetSetOffset(set + 1) - generator->GetSetOffset(set));
-    Check(count >= 0.0, "set offsets are ordered");
+    failures.Check(count >= 0.0, "set offsets are ordered");
     sum += count;
     sum2 += count * count;
   }
@@ -134,7 +126,7 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh)
   const double variance = (sum2 - sum * mean) / (settings.Sets - 1);
   std::cout << "  per set: mean " << mean << ", variance / mean " << variance / mean << "\n";
   // Poisson counts: dispersion 1, standard error sqrt(2 / (sets - 1)) = 0.045.
-  Check(std::abs(variance / mean - 1.0) < 0.2, "constant density: counts are Poisson");
+  failures.Check(std::abs(variance / mean - 1.0) < 0.2, "constant density: counts are Poisson");
 
   const glm::dvec3 corner(-0.5);
   glm::dvec3 centroid(0.0);
@@ -151,21 +143,21 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh)
     centroid += p.Position;
   }
   centroid /= double(particles.size());
-  Check(outside == 0.0, "every particle is inside the tetrahedron");
-  Check(glm::length(centroid - (corner + glm::dvec3(0.25))) < 0.005,
+  failures.Check(outside == 0.0, "every particle is inside the tetrahedron");
+  failures.Check(glm::length(centroid - (corner + glm::dvec3(0.25))) < 0.005,
     "constant density: particles are uniform (their mean is the centroid)");
-  Check(generator->GetNumberOfCandidates() == generator->GetNumberOfParticles(),
+  failures.Check(generator->GetNumberOfCandidates() == generator->GetNumberOfParticles(),
     "constant density: no candidate is rejected");
 }
 
-void TestRejection(vtkTetrahedralMesh* mesh)
+void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
   const double scalars[4] = { 0.0, 0.0, 0.0, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(500, 11);
   // tau(s) = 2 s; s is Beta(1, 3) in the cell: E[s] = 1/4, E[s^2] = 1/10.
-  Check(generator->Generate(mesh, Sample([](double s) { return 2.0 * s; }), settings),
+  failures.Check(generator->Generate(mesh, Sample([](double s) { return 2.0 * s; }), settings),
     "ramp: generation succeeds");
   const double expected = settings.Sets * Volume / Footprint * 2.0 * 0.25;
   const double total = double(generator->GetNumberOfParticles());
@@ -177,8 +169,8 @@ void TestRejection(vtkTetrahedralMesh* mesh)
   meanScalar /= total;
   std::cout << "ramp: " << total << " particles (expected " << expected << "), mean scalar "
             << meanScalar << " (expected 0.4)\n";
-  Check(std::abs(total - expected) < 5.0 * std::sqrt(expected), "ramp: count");
-  Check(std::abs(meanScalar - 0.4) < 0.004, "ramp: the density follows the scalar");
+  failures.Check(std::abs(total - expected) < 5.0 * std::sqrt(expected), "ramp: count");
+  failures.Check(std::abs(meanScalar - 0.4) < 0.004, "ramp: the density follows the scalar");
 
   // A thin peak at s = 0.5 (+-0.02, height 50): expected count from the cell's scalar law.
   auto peak = [](double s) { return std::max(0.0, 50.0 * (1.0 - std::abs(s - 0.5) / 0.02)); };
@@ -190,19 +182,20 @@ void TestRejection(vtkTetrahedralMesh* mesh)
     const double s = (i + 0.5) / steps;
     expectedTau += 3.0 * (1.0 - s) * (1.0 - s) * peak(s) / steps;
   }
-  Check(generator->Generate(mesh, samples, settings), "peak: generation succeeds");
+  failures.Check(generator->Generate(mesh, samples, settings), "peak: generation succeeds");
   const double peakExpected = settings.Sets * Volume / Footprint * expectedTau;
   const double peakTotal = double(generator->GetNumberOfParticles());
   std::cout << "thin peak, rejection: " << peakTotal << " particles (expected " << peakExpected
             << ")\n";
-  Check(std::abs(peakTotal - peakExpected) < 5.0 * std::sqrt(peakExpected), "peak: count");
+  failures.Check(std::abs(peakTotal - peakExpected) < 5.0 * std::sqrt(peakExpected), "peak: count");
   settings.SamplingMode = vtkPBVRParticleGenerator::CELL_AVERAGE;
-  Check(generator->Generate(mesh, samples, settings), "peak, cell average: succeeds");
+  failures.Check(generator->Generate(mesh, samples, settings), "peak, cell average: succeeds");
   std::cout << "thin peak, cell average: " << generator->GetNumberOfParticles() << " particles\n";
-  Check(generator->GetNumberOfParticles() == 0, "peak, cell average: the feature is missed");
+  failures.Check(
+    generator->GetNumberOfParticles() == 0, "peak, cell average: the feature is missed");
 }
 
-void TestCellAverageRounding(vtkTetrahedralMesh* mesh)
+void TestCellAverageRounding(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
@@ -210,7 +203,7 @@ void TestCellAverageRounding(vtkTetrahedralMesh* mesh)
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(2000, 0);
   settings.SamplingMode = vtkPBVRParticleGenerator::CELL_AVERAGE;
   const double tau = 2.5 * Footprint / Volume; // 2.5 particles per set
-  Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
+  failures.Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "cell average: succeeds");
   bool twoOrThree = true;
   for (int set = 0; set < settings.Sets; ++set)
@@ -220,12 +213,12 @@ void TestCellAverageRounding(vtkTetrahedralMesh* mesh)
   }
   const double mean = double(generator->GetNumberOfParticles()) / settings.Sets;
   std::cout << "cell average: " << mean << " particles per set (expected 2.5)\n";
-  Check(twoOrThree, "cell average: counts are 2 or 3");
-  Check(std::abs(mean - 2.5) < 5.0 * 0.5 / std::sqrt(double(settings.Sets)),
+  failures.Check(twoOrThree, "cell average: counts are 2 or 3");
+  failures.Check(std::abs(mean - 2.5) < 5.0 * 0.5 / std::sqrt(double(settings.Sets)),
     "cell average: mean count");
 }
 
-void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh)
+void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
   const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
@@ -234,30 +227,32 @@ void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh)
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(16, 3, 1000000);
   first->Generate(mesh, samples, settings);
   second->Generate(mesh, samples, settings);
-  Check(first->GetParticles() == second->GetParticles() && first->GetNumberOfParticles() > 0,
+  failures.Check(
+    first->GetParticles() == second->GetParticles() && first->GetNumberOfParticles() > 0,
     "the same seed gives the same particles");
   settings.Seed = 4;
   second->Generate(mesh, samples, settings);
-  Check(first->GetParticles() != second->GetParticles(), "another seed gives other particles");
+  failures.Check(
+    first->GetParticles() != second->GetParticles(), "another seed gives other particles");
 
   settings.MaximumParticles = 100;
-  Check(!second->Generate(mesh, samples, settings), "over the cap: generation fails");
+  failures.Check(!second->Generate(mesh, samples, settings), "over the cap: generation fails");
   std::cout << "over the cap: " << second->GetLastError() << "\n";
-  Check(second->GetLastError().find("would not fit") != std::string::npos,
+  failures.Check(second->GetLastError().find("would not fit") != std::string::npos,
     "over the cap: the error says so");
-  Check(second->GetNumberOfParticles() == 0 && second->GetParticles().empty(),
+  failures.Check(second->GetNumberOfParticles() == 0 && second->GetParticles().empty(),
     "over the cap: no particles are left");
   settings.MaximumParticles = 1000000;
   settings.Footprint = 0.0;
-  Check(!second->Generate(mesh, samples, settings) && !second->GetLastError().empty(),
+  failures.Check(!second->Generate(mesh, samples, settings) && !second->GetLastError().empty(),
     "a zero footprint is an error");
   settings.Footprint = Footprint;
   settings.Sets = 0;
-  Check(!second->Generate(mesh, samples, settings), "zero sets is an error");
+  failures.Check(!second->Generate(mesh, samples, settings), "zero sets is an error");
   settings.Sets = 1;
-  Check(second->Generate(mesh, samples, settings), "valid settings succeed after errors");
+  failures.Check(second->Generate(mesh, samples, settings), "valid settings succeed after errors");
   second->ReleaseParticles();
-  Check(second->GetParticles().empty() && second->GetNumberOfParticles() > 0,
+  failures.Check(second->GetParticles().empty() && second->GetNumberOfParticles() > 0,
     "ReleaseParticles frees the particles and keeps their count");
 }
 }
@@ -265,14 +260,10 @@ void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh)
 int TestPBVRParticleGenerator(int, char*[])
 {
   vtkNew<vtkTetrahedralMesh> mesh;
-  TestConstantDensity(mesh);
-  TestRejection(mesh);
-  TestCellAverageRounding(mesh);
-  TestSeedsLimitsAndErrors(mesh);
-  if (Failures > 0)
-  {
-    std::cerr << Failures << " check(s) failed.\n";
-    return EXIT_FAILURE;
-  }
-  return EXIT_SUCCESS;
+  SPTTestChecks::FailureCount failures;
+  TestConstantDensity(mesh, failures);
+  TestRejection(mesh, failures);
+  TestCellAverageRounding(mesh, failures);
+  TestSeedsLimitsAndErrors(mesh, failures);
+  return failures.ExitStatus();
 }

@@ -27,7 +27,6 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include "SPTTestWindow.h"
 
@@ -35,6 +34,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -217,18 +217,16 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
   window->Render();
   const GLenum error = glGetError();
 
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGBA();
-  grab->ReadFrontBufferOff();
-  grab->ShouldRerenderOff();
-  grab->Update();
-  double range[2];
-  grab->GetOutput()->GetPointData()->GetScalars()->GetRange(range, 3);
+  const std::vector<unsigned char> rgba = SPTTestWindow::Capture(window, true);
+  bool drew = false;
+  for (size_t alpha = 3; alpha < rgba.size(); alpha += 4)
+  {
+    drew = drew || rgba[alpha] > 0;
+  }
   renderer->RemoveVolume(volume);
   mapper->ReleaseGraphicsResources(window);
 
-  counts.Drew += range[1] > 0.0 ? 1 : 0;
+  counts.Drew += drew ? 1 : 0;
   counts.Errors += errors > 0 ? 1 : 0;
   if (error != GL_NO_ERROR || grid->GetMTime() != inputTime)
   {

@@ -42,10 +42,8 @@ int CheckContext(vtkHeadlessEGLRenderWindow* window, bool deviceAsked)
 
 int TestHeadlessEGLRenderWindow(int argc, char* argv[])
 {
-  vtkSmartPointer<vtkUnstructuredGrid> shell = MakeShell();
-  vtkSmartPointer<vtkVolumeProperty> property = MakeProperty();
-
-  ShellVolumes<vtkSPTVolumeMapper> volumes(shell, property);
+  const ShellInput input;
+  ShellVolumes<vtkSPTVolumeMapper> volumes(input.Shell, input.Property);
 
   vtkNew<vtkHeadlessEGLRenderWindow> window;
   const char* device = std::getenv("SPT_EGL_DEVICE_INDEX");

@@ -9,9 +9,11 @@
 //   the cell's face planes and scalar plane are the exact entry and exit of the view ray
 //   through the tetrahedron;
 // - the triangles lie no deeper than any of their segments' fronts (the early depth test).
+// The exact geometry, on the CPU, is SPTClassificationModel.h.
 
 #include "vtkOpenGLLoader.h"
 
+#include "SPTClassificationModel.h"
 #include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
@@ -34,13 +36,7 @@
 
 namespace
 {
-struct Tetrahedron
-{
-  std::array<glm::vec3, 4> Points; // view coordinates
-  std::array<float, 4> Scalars;
-  int ExpectedTriangles; // non-empty triangles, or 0 when not checked
-  const char* Name;
-};
+using namespace SPTClassificationModel;
 
 // One emitted vertex, as captured: clip position, then the cell's planes (flat outputs).
 struct Captured
@@ -74,127 +70,32 @@ std::string ReadShader(const char* name)
   return source;
 }
 
+// Whether the shader or program object has `status` set; otherwise its log is printed after
+// `failure`.
+template <class GetParameter, class GetLog>
+bool HasStatus(
+  GLuint object, GLenum status, GetParameter getParameter, GetLog getLog, const char* failure)
+{
+  GLint ok = 0;
+  getParameter(object, status, &ok);
+  if (!ok)
+  {
+    char log[4096];
+    getLog(object, sizeof(log), nullptr, log);
+    std::cerr << failure << ":\n" << log << "\n";
+  }
+  return ok != 0;
+}
+
 GLuint Compile(GLenum type, const std::string& source)
 {
   GLuint shader = glCreateShader(type);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok)
-  {
-    char log[4096];
-    glGetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    std::cerr << "Shader compilation failed:\n" << log << "\n";
-    return 0;
-  }
-  return shader;
-}
-
-float Cross2(glm::vec2 a, glm::vec2 b, glm::vec2 c)
-{
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-// Convex hull of four points, counter-clockwise (gift wrapping is plenty for four).
-std::vector<glm::vec2> Hull(const std::array<glm::vec2, 4>& p)
-{
-  std::vector<glm::vec2> hull;
-  int start = 0;
-  for (int i = 1; i < 4; ++i)
-  {
-    if (p[i].x < p[start].x || (p[i].x == p[start].x && p[i].y < p[start].y))
-    {
-      start = i;
-    }
-  }
-  int current = start;
-  do
-  {
-    hull.push_back(p[current]);
-    int next = (current + 1) % 4;
-    for (int i = 0; i < 4; ++i)
-    {
-      const float turn = Cross2(p[current], p[next], p[i]);
-      if (turn < 0.0f ||
-        (turn == 0.0f && glm::length(p[i] - p[current]) > glm::length(p[next] - p[current])))
-      {
-        next = i;
-      }
-    }
-    current = next;
-  } while (current != start && hull.size() < 5);
-  return hull;
-}
-
-// Signed distance-like margin of q inside a convex counter-clockwise polygon (>0 inside).
-float InsideMargin(const std::vector<glm::vec2>& polygon, glm::vec2 q)
-{
-  float margin = 1.0e30f;
-  for (size_t i = 0; i < polygon.size(); ++i)
-  {
-    const glm::vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
-    const float edge = glm::length(b - a);
-    if (edge > 0.0f)
-    {
-      margin = std::min(margin, Cross2(a, b, q) / edge);
-    }
-  }
-  return margin;
-}
-
-// The exact entry and exit of a ray (origin o, direction d) through a tetrahedron, by clipping
-// the ray against its four face planes; scalars by barycentric interpolation.
-bool ExactSegment(const Tetrahedron& t, glm::vec3 o, glm::vec3 d, glm::vec3& front, glm::vec3& back,
-  float& frontScalar, float& backScalar)
-{
-  float enter = -1.0e30f, exit = 1.0e30f;
-  for (int f = 0; f < 4; ++f)
-  {
-    const glm::vec3 a = t.Points[(f + 1) % 4], b = t.Points[(f + 2) % 4], c = t.Points[(f + 3) % 4];
-    glm::vec3 n = glm::cross(b - a, c - a);
-    if (glm::dot(n, t.Points[f] - a) > 0.0f)
-    {
-      n = -n; // outward
-    }
-    const float denominator = glm::dot(n, d);
-    const float numerator = glm::dot(n, a - o);
-    if (denominator == 0.0f)
-    {
-      if (numerator < 0.0f)
-      {
-        return false;
-      }
-      continue;
-    }
-    const float s = numerator / denominator;
-    if (denominator < 0.0f)
-    {
-      enter = std::max(enter, s);
-    }
-    else
-    {
-      exit = std::min(exit, s);
-    }
-  }
-  if (enter > exit)
-  {
-    return false;
-  }
-  front = o + enter * d;
-  back = o + exit * d;
-  auto scalarAt = [&](glm::vec3 p)
-  {
-    const glm::mat3 m(
-      t.Points[1] - t.Points[0], t.Points[2] - t.Points[0], t.Points[3] - t.Points[0]);
-    const glm::vec3 w = glm::inverse(m) * (p - t.Points[0]);
-    return t.Scalars[0] * (1.0f - w.x - w.y - w.z) + t.Scalars[1] * w.x + t.Scalars[2] * w.y +
-      t.Scalars[3] * w.z;
-  };
-  frontScalar = scalarAt(front);
-  backScalar = scalarAt(back);
-  return true;
+  const bool compiled = HasStatus(
+    shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, "Shader compilation failed");
+  return compiled ? shader : 0;
 }
 
 std::vector<Tetrahedron> MakeTetrahedra()
@@ -324,6 +225,8 @@ private:
   int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
     const ScreenGeometry& screen, glm::vec2 q, float scale) const;
   int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const;
+  int CheckEarlyDepth(
+    const Tetrahedron& t, const Captured* triangle, glm::vec2 q, glm::vec3 exactFront) const;
   const char* ProjectionName() const { return this->Parallel ? " (parallel)" : " (perspective)"; }
 };
 
@@ -413,54 +316,40 @@ int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& verti
   return failures;
 }
 
-// What the fragment shader finds at q from the triangle's planes (as planeSegment() in
-// vtkSPTTetrahedraFS.glsl does) is the exact entry and exit of the view ray, and the triangle
-// lies no deeper than the entry.
+// What the fragment shader finds at q from the triangle's planes is the exact entry and exit
+// of the view ray, and the triangle lies no deeper than the entry.
 int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const
 {
-  float enter = -1.0f, leave = 1.0f;
-  for (const glm::vec4& plane : triangle[0].FacePlanes)
-  {
-    const float atZero = plane.x * q.x + plane.y * q.y + plane.w;
-    if (plane.z < 0.0f)
-    {
-      enter = std::max(enter, -atZero / plane.z);
-    }
-    else if (plane.z > 0.0f)
-    {
-      leave = std::min(leave, -atZero / plane.z);
-    }
-  }
-  const glm::mat4 inverse = glm::inverse(this->Projection);
-  const glm::vec4 front = inverse * glm::vec4(q, enter, 1.0f);
-  const glm::vec4 back = inverse * glm::vec4(q, leave, 1.0f);
-  const glm::vec3 frontPoint = glm::vec3(front) / front.w;
-  const glm::vec3 backPoint = glm::vec3(back) / back.w;
-  const float frontScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, enter, 1.0f)) / front.w;
-  const float backScalar = -glm::dot(triangle[0].ScalarPlane, glm::vec4(q, leave, 1.0f)) / back.w;
-  glm::vec3 origin, direction, exactFront, exactBack;
-  float exactFrontScalar, exactBackScalar;
+  glm::vec3 origin, direction;
   this->Ray(q, origin, direction);
-  if (!ExactSegment(t, origin, direction, exactFront, exactBack, exactFrontScalar, exactBackScalar))
+  Segment exact;
+  if (!ExactSegment(t, origin, direction, exact))
   {
     return 0; // grazing ray
   }
+  const Segment found =
+    PlaneSegment(triangle[0].FacePlanes, triangle[0].ScalarPlane, q, this->Projection);
   const float tolerance = 2.0e-3f;
-  const float thickness = enter < leave ? glm::distance(frontPoint, backPoint) : 0.0f;
-  const float exactThickness = glm::distance(exactFront, exactBack);
   int failures = 0;
-  if (glm::distance(frontPoint, exactFront) > tolerance ||
-    glm::distance(backPoint, exactBack) > tolerance ||
-    std::abs(thickness - exactThickness) > tolerance ||
-    std::abs(frontScalar - exactFrontScalar) > tolerance ||
-    std::abs(backScalar - exactBackScalar) > tolerance)
+  if (glm::distance(found.Front, exact.Front) > tolerance ||
+    glm::distance(found.Back, exact.Back) > tolerance ||
+    std::abs(found.Thickness - exact.Thickness) > tolerance ||
+    std::abs(found.FrontScalar - exact.FrontScalar) > tolerance ||
+    std::abs(found.BackScalar - exact.BackScalar) > tolerance)
   {
     std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
-              << "): thickness " << thickness << " vs exact " << exactThickness << ", scalars "
-              << frontScalar << " " << backScalar << " vs exact " << exactFrontScalar << " "
-              << exactBackScalar << "\n";
+              << "): thickness " << found.Thickness << " vs exact " << exact.Thickness
+              << ", scalars " << found.FrontScalar << " " << found.BackScalar << " vs exact "
+              << exact.FrontScalar << " " << exact.BackScalar << "\n";
     ++failures;
   }
+  return failures + this->CheckEarlyDepth(t, triangle, q, exact.Front);
+}
+
+// The triangle's vertices lie no deeper than the segment's exact front (the early depth test).
+int Checker::CheckEarlyDepth(
+  const Tetrahedron& t, const Captured* triangle, glm::vec2 q, glm::vec3 exactFront) const
+{
   const glm::vec4 exactFrontDC = this->Projection * glm::vec4(exactFront, 1.0f);
   const float exactFrontDepth = exactFrontDC.z / exactFrontDC.w;
   for (int v = 0; v < 3; ++v)
@@ -471,11 +360,10 @@ int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::v
       std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
                 << "): a triangle at depth " << depth << " behind the segment's front at "
                 << exactFrontDepth << "\n";
-      ++failures;
-      break;
+      return 1;
     }
   }
-  return failures;
+  return 0;
 }
 
 // The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
@@ -488,16 +376,9 @@ GLuint LinkProgram(GLuint vs, GLuint gs)
     "facePlaneNDC[3]", "scalarPlaneNDC" };
   glTransformFeedbackVaryings(program, 6, varyings, GL_INTERLEAVED_ATTRIBS);
   glLinkProgram(program);
-  GLint linked = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &linked);
-  if (!linked)
-  {
-    char log[4096];
-    glGetProgramInfoLog(program, sizeof(log), nullptr, log);
-    std::cerr << "Link failed:\n" << log << "\n";
-    return 0;
-  }
-  return program;
+  const bool linked =
+    HasStatus(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, "Link failed");
+  return linked ? program : 0;
 }
 
 // Four vertices per tetrahedron in, up to two triangles each out.
