@@ -1,10 +1,10 @@
-"""Tests of spt.accuracy: the stochastic estimator is unbiased and its
+"""Tests of spt.experiments.accuracy: the stochastic estimator is unbiased and its
 error falls like 1/sqrt(L)."""
 
 import numpy as np
 import pytest
 
-import spt.accuracy as accuracy
+import spt.experiments.accuracy as accuracy
 
 
 def test_exact_brightness_known_values():

@@ -13,7 +13,7 @@ import sys
 import numpy as np
 import pytest
 
-from spt import bench
+from spt.experiments import bench
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid
 
@@ -200,7 +200,7 @@ def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
 def test_host_time_adds_every_application_thread_and_leaves_out_the_rasterizer():
     """perf's samples per (thread, shared object): one object's seconds on two application
     threads add up; llvmpipe's threads and the driver's objects are not host time."""
-    from spt.bench import host
+    from spt.experiments.bench import host
 
     by_object = {
         ("python3", "libSPTRendering.so"): 0.25,

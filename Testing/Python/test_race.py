@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from spt.bench import race, report
-from spt.bench.settings import Settings
+from spt.experiments.bench import race, report
+from spt.experiments.bench.settings import Settings
 from spt.progress import Progress
 
 

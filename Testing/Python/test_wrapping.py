@@ -25,6 +25,17 @@ def test_former_names_still_work():
     assert vtkSPTVolumeMapper is spt.vtkSPTVolumeMapper
 
 
+def test_former_experiment_modules_still_work():
+    """spt.bench, spt.figures and spt.accuracy, moved to spt.experiments, kept for a release."""
+    from spt import accuracy, bench, figures
+    from spt.experiments import accuracy as moved_accuracy
+    from spt.experiments import bench as moved_bench
+    from spt.experiments import demo, figures as moved_figures
+    assert bench.run is moved_bench.run and bench.__all__ == moved_bench.__all__
+    assert figures.convergence is moved_figures.convergence and figures.demo is demo.demo
+    assert accuracy.main is moved_accuracy.main
+
+
 @pytest.mark.parametrize("name, default, low, high", [
     ("RepetitionLevel", 32, 1, 65536),
     ("SubpixelLevel", 1, 1, 8),

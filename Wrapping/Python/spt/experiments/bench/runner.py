@@ -9,8 +9,8 @@ import os
 import pathlib
 from typing import Dict, List, Optional, Sequence
 
-from .. import render
-from ..progress import Progress
+from ... import render
+from ...progress import Progress
 from . import camera, host, parallel, quality, race, sweeps
 from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene

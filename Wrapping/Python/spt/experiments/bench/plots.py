@@ -1,4 +1,4 @@
-"""The benchmark's plots, in the style of :mod:`spt.plots`."""
+"""The benchmark's plots, in the style of :mod:`spt.experiments.plots`."""
 
 from __future__ import annotations
 

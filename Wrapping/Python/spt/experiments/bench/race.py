@@ -27,9 +27,9 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from .. import metrics, render, scenes
-from ..progress import Progress
-from .. import vtkSPTVolumeMapper
+from ... import metrics, render, scenes
+from ...progress import Progress
+from ... import vtkSPTVolumeMapper
 from . import host
 from .methods import METHODS, Method, havs_method
 from .settings import RACE_SCENES, Settings

@@ -6,8 +6,8 @@ from __future__ import annotations
 import pathlib
 from typing import Dict, List
 
-from .. import metrics, render, scenes
-from ..progress import Progress
+from ... import metrics, render, scenes
+from ...progress import Progress
 from .methods import METHODS
 from .settings import Settings
 from .sweeps import wanted

@@ -6,7 +6,7 @@ vtkSPTVolumeMapper and the MPI controller: no redistribution. It times each fram
 CPU time, all threads, and wall time, between barriers) and rank 0 writes the image, every
 rank's measures and, per frame, the repetitions drawn and the noise estimated.
 
-    mpiexec -n 2 python3 -m spt.bench.parallel_rank --scene post --output out/post-2
+    mpiexec -n 2 python3 -m spt.experiments.bench.parallel_rank --scene post --output out/post-2
 """
 
 from __future__ import annotations
@@ -67,8 +67,8 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     arguments = parse(argv)
     from mpi4py import MPI
 
-    from .. import render
-    from ..meshes import interleaved_piece
+    from ... import render
+    from ...meshes import interleaved_piece
     from .race import race_scene
 
     # The whole scene first: VTK's parallel-aware readers (PLOT3D) read only a part of the

@@ -17,7 +17,7 @@ import tempfile
 import time
 from typing import Callable, Dict, List, Optional, Tuple
 
-from ..progress import Progress
+from ...progress import Progress
 from .methods import METHODS, generated_scene
 from .settings import Settings
 from .timing import FramesHook, Timing, time_method

@@ -14,8 +14,8 @@ from typing import Dict, List
 
 import numpy as np
 
-from .. import metrics, raycast, render, scenes
-from ..progress import Progress
+from ... import metrics, raycast, render, scenes
+from ...progress import Progress
 from .methods import METHODS, Method, havs_method
 from .settings import Settings
 

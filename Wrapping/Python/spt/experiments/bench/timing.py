@@ -9,8 +9,8 @@ from typing import Callable, Dict, List, Optional
 import numpy as np
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 
-from .. import render
-from ..scenes import Scene
+from ... import render
+from ...scenes import Scene
 from .methods import Method, face_polydata
 
 #: Called right before the timed frames; returns what to call right after them.

@@ -9,8 +9,8 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkUnstructuredGrid
 
-from .. import data, render
-from ..scenes import Scene
+from ... import data, render
+from ...scenes import Scene
 
 #: The camera of the generated scenes.
 VIEW = render.View(azimuth=30.0, elevation=25.0)
@@ -71,7 +71,7 @@ def generated_mesh(shape: str, cells: int) -> vtkUnstructuredGrid:
     nearest resolution (48,000 r^3 cells)."""
     if shape == "helix":
         return data.make_default_mesh(max(1, round((cells / 48000.0) ** (1.0 / 3.0))))
-    from .. import meshes
+    from ... import meshes
     return meshes.generate(shape, cells)
 
 

@@ -15,9 +15,10 @@ from typing import Dict, List, Sequence
 
 import numpy as np
 
-from . import metrics, plots, render, tables
-from .progress import Progress
-from .scenes import Scene, scene
+from .. import metrics, render
+from . import plots, tables
+from ..progress import Progress
+from ..scenes import Scene, scene
 
 _SURVIVOR = {"estimator": "survivor", "exact_coverage": False}
 

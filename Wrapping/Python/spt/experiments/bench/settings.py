@@ -47,7 +47,7 @@ class Settings:
     camera_scenes: Tuple[str, ...] = ("default", "bluntfin")
     camera_size: int = 256
     camera_repetitions: int = 16
-    # SPT on several MPI ranks, each with an interleaved piece (see spt.bench.parallel)
+    # SPT on several MPI ranks, each with an interleaved piece (see spt.experiments.bench.parallel)
     parallel_scenes: Tuple[str, ...] = ("drill-1M", "post")
     parallel_ranks: Tuple[int, ...] = (1, 2, 4)
     parallel_size: int = 256

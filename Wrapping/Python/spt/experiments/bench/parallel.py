@@ -28,8 +28,8 @@ from typing import Dict, List
 
 import numpy as np
 
-from ..meshes import interleaved_piece
-from ..progress import Progress
+from ...meshes import interleaved_piece
+from ...progress import Progress
 from .settings import Settings
 
 Row = Dict[str, object]
@@ -55,7 +55,7 @@ def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Pat
     """One run of ``ranks`` ranks: its report and rank 0's image."""
     output = directory / f"{scene}-{ranks}"
     command = mpiexec(ranks) + [
-        sys.executable, "-m", "spt.bench.parallel_rank", "--scene", scene,
+        sys.executable, "-m", "spt.experiments.bench.parallel_rank", "--scene", scene,
         "--output", str(output), "--size", str(settings.parallel_size),
         "--repetitions", str(settings.parallel_repetitions),
         "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Dict, List, Sequence
 
-from ..progress import Progress
+from ...progress import Progress
 from .methods import METHODS
 from .methods import generated_scene
 from .settings import Settings
