@@ -16,8 +16,9 @@ import numpy as np
 import pytest
 import vtk
 
-from spt import metrics, raycast, render, statistics
+from spt import metrics, raycast, render
 
+import image_statistics
 from scene_support import scene
 
 SIZE = 96
@@ -91,7 +92,7 @@ def _error_and_noise(name, dolly, parallel=False, method="spt"):
     first, _ = _image(method, name, dolly, 1, parallel)
     second, _ = _image(method, name, dolly, 2, parallel)
     reference = _reference(name, dolly, parallel)
-    estimate = statistics.estimate(first, second, reference, REPETITIONS)
+    estimate = image_statistics.estimate(first, second, reference, REPETITIONS)
     return metrics.rmse(first, reference), estimate
 
 

@@ -6,7 +6,7 @@ zero-size viewport.
 
 HAVS is deterministic and sorted: it is compared with the exact reference directly. PBVR is
 stochastic: two renders with different seeds give its bias against the reference without its
-noise (spt.statistics), and a fixed seed gives the same image for the same input, so that
+noise (image_statistics), and a fixed seed gives the same image for the same input, so that
 "the same picture as a fresh mapper" is an exact comparison for both.
 """
 
@@ -17,8 +17,9 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-from spt import metrics, render, statistics
+from spt import metrics, render
 
+import image_statistics
 from robustness_support import (ONE, UNIT_TETRAHEDRON, assert_unchanged, property_for,
                                 property_with_points, render_scaled, scaled_copy, snapshot,
                                 split_image, tetrahedra, watch)
@@ -61,7 +62,7 @@ def assert_matches_reference(kind, grid, prop, havs_rmse, pbvr_bias):
         assert error <= havs_rmse, f"RMSE {error:.4f} against the reference"
     else:
         second, _, _ = draw(kind, grid, prop, seed=2)
-        e = statistics.estimate(first, second, reference, PBVR_LEVEL)
+        e = image_statistics.estimate(first, second, reference, PBVR_LEVEL)
         # The squared bias within Z standard errors of pbvr_bias^2 or less.
         assert e.bias2 <= pbvr_bias ** 2 + Z * e.bias2_error, (
             f"bias {e.bias:.4f} (squared {e.bias2:.2g} +- {e.bias2_error:.2g}) against the "

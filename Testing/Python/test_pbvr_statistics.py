@@ -2,7 +2,7 @@
 as test_spt_statistics does for SPT.
 
 For SPX and Blunt Fin (128 x 128), two independent PBVR renders (seeds 1 and 2) per repetition
-level give the noise and the bias against the reference (spt.statistics). The tests check that
+level give the noise and the bias against the reference (image_statistics). The tests check that
 - the noise is Monte Carlo noise: L x noise is the same at every level L;
 - the alpha noise is that of one opaque particle or none per pixel and set: a (1 - a) / L;
 - the RMSE falls as expected to a small bias floor: PBVR converges to the reference;
@@ -22,8 +22,9 @@ import pytest
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk
 
-from spt import data, render, scenes, statistics
+from spt import data, render, scenes
 
+import image_statistics
 from spt_pytest_fixtures import load_or_skip
 from scene_support import reference, scene
 from statistics_checks import (Z, check_alpha_noise_is_bernoulli, check_images_are_volumes,
@@ -54,8 +55,8 @@ def _pbvr(name, level, seed):
 
 @lru_cache(maxsize=None)
 def _estimate(name, level):
-    return statistics.estimate(_pbvr(name, level, 1), _pbvr(name, level, 2), _reference(name),
-                               level)
+    return image_statistics.estimate(_pbvr(name, level, 1), _pbvr(name, level, 2),
+                                     _reference(name), level)
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -157,7 +158,7 @@ def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display)
         first, second = (render.render(grid, prop, render.pbvr_mapper(level, seed=seed,
                                                                       cell_average=cell_average),
                                        view, (SIZE, SIZE)).image for seed in (1, 2))
-        biases[cell_average] = statistics.estimate(first, second, reference, level)
+        biases[cell_average] = image_statistics.estimate(first, second, reference, level)
     exact, average = biases[False], biases[True]
     assert exact.bias <= 0.012, f"rejection: bias {exact.bias:.4f}"
     assert average.bias >= 4.0 * max(exact.bias, 0.005), (

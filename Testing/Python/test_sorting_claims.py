@@ -1,7 +1,7 @@
 """The claims of the sorting figure (python3 -m spt figures sorting), checked at 128 x 128.
 
 SPT's RMSE at a repetition level it is not rendered at is predicted from two renders with
-different seeds at a low level (spt.statistics: bias^2 + noise x L / level); renders at 1024
+different seeds at a low level (image_statistics: bias^2 + noise x L / level); renders at 1024
 repetitions measured 2 % (torus) and 12 % (default mesh) below the prediction.
 
 - Where the centroid sort is far from the per-pixel order, the sorted renderer shows
@@ -21,8 +21,9 @@ from functools import lru_cache
 
 import pytest
 
-from spt import metrics, render, statistics
+from spt import metrics, render
 
+import image_statistics
 from scene_support import reference, scene
 
 SIZE = (128, 128)
@@ -51,7 +52,7 @@ def _spt_estimate(name, level):
     first, second = (render.render(s.grid, s.property,
                                    render.spt_mapper(level, seed=seed, **render.PAPER_SAMPLING),
                                    s.view, SIZE).image for seed in (1, 2))
-    return statistics.estimate(first, second, _reference(name), level)
+    return image_statistics.estimate(first, second, _reference(name), level)
 
 
 def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):

@@ -20,8 +20,9 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import render, statistics
+from spt import render
 
+import image_statistics
 from scene_support import reference, scene
 from statistics_checks import (check_noise_falls_as_one_over_repetitions,
                                check_opaque_geometry_hides_and_cuts_the_volume)
@@ -44,9 +45,9 @@ def _spt(name, level, seed, slabs, estimator="visibility"):
 
 @lru_cache(maxsize=None)
 def _estimate(name, level, slabs, estimator="visibility"):
-    return statistics.estimate(_spt(name, level, 1, slabs, estimator),
-                               _spt(name, level, 2, slabs, estimator),
-                               reference(name, SIZE), level)
+    return image_statistics.estimate(_spt(name, level, 1, slabs, estimator),
+                                     _spt(name, level, 2, slabs, estimator),
+                                     reference(name, SIZE), level)
 
 
 def _check_bias_is_one_slabs(name, slabs, estimator="visibility"):
@@ -113,8 +114,8 @@ def test_one_repetition_at_a_time_with_slabs(have_display):
     progressive = render.read_rgba(window)
     window.Finalize()
     at_once = _spt("default", 16, 1, SLABS, "survivor")
-    e = statistics.estimate(at_once, _spt("default", 16, 2, SLABS, "survivor"),
-                            reference("default", SIZE), 16)
+    e = image_statistics.estimate(at_once, _spt("default", 16, 2, SLABS, "survivor"),
+                                  reference("default", SIZE), 16)
     error = np.sqrt(np.mean((progressive - reference("default", SIZE)) ** 2))
     at_once_error = np.sqrt(np.mean((at_once - reference("default", SIZE)) ** 2))
     assert error <= at_once_error + 4.0 * np.sqrt(e.noise), (

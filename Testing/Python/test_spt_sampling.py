@@ -14,8 +14,9 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import metrics, render, scenes, statistics
+from spt import metrics, render, scenes
 
+import image_statistics
 from scene_support import render_at_still_rate, window_with
 
 SIZE = 128
@@ -107,7 +108,7 @@ def test_stratified_thresholds_keep_the_expectation_and_lower_the_error(have_dis
     estimates = {}
     for stratified in (False, True):
         first, second = _image(64, 1, stratified), _image(64, 2, stratified)
-        estimates[stratified] = statistics.estimate(first, second, reference, 64)
+        estimates[stratified] = image_statistics.estimate(first, second, reference, 64)
     independent, stratified = estimates[False], estimates[True]
     assert stratified.bias <= independent.bias + 0.004, (
         f"bias: stratified {stratified.bias:.4f}, independent {independent.bias:.4f}")

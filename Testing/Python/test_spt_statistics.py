@@ -1,7 +1,7 @@
 """SPT against the reference, statistically: fixed seeds, tolerances from the repetition count.
 
 For every scene, two independent SPT renders (seeds 1 and 2) per repetition level give the noise
-and the bias against the reference (spt.statistics). The tests check that
+and the bias against the reference (image_statistics). The tests check that
 - the noise is Monte Carlo noise: L x noise is the same at every level L;
 - the alpha noise is that of keeping each segment with probability alpha: a (1 - a) / L;
 - the bias floor is small, and the RMSE falls as expected towards it (about halving per 4x);
@@ -19,8 +19,9 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import metrics, render, statistics
+from spt import metrics, render
 
+import image_statistics
 from scene_support import reference, scene
 from statistics_checks import (check_alpha_noise_is_bernoulli, check_images_are_volumes,
                                check_noise_falls_as_one_over_repetitions,
@@ -64,8 +65,8 @@ def _spt(name, level, seed, mode="paper"):
 
 @lru_cache(maxsize=None)
 def _estimate(name, level, mode="paper"):
-    return statistics.estimate(_spt(name, level, 1, mode), _spt(name, level, 2, mode),
-                               _reference(name), level)
+    return image_statistics.estimate(_spt(name, level, 1, mode), _spt(name, level, 2, mode),
+                                     _reference(name), level)
 
 
 @pytest.mark.parametrize("name", SCENES)

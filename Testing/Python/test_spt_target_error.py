@@ -17,8 +17,9 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import metrics, render, statistics
+from spt import metrics, render
 
+import image_statistics
 from robustness_support import watch
 from scene_support import reference, render_at_still_rate, scene, window_with
 from statistics_checks import Z
@@ -84,8 +85,8 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
     # The noise, from two seeds at the same count (half their mean squared difference), and
     # the rounding to 8 bits, which the estimate counts too.
-    noise = np.sqrt(statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
-                                        _reference(name), level).noise)
+    noise = np.sqrt(image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
+                                              _reference(name), level).noise)
     shown = np.hypot(noise, ROUNDING_8_BITS)
     assert shown / 1.5 <= estimated <= 1.5 * shown, (
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f} with the rounding {shown:.4f}")
@@ -191,9 +192,9 @@ def test_stopped_images_are_unbiased(name, have_display):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""
     first, _, level = _stopped(name, 1)
     second, _, second_level = _stopped(name, 2)
-    stopped = statistics.estimate(first, second, _reference(name), min(level, second_level))
-    fixed = statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
-                                _reference(name), level)
+    stopped = image_statistics.estimate(first, second, _reference(name), min(level, second_level))
+    fixed = image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
+                                      _reference(name), level)
     tolerance = Z * np.hypot(stopped.bias2_error, fixed.bias2_error)
     assert stopped.bias2 <= fixed.bias2 + tolerance, (
         f"bias^2 {stopped.bias2:.2e} stopped, {fixed.bias2:.2e} fixed, tolerance "

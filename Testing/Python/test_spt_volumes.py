@@ -17,9 +17,10 @@ import numpy as np
 import pytest
 
 import scene_support
-from spt import metrics, render, scenes, statistics
+from spt import metrics, render, scenes
 from vtkmodules.vtkRenderingCore import vtkVolume, vtkVolumeProperty
 
+import image_statistics
 from spt_pytest_fixtures import load_or_skip
 
 SIZE = 128
@@ -87,7 +88,7 @@ def test_two_volumes_composite_as_their_union(name, have_display):
     # The noise of one render at this count, from two seeds of the union drawn as one grid.
     second_seed = render.render(_union(name), s.property, render.spt_mapper(REPETITIONS, seed=2),
                                 s.view, (SIZE, SIZE)).image
-    noise = statistics.estimate(one, second_seed, reference, REPETITIONS)
+    noise = image_statistics.estimate(one, second_seed, reference, REPETITIONS)
     one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
     assert two_error <= one_error + 4.0 * np.sqrt(noise.noise), (
         f"two volumes {two_error:.4f}, one grid {one_error:.4f}")
@@ -110,7 +111,7 @@ def test_two_volumes_with_depth_slabs_composite_as_their_union(have_display):
     s = _scene(name)
     one = render.render(_union(name), s.property, slabs(), s.view, (SIZE, SIZE)).image
     second_seed = render.render(_union(name), s.property, slabs(2), s.view, (SIZE, SIZE)).image
-    noise = statistics.estimate(one, second_seed, reference, REPETITIONS)
+    noise = image_statistics.estimate(one, second_seed, reference, REPETITIONS)
     one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
     assert two[..., 3].max() > 0.2, "the image is (almost) empty"
     assert two_error <= one_error + 4.0 * np.sqrt(noise.noise), (

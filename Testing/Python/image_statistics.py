@@ -15,7 +15,7 @@ from typing import Optional
 
 import numpy as np
 
-from . import metrics
+from spt import metrics
 
 
 @dataclasses.dataclass
