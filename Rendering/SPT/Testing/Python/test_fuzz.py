@@ -6,7 +6,8 @@ unchanged.
 
 The renders run in a subprocess (fuzz_worker.py), so that a crash fails this test with the
 seed it happened at instead of killing pytest. Reproduce one seed with
-`python3 Testing/Python/fuzz_worker.py MAPPER SEED 1` under xvfb-run.
+`python3 Rendering/SPT/Testing/Python/fuzz_worker.py MAPPER SEED 1` under xvfb-run, with the
+package and Testing/Python on PYTHONPATH.
 """
 
 import os
