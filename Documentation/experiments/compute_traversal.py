@@ -35,7 +35,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkRenderingVolumeOpenGL2 import vtkOpenGLProjectedTetrahedraMapper
 
 from spt import render
-from spt.bench import race
+from spt.experiments.bench import race
 
 # GL entry points: name -> (result, arguments).
 _SIGNATURES = {

@@ -1,5 +1,5 @@
 """The statistical checks that the stochastic mappers (SPT, PBVR) share, on the estimates of
-spt.statistics at several repetition levels: tolerances are Z standard errors of the
+image_statistics at several repetition levels: tolerances are Z standard errors of the
 estimates, estimated from the pixels."""
 
 from __future__ import annotations
@@ -9,8 +9,9 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from spt import metrics, render, scenes, statistics
+from spt import metrics, render, scenes
 
+import image_statistics
 from robustness_support import opaque_plane
 
 #: A stochastic mapper at a repetition level, subpixel level and seed.
@@ -19,7 +20,8 @@ MapperMaker = Callable[[int, int, int], object]
 Z = 4.0  # standard errors
 
 
-def check_noise_falls_as_one_over_repetitions(estimates: Sequence[statistics.Estimate]) -> None:
+def check_noise_falls_as_one_over_repetitions(
+        estimates: Sequence[image_statistics.Estimate]) -> None:
     """L x noise (the variance of one pass) is the same at every level L."""
     first = estimates[0]
     for e in estimates[1:]:
@@ -30,7 +32,7 @@ def check_noise_falls_as_one_over_repetitions(estimates: Sequence[statistics.Est
             f"{e.level * e.noise:.4g} at L={e.level} (tolerance {tolerance:.3g})")
 
 
-def check_alpha_noise_is_bernoulli(estimates: Sequence[statistics.Estimate]) -> None:
+def check_alpha_noise_is_bernoulli(estimates: Sequence[image_statistics.Estimate]) -> None:
     """The alpha noise is that of one keep-or-discard per pass: a (1 - a) / L. The reference's
     coverage stands in for the expected coverage: the tolerance allows for the bias."""
     for e in estimates:
@@ -40,7 +42,7 @@ def check_alpha_noise_is_bernoulli(estimates: Sequence[statistics.Estimate]) -> 
             f"a(1-a)/L {e.bernoulli_alpha_noise:.4g}")
 
 
-def check_rmse_falls_to_a_small_bias_floor(estimates: Sequence[statistics.Estimate],
+def check_rmse_falls_to_a_small_bias_floor(estimates: Sequence[image_statistics.Estimate],
                                            bias_floor: float = 0.012) -> None:
     """The RMSE falls from level to level as bias^2 + noise / L predicts, to a bias floor of at
     most `bias_floor`; at noise-dominated levels it about halves for each 4x."""
@@ -78,7 +80,7 @@ def check_subpixel_level_averages_subpixels(make: MapperMaker, size: int,
     reference = block_mean(fine, 2)
     first, second = (render.render(s.grid, s.property, make(level, 2, seed), s.view,
                                    (size, size)).image for seed in (1, 2))
-    e = statistics.estimate(first, second, reference, level)
+    e = image_statistics.estimate(first, second, reference, level)
     mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
     coverage = np.clip(fine[..., 3], 0.0, 1.0)
     expected = block_mean((coverage * (1.0 - coverage))[..., None], 2)[..., 0][mask].mean() / (
@@ -104,5 +106,5 @@ def check_opaque_geometry_hides_and_cuts_the_volume(make: MapperMaker, size: int
     plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
     assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
     assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
-    e = statistics.estimate(first, second, reference, level)
+    e = image_statistics.estimate(first, second, reference, level)
     assert e.bias <= 0.015, f"bias {e.bias:.4f} against the reference with the plane"

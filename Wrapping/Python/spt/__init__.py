@@ -10,9 +10,10 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     window = spt.vtkHeadlessEGLRenderWindow()  # a render window without X (EGL)
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
-generated drill and torus meshes at any size, cached on disk), ``spt.render``
-(rendering helpers and the reference), ``spt.metrics`` (image error), ``spt.accuracy``
-(the paper's accuracy experiment) and ``spt.figures``; ``python3 -m spt`` is the command line.
+generated drill and torus meshes at any size, cached on disk), ``spt.scenes`` (named scenes),
+``spt.render`` (rendering helpers and the reference), ``spt.raycast`` (the exact ray caster)
+and ``spt.metrics`` (image error); ``python3 -m spt`` is the command line. Apart from the
+library, ``spt.experiments`` holds the demo, the benchmark and the paper's figures.
 """
 
 # The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.

@@ -1,4 +1,8 @@
-"""``python3 -m spt``: the demo, the paper's figures and the benchmark from the command line."""
+"""``python3 -m spt``: the demo, the paper's figures and the benchmark from the command line.
+
+The commands' work is in the library (``mesh``) and in :mod:`spt.experiments` (``demo``,
+``bench``, ``figures``), imported only when its command runs.
+"""
 
 from __future__ import annotations
 
@@ -67,7 +71,7 @@ def _output_directory(text: str) -> pathlib.Path:
 
 
 def _steep_datasets(text: str) -> List[str]:
-    from .figures import STEEP_SCENES
+    from .experiments.figures import STEEP_SCENES
 
     return _names(text, list(STEEP_SCENES), "data set")
 
@@ -110,47 +114,49 @@ def _add_demo(commands) -> None:
                            "tetrahedra; 'default' is the embedded helix mesh of the tests)")
 
 
+def _add_figure(figure, name: str, help_text: str) -> argparse.ArgumentParser:
+    """The subcommand of a figure, with its output folder (default out/figures/NAME)."""
+    parser = figure.add_parser(name, help=help_text)
+    parser.add_argument("--output", type=_output_directory,
+                        default=pathlib.Path("out/figures") / name)
+    return parser
+
+
+def _add_figure_size(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+
+
 def _add_convergence_and_pbvr(figure) -> None:
-    convergence = figure.add_parser(
-        "convergence", help="RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
-    convergence.add_argument("--output", type=_output_directory,
-                             default=pathlib.Path("out/figures/convergence"))
+    convergence = _add_figure(
+        figure, "convergence", "RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
     convergence.add_argument("--datasets", type=_datasets, default=["spx", "bluntfin", "post"])
     convergence.add_argument("--levels", type=_levels, default=[4, 16, 64, 256, 1024])
-    convergence.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
-    pbvr = figure.add_parser(
-        "pbvr", help="PBVR against SPT and the reference with a steep transfer function")
-    pbvr.add_argument("--output", type=_output_directory,
-                      default=pathlib.Path("out/figures/pbvr"))
+    _add_figure_size(convergence)
+    pbvr = _add_figure(
+        figure, "pbvr", "PBVR against SPT and the reference with a steep transfer function")
     pbvr.add_argument("--datasets", type=_steep_datasets, default=["bluntfin", "post"])
     pbvr.add_argument("--repetitions", type=_positive_int(65536), default=144,
                       help="RepetitionLevel of the images and the table (default 144)")
     pbvr.add_argument("--levels", type=_levels, default=[4, 16, 64, 144],
                       help="repetition levels of the convergence curves (default 4,16,64,144)")
-    pbvr.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
+    _add_figure_size(pbvr)
 
 
 def _add_sampling_sorting_accuracy(figure) -> None:
-    sampling = figure.add_parser(
-        "sampling", help="several repetitions per pass and stratified thresholds, measured")
-    sampling.add_argument("--output", type=_output_directory,
-                          default=pathlib.Path("out/figures/sampling"))
+    sampling = _add_figure(
+        figure, "sampling", "several repetitions per pass and stratified thresholds, measured")
     sampling.add_argument("--dataset", type=_dataset, default="default")
     sampling.add_argument("--levels", type=_levels, default=[16, 32, 64, 128, 256])
-    sampling.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
-    sorting = figure.add_parser(
-        "sorting", help="SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)")
-    sorting.add_argument("--output", type=_output_directory,
-                         default=pathlib.Path("out/figures/sorting"))
+    _add_figure_size(sampling)
+    sorting = _add_figure(
+        figure, "sorting", "SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)")
     sorting.add_argument("--datasets", type=_datasets,
                          default=["spx", "bluntfin", "post", "torus", "default"])
     sorting.add_argument("--repetitions", type=_positive_int(65536), default=144,
                          help="SPT RepetitionLevel (default 144, as in the paper)")
-    sorting.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
-    accuracy = figure.add_parser(
-        "accuracy", help="stochastic against exact brightness along random rays")
-    accuracy.add_argument("--output", type=_output_directory,
-                          default=pathlib.Path("out/figures/accuracy"))
+    _add_figure_size(sorting)
+    accuracy = _add_figure(
+        figure, "accuracy", "stochastic against exact brightness along random rays")
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
 
 
@@ -214,25 +220,25 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _sections(text: str) -> List[str]:
-    from .bench import SECTIONS
+    from .experiments.bench import SECTIONS
 
     return _names(text, SECTIONS, "section")
 
 
 def _methods(text: str) -> List[str]:
-    from .bench import METHODS
+    from .experiments.bench import METHODS
 
     return _names(text, tuple(METHODS), "method")
 
 
 def _race_scenes(text: str) -> List[str]:
-    from .bench.race import scene_names
+    from .experiments.bench.race import scene_names
 
     return _names(text, scene_names(), "scene")
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
-    from .tables import print_table
+    from .experiments.tables import print_table
 
     print_table(header, rows)
 
@@ -240,7 +246,7 @@ def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> Non
 def _bench(arguments: argparse.Namespace) -> None:
     import dataclasses
 
-    from . import bench
+    from .experiments import bench
 
     settings = bench.Settings.quick() if arguments.quick else bench.Settings()
     changes: Dict[str, object] = {"shape": arguments.shape}
@@ -267,19 +273,20 @@ def _bench(arguments: argparse.Namespace) -> None:
 
 
 def _demo(arguments: argparse.Namespace) -> None:
-    from . import figures, render
+    from . import render
+    from .experiments import demo
 
     target = (render.DEFAULT_TARGET_ERROR if arguments.target_error is None
               else arguments.target_error)
-    rows = figures.demo(arguments.output, arguments.size, arguments.repetitions,
-                        arguments.dataset, target_error=target)
-    _print_table(figures.DEMO_TABLE_HEADER, rows)
+    rows = demo.demo(arguments.output, arguments.size, arguments.repetitions,
+                     arguments.dataset, target_error=target)
+    _print_table(demo.DEMO_TABLE_HEADER, rows)
     race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
-    turned = next(row for row in rows if row[0] == figures.TURNED_LABEL)
-    slabs = next(row for row in rows if row[0] == figures.SLABS_LABEL)
+    turned = next(row for row in rows if row[0] == demo.TURNED_LABEL)
+    slabs = next(row for row in rows if row[0] == demo.SLABS_LABEL)
     print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
           f"({race[6]} repetitions); after another view, in {turned[5]:.2f} x "
-          f"({turned[6]} repetitions); with {figures.DEMO_DEPTH_SLABS} depth slabs, in "
+          f"({turned[6]} repetitions); with {demo.DEMO_DEPTH_SLABS} depth slabs, in "
           f"{slabs[5]:.2f} x ({slabs[6]} repetitions).")
     print(f"Images and comparison.png written to {arguments.output}")
 
@@ -295,7 +302,7 @@ def _mesh(arguments: argparse.Namespace) -> None:
 
 
 def _convergence(arguments: argparse.Namespace) -> None:
-    from . import figures
+    from .experiments import figures
 
     results = figures.convergence(arguments.datasets, arguments.levels, arguments.size,
                                   arguments.output)
@@ -304,7 +311,7 @@ def _convergence(arguments: argparse.Namespace) -> None:
 
 
 def _pbvr(arguments: argparse.Namespace) -> None:
-    from . import figures
+    from .experiments import figures
 
     rows = figures.pbvr_figure(arguments.datasets, arguments.repetitions,
                                arguments.levels, arguments.size, arguments.output)
@@ -315,7 +322,7 @@ def _pbvr(arguments: argparse.Namespace) -> None:
 
 
 def _sampling(arguments: argparse.Namespace) -> None:
-    from .sampling import sampling_figure
+    from .experiments.sampling import sampling_figure
 
     result = sampling_figure(arguments.dataset, arguments.levels, arguments.size,
                              arguments.output)
@@ -330,7 +337,7 @@ def _sampling(arguments: argparse.Namespace) -> None:
 
 
 def _sorting(arguments: argparse.Namespace) -> None:
-    from . import figures
+    from .experiments import figures
 
     rows = figures.sorting(arguments.datasets, arguments.size, arguments.output,
                            arguments.repetitions)
@@ -339,7 +346,7 @@ def _sorting(arguments: argparse.Namespace) -> None:
 
 
 def _accuracy(arguments: argparse.Namespace) -> None:
-    from . import figures
+    from .experiments import figures
 
     result = figures.accuracy_figure(arguments.output, arguments.rays)
     print(f"log-log slope of the error: {result['slope']:.3f} (Monte Carlo: -0.5); "

@@ -1,0 +1,166 @@
+"""PBVR against the reference, statistically: fixed seeds, tolerances from the repetition count,
+as test_spt_statistics does for SPT.
+
+For SPX and Blunt Fin (128 x 128), two independent PBVR renders (seeds 1 and 2) per repetition
+level give the noise and the bias against the reference (image_statistics). The tests check that
+- the noise is Monte Carlo noise: L x noise is the same at every level L;
+- the alpha noise is that of one opaque particle or none per pixel and set: a (1 - a) / L;
+- the RMSE falls as expected to a small bias floor: PBVR converges to the reference;
+- a constant field (optical depth known along every ray) is unbiased inside the footprint, in
+  perspective (where the particles are thinned to their depth's pixel size) and in parallel;
+- SubpixelLevel 2 averages 2x2 subpixels; opaque geometry hides and cuts the volume;
+- with a steep transfer function, exact in-cell density (rejection) keeps the thin features
+  that the papers' cell-average density loses.
+Tolerances and references are those of test_spt_statistics.
+"""
+
+import math
+from functools import lru_cache
+
+import numpy as np
+import pytest
+import vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk
+
+from spt import data, render, scenes
+
+import image_statistics
+from spt_pytest_fixtures import load_or_skip
+from scene_support import reference, scene
+from statistics_checks import (Z, check_alpha_noise_is_bernoulli, check_images_are_volumes,
+                               check_noise_falls_as_one_over_repetitions,
+                               check_opaque_geometry_hides_and_cuts_the_volume,
+                               check_rmse_falls_to_a_small_bias_floor,
+                               check_subpixel_level_averages_subpixels)
+
+SIZE = 128
+LEVELS = {"spx": (4, 16, 64, 256), "bluntfin": (4, 16, 64)}
+SCENES = list(LEVELS)
+
+
+def _scene(name):
+    return scene(name)
+
+
+def _reference(name):
+    return reference(name, SIZE)
+
+
+@lru_cache(maxsize=None)
+def _pbvr(name, level, seed):
+    s = _scene(name)
+    return render.render(s.grid, s.property, render.pbvr_mapper(level, seed=seed), s.view,
+                         (SIZE, SIZE)).image
+
+
+@lru_cache(maxsize=None)
+def _estimate(name, level):
+    return image_statistics.estimate(_pbvr(name, level, 1), _pbvr(name, level, 2),
+                                     _reference(name), level)
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_images_are_volumes(name, have_display):
+    check_images_are_volumes(_pbvr(name, LEVELS[name][-1], 1), _reference(name))
+
+
+def _estimates(name):
+    return [_estimate(name, level) for level in LEVELS[name]]
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_noise_falls_as_one_over_repetitions(name, have_display):
+    check_noise_falls_as_one_over_repetitions(_estimates(name))
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_alpha_noise_is_bernoulli(name, have_display):
+    check_alpha_noise_is_bernoulli(_estimates(name))
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_rmse_falls_to_a_small_bias_floor(name, have_display):
+    check_rmse_falls_to_a_small_bias_floor(_estimates(name))
+
+
+def _erode(mask, iterations):
+    """Pixels of `mask` whose 3x3 neighbourhood is in `mask`, `iterations` times."""
+    for _ in range(iterations):
+        padded = np.pad(mask, 1)
+        h, w = mask.shape
+        mask = np.logical_and.reduce([padded[1 + dy:1 + dy + h, 1 + dx:1 + dx + w]
+                                      for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
+    return mask
+
+
+def _constant_field():
+    grid = data.make_default_mesh()
+    array = numpy_to_vtk(np.full(grid.GetNumberOfPoints(), 0.25), deep=True)
+    array.SetName("constant")
+    grid.GetPointData().SetScalars(array)
+    color = vtk.vtkColorTransferFunction()
+    color.AddRGBPoint(0.0, 0.2, 0.4, 1.0)
+    color.AddRGBPoint(1.0, 1.0, 0.6, 0.2)
+    opacity = vtk.vtkPiecewiseFunction()
+    opacity.AddPoint(0.0, 0.5)
+    opacity.AddPoint(1.0, 0.5)
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(0.3)
+    return grid, prop
+
+
+@pytest.mark.parametrize("parallel", [False, True])
+def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display):
+    """alpha = 1 - exp(-tau d) along every ray. Away from the silhouettes (where a particle
+    averages the optical depth over its pixel and the reference samples the pixel centre),
+    the mean alpha of PBVR equals the reference's within its standard error, also with the
+    camera close (perspective thinning over a wide range of depths)."""
+    grid, prop = _constant_field()
+    level = 64
+    for zoom in (1.0, 1.8):
+        view = render.View(30, 30, zoom=zoom, parallel=parallel)
+        reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
+        images = [render.render(grid, prop, render.pbvr_mapper(level, seed=seed), view,
+                                (SIZE, SIZE)).image for seed in (1, 2)]
+        interior = _erode(reference[..., 3] > 0.01, 2)
+        difference = (0.5 * (images[0] + images[1]) - reference)[..., 3][interior]
+        noise = (0.5 * (images[0] - images[1]))[..., 3][interior]
+        tolerance = Z * noise.std() / math.sqrt(difference.size) + 0.001
+        assert interior.sum() > 1000
+        assert abs(difference.mean()) <= tolerance, (
+            f"zoom {zoom}: mean alpha difference {difference.mean():+.5f} "
+            f"(tolerance {tolerance:.5f})")
+
+
+def test_subpixel_level_averages_subpixels(have_display):
+    check_subpixel_level_averages_subpixels(
+        lambda level, subpixels, seed: render.pbvr_mapper(level, subpixels, seed), SIZE // 2)
+
+
+def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
+    check_opaque_geometry_hides_and_cuts_the_volume(
+        lambda level, subpixels, seed: render.pbvr_mapper(level, subpixels, seed), SIZE)
+
+
+def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display):
+    """Blunt Fin with a steep transfer function (a thin shell around 30 % of the density
+    range): rejection sampling converges to the reference; the cell-average density of the
+    papers is biased several times more than the noise at 64 repetitions."""
+    grid = load_or_skip("bluntfin")
+    prop = data.transfer_function(grid, "steep", steep_center=0.3)
+    view = scenes.scene("bluntfin").view
+    reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
+    level = 64
+    biases = {}
+    for cell_average in (False, True):
+        first, second = (render.render(grid, prop, render.pbvr_mapper(level, seed=seed,
+                                                                      cell_average=cell_average),
+                                       view, (SIZE, SIZE)).image for seed in (1, 2))
+        biases[cell_average] = image_statistics.estimate(first, second, reference, level)
+    exact, average = biases[False], biases[True]
+    assert exact.bias <= 0.012, f"rejection: bias {exact.bias:.4f}"
+    assert average.bias >= 4.0 * max(exact.bias, 0.005), (
+        f"cell average: bias {average.bias:.4f}, rejection {exact.bias:.4f}")
+    assert average.bias >= math.sqrt(average.noise), "the cell-average bias is hidden in noise"

@@ -1,0 +1,147 @@
+"""The wrapped mapper: importable next to vtk, VTK conventions for its settings, PrintSelf."""
+
+import os
+import subprocess
+
+import pytest
+import vtk
+
+import spt
+
+
+def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
+    # The package loads the parallel module, which overrides the mapper in VTK's factory.
+    assert isinstance(mapper, spt.vtkSPTVolumeMapper)
+    assert mapper.GetClassName() == "vtkPSPTVolumeMapper"
+
+
+def test_former_names_still_work():
+    """The EGL window's and the single rendering module's former names, kept for a release."""
+    window = spt.vtkSPTEGLRenderWindow()
+    assert isinstance(window, spt.vtkHeadlessEGLRenderWindow)
+    from spt.SPTRendering import vtkSPTVolumeMapper
+    assert vtkSPTVolumeMapper is spt.vtkSPTVolumeMapper
+
+
+def test_former_experiment_modules_still_work():
+    """spt.bench, spt.figures and spt.accuracy, moved to spt.experiments, kept for a release."""
+    from spt import accuracy, bench, figures
+    from spt.experiments import accuracy as moved_accuracy
+    from spt.experiments import bench as moved_bench
+    from spt.experiments import demo, figures as moved_figures
+    assert bench.run is moved_bench.run and bench.__all__ == moved_bench.__all__
+    assert figures.convergence is moved_figures.convergence and figures.demo is demo.demo
+    assert accuracy.main is moved_accuracy.main
+
+
+@pytest.mark.parametrize("name, default, low, high", [
+    ("RepetitionLevel", 32, 1, 65536),
+    ("SubpixelLevel", 1, 1, 8),
+    ("PreIntegrationScalarResolution", 128, 8, 1024),
+    ("PreIntegrationThicknessResolution", 64, 4, 1024),
+])
+def test_settings_have_defaults_and_clamps(name, default, low, high):
+    mapper = spt.vtkSPTVolumeMapper()
+    get = getattr(mapper, "Get" + name)
+    set_ = getattr(mapper, "Set" + name)
+    assert get() == default
+    set_(low - 1)
+    assert get() == low
+    set_(high + 1)
+    assert get() == high
+
+
+def test_vector_mode_and_seed():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert mapper.GetVectorMode() == spt.vtkSPTVolumeMapper.MAGNITUDE
+    mapper.SetVectorModeToComponent()
+    mapper.SetVectorComponent(2)
+    assert (mapper.GetVectorMode(), mapper.GetVectorComponent()) == (1, 2)
+    mapper.SetSeed(4000000000)
+    assert mapper.GetSeed() == 4000000000
+
+
+def test_estimator_and_exact_coverage():
+    mapper = spt.vtkSPTVolumeMapper()
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR
+    assert mapper.GetExactCoverage() == 1
+    mapper.SetEstimatorToSurvivor()
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR
+    mapper.SetEstimator(7)
+    assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR
+    mapper.ExactCoverageOff()
+    assert "ExactCoverage: Off" in str(mapper)
+
+
+def test_print_self_lists_every_setting():
+    text = str(spt.vtkSPTVolumeMapper())
+    for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",
+                    "PreIntegrationThicknessResolution", "VectorMode", "VectorComponent",
+                    "RepetitionsPerPass", "StratifiedSampling", "Estimator", "ExactCoverage",
+                    "TargetError", "ReuseNoiseEstimate",
+                    "ProgressiveRefinement", "MaximumProgressiveRepetitions",
+                    "AutoAdjustRepetitions", "NumberOfTetrahedra", "GPUMemorySize",
+                    "ScalarMode"]:
+        assert setting + ":" in text
+
+
+def test_installed_package_imports_from_any_directory(tmp_path):
+    """After `make install`, Debian's python3 finds spt without PYTHONPATH (checked when the
+    Makefile ran the install: SPT_TEST_INSTALLED=1)."""
+    if os.environ.get("SPT_TEST_INSTALLED") != "1":
+        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    result = subprocess.run(
+        ["/usr/bin/python3", "-c",
+         "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "vtkSPTVolumeMapper"
+    location = subprocess.run(
+        ["/usr/bin/python3", "-c", "import spt; print(spt.__file__)"], cwd=tmp_path, env=env,
+        capture_output=True, text=True, check=True).stdout
+    assert "dist-packages" in location and "/build/" not in location, location
+
+
+CONSUMER_CMAKE = """
+cmake_minimum_required(VERSION 3.16)
+project(consumer CXX)
+find_package(SPT REQUIRED COMPONENTS {component})
+add_executable(consumer main.cxx)
+target_link_libraries(consumer PRIVATE SPT::{component})
+"""
+
+CONSUMER_MAIN = """
+#include "vtkNew.h"
+#include "vtkSPTVolumeMapper.h"
+int main()
+{
+  vtkNew<vtkSPTVolumeMapper> mapper;
+  mapper->SetRepetitionLevel(7);
+  return mapper->GetRepetitionLevel() == 7 ? 0 : 1;
+}
+"""
+
+
+@pytest.mark.parametrize("component", ["RenderingSPT", "Rendering"])
+def test_installed_cmake_package_builds_a_cxx_program(tmp_path, component):
+    """After `make install`, find_package(SPT) gives SPT::RenderingSPT to a C++ project, which
+    then links neither MPI nor libEGL; SPT::Rendering (every rendering module) still works."""
+    if os.environ.get("SPT_TEST_INSTALLED") != "1":
+        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+    (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE.format(component=component))
+    (tmp_path / "main.cxx").write_text(CONSUMER_MAIN)
+    build = tmp_path / "build"
+    for command in (["cmake", "-S", str(tmp_path), "-B", str(build)],
+                    ["cmake", "--build", str(build)],
+                    [str(build / "consumer")]):
+        result = subprocess.run(command, capture_output=True, text=True, check=False)
+        assert result.returncode == 0, result.stdout + result.stderr
+    if component == "RenderingSPT":
+        libraries = subprocess.run(["ldd", str(build / "consumer")], capture_output=True,
+                                   text=True, check=True).stdout
+        assert "libSPTRenderingSPT" in libraries, libraries
+        for other in ("libEGL", "libmpi", "libvtkParallelCore", "libSPTRenderingParallel"):
+            assert other not in libraries, libraries

@@ -1,0 +1,96 @@
+"""The renderers of the benchmark, and the generated scenes its sweeps draw."""
+
+from __future__ import annotations
+
+import dataclasses
+from typing import Callable, Dict, Optional
+
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkUnstructuredGrid
+
+from ... import data, render
+from ...scenes import Scene
+
+#: The camera of the generated scenes.
+VIEW = render.View(azimuth=30.0, elevation=25.0)
+
+#: SPT's RepetitionsPerPass in the benchmark (the mapper's default).
+PER_PASS = 16
+
+
+@dataclasses.dataclass(frozen=True)
+class Method:
+    """One renderer of the comparison. ``make(repetitions, subpixels)`` returns its mapper;
+    the floor has none (it draws the faces with vtkPolyDataMapper)."""
+
+    name: str
+    label: str
+    make: Optional[Callable[[int, int], object]]
+    stochastic: bool
+
+
+def spt_method(stratified: bool, per_pass: int, survivor: bool = True
+               ) -> Callable[[int, int], object]:
+    """The mapper maker of SPT with the survivor or the visibility estimator."""
+    sampling = ({"estimator": "survivor", "exact_coverage": False} if survivor else
+                {"estimator": "visibility", "exact_coverage": True})
+    return lambda repetitions, subpixels: render.spt_mapper(
+        repetitions, subpixels, stratified=stratified, per_pass=per_pass, **sampling)
+
+
+def havs_method(k: int) -> Method:
+    """HAVS-like with a k-buffer of ``k`` fragments."""
+    return Method(f"havs{k}", f"HAVS-like k={k}", lambda r, s: render.havs_mapper(k), False)
+
+
+#: "spt" is the survivor estimator (the paper's estimator, drawn 16 repetitions per pass with
+#: stratified thresholds), which the time and memory models describe; "spt-visibility" is the
+#: mapper's default (the visibility estimator with exact coverage: one more traversal per
+#: image, no hashing in the colour traversals).
+METHODS: Dict[str, Method] = {m.name: m for m in (
+    Method("spt", "SPT survivor (16 per pass, stratified)", spt_method(True, PER_PASS), True),
+    Method("spt-visibility", "SPT default (visibility, exact coverage)",
+           spt_method(True, PER_PASS, survivor=False), True),
+    Method("spt-paper", "SPT, paper (1 per pass, independent)", spt_method(False, 1), True),
+    Method("spt-independent", "SPT survivor (16 per pass, independent)",
+           spt_method(False, PER_PASS), True),
+    havs_method(2),
+    havs_method(4),
+    havs_method(6),
+    Method("pbvr", "PBVR", lambda r, s: render.pbvr_mapper(r, s), True),
+    Method("pt", "VTK projected tetrahedra", lambda r, s: render.projected_tetrahedra_mapper(),
+           False),
+    Method("floor", "floor: all faces opaque (vtkPolyDataMapper)", None, False),
+)}
+
+
+def generated_mesh(shape: str, cells: int) -> vtkUnstructuredGrid:
+    """A generated mesh of about ``cells`` tetrahedra: TetGen's drill or torus
+    (:mod:`spt.meshes`, cached on disk), or ``helix``, the embedded default mesh at the
+    nearest resolution (48,000 r^3 cells)."""
+    if shape == "helix":
+        return data.make_default_mesh(max(1, round((cells / 48000.0) ** (1.0 / 3.0))))
+    from ... import meshes
+    return meshes.generate(shape, cells)
+
+
+def generated_scene(shape: str, cells: int) -> Scene:
+    """The scene of :func:`generated_mesh`, named by shape and cell count."""
+    grid = generated_mesh(shape, cells)
+    return Scene(f"{shape}-{grid.GetNumberOfCells()}", grid, data.transfer_function(grid), VIEW)
+
+
+def face_polydata(grid: vtkUnstructuredGrid) -> vtkPolyData:
+    """All four faces of every tetrahedron (shared faces twice), as the floor draws them."""
+    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
+    tets = connectivity.reshape(-1, 4).astype(np.int64)
+    faces = tets[:, [[0, 1, 2], [0, 3, 1], [1, 3, 2], [0, 2, 3]]].reshape(-1)
+    offsets = np.arange(0, faces.size + 1, 3, dtype=np.int64)
+    polys = vtkCellArray()
+    polys.SetData(numpy_to_vtkIdTypeArray(offsets, deep=True),
+                  numpy_to_vtkIdTypeArray(faces, deep=True))
+    polydata = vtkPolyData()
+    polydata.SetPoints(grid.GetPoints())
+    polydata.SetPolys(polys)
+    return polydata

@@ -1,0 +1,152 @@
+"""A benchmark run: the chosen sections, the models fitted to everything measured, the plots
+and the report."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import pathlib
+from typing import Dict, List, Optional, Sequence
+
+from ... import render
+from ...progress import Progress
+from . import camera, host, parallel, quality, race, sweeps
+from .crossovers import crossovers, floor_ratios
+from .methods import METHODS, generated_scene
+from .models import memory_models, predict_large, time_models
+from .plots import plot_error_against_time, plot_residuals, plot_sweep
+from .report import write_report
+from .settings import SECTIONS, Settings
+from .timing import record, time_method
+
+Entry = Dict[str, object]
+
+
+def machine() -> str:
+    """The cores and the OpenGL renderer that draws this process's windows."""
+    window, _ = render.make_window(8, 8)
+    window.Render()
+    renderer = "unknown OpenGL renderer"
+    for line in (window.ReportCapabilities() or "").splitlines():
+        if line.startswith("OpenGL renderer string:"):
+            renderer = line.split(":", 1)[1].strip()
+    window.Finalize()
+    return f"{os.cpu_count()} cores, {renderer}"
+
+
+def large_case(settings: Settings, progress: Progress) -> Entry:
+    """The paper's large case: one frame (after a one-repetition warm-up)."""
+    s = generated_scene(settings.shape, settings.large_cells)
+    timing = time_method(s, METHODS["spt"], settings.large_size, settings.large_repetitions,
+                         1, frames=1)
+    entry = record(s, METHODS["spt"], settings.large_size, settings.large_repetitions, 1,
+                   timing, sweep="large")
+    progress.step(f"large {entry['cells']} cells {timing.median:.1f} s")
+    return entry
+
+
+def steps(settings: Settings, section: str) -> int:
+    """The progress steps of one section."""
+    methods = len(sweeps.wanted(settings, settings.methods))
+    swept = len(sweeps.wanted(settings, sweeps.REPETITION_METHODS))
+    return {
+        "race": race.steps(settings),
+        "camera": camera.steps(settings),
+        "cells": len(settings.cells) * methods,
+        "repetitions": swept * len(settings.repetitions),
+        "subpixels": swept * len(settings.subpixels),
+        "image": len(settings.sizes) * methods,
+        "quality": quality.steps(settings),
+        "host": len(settings.host_cells),
+        "large": 1,
+        "parallel": parallel.steps(settings),
+    }[section]
+
+
+SWEEPS = {"cells": sweeps.sweep_cells, "repetitions": sweeps.sweep_repetitions,
+          "subpixels": sweeps.sweep_subpixels, "image": sweeps.sweep_image}
+
+
+def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, object],
+             output: pathlib.Path) -> Dict[str, object]:
+    entries: List[Entry] = [
+        e for e in previous.get("entries", [])
+        if e.get("sweep") not in sections or not settings.wants(e.get("method", ""))]
+    progress = Progress(sum(steps(settings, s) for s in sections), "bench")
+    measured = {key: previous.get(key)
+                for key in ("race", "camera", "host", "large", "parallel")}
+    for section in sections:
+        if section in SWEEPS:
+            entries += SWEEPS[section](settings, progress)
+        elif section == "quality":
+            entries += quality.quality(settings, progress, output)
+        elif section == "race":
+            measured["race"] = race.race(settings, progress, output / "race",
+                                         previous.get("race"))
+        elif section == "camera":
+            measured["camera"] = camera.camera_section(settings, progress)
+        elif section == "host":
+            measured["host"] = host.host_time(settings, progress)
+        elif section == "parallel":
+            measured["parallel"] = parallel.parallel(settings, progress, output / "parallel")
+        else:
+            measured["large"] = large_case(settings, progress)
+    measured["entries"] = entries
+    return measured
+
+
+def _plot(results: Dict[str, object], output: pathlib.Path) -> None:
+    entries = results["entries"]
+    plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
+    plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
+               output / "repetitions.png")
+    plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
+    plot_sweep(entries, "image", "width", "pixels", output / "image.png")
+    plot_residuals(results["time_models"], output / "time_residuals.png", "ms")
+    plot_residuals(results["cpu_time_models"], output / "cpu_time_residuals.png", "ms")
+    plot_residuals(results["memory_models"], output / "memory_residuals.png", "bytes")
+    plot_error_against_time(
+        [e for e in entries if e.get("sweep") == "quality" and "rmse" in e],
+        output / "quality.png", ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"))
+    if results.get("race"):
+        plot_error_against_time(results["race"]["rows"], output / "race.png",
+                                [m.name for m in race.STOCHASTIC_METHODS], key="seconds")
+
+
+def _write_json(results: Dict[str, object], output: pathlib.Path) -> None:
+    serializable = dict(results)
+    for key in ("time_models", "cpu_time_models", "memory_models"):
+        serializable[key] = {k: v.as_dict() for k, v in results[key].items()}
+    (output / "bench.json").write_text(json.dumps(serializable, indent=1))
+
+
+def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
+        settings: Optional[Settings] = None) -> Dict[str, object]:
+    """Run the chosen sections and write ``bench.json``, the plots and ``bench.md`` into
+    ``output``; returns the results. Earlier results in ``output/bench.json`` of sections
+    not run now are kept, so a long run can be done section by section."""
+    settings = settings or Settings()
+    unknown = [s for s in sections if s not in SECTIONS]
+    if unknown:
+        raise ValueError(f"unknown section(s) {', '.join(unknown)}; choose from "
+                         f"{', '.join(SECTIONS)}")
+    output.mkdir(parents=True, exist_ok=True)
+    previous: Dict[str, object] = {}
+    if (output / "bench.json").exists():
+        previous = json.loads((output / "bench.json").read_text())
+    results = _measure(sections, settings, previous, output)
+    entries = results["entries"]
+    results.update(machine=machine(), shape=settings.shape, frames=settings.frames,
+                   settings=dataclasses.asdict(settings), time_models=time_models(entries),
+                   cpu_time_models=time_models(entries, "cpu_seconds"),
+                   memory_models=memory_models(entries))
+    if results["large"]:
+        predict_large(results["large"], results["time_models"], results["cpu_time_models"],
+                      results["memory_models"])
+    results["crossovers"] = crossovers(entries, results["memory_models"])
+    results["floor_ratios"] = floor_ratios(entries)
+    _plot(results, output)
+    _write_json(results, output)
+    write_report(results, output)
+    return results
