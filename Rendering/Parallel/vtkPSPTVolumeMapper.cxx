@@ -437,8 +437,7 @@ vtkPSPTVolumeMapper::vtkInternals::FramePlan vtkPSPTVolumeMapper::vtkInternals::
     : agreed[4] != 0           ? Traversal::Pair
                                : Traversal::Single;
   plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
-  const bool coverageDrawn = plan.First > 0 && Of(self).CoverageDrawn;
-  plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
+  plan.Coverage = Of(self).DrawsCoverage(self, plan);
   return plan;
 }
 

@@ -26,16 +26,16 @@
 #include "vtkBatchedVertexArray.h" // For the vertex array
 #include "vtkNew.h"                // For the buffers
 #include "vtkObject.h"
-#include "vtkSmartPointer.h"  // For the buffers
-#include "vtkTextureObject.h" // For GetScalarTexture()
-#include "vtkTimeStamp.h"     // For the upload time
+#include "vtkSmartPointer.h"    // For the buffers
+#include "vtkTetrahedralMesh.h" // For GetMesh()
+#include "vtkTextureObject.h"   // For GetScalarTexture()
+#include "vtkTimeStamp.h"       // For the upload time
 
 #include <vector> // For the classes of size
 
 class vtkOpenGLBufferObject;
 class vtkOpenGLRenderWindow;
 class vtkShaderProgram;
-class vtkTetrahedralMesh;
 class vtkWindow;
 
 class SPTRENDERINGSPT_EXPORT vtkSPTMeshBuffers : public vtkObject

@@ -65,6 +65,7 @@ public:
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 
+  // What a frame draws (vtkSPTFramePlan.cxx).
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
   // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
   static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble, int slabs);
@@ -90,6 +91,9 @@ public:
   };
   FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs,
     std::vector<double> signature);
+  // Whether the plan's frame draws the exact coverage (with the depth slabs' optical depths):
+  // once per accumulation, never in the cheapest frame.
+  bool DrawsCoverage(vtkSPTVolumeMapper* self, const FramePlan& plan) const;
   // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
   bool StartAccumulation(
     vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage);

@@ -1,0 +1,148 @@
+// What a frame of vtkSPTVolumeMapper draws: its repetitions per traversal and depth slabs, as
+// the context, the image size and the depth keys' memory allow; how many repetitions, from the
+// time budget, the progressive accumulation and the error target's cap; and whether it draws
+// the exact coverage. The parallel render (vtkPSPTVolumeMapper) plans with these too, and its
+// ranks then agree on the fewest (PlanParallel()).
+#include "vtkSPTVolumeMapper.h"
+#include "vtkSPTVolumeMapperInternals.h"
+
+#include "vtkOpenGLLoader.h"
+#include "vtkOpenGLRenderWindow.h"
+
+#include "vtkEnsembleBuffer.h"
+#include "vtkSPTDepthKeyBuffer.h"
+
+#include <algorithm>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+int vtkSPTVolumeMapper::vtkInternals::RepetitionsPerTraversal(
+  int asked, const vtkEnsembleBuffer* ensemble, int slabs)
+{
+  // A traversal of many repetitions costs little more than one of a single repetition, so at
+  // the sizes where memory allows, a frame of 256 repetitions is one pair of traversals
+  // instead of sixteen. Depth slabs share the keys' memory.
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const size_t perSlab = budget / (4 * samples * size_t(std::max(slabs, 1)));
+  const int fits = static_cast<int>(std::min<size_t>(perSlab, 256));
+  return std::min(asked, std::max(fits, 16 / std::max(slabs, 1)));
+}
+
+int vtkSPTVolumeMapper::vtkInternals::DepthSlabsThatFit(
+  int asked, const vtkEnsembleBuffer* ensemble)
+{
+  // The slabs' sums take 16 bytes per slab and sample, besides the keys: at most 128 MB, so
+  // that a large image draws fewer slabs (the same expectation, more noise) rather than fail.
+  constexpr size_t budget = size_t(128) << 20;
+  const size_t samples =
+    std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
+  const size_t perSlab = 4 * size_t(vtkSPTDepthKeyBuffer::SlabTerms) * samples;
+  return static_cast<int>(std::max<size_t>(1, std::min<size_t>(size_t(asked), budget / perSlab)));
+}
+
+int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
+  vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings)
+{
+  // The survivors of several repetitions per traversal, and every repetition of the visibility
+  // estimator, are found with image atomics; without them, one survivor per traversal.
+  settings.Estimator = self->Estimator;
+  settings.DepthSlabs = 1;
+  if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR ||
+        self->DepthSlabs > 1) &&
+    !vtkSPTDepthKeyBuffer::IsSupported(renWin))
+  {
+    if (self->Estimator != SURVIVOR_ESTIMATOR && !this->WarnedNoImageAtomics)
+    {
+      vtkWarningWithObjectMacro(self,
+        "The visibility estimator needs image load/store (OpenGL 4.4); drawing with the "
+        "survivor estimator.");
+      this->WarnedNoImageAtomics = true;
+    }
+    if (self->DepthSlabs > 1 && !this->WarnedNoSlabs)
+    {
+      vtkWarningWithObjectMacro(
+        self, "Depth slabs need image load/store (OpenGL 4.4); drawing without them.");
+      this->WarnedNoSlabs = true;
+    }
+    settings.Estimator = SURVIVOR_ESTIMATOR;
+    return 1;
+  }
+  // The depth keys are a 3D texture of (repetition, sample): for a larger pass, the depth test
+  // finds each repetition's survivor instead, one repetition per traversal pair.
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  const int samples = std::max(ensemble->GetPassWidth(), ensemble->GetPassHeight());
+  const int maxSize = vtkOpenGLLoader::Max3DTextureSize();
+  const bool keysFit = samples <= maxSize;
+  if (!keysFit && !this->WarnedLargeImage)
+  {
+    ReportLargeImage(self, maxSize);
+  }
+  this->WarnedLargeImage = !keysFit;
+  if (!keysFit && (self->TargetError > 0.0 || self->DepthSlabs > 1))
+  {
+    return 0;
+  }
+  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
+                 : 1;
+}
+
+void vtkSPTVolumeMapper::vtkInternals::ReportLargeImage(vtkSPTVolumeMapper* self, int maxSize)
+{
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  {
+    std::ostringstream message;
+    message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
+            << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
+            << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
+    if (self->TargetError > 0.0 || self->DepthSlabs > 1)
+    {
+      const char* setting = self->TargetError > 0.0 ? "TargetError" : "DepthSlabs";
+      const char* off = self->TargetError > 0.0 ? "0" : "1";
+      vtkErrorWithObjectMacro(self, << message.str() << ". " << setting
+                                    << " needs them: nothing is drawn. Render a smaller image "
+                                       "(the viewport times SubpixelLevel), or set "
+                                    << setting << " to " << off << ".");
+    }
+    else
+    {
+      vtkWarningWithObjectMacro(self, << message.str()
+                                      << ": drawing one repetition per traversal pair (the "
+                                         "same image, more traversals).");
+    }
+  }
+}
+
+vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Plan(
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs, std::vector<double> signature)
+{
+  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
+  // when refining progressively.
+  FramePlan plan;
+  plan.PerPass = perPass;
+  plan.Kind = pairs ? Traversal::Pair : Traversal::Single;
+  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
+  // When not even one group of repetitions fits, the visibility estimator one repetition at a
+  // time (a pair of traversals each, the coverage drawn with the colors). When not even one
+  // pair fits, the cheapest frame: the paper's single passes, one traversal each, unbiased too;
+  // the exact coverage waits for a later frame.
+  plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
+  plan.SameImage = self->IsLastSignature(signature);
+  plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
+  // The coverage is additive and needs nothing random: any frame of an accumulation may draw
+  // it, and a new accumulation starts without it.
+  // Depth slabs weight their colors by the slabs' optical depths, which the coverage
+  // traversal adds up: drawn for them even without the exact coverage.
+  plan.Coverage = this->DrawsCoverage(self, plan);
+  return plan;
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::DrawsCoverage(
+  vtkSPTVolumeMapper* self, const FramePlan& plan) const
+{
+  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
+  return (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
+}
