@@ -42,7 +42,8 @@ endfunction ()
 # spt_add_python_tests()
 #
 # One ctest `SPT::Python::<name>` per test_<name>.py of the calling directory, run by pytest
-# against the package in the build tree, with the shared helpers of Testing/Python on the path.
+# against the package in the build tree, with the shared helpers of Testing/Python on the path
+# (pytest puts the test's own directory first, with the helpers of that module's tests only).
 # The data sets are found through SPT_DATA_DIR (or a shared/data folder above the working
 # directory); tests that need them are skipped without them.
 function (spt_add_python_tests)

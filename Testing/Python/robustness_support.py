@@ -1,6 +1,6 @@
 """Helpers of the robustness tests of every mapper: small grids built from lists, transfer
-functions, the errors and warnings a VTK object reports, and a check that a render left its
-input exactly as it was."""
+functions, the errors and warnings a VTK object reports, a check of a setting's default and
+clamps, and a check that a render left its input exactly as it was."""
 
 from __future__ import annotations
 
@@ -33,6 +33,17 @@ def watch(obj) -> Messages:
     obj.AddObserver("WarningEvent",
                     _with_call_data(lambda o, e, text: messages.warnings.append(text)))
     return messages
+
+
+def check_clamped_setting(obj, name: str, default, low, high) -> None:
+    """The setting ``name`` of ``obj`` is ``default``, and a value below ``low`` or above
+    ``high`` is clamped to it."""
+    get, set_ = getattr(obj, "Get" + name), getattr(obj, "Set" + name)
+    assert get() == default, name
+    set_(low - 1)
+    assert get() == low, name
+    set_(high + 1)
+    assert get() == high, name
 
 
 def tetrahedra(points, cells, scalars=None, name="s", cell_type=vtk.VTK_TETRA):

@@ -1,11 +1,12 @@
 """The statistical checks that the stochastic mappers (SPT, PBVR) share, on the estimates of
 image_statistics at several repetition levels: tolerances are Z standard errors of the
-estimates, estimated from the pixels."""
+estimates, estimated from the pixels. SceneRenders and SCENE_CHECKS give a mapper's tests the
+checks of every named scene, through one parametrized test."""
 
 from __future__ import annotations
 
 import math
-from typing import Callable, Sequence
+from typing import Callable, Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -13,9 +14,12 @@ from spt import metrics, render, scenes
 
 import image_statistics
 from robustness_support import opaque_plane
+from scene_support import reference, scene
 
 #: A stochastic mapper at a repetition level, subpixel level and seed.
 MapperMaker = Callable[[int, int, int], object]
+#: A stochastic mapper at a repetition level and seed.
+LevelMapperMaker = Callable[[int, int], object]
 
 Z = 4.0  # standard errors
 
@@ -108,3 +112,60 @@ def check_opaque_geometry_hides_and_cuts_the_volume(make: MapperMaker, size: int
     assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
     e = image_statistics.estimate(first, second, reference, level)
     assert e.bias <= 0.015, f"bias {e.bias:.4f} against the reference with the plane"
+
+
+class SceneRenders:
+    """One stochastic mapper on named scenes of scene_support at size x size pixels: its
+    images by repetition level and seed, the exact references, and the estimates from the
+    renders with seeds 1 and 2; each made once. ``levels`` gives each scene's repetition
+    levels for the checks of SCENE_CHECKS."""
+
+    def __init__(self, make: LevelMapperMaker, levels: Dict[str, Sequence[int]],
+                 size: int) -> None:
+        self.make = make
+        self.levels = levels
+        self.size = size
+        self._images: Dict[Tuple[str, int, int], np.ndarray] = {}
+        self._estimates: Dict[Tuple[str, int], image_statistics.Estimate] = {}
+
+    def image(self, name: str, level: int, seed: int) -> np.ndarray:
+        key = (name, level, seed)
+        if key not in self._images:
+            s = scene(name)
+            self._images[key] = render.render(s.grid, s.property, self.make(level, seed),
+                                              s.view, (self.size, self.size)).image
+        return self._images[key]
+
+    def reference(self, name: str) -> np.ndarray:
+        return reference(name, self.size)
+
+    def estimate(self, name: str, level: int) -> image_statistics.Estimate:
+        key = (name, level)
+        if key not in self._estimates:
+            self._estimates[key] = image_statistics.estimate(
+                self.image(name, level, 1), self.image(name, level, 2), self.reference(name),
+                level)
+        return self._estimates[key]
+
+    def estimates(self, name: str) -> List[image_statistics.Estimate]:
+        """The estimates at each of the scene's levels."""
+        return [self.estimate(name, level) for level in self.levels[name]]
+
+
+def _check_images_of_scene(renders: SceneRenders, name: str) -> None:
+    check_images_are_volumes(renders.image(name, renders.levels[name][-1], 1),
+                             renders.reference(name))
+
+
+#: The checks of a mapper on each of its scenes, by name, for a test parametrized over both:
+#: the images are volumes; the noise falls as 1 / L; the alpha noise is a (1 - a) / L; the
+#: RMSE falls to a small bias floor.
+SCENE_CHECKS: Dict[str, Callable[[SceneRenders, str], None]] = {
+    "images_are_volumes": _check_images_of_scene,
+    "noise_falls_as_one_over_repetitions":
+        lambda renders, name: check_noise_falls_as_one_over_repetitions(renders.estimates(name)),
+    "alpha_noise_is_bernoulli":
+        lambda renders, name: check_alpha_noise_is_bernoulli(renders.estimates(name)),
+    "rmse_falls_to_a_small_bias_floor":
+        lambda renders, name: check_rmse_falls_to_a_small_bias_floor(renders.estimates(name)),
+}

@@ -8,6 +8,8 @@ import vtk
 
 import spt
 
+from robustness_support import check_clamped_setting
+
 
 def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     mapper = spt.vtkSPTVolumeMapper()
@@ -43,14 +45,7 @@ def test_former_experiment_modules_still_work():
     ("PreIntegrationThicknessResolution", 64, 4, 1024),
 ])
 def test_settings_have_defaults_and_clamps(name, default, low, high):
-    mapper = spt.vtkSPTVolumeMapper()
-    get = getattr(mapper, "Get" + name)
-    set_ = getattr(mapper, "Set" + name)
-    assert get() == default
-    set_(low - 1)
-    assert get() == low
-    set_(high + 1)
-    assert get() == high
+    check_clamped_setting(spt.vtkSPTVolumeMapper(), name, default, low, high)
 
 
 def test_vector_mode_and_seed():

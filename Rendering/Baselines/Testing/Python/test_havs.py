@@ -18,8 +18,8 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import (ONE, check_second_window, opaque_plane, property_for,
-                                split_image, watch)
+from robustness_support import (ONE, check_clamped_setting, check_second_window, opaque_plane,
+                                property_for, split_image, watch)
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -210,12 +210,7 @@ def test_settings_have_defaults_and_clamps():
                                      ("KBufferSynchronization", 0, 0, 3),
                                      ("PreIntegrationScalarResolution", 128, 8, 1024),
                                      ("PreIntegrationThicknessResolution", 64, 4, 1024)]:
-        get, set_ = getattr(mapper, "Get" + name), getattr(mapper, "Set" + name)
-        assert get() == default, name
-        set_(low - 1)
-        assert get() == low, name
-        set_(high + 1)
-        assert get() == high, name
+        check_clamped_setting(mapper, name, default, low, high)
     mapper.SetKBufferSynchronizationToRasterizationOrder()
     assert mapper.GetKBufferSynchronization() == HAVS.RASTERIZATION_ORDER
     assert mapper.GetKBufferSynchronizationInUse() == -1

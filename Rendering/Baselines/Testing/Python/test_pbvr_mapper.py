@@ -12,7 +12,7 @@ import vtk
 import spt
 from spt import data, render, scenes
 
-from robustness_support import ONE, property_for, watch
+from robustness_support import ONE, check_clamped_setting, property_for, watch
 
 SIZE = (96, 96)
 
@@ -42,13 +42,7 @@ def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     ("MaximumProgressiveRepetitions", 4096, 1, 1 << 20),
 ])
 def test_settings_have_defaults_and_clamps(name, default, low, high):
-    mapper = spt.vtkPBVRVolumeMapper()
-    get, set_ = getattr(mapper, "Get" + name), getattr(mapper, "Set" + name)
-    assert get() == default
-    set_(low - 1)
-    assert get() == low
-    set_(high + 1)
-    assert get() == high
+    check_clamped_setting(spt.vtkPBVRVolumeMapper(), name, default, low, high)
 
 
 def test_print_self_lists_every_setting_and_report():

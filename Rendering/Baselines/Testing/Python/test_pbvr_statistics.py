@@ -15,7 +15,6 @@ Tolerances and references are those of test_spt_statistics.
 """
 
 import math
-from functools import lru_cache
 
 import numpy as np
 import pytest
@@ -26,61 +25,21 @@ from spt import data, render, scenes
 
 import image_statistics
 from spt_pytest_fixtures import load_or_skip
-from scene_support import reference, scene
-from statistics_checks import (Z, check_alpha_noise_is_bernoulli, check_images_are_volumes,
-                               check_noise_falls_as_one_over_repetitions,
+from statistics_checks import (SCENE_CHECKS, Z, SceneRenders,
                                check_opaque_geometry_hides_and_cuts_the_volume,
-                               check_rmse_falls_to_a_small_bias_floor,
                                check_subpixel_level_averages_subpixels)
 
 SIZE = 128
 LEVELS = {"spx": (4, 16, 64, 256), "bluntfin": (4, 16, 64)}
 SCENES = list(LEVELS)
-
-
-def _scene(name):
-    return scene(name)
-
-
-def _reference(name):
-    return reference(name, SIZE)
-
-
-@lru_cache(maxsize=None)
-def _pbvr(name, level, seed):
-    s = _scene(name)
-    return render.render(s.grid, s.property, render.pbvr_mapper(level, seed=seed), s.view,
-                         (SIZE, SIZE)).image
-
-
-@lru_cache(maxsize=None)
-def _estimate(name, level):
-    return image_statistics.estimate(_pbvr(name, level, 1), _pbvr(name, level, 2),
-                                     _reference(name), level)
+PBVR = SceneRenders(lambda level, seed: render.pbvr_mapper(level, seed=seed), LEVELS, SIZE)
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_images_are_volumes(name, have_display):
-    check_images_are_volumes(_pbvr(name, LEVELS[name][-1], 1), _reference(name))
-
-
-def _estimates(name):
-    return [_estimate(name, level) for level in LEVELS[name]]
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_noise_falls_as_one_over_repetitions(name, have_display):
-    check_noise_falls_as_one_over_repetitions(_estimates(name))
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_alpha_noise_is_bernoulli(name, have_display):
-    check_alpha_noise_is_bernoulli(_estimates(name))
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_rmse_falls_to_a_small_bias_floor(name, have_display):
-    check_rmse_falls_to_a_small_bias_floor(_estimates(name))
+@pytest.mark.parametrize("check", SCENE_CHECKS)
+def test_scene_statistics(check, name, have_display):
+    """Each check of statistics_checks.SCENE_CHECKS on each scene."""
+    SCENE_CHECKS[check](PBVR, name)
 
 
 def _erode(mask, iterations):

@@ -120,14 +120,13 @@ def halved_opacity(volume_property):
     return copy
 
 
-def main() -> None:
-    arguments = parse()
-    from spt import meshes, render, scenes
+def add_volumes(arguments, renderer, controller, scene):
+    """This rank's SPT volumes of the scene (two with --second-volume) in ``renderer``, each
+    with its piece of the mesh; returns their mappers and pieces."""
+    from spt import meshes, render
 
-    controller = controller_or_none(arguments.serial)
     rank = controller.GetLocalProcessId() if controller else 0
     ranks = controller.GetNumberOfProcesses() if controller else 1
-    scene = scenes.scene("default")
     grid = scene.grid
 
     def piece_of(grid, renamed):
@@ -141,12 +140,6 @@ def main() -> None:
     seed = 7 if rank == arguments.other_seed_on else arguments.seed
     volume_property = (halved_opacity(scene.property) if rank == arguments.other_opacity_on
                        else scene.property)
-    window, renderer = render.make_window(arguments.size, arguments.size)
-    if not arguments.keep_cullers:
-        # Every rank renders every frame, whatever its piece: a culler could skip one.
-        renderer.GetCullers().RemoveAllItems()
-    if arguments.empty_viewport_on in ("all", str(rank)):
-        renderer.SetViewport(0.0, 0.0, 0.0, 0.0)
     mappers, pieces = [], []
     for second in ((False, True) if arguments.second_volume else (False,)):
         target_error = 0.01 if rank == arguments.other_target_on else arguments.target_error
@@ -163,24 +156,50 @@ def main() -> None:
             volume.SetPosition(*second_offset(grid.GetBounds()))
         mappers.append(mapper)
         pieces.append(piece)
-    mapper, piece = mappers[0], pieces[0]
+    return mappers, pieces
+
+
+def render_frames(arguments, window, mappers):
+    """The frames' images, repetition counts and the first mapper's error estimates."""
+    from spt import render
+
+    images, counts, estimates = [], [], []
+    for _ in range(arguments.frames):
+        window.Render()
+        images.append(render.read_rgba(window))
+        counts.append([m.GetLastRepetitionCount() for m in mappers]
+                      if arguments.second_volume else mappers[0].GetLastRepetitionCount())
+        estimates.append(mappers[0].GetEstimatedError())
+    return images, counts, estimates
+
+
+def main() -> None:
+    arguments = parse()
+    from spt import render, scenes
+
+    controller = controller_or_none(arguments.serial)
+    rank = controller.GetLocalProcessId() if controller else 0
+    ranks = controller.GetNumberOfProcesses() if controller else 1
+    scene = scenes.scene("default")
+    grid = scene.grid
+    window, renderer = render.make_window(arguments.size, arguments.size)
+    if not arguments.keep_cullers:
+        # Every rank renders every frame, whatever its piece: a culler could skip one.
+        renderer.GetCullers().RemoveAllItems()
+    if arguments.empty_viewport_on in ("all", str(rank)):
+        renderer.SetViewport(0.0, 0.0, 0.0, 0.0)
+    mappers, pieces = add_volumes(arguments, renderer, controller, scene)
     if rank == arguments.opaque_on:
         renderer.AddActor(opaque_sphere(grid.GetBounds()))
     bounds = union_bounds(grid.GetBounds()) if arguments.second_volume else grid.GetBounds()
     render.place_camera(renderer, bounds, scene.view)
     if arguments.update_rate > 0.0:
         window.SetDesiredUpdateRate(arguments.update_rate)
-    images, counts, estimates = [], [], []
-    for _ in range(arguments.frames):
-        window.Render()
-        images.append(render.read_rgba(window))
-        counts.append([m.GetLastRepetitionCount() for m in mappers]
-                      if arguments.second_volume else mapper.GetLastRepetitionCount())
-        estimates.append(mapper.GetEstimatedError())
+    images, counts, estimates = render_frames(arguments, window, mappers)
     if rank == 0:
         np.save(arguments.output, np.stack(images))
-        report = {"ranks": ranks, "cells": piece.GetNumberOfCells(),
-                  "bytes": mapper.GetLastParallelBytes(), "repetitions": counts,
+        report = {"ranks": ranks, "cells": pieces[0].GetNumberOfCells(),
+                  "bytes": mappers[0].GetLastParallelBytes(), "repetitions": counts,
                   "estimated_errors": estimates}
         arguments.output.with_suffix(".json").write_text(json.dumps(report))
     window.Finalize()

@@ -21,12 +21,10 @@ import pytest
 
 from spt import metrics, render
 
-import image_statistics
 from scene_support import reference, scene
-from statistics_checks import (check_alpha_noise_is_bernoulli, check_images_are_volumes,
+from statistics_checks import (SCENE_CHECKS, SceneRenders,
                                check_noise_falls_as_one_over_repetitions,
                                check_opaque_geometry_hides_and_cuts_the_volume,
-                               check_rmse_falls_to_a_small_bias_floor,
                                check_subpixel_level_averages_subpixels)
 
 SIZE = 128
@@ -54,43 +52,24 @@ def _projected_tetrahedra_rmse(name):
 #: as users get it; "independent": the default estimator with independent thresholds, so
 #: that its repetitions are independent and its noise falls exactly as 1 / L.
 MODES = {"paper": render.PAPER_SAMPLING, "default": {}, "independent": {"stratified": False}}
+RENDERS = {mode: SceneRenders(lambda level, seed, sampling=sampling:
+                              render.spt_mapper(level, seed=seed, **sampling), LEVELS, SIZE)
+           for mode, sampling in MODES.items()}
 
 
-@lru_cache(maxsize=None)
 def _spt(name, level, seed, mode="paper"):
-    s = _scene(name)
-    return render.render(s.grid, s.property, render.spt_mapper(level, seed=seed, **MODES[mode]),
-                         s.view, (SIZE, SIZE)).image
+    return RENDERS[mode].image(name, level, seed)
 
 
-@lru_cache(maxsize=None)
 def _estimate(name, level, mode="paper"):
-    return image_statistics.estimate(_spt(name, level, 1, mode), _spt(name, level, 2, mode),
-                                     _reference(name), level)
+    return RENDERS[mode].estimate(name, level)
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_images_are_volumes(name, have_display):
-    check_images_are_volumes(_spt(name, LEVELS[name][-1], 1), _reference(name))
-
-
-def _estimates(name):
-    return [_estimate(name, level) for level in LEVELS[name]]
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_noise_falls_as_one_over_repetitions(name, have_display):
-    check_noise_falls_as_one_over_repetitions(_estimates(name))
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_alpha_noise_is_bernoulli(name, have_display):
-    check_alpha_noise_is_bernoulli(_estimates(name))
-
-
-@pytest.mark.parametrize("name", SCENES)
-def test_rmse_falls_to_a_small_bias_floor(name, have_display):
-    check_rmse_falls_to_a_small_bias_floor(_estimates(name))
+@pytest.mark.parametrize("check", SCENE_CHECKS)
+def test_scene_statistics(check, name, have_display):
+    """Each check of statistics_checks.SCENE_CHECKS on each scene, with the paper's sampling."""
+    SCENE_CHECKS[check](RENDERS["paper"], name)
 
 
 DEFAULT_LEVELS = (1, 4)
