@@ -4,10 +4,10 @@
 //
 // The CPU rasterizes the mapper's own faces (vtkHAVSFaceBuffers, same mesh, same sort) at the
 // pixel centers in the mapper's draw order, interpolates scalar and eye distance as the GPU
-// does, runs the same k-buffer insertion, flush and early termination, and composites through
-// the same pre-integration table with trilinear filtering. Pixels whose center lies within
-// 0.01 pixels of a triangle edge (where coverage is a matter of rasterizer precision) are left
-// out of the comparison.
+// does (HAVSFragmentModel.h), runs the same k-buffer insertion, flush and early termination,
+// and composites through the same pre-integration table with trilinear filtering
+// (HAVSKBufferModel.h). Pixels whose center lies within 0.01 pixels of a triangle edge (where
+// coverage is a matter of rasterizer precision) are left out of the comparison.
 //
 // The test can fail: the CPU image with a perturbed order (consecutive fragments of each pixel
 // swapped, or every fourth fragment's update lost, as in a read-modify-write race) differs
@@ -19,6 +19,7 @@
 // a soup of 40 overlapping random tetrahedra (every face on the boundary, fragments far from
 // sorted) and a jittered block of tetrahedra with a slot cut out (non-convex, gaps).
 
+#include "HAVSFragmentModel.h"
 #include "HAVSKBufferModel.h"
 
 #include "vtkHAVSFaceBuffers.h"
@@ -46,10 +47,8 @@
 #include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -58,18 +57,10 @@
 
 namespace
 {
+using namespace HAVSFragmentModel;
 using namespace HAVSKBufferModel;
 
 constexpr int Size = 96;
-constexpr double EdgeMargin = 0.01; // pixels (llvmpipe snaps vertices to 1/256 pixel)
-
-// What the CPU rasterizer found for one pixel: its fragments in draw order.
-struct PixelFragments
-{
-  std::vector<Entry> Fragments;
-  bool Ambiguous = false;
-  float LengthScale = 0.0f;
-};
 
 enum class Perturbation
 {
@@ -169,145 +160,6 @@ vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double un
   property->SetScalarOpacity(opacity);
   property->SetScalarOpacityUnitDistance(unitDistance);
   return property;
-}
-
-// A face of the mapper in view and window coordinates, with its clip w and scalars.
-struct ProjectedFace
-{
-  glm::dvec3 VC[3];
-  glm::dvec2 Window[3];
-  double W[3];
-  double Scalar[3];
-  double Area; // twice the signed window area: positive counter-clockwise
-};
-
-ProjectedFace ProjectFace(vtkHAVSFaceBuffers* faces, unsigned int face,
-  const glm::mat4& modelToView, const glm::mat4& viewToClip)
-{
-  ProjectedFace f;
-  for (int v = 0; v < 3; ++v)
-  {
-    const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
-    f.VC[v] = glm::dvec3(
-      modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
-    const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(f.VC[v], 1.0);
-    f.W[v] = clip.w;
-    f.Window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(Size);
-    f.Scalar[v] = faces->GetVertexScalars()[id];
-  }
-  const glm::dvec2 e01 = f.Window[1] - f.Window[0], e02 = f.Window[2] - f.Window[0];
-  f.Area = e01.x * e02.y - e01.y * e02.x;
-  return f;
-}
-
-// The pixels with their length scale from view to model distance along their rays.
-std::vector<PixelFragments> MakePixels(const vtkVolumeViewMatrices& m)
-{
-  const glm::mat4 clipToView = glm::make_mat4(m.DCVC);
-  const glm::mat3 viewToModel = glm::make_mat3(m.VCMCLinear);
-  std::vector<PixelFragments> pixels(Size * Size);
-  for (int y = 0; y < Size; ++y)
-  {
-    for (int x = 0; x < Size; ++x)
-    {
-      const glm::vec2 ndc((x + 0.5f) / Size * 2.0f - 1.0f, (y + 0.5f) / Size * 2.0f - 1.0f);
-      const glm::vec4 nearVC = clipToView * glm::vec4(ndc, -1.0f, 1.0f);
-      const glm::vec4 farVC = clipToView * glm::vec4(ndc, 1.0f, 1.0f);
-      const glm::vec3 ray = m.ParallelProjection
-        ? glm::vec3(0.0f, 0.0f, -1.0f)
-        : glm::normalize(glm::vec3(farVC) / farVC.w - glm::vec3(nearVC) / nearVC.w);
-      pixels[y * Size + x].LengthScale = glm::length(viewToModel * ray);
-    }
-  }
-  return pixels;
-}
-
-// Barycentric weights of the window point p in the face. Returns whether p is covered (within
-// EdgeMargin pixels of the inside); onEdge tells whether it is that close to an edge.
-bool Cover(const ProjectedFace& f, glm::dvec2 p, double barycentric[3], bool& onEdge)
-{
-  double nearest = 1e30;
-  bool inside = true;
-  for (int v = 0; v < 3; ++v)
-  {
-    const glm::dvec2 a = f.Window[(v + 1) % 3], b = f.Window[(v + 2) % 3];
-    const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / f.Area;
-    barycentric[v] = edge;
-    const double pixelsFromEdge = edge * std::abs(f.Area) / glm::length(b - a);
-    nearest = std::min(nearest, std::abs(pixelsFromEdge));
-    inside = inside && pixelsFromEdge > -EdgeMargin;
-  }
-  onEdge = nearest < EdgeMargin;
-  return inside;
-}
-
-// The fragment at the barycentric weights: scalar (with the crossing code of a boundary face)
-// and eye distance, interpolated perspective-correct, as the GPU does.
-Entry Interpolate(const ProjectedFace& f, const double barycentric[3], bool parallel)
-{
-  const bool boundary = f.Scalar[0] > 1.5;
-  // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
-  const float crossing = boundary ? (f.Area < 0.0 ? 2.0f : 4.0f) : 0.0f;
-  double sum = 0.0, weights[3];
-  for (int v = 0; v < 3; ++v)
-  {
-    weights[v] = barycentric[v] / f.W[v];
-    sum += weights[v];
-  }
-  glm::dvec3 positionVC(0.0);
-  double s = 0.0;
-  for (int v = 0; v < 3; ++v)
-  {
-    positionVC += weights[v] / sum * f.VC[v];
-    s += weights[v] / sum * f.Scalar[v];
-  }
-  const double distance = parallel ? -positionVC.z : glm::length(positionVC);
-  const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
-  return Entry{ code, float(distance) };
-}
-
-void RasterizeFace(const ProjectedFace& f, bool parallel, std::vector<PixelFragments>& pixels)
-{
-  const double lo[2] = { std::min({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
-    std::min({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
-  const double hi[2] = { std::max({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
-    std::max({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
-  for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(Size - 1, int(hi[1]) + 1); ++y)
-  {
-    for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(Size - 1, int(hi[0]) + 1); ++x)
-    {
-      double barycentric[3];
-      bool onEdge = false;
-      if (!Cover(f, glm::dvec2(x + 0.5, y + 0.5), barycentric, onEdge))
-      {
-        continue;
-      }
-      PixelFragments& pixel = pixels[y * Size + x];
-      if (onEdge)
-      {
-        pixel.Ambiguous = true;
-        continue;
-      }
-      pixel.Fragments.push_back(Interpolate(f, barycentric, parallel));
-    }
-  }
-}
-
-// The fragments of the mapper's faces, in its draw order, at every pixel center.
-std::vector<PixelFragments> Rasterize(vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m)
-{
-  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
-  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
-  std::vector<PixelFragments> pixels = MakePixels(m);
-  for (unsigned int face : faces->GetOrder())
-  {
-    const ProjectedFace f = ProjectFace(faces, face, modelToView, viewToClip);
-    if (f.Area != 0.0)
-    {
-      RasterizeFace(f, m.ParallelProjection, pixels);
-    }
-  }
-  return pixels;
 }
 
 std::vector<glm::vec4> Simulate(const std::vector<PixelFragments>& pixels, int kbufferSize,
@@ -457,7 +309,7 @@ struct CPUScene
       gpu.Mapper->GetPreIntegrationScalarResolution(),
       gpu.Mapper->GetPreIntegrationThicknessResolution());
     this->ThicknessToTable = float(1.0 / this->Mesh->GetMaxEdgeLength());
-    this->Pixels = Rasterize(this->Faces, matrices);
+    this->Pixels = Rasterize(this->Faces, matrices, Size);
   }
 
   Simulations Simulate(int k) const
