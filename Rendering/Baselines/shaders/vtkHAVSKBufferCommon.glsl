@@ -67,11 +67,14 @@ vec2 entries[KBUFFER_SIZE - 1];
 #define KBUFFER_WRITE(target, value) imageStore(target, ivec2(gl_FragCoord.xy), value)
 #endif
 
+// The first (second == 0) or second (scalar, distance) entry of a target's pair of them.
 vec2 entryOf(vec4 pair, int second)
 {
   return second == 0 ? pair.xy : pair.zw;
 }
 
+// Reads the pixel's k-buffer: the composited color into `accumulated`, the entries into
+// entries[].
 void loadKBuffer()
 {
   accumulated = KBUFFER_READ(kbufferTarget0);
@@ -89,12 +92,14 @@ void loadKBuffer()
   }
 }
 
+// Entries `first` and `first + 1` as one target's texel; past the last entry, an empty one.
 vec4 pairOf(int first)
 {
   vec2 second = first + 1 < KBUFFER_SIZE - 1 ? entries[first + 1] : vec2(0.0, EMPTY_DISTANCE);
   return vec4(entries[first], second);
 }
 
+// Writes the pixel's k-buffer back: `accumulated` and the entries, two per target.
 void storeKBuffer()
 {
   KBUFFER_WRITE(kbufferTarget0, accumulated);

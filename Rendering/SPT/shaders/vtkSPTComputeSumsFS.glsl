@@ -8,6 +8,7 @@
 in vec2 texCoord;
 uniform usampler3D sums; // (term, pixel): signed fixed point, SPT_FIXED_ONE per unit
 
+// Four sums of a sample, layers [layer, layer + 4), from signed fixed point to float.
 vec4 sumsAt(int layer, ivec2 pixel)
 {
   return vec4(int(texelFetch(sums, ivec3(layer, pixel), 0).r),

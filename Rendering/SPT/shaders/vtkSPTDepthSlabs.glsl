@@ -24,6 +24,7 @@ uniform vec4 slabStartsHigh;
 // alpha, m - c_k.
 layout(r32ui) coherent uniform uimage3D slabSums;
 
+// The slab that holds a window depth: how many of the slabs' starts are not beyond it.
 int slabOfDepth(float depth)
 {
   vec4 depths = vec4(depth);

@@ -45,8 +45,81 @@ int survivorsNotInFront(uint key, ivec2 pixel, int begin, int end)
 }
 #endif
 
+#ifdef SPT_VISIBILITY_WEIGHTED
+// The visibility estimator's counts: of the group's repetitions, how many have their nearest
+// survivor (in the key layers [base, base + lanes) of the segment's slab) not in front of the
+// key (x), and how many of those are in the second half (y). Each half's keys are sorted
+// (vtkSPTSurvivorsFS.glsl): those survivors are the tail of each half.
+//
+//   key layers:  base            base + split          base + lanes
+//                | first half    | second half         |
+//   sorted keys: [ . . . k k k k | . . k k k k k k     ]   k: not in front of the key
+//                  counts = (4 + 6, 6)
+ivec2 visibleCounts(uint key, ivec2 pixel, int base, int lanes)
+{
+  int split = clamp(secondHalfStart - repetition, 0, lanes);
+  int inSecondHalf = survivorsNotInFront(key, pixel, base + split, base + lanes);
+  int count = survivorsNotInFront(key, pixel, base, base + split) + inSecondHalf;
+  return ivec2(count, inSecondHalf);
+}
+
+// A segment's premultiplied color and opacity, as its depth slab weights and shifts it
+// (vtkSPTDepthSlabs.glsl): T_k (C_i + (m - c_k) alpha_i).
+vec4 slabWeightedColor(vec4 color, int slab, ivec2 pixel)
+{
+#ifdef SPT_DEPTH_SLABS
+  vec4 control = slabControl(slab, pixel);
+  color = control.x * vec4(color.rgb + control.yzw * color.a, color.a);
+#endif
+  return color;
+}
+#else
+// Whether the key is the nearest survivor of any of the group's repetitions (in the key layers
+// [base, base + lanes) of the segment's slab): a fragment that holds none adds nothing, and is
+// discarded before its color is looked up.
+bool holdsSurvivor(uint key, ivec2 pixel, int base, int lanes)
+{
+  bool holdsOne = false; // the minimum of some repetition is this fragment's key
+  for (int r = 0; r < lanes; ++r)
+  {
+    holdsOne = holdsOne || imageLoad(depthKeys, ivec3(base + r, pixel)).r == key;
+  }
+  return holdsOne;
+}
+
+// The survivor estimator's counts: of the group's repetitions, how many this fragment is the
+// survivor of (x), and how many of those are in the second half (y). The key holds 8 bits of
+// the cell's id: a fragment of another cell at the same depth may share it, so the
+// keep-or-discard decision at the fragment's opacity is checked too.
+ivec2 survivorCounts(uint key, float alpha, ivec2 pixel, int base, int lanes)
+{
+  int count = 0;
+  int inSecondHalf = 0;
+  for (int r = 0; r < lanes; ++r)
+  {
+    int wins = imageLoad(depthKeys, ivec3(base + r, pixel)).r == key &&
+        threshold(uint(repetition + r)) < alpha ? 1 : 0;
+    count += wins;
+    inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
+  }
+  return ivec2(count, inSecondHalf);
+}
+
+// A survivor's color, written opaque, as its depth slab weights and shifts it
+// (vtkSPTDepthSlabs.glsl): T_k (C_i / alpha_i + m - c_k).
+vec4 slabWeightedOpaque(vec4 color, int slab, ivec2 pixel)
+{
+  vec4 opaque = vec4(color.rgb / color.a, 1.0);
+#ifdef SPT_DEPTH_SLABS
+  vec4 control = slabControl(slab, pixel);
+  opaque = control.x * vec4(opaque.rgb + control.yzw, 1.0);
+#endif
+  return opaque;
+}
+#endif
+
 // What this fragment's (or the compute traversal's) sample adds to the sum and to the second
-// half's sum; false when it adds to none (then its color is not looked up).
+// half's sum, by the estimator; false when it adds to none (then its color is not looked up).
 bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
 {
   Segment segment;
@@ -61,51 +134,24 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   int slab;
   int base = firstLayerOfSlab(segment, slab);
 #ifdef SPT_VISIBILITY_WEIGHTED
-  // Each half's keys are sorted (vtkSPTSurvivorsFS.glsl): the survivors not in front of the
-  // fragment are the tail of each half.
-  int split = clamp(secondHalfStart - repetition, 0, lanes);
-  int inSecondHalf = survivorsNotInFront(key, pixel, base + split, base + lanes);
-  int count = survivorsNotInFront(key, pixel, base, base + split) + inSecondHalf;
-  if (count == 0)
+  ivec2 counts = visibleCounts(key, pixel, base, lanes);
+  if (counts.x == 0)
   {
     return false;
   }
-  vec4 color = preIntegrated(segment);
-#ifdef SPT_DEPTH_SLABS
-  vec4 control = slabControl(slab, pixel);
-  color = control.x * vec4(color.rgb + control.yzw * color.a, color.a);
-#endif
-  sum = float(count) * color;
-  secondHalf = float(inSecondHalf) * color;
+  vec4 color = slabWeightedColor(preIntegrated(segment), slab, pixel);
+  sum = float(counts.x) * color;
+  secondHalf = float(counts.y) * color;
 #else
-  bool holdsOne = false; // the minimum of some repetition is this fragment's key
-  for (int r = 0; r < lanes; ++r)
-  {
-    holdsOne = holdsOne || imageLoad(depthKeys, ivec3(base + r, pixel)).r == key;
-  }
-  if (!holdsOne)
+  if (!holdsSurvivor(key, pixel, base, lanes))
   {
     return false;
   }
-  // The key holds 8 bits of the cell's id: a fragment of another cell at the same depth may
-  // share it, so the keep-or-discard decision is checked too.
   vec4 color = preIntegrated(segment);
-  int count = 0;
-  int inSecondHalf = 0;
-  for (int r = 0; r < lanes; ++r)
-  {
-    int wins = imageLoad(depthKeys, ivec3(base + r, pixel)).r == key &&
-        threshold(uint(repetition + r)) < color.a ? 1 : 0;
-    count += wins;
-    inSecondHalf += repetition + r >= secondHalfStart ? wins : 0;
-  }
-  vec4 opaque = vec4(color.rgb / color.a, 1.0);
-#ifdef SPT_DEPTH_SLABS
-  vec4 control = slabControl(slab, pixel);
-  opaque = control.x * vec4(opaque.rgb + control.yzw, 1.0);
-#endif
-  sum = float(count) * opaque;
-  secondHalf = float(inSecondHalf) * opaque;
+  ivec2 counts = survivorCounts(key, color.a, pixel, base, lanes);
+  vec4 opaque = slabWeightedOpaque(color, slab, pixel);
+  sum = float(counts.x) * opaque;
+  secondHalf = float(counts.y) * opaque;
 #endif
   return true;
 }

@@ -13,9 +13,9 @@
 //   repetition. The survivor estimator asks which repetitions a fragment won, so its keys keep
 //   their order.
 // - It writes a depth no nearer than every repetition's nearest survivor (of the last depth
-//   slab that holds segments), and no color. The color traversal tests its fragments against it before shading
-//   them (early depth test): a fragment behind the survivors of all its repetitions adds
-//   nothing there. Where some repetition kept nothing, the far plane.
+//   slab that holds segments), and no color. The color traversal tests its fragments against
+//   it before shading them (early depth test): a fragment behind the survivors of all its
+//   repetitions adds nothing there. Where some repetition kept nothing, the far plane.
 
 in vec2 texCoord; // the quad covers the pass: pixel centers
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
@@ -70,14 +70,36 @@ int sortKeys(int begin, int end)
 }
 #endif
 
-void main()
+#ifdef SPT_SORT_KEYS
+// Sorts a slab's kept keys, gathered in keys[] (kept[0] of the first half from 0, kept[1] of
+// the second from `split`), and writes them back to its key layers from `base`: each half's at
+// the start of the half, and the rest of the half "nothing kept", the largest key, as a sort
+// of the whole half would leave it.
+//
+//   read:     [ 7 - 3 - 5 | - 9 - 2 - - ]    -: nothing kept (0xFFFFFFFF)
+//   written:  [ 3 5 7 - - | 2 9 - - - - ]    kept = (3, 2)
+void storeSortedKeys(int base, ivec2 pixel, int lanes, int split, int kept[2])
 {
-  ivec2 pixel = ivec2(floor(texCoord * passSize));
-  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
-  uint farthest = 0u;
-  // With depth slabs, each slab's layers are sorted apart, and only the survivors of the last
-  // slab that holds segments at the sample bound what the color traversal may skip: a segment
-  // of an earlier slab adds its color whatever lies behind it.
+  if (kept[0] + kept[1] > 0)
+  {
+    int firstHalf = sortKeys(0, kept[0]) * N;
+    int secondHalf = sortKeys(split, split + kept[1]) * N;
+    for (int r = 0; r < lanes; ++r)
+    {
+      bool second = r >= split;
+      bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
+      uint key = keys[(second ? secondHalf : firstHalf) + r];
+      imageStore(depthKeys, ivec3(base + r, pixel), uvec4(isKept ? key : 0xFFFFFFFFu));
+    }
+  }
+}
+#endif
+
+// The last depth slab that holds segments at the sample (0 when none does). Each slab's layers
+// are sorted apart, and only the survivors of that slab bound what the color traversal may
+// skip: a segment of an earlier slab adds its color whatever lies behind it.
+int lastSlabWithSegments(ivec2 pixel)
+{
   int lastSlab = SPT_DEPTH_SLABS - 1;
 #ifdef SPT_SLAB_TERMS
   while (lastSlab > 0 &&
@@ -86,48 +108,60 @@ void main()
     --lastSlab;
   }
 #endif
-  for (int slab = 0; slab < SPT_DEPTH_SLABS; ++slab)
+  return lastSlab;
+}
+
+// Reads one slab's nearest survivors: returns `farthest`, raised to the farthest of them when
+// the slab is lastSlab. With SPT_SORT_KEYS, sorts the slab's kept keys in place. Only the kept
+// keys are sorted: where few repetitions keep anything (thin parts of the volume, and outside
+// its footprint, where none does) that is far less work than sorting every repetition's key.
+uint readSlabSurvivors(int slab, int lastSlab, ivec2 pixel, int lanes, uint farthest)
+{
+  int base = slab * SPT_REPETITIONS_PER_PASS;
+#ifdef SPT_SORT_KEYS
+  int split = clamp(secondHalfFrom, 0, lanes);
+  int kept[2] = int[2](0, 0);
+#endif
+  for (int r = 0; r < lanes; ++r)
   {
-    int base = slab * SPT_REPETITIONS_PER_PASS;
+    uint key = imageLoad(depthKeys, ivec3(base + r, pixel)).r;
+    farthest = slab == lastSlab ? max(farthest, key) : farthest;
 #ifdef SPT_SORT_KEYS
-    // Only the kept keys are sorted: each half's are gathered at its start, and the rest of
-    // the half is "nothing kept", the largest key, as a sort of the whole half would leave it.
-    // Where few repetitions keep anything (thin parts of the volume, and outside its
-    // footprint, where none does) that is far less work than sorting every repetition's key.
-    int split = clamp(secondHalfFrom, 0, lanes);
-    int kept[2] = int[2](0, 0);
-#endif
-    for (int r = 0; r < lanes; ++r)
+    if (key != 0xFFFFFFFFu)
     {
-      uint key = imageLoad(depthKeys, ivec3(base + r, pixel)).r;
-      farthest = slab == lastSlab ? max(farthest, key) : farthest;
-#ifdef SPT_SORT_KEYS
-      if (key != 0xFFFFFFFFu)
-      {
-        int part = r < split ? 0 : 1;
-        keys[part * split + kept[part]] = key;
-        ++kept[part];
-      }
-#endif
-    }
-#ifdef SPT_SORT_KEYS
-    if (kept[0] + kept[1] > 0)
-    {
-      int firstHalf = sortKeys(0, kept[0]) * N;
-      int secondHalf = sortKeys(split, split + kept[1]) * N;
-      for (int r = 0; r < lanes; ++r)
-      {
-        bool second = r >= split;
-        bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
-        uint key = keys[(second ? secondHalf : firstHalf) + r];
-        imageStore(depthKeys, ivec3(base + r, pixel), uvec4(isKept ? key : 0xFFFFFFFFu));
-      }
+      int part = r < split ? 0 : 1;
+      keys[part * split + kept[part]] = key;
+      ++kept[part];
     }
 #endif
   }
-  // A key holds the depth in its upper 24 bits, rounded down; the next two steps up cover the
-  // rounding of the key and of this division.
-  float depth = float((farthest >> 8u) + 2u) / 16777215.0;
-  gl_FragDepth = farthest == 0xFFFFFFFFu ? 1.0 : min(depth, 1.0);
+#ifdef SPT_SORT_KEYS
+  storeSortedKeys(base, pixel, lanes, split, kept);
+#endif
+  return farthest;
+}
+
+// The window depth no nearer than a key's: a key holds the depth in its upper 24 bits,
+// rounded down, and the next two steps up cover the rounding of the key and of this division.
+// The far plane for the key of nothing kept.
+float windowDepthBehindKey(uint key)
+{
+  float windowDepth = float((key >> 8u) + 2u) / 16777215.0;
+  return key == 0xFFFFFFFFu ? 1.0 : min(windowDepth, 1.0);
+}
+
+// Sorts each slab's survivors (with SPT_SORT_KEYS) and writes the depth behind the farthest
+// survivor of the last slab that holds segments.
+void main()
+{
+  ivec2 pixel = ivec2(floor(texCoord * passSize));
+  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+  uint farthest = 0u;
+  int lastSlab = lastSlabWithSegments(pixel);
+  for (int slab = 0; slab < SPT_DEPTH_SLABS; ++slab)
+  {
+    farthest = readSlabSurvivors(slab, lastSlab, pixel, lanes, farthest);
+  }
+  gl_FragDepth = windowDepthBehindKey(farthest);
   gl_FragData[0] = vec4(0.0);
 }

@@ -72,6 +72,7 @@ struct Segment
   float frontDepth;
 };
 
+// The scalar at a point of this fragment's cell (the cell's own with scalars per cell).
 float scalarAt(uint pointId)
 {
 #ifdef SPT_CELL_SCALARS
@@ -318,6 +319,7 @@ int firstLayerOfSlab(Segment segment, out int slab)
   return slab * SPT_REPETITIONS_PER_PASS;
 }
 
+// A float uniform in [0, 1) from the upper 24 of 32 random bits (exactly representable).
 float unitFloat(uint bits)
 {
   return float(bits >> 8u) * (1.0 / 16777216.0);
@@ -409,6 +411,8 @@ float stratumThreshold(uint stratum, uint bits, uint n)
   return (float(stratum) + unitFloat(bits)) / float(n);
 }
 
+// The keep-or-discard threshold of repetition r (see the caches above): independent, or
+// jittered in the stratum that this fragment's order of the block gives r.
 float threshold(uint r)
 {
   uint bits = thresholdBits(r);
@@ -439,15 +443,16 @@ bool fewStrataKeep(float alpha, int first, int lanes)
   return 2.0 * alpha * float(n * blocks) < float(lanes);
 }
 
-// The repetition that visits a stratum of a block in this fragment's order, and whether it
-// keeps a fragment of this opacity: exactly threshold(r) < alpha, found from the stratum.
-// Strata are visited from 0 up; none from the first whose threshold cannot be below alpha.
+// Whether a stratum may keep a fragment of this opacity. Strata are visited from 0 up; none
+// from the first whose threshold cannot be below alpha.
 bool strataBelow(uint stratum, float alpha)
 {
   uint n = uint(stratumCount);
   return stratum < n && stratumThreshold(stratum, 0u, n) < alpha;
 }
 
+// The repetition that visits a stratum of a block in this fragment's order, and whether it
+// keeps a fragment of this opacity: exactly threshold(r) < alpha, found from the stratum.
 bool keptRepetition(uint block, uint stratum, float alpha, out uint r)
 {
   uint n = uint(stratumCount);

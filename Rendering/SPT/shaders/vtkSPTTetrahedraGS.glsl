@@ -53,8 +53,8 @@ flat out int clippedCell; // 1: the fragment stage computes the segment from the
 #endif
 
 vec3 vertexVC[4];
-vec2 vertexNDC[4];   // the projection, in normalized device coordinates
-float vertexDepth[4]; // and the depth
+vec2 vertexNDC[4];       // the projection, in normalized device coordinates
+float vertexDepthNDC[4]; // and the depth
 float vertexScalar[4];
 
 // A vertex's clip coordinates, from its view coordinates. Not kept in an array: Mesa 25's
@@ -71,15 +71,18 @@ vec4 plane1;
 vec4 plane2;
 vec4 plane3;
 vec4 scalarPlane;
-float nearestDepth; // of the cell's vertices, in normalized device coordinates
+float nearestDepthNDC; // of the cell's vertices
 
 //SPT::FacePlane::Impl
 
+// Twice the signed area of the triangle (a, b, c): positive when it turns counter-clockwise.
 float orient2D(vec2 a, vec2 b, vec2 c)
 {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
+// One vertex of the cell's triangles, with the cell's flat outputs: its id, its face planes
+// and scalar plane, and (with clipped cells) whether the fragment stage clips the ray itself.
 void emitVertex(vec4 position, int clipped)
 {
   gl_Position = position;
@@ -98,7 +101,7 @@ void emitVertex(vec4 position, int clipped)
 // An outline vertex, at the depth of the cell's nearest vertex.
 void emitOutline(int i)
 {
-  emitVertex(vec4(vertexNDC[i], nearestDepth, 1.0), 0);
+  emitVertex(vec4(vertexNDC[i], nearestDepthNDC, 1.0), 0);
 }
 
 #ifdef SPT_CLIPPED_CELLS
@@ -134,6 +137,13 @@ void emitExitFaces()
 #endif
 
 // Class 1: vertex i projects inside the triangle of the other three, which is the outline.
+//
+//             j
+//            / \            the outline is the triangle (j, k, l) of the other three
+//           /   \           vertices; i, inside it, is the thick point, where the ray
+//          /  i  \          through the cell is longest
+//         /       \
+//        k---------l
 void emitClass1(int i)
 {
   emitOutline((i + 1) % 4);
@@ -144,6 +154,14 @@ void emitClass1(int i)
 
 // Class 2: the projections of edges (a, b) and (c, d) cross; the outline alternates between
 // these diagonals, a, c, b, d, and is drawn as the strip a, c, d, b.
+//
+//        a---------c
+//        | \     / |        the diagonals (a, b) and (c, d) cross at x, the thick point;
+//        |   \ /   |        the strip's triangles (a, c, d) and (c, d, b) share the
+//        |    x    |        diagonal (c, d)
+//        |   / \   |
+//        | /     \ |
+//        d---------b
 void emitClass2(int a, int b, int c, int d)
 {
   emitOutline(a);
@@ -216,20 +234,85 @@ void emitBestClass2()
   }
 }
 
-void main()
+// Projects the four vertices once, into vertexVC, vertexNDC and vertexDepthNDC (the divisions
+// are used only when all four lie inside), and counts the vertices beyond each of the view
+// volume's near and side planes, which decide how the cell is drawn. Clip space puts a point
+// beyond those planes at z < -w, |x| > w or |y| > w (a point behind the eye too).
+//
+//                 y = w
+//          +---------------+
+//          |               |
+//   x = -w |     inside    | x = w       (the view volume seen from the eye)
+//          |               |
+//          +---------------+
+//                 y = -w
+//
+// beyond.x counts the vertices nearer than the near plane (z < -w), .y those left of x = -w,
+// .z those right of x = w, and .w those above y = w or below y = -w.
+ivec4 projectVertices()
 {
-  // Clip space puts a point outside the view volume's near and side planes at z < -w,
-  // |x| > w or |y| > w (a point behind the eye too); count the vertices beyond each plane.
-  // Each vertex is projected once (the divisions are used only when all four lie inside).
   ivec4 beyond = ivec4(0);
   for (int i = 0; i < 4; ++i)
   {
     vertexVC[i] = positionVCVSOutput[i];
-    vec4 p = vertexDC(i);
-    beyond += ivec4(p.z < -p.w, p.x < -p.w, p.x > p.w, p.y < -p.w || p.y > p.w);
-    vertexNDC[i] = p.xy / p.w;
-    vertexDepth[i] = p.z / p.w;
+    vec4 positionDC = vertexDC(i);
+    beyond += ivec4(positionDC.z < -positionDC.w, positionDC.x < -positionDC.w,
+      positionDC.x > positionDC.w, positionDC.y < -positionDC.w || positionDC.y > positionDC.w);
+    vertexNDC[i] = positionDC.xy / positionDC.w;
+    vertexDepthNDC[i] = positionDC.z / positionDC.w;
   }
+  return beyond;
+}
+
+// The scalars at the four vertices, into vertexScalar: the cell's own scalar at each of them
+// with scalars per cell, the points' otherwise.
+void readVertexScalars()
+{
+  for (int i = 0; i < 4; ++i)
+  {
+#ifdef SPT_CELL_SCALARS
+    vertexScalar[i] = texelFetch(cellScalars, primitiveOffset + gl_PrimitiveIDIn).r;
+#else
+    vertexScalar[i] = scalarVSOutput[i];
+#endif
+  }
+}
+
+// Whether the tetrahedron is flat: its vertices lie in one plane, so that it holds no volume
+// and its projection may cover no area (and its face planes do not exist).
+bool isFlat()
+{
+  vec3 v0 = vertexVC[0];
+  vec3 v1 = vertexVC[1];
+  vec3 v2 = vertexVC[2];
+  vec3 v3 = vertexVC[3];
+  return dot(cross(v1 - v0, v2 - v0), v3 - v0) == 0.0;
+}
+
+// The cell's flat outputs for the fragment stage: its four face planes and its scalar plane in
+// normalized device coordinates (vtkSPTFacePlane.glsl), and the depth of its nearest vertex,
+// at which the whole outline is rasterized (no segment lies in front of it).
+void makeCellPlanes()
+{
+  vec3 v0 = vertexVC[0];
+  vec3 v1 = vertexVC[1];
+  vec3 v2 = vertexVC[2];
+  vec3 v3 = vertexVC[3];
+  plane0 = ndcFacePlane(v0, v1, v2, v3);
+  plane1 = ndcFacePlane(v1, v2, v3, v0);
+  plane2 = ndcFacePlane(v2, v3, v0, v1);
+  plane3 = ndcFacePlane(v3, v0, v1, v2);
+  scalarPlane = vertexScalar[0] * plane0 + vertexScalar[1] * plane1 + vertexScalar[2] * plane2 +
+    vertexScalar[3] * plane3;
+  nearestDepthNDC = min(1.0,
+    min(min(vertexDepthNDC[0], vertexDepthNDC[1]), min(vertexDepthNDC[2], vertexDepthNDC[3])));
+}
+
+// Culls the cells that lie wholly beyond one plane of the view volume, draws a cell that the
+// near plane cuts as its exit faces, and any other as its projected outline, by its class.
+void main()
+{
+  ivec4 beyond = projectVertices();
   if (any(equal(beyond.xyz, ivec3(4))))
   {
     return; // wholly beyond one plane: nothing visible
@@ -241,32 +324,14 @@ void main()
 #endif
     return; // (without the near plane cutting the mesh's bounds, this cannot happen)
   }
-  for (int i = 0; i < 4; ++i)
-  {
-#ifdef SPT_CELL_SCALARS
-    vertexScalar[i] = texelFetch(cellScalars, primitiveOffset + gl_PrimitiveIDIn).r;
-#else
-    vertexScalar[i] = scalarVSOutput[i];
-#endif
-  }
+  readVertexScalars();
   float bestWeight;
   int bestVertex = findClass1(bestWeight);
-  vec3 v0 = vertexVC[0];
-  vec3 v1 = vertexVC[1];
-  vec3 v2 = vertexVC[2];
-  vec3 v3 = vertexVC[3];
-  if (bestVertex < 0 || dot(cross(v1 - v0, v2 - v0), v3 - v0) == 0.0)
+  if (bestVertex < 0 || isFlat())
   {
     return; // a flat tetrahedron: no volume, and its projection may cover no area
   }
-  plane0 = ndcFacePlane(v0, v1, v2, v3);
-  plane1 = ndcFacePlane(v1, v2, v3, v0);
-  plane2 = ndcFacePlane(v2, v3, v0, v1);
-  plane3 = ndcFacePlane(v3, v0, v1, v2);
-  scalarPlane = vertexScalar[0] * plane0 + vertexScalar[1] * plane1 + vertexScalar[2] * plane2 +
-    vertexScalar[3] * plane3;
-  nearestDepth =
-    min(1.0, min(min(vertexDepth[0], vertexDepth[1]), min(vertexDepth[2], vertexDepth[3])));
+  makeCellPlanes();
   // Inside the triangle of the other three (or on its outline): class 1.
   const float insideTolerance = 1.0e-6;
   if (bestWeight >= -insideTolerance)
