@@ -2,5 +2,8 @@
 SPTRenderingSPT, SPTRenderingParallel, SPTRenderingBaselines and SPTRenderingEGL. Import them
 from ``spt`` itself."""
 
-from . import (vtkHAVSVolumeMapper, vtkPBVRVolumeMapper, vtkSPTEGLRenderWindow,  # noqa: F401
-               vtkSPTVolumeMapper, vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper)
+from . import (HAVE_BASELINES, vtkSPTEGLRenderWindow, vtkSPTVolumeMapper,  # noqa: F401
+               vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper)
+
+if HAVE_BASELINES:
+    from . import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper  # noqa: F401

@@ -23,8 +23,9 @@ from vtkmodules import vtkRenderingOpenGL2 as _vtkRenderingOpenGL2  # noqa: F401
 from vtkmodules import vtkRenderingVolume as _vtkRenderingVolume  # noqa: F401
 from vtkmodules import vtkParallelCore as _vtkParallelCore  # noqa: F401
 
+import importlib.util as _importlib_util
+
 from .SPTMeshing import vtkTetGenMesher
-from .SPTRenderingBaselines import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper
 from .SPTRenderingCore import vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper
 from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow, vtkSPTEGLRenderWindow
 # Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
@@ -33,7 +34,14 @@ from .SPTRenderingParallel import vtkPSPTVolumeMapper
 from .SPTRenderingSPT import vtkSPTVolumeMapper
 
 __all__ = [
-    "vtkHAVSVolumeMapper", "vtkHeadlessEGLRenderWindow", "vtkPBVRVolumeMapper",
-    "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow", "vtkSPTVolumeMapper",
-    "vtkStochasticVolumeMapper", "vtkTetGenMesher", "vtkTetrahedralVolumeMapper"]
+    "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow",
+    "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetGenMesher",
+    "vtkTetrahedralVolumeMapper"]
+
+#: Whether the build has the baselines SPT is compared with (SPT_BUILD_BASELINES).
+HAVE_BASELINES = _importlib_util.find_spec(__name__ + ".SPTRenderingBaselines") is not None
+if HAVE_BASELINES:
+    from .SPTRenderingBaselines import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper
+
+    __all__ += ["vtkHAVSVolumeMapper", "vtkPBVRVolumeMapper"]
 __version__ = "0.1.0"

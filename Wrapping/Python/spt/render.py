@@ -39,8 +39,10 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window facto
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
 from . import metrics, raycast
-from . import (vtkHAVSVolumeMapper, vtkHeadlessEGLRenderWindow, vtkPBVRVolumeMapper,
-               vtkSPTVolumeMapper)
+from . import HAVE_BASELINES, vtkHeadlessEGLRenderWindow, vtkSPTVolumeMapper
+
+if HAVE_BASELINES:
+    from . import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper
 
 
 @dataclasses.dataclass(frozen=True)
@@ -110,21 +112,29 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
     return mapper
 
 
-def havs_mapper(kbuffer_size: int = 6) -> vtkHAVSVolumeMapper:
+def _require_baselines() -> None:
+    if not HAVE_BASELINES:
+        raise RuntimeError("this build of spt has no HAVS-like and PBVR mappers (configured "
+                           "with SPT_BUILD_BASELINES=OFF)")
+
+
+def havs_mapper(kbuffer_size: int = 6) -> "vtkHAVSVolumeMapper":
     """The HAVS-like sorted baseline (faces radix-sorted by centroid distance on the CPU, a
     k-buffer of ``kbuffer_size`` fragments per pixel on the GPU)."""
     if not 2 <= kbuffer_size <= 6:
         raise ValueError(f"the k-buffer size must be 2..6, not {kbuffer_size}")
+    _require_baselines()
     mapper = vtkHAVSVolumeMapper()
     mapper.SetKBufferSize(kbuffer_size)
     return mapper
 
 
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
-                cell_average: bool = False) -> vtkPBVRVolumeMapper:
+                cell_average: bool = False) -> "vtkPBVRVolumeMapper":
     """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
     selects the papers' one-density-per-cell sampling instead of exact rejection sampling.
     The time budget is off: the image has exactly ``repetitions`` particle sets."""
+    _require_baselines()
     mapper = vtkPBVRVolumeMapper()
     mapper.SetRepetitionLevel(repetitions)
     mapper.SetSubpixelLevel(subpixels)
@@ -374,7 +384,7 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
     if hasattr(mapper, "GetLastComputedCellCount"):
         report["point_cells"] = float(mapper.GetLastPointCellCount())
         report["computed_cells"] = float(mapper.GetLastComputedCellCount())
-    if isinstance(mapper, vtkPBVRVolumeMapper):
+    if HAVE_BASELINES and isinstance(mapper, vtkPBVRVolumeMapper):
         report["particles"] = float(mapper.GetNumberOfParticles())
         report["particle_sets"] = float(mapper.GetNumberOfParticleSets())
         report["generation_seconds"] = mapper.GetGenerationTime()
