@@ -19,7 +19,7 @@
  * a fragment where the ray leaves the mesh and one where it enters it again (the gaps of
  * non-convex meshes).
  *
- * Private helper of the SPT module, used by vtkHAVSVolumeMapper; not wrapped.
+ * Private helper of SPT::RenderingBaselines, used by vtkHAVSVolumeMapper; not wrapped.
  */
 
 #ifndef vtkHAVSFaceBuffers_h

@@ -25,7 +25,7 @@
  *   llvmpipe does (one thread per screen tile runs the tile's binned primitives in submission
  *   order); a race anywhere else. Never chosen automatically.
  *
- * Private helper of the SPT module, used by vtkHAVSVolumeMapper; not wrapped.
+ * Private helper of SPT::RenderingBaselines, used by vtkHAVSVolumeMapper; not wrapped.
  */
 
 #ifndef vtkHAVSKBuffer_h

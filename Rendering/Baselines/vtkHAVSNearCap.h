@@ -15,7 +15,7 @@
  * polygons of neighbouring tetrahedra share their edges exactly and cover every pixel once.
  * They lie on the near plane: draw them with GL_DEPTH_CLAMP so that none is clipped.
  *
- * Private helper of the SPT module, used by vtkHAVSVolumeMapper; not wrapped.
+ * Private helper of SPT::RenderingBaselines, used by vtkHAVSVolumeMapper; not wrapped.
  */
 
 #ifndef vtkHAVSNearCap_h

@@ -36,7 +36,7 @@
  * from [-0.5, 0.5] to [0, 65535], and its scalar as a transfer-function coordinate in [0, 1],
  * mapped to [0, 65535]. Positions are exact to 1/131070 of the mesh's largest extent.
  *
- * Private helper of the SPT module, used by vtkPBVRVolumeMapper; not wrapped.
+ * Private helper of SPT::RenderingBaselines, used by vtkPBVRVolumeMapper; not wrapped.
  */
 
 #ifndef vtkPBVRParticleGenerator_h

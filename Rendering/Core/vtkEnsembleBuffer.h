@@ -17,7 +17,7 @@
  * is corrected by the same difference times the segments' mean color (a control variate with
  * a deterministic coefficient: the expectation is unchanged, the alpha noise is gone).
  *
- * Private helper of the SPT module, shared by its mappers; not wrapped.
+ * Private helper of SPT::RenderingCore, shared by the mappers; not wrapped.
  */
 
 #ifndef vtkEnsembleBuffer_h

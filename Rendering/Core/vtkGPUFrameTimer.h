@@ -6,7 +6,7 @@
  * the time is then unknown); Stop() ends it and waits for the result, in seconds. Unlike
  * glFinish() and a CPU clock, the time is the GPU's own, whatever the host did meanwhile.
  *
- * Private helper of the SPT module, shared by its mappers; not wrapped.
+ * Private helper of SPT::RenderingCore, shared by the mappers; not wrapped.
  */
 
 #ifndef vtkGPUFrameTimer_h

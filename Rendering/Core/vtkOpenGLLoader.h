@@ -8,7 +8,7 @@
  * The capability queries below ask the current context itself, so they read the same with
  * either loader (GLEW's GLEW_VERSION_x_y and glad's GLAD_GL_VERSION_x_y differ).
  *
- * Private header of the SPT module and its tests; not installed.
+ * Private header of SPT::RenderingCore, used by the project's modules and tests; not installed.
  */
 
 #ifndef vtkOpenGLLoader_h

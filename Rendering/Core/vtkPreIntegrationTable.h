@@ -13,7 +13,7 @@
  * emitted light is C(s) tau(s) (Moreland and Angel 2004), so a homogeneous segment of length d
  * has alpha = 1 - exp(-tau d) and premultiplied color C alpha.
  *
- * Private helper of the SPT module, shared by its mappers; not wrapped.
+ * Private helper of SPT::RenderingCore, shared by the mappers; not wrapped.
  */
 
 #ifndef vtkPreIntegrationTable_h

@@ -21,7 +21,7 @@ int vtkSceneDepthTexture::QueryFormat(int* hasDepth)
   if (glCheckFramebufferStatus(GL_READ_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
   {
     // Nothing to read depth from: an incomplete framebuffer, or no default framebuffer at
-    // all (a context without a surface, as vtkSPTEGLRenderWindow's, outside VTK's own).
+    // all (a context without a surface, as vtkHeadlessEGLRenderWindow's, outside VTK's own).
     *hasDepth = 0;
     return vtkTextureObject::Float32;
   }

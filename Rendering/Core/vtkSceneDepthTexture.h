@@ -8,7 +8,7 @@
  * (glBlitFramebuffer copies depth only between identical formats), and copies that depth
  * into it at the start of a frame. Without a readable depth buffer it is the far plane.
  *
- * Private helper of the SPT module, shared by its framebuffers; not wrapped.
+ * Private helper of SPT::RenderingCore, shared by the mappers' framebuffers; not wrapped.
  */
 
 #ifndef vtkSceneDepthTexture_h

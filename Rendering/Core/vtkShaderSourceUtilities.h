@@ -1,6 +1,6 @@
 /**
  * @file    vtkShaderSourceUtilities.h
- * @brief   small helpers shared by the SPT mappers' shader set-up; not wrapped
+ * @brief   small helpers shared by the mappers' shader set-up; not wrapped
  */
 
 #ifndef vtkShaderSourceUtilities_h

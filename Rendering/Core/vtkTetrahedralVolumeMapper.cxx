@@ -81,14 +81,15 @@ bool vtkTetrahedralVolumeMapper::CheckContext(vtkOpenGLRenderWindow* window)
   {
     this->ReportedContextError = window->GetContextCreationTime();
     const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    vtkErrorMacro(<< this->GetClassName() << " needs OpenGL 3.2 or later (core profile, "
-                  << "geometry shaders); this context is "
-                  << (major > 0 ? "OpenGL " + std::to_string(major) + "." + std::to_string(minor)
-                                : std::string("not a usable OpenGL context"))
-                  << " (" << (renderer ? renderer : "no renderer") << ", " << window->GetClassName()
-                  << "). Update the graphics driver, or use Mesa's llvmpipe (Debian: "
-                     "libgl1-mesa-dri; OpenGL 4.5); without X, render in vtkSPTEGLRenderWindow. "
-                     "Nothing is drawn.");
+    vtkErrorMacro(
+      << this->GetClassName() << " needs OpenGL 3.2 or later (core profile, "
+      << "geometry shaders); this context is "
+      << (major > 0 ? "OpenGL " + std::to_string(major) + "." + std::to_string(minor)
+                    : std::string("not a usable OpenGL context"))
+      << " (" << (renderer ? renderer : "no renderer") << ", " << window->GetClassName()
+      << "). Update the graphics driver, or use Mesa's llvmpipe (Debian: "
+         "libgl1-mesa-dri; OpenGL 4.5); without X, render in vtkHeadlessEGLRenderWindow. "
+         "Nothing is drawn.");
   }
   return false;
 }
