@@ -55,8 +55,8 @@ public:
    * (renderer->GetCullers()->RemoveAllItems(), as ParaView's parallel rendering does; a
    * warning says so). Needs image load/store (OpenGL 4.4) on every process.
    */
-  void SetController(vtkMultiProcessController* controller);
-  vtkMultiProcessController* GetController();
+  void SetController(vtkMultiProcessController* controller) override;
+  vtkMultiProcessController* GetController() override;
   ///@}
 
   /**

@@ -67,6 +67,7 @@
 #include <utility> // For the shared volumes
 #include <vector>  // For the shared volumes
 
+class vtkMultiProcessController;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -304,6 +305,16 @@ public:
    * nothing drawn).
    */
   vtkGetMacro(EstimatedError, double);
+
+  ///@{
+  /**
+   * Deprecated here: the controller of a parallel render is vtkPSPTVolumeMapper's
+   * (SPT::RenderingParallel), which vtkSPTVolumeMapper::New() makes wherever that module is
+   * loaded. On a mapper that is not one, setting a controller is an error and none is kept.
+   */
+  virtual void SetController(vtkMultiProcessController* controller);
+  virtual vtkMultiProcessController* GetController();
+  ///@}
 
   /**
    * The bytes this mapper holds on the GPU after the last render: mesh buffers,
