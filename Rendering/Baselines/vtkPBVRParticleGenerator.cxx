@@ -1,4 +1,5 @@
 #include "vtkPBVRParticleGenerator.h"
+#include "vtkPBVRVolumeMapper.h"
 
 #include "vtkObjectFactory.h"
 #include "vtkSMPTools.h"
@@ -258,7 +259,7 @@ public:
   /// Expected candidates of the cell over all sets.
   double CandidateMean(const Cell& cell) const
   {
-    const double tau = this->Options.SamplingMode == vtkPBVRParticleGenerator::CELL_AVERAGE
+    const double tau = this->Options.SamplingMode == vtkPBVRVolumeMapper::CELL_AVERAGE
       ? this->Table.At(0.25f * (cell.Scalars.x + cell.Scalars.y + cell.Scalars.z + cell.Scalars.w))
       : this->Table.Max(cell.MinScalar, cell.MaxScalar);
     return this->Options.Sets * tau * cell.Volume / this->Options.Footprint;
@@ -286,7 +287,7 @@ private:
     {
       const Cell cell = this->Load(t);
       RandomStream random((uint64_t(this->Options.Seed) << 32) | uint64_t(t));
-      if (this->Options.SamplingMode == vtkPBVRParticleGenerator::CELL_AVERAGE)
+      if (this->Options.SamplingMode == vtkPBVRVolumeMapper::CELL_AVERAGE)
       {
         this->SampleAverage(cell, random, block);
       }
@@ -409,11 +410,13 @@ bool vtkPBVRParticleGenerator::Generate(
   }
   const double limit = static_cast<double>(settings.MaximumParticles);
   if (candidates > MaximumCandidatesPerParticle * limit + 1.0e6 ||
-    (settings.SamplingMode == CELL_AVERAGE && candidates > limit * 1.01 + 100.0))
+    (settings.SamplingMode == vtkPBVRVolumeMapper::CELL_AVERAGE &&
+      candidates > limit * 1.01 + 100.0))
   {
     std::ostringstream reason;
     reason << "The particles would not fit: about " << std::llround(candidates)
-           << (settings.SamplingMode == CELL_AVERAGE ? " particles" : " candidate particles")
+           << (settings.SamplingMode == vtkPBVRVolumeMapper::CELL_AVERAGE ? " particles"
+                                                                          : " candidate particles")
            << " for " << settings.Sets << " sets, and the memory holds at most "
            << settings.MaximumParticles << ".";
     return this->Fail(reason.str());

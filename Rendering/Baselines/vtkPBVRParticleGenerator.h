@@ -57,12 +57,6 @@ public:
   vtkTypeMacro(vtkPBVRParticleGenerator, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum SamplingModes
-  {
-    REJECTION = 0,
-    CELL_AVERAGE = 1
-  };
-
   static constexpr int ComponentsPerParticle = 4;
   struct Block; // the particles of a block of cells, before they are ordered by set
   static constexpr size_t BytesPerParticle = ComponentsPerParticle * sizeof(unsigned short);
@@ -72,7 +66,7 @@ public:
     double Footprint = 0.0; // particle cross-section, normalized model units squared
     int Sets = 1;           // independent particle sets (repetitions), at most 65536
     unsigned int Seed = 0;
-    int SamplingMode = REJECTION;
+    int SamplingMode = 0;        // a vtkPBVRVolumeMapper::SamplingModeType (0: REJECTION)
     size_t MaximumParticles = 0; // generation fails rather than exceed it
   };
 

@@ -10,6 +10,7 @@
 //   settings fail with a message and no particles.
 
 #include "vtkPBVRParticleGenerator.h"
+#include "vtkPBVRVolumeMapper.h"
 #include "vtkTetrahedralMesh.h"
 
 #include "vtkDoubleArray.h"
@@ -188,7 +189,7 @@ void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failur
   std::cout << "thin peak, rejection: " << peakTotal << " particles (expected " << peakExpected
             << ")\n";
   failures.Check(std::abs(peakTotal - peakExpected) < 5.0 * std::sqrt(peakExpected), "peak: count");
-  settings.SamplingMode = vtkPBVRParticleGenerator::CELL_AVERAGE;
+  settings.SamplingMode = vtkPBVRVolumeMapper::CELL_AVERAGE;
   failures.Check(generator->Generate(mesh, samples, settings), "peak, cell average: succeeds");
   std::cout << "thin peak, cell average: " << generator->GetNumberOfParticles() << " particles\n";
   failures.Check(
@@ -201,7 +202,7 @@ void TestCellAverageRounding(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCou
   mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(2000, 0);
-  settings.SamplingMode = vtkPBVRParticleGenerator::CELL_AVERAGE;
+  settings.SamplingMode = vtkPBVRVolumeMapper::CELL_AVERAGE;
   const double tau = 2.5 * Footprint / Volume; // 2.5 particles per set
   failures.Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "cell average: succeeds");
