@@ -94,9 +94,10 @@ public:
   // composited; false where it cannot start. A collective call.
   bool StartParallelAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target,
     const vtkSPTFrame::Settings& settings, const FramePlan& plan);
-  // What the mappers of the frame report of its traversals: the cells drawn as points, and
-  // those computed, of this rank's pieces (`owners`); none for the others of `all`.
-  static void ReportCellCounts(const vtkSPTParallelFrame& frame,
+  // What the mappers of the frame report of it (GetFrameStatistics()): the image's
+  // repetitions and error, the bytes exchanged, and the cells drawn as points and those
+  // computed of this rank's pieces (`owners`); none for the others of `all`.
+  void ReportStatistics(vtkSPTVolumeMapper* self, const vtkSPTParallelFrame& frame,
     const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all);
   // Rank 0: the opaque geometry of every rank, then the volume resolved over it.
   void ResolveOnRoot(vtkSPTVolumeMapper* self, const RenderTarget& target);
@@ -136,7 +137,7 @@ vtkMultiProcessController* vtkPSPTVolumeMapper::GetController()
 
 vtkIdType vtkPSPTVolumeMapper::GetLastParallelBytes()
 {
-  return static_cast<vtkIdType>(this->Internals->Reduction->GetBytes());
+  return this->GetFrameStatistics()->GetParallelBytes();
 }
 
 bool vtkPSPTVolumeMapper::RenderAcrossRanks(vtkRenderer* ren, const SharedVolumeList& shared)
@@ -177,7 +178,6 @@ void vtkPSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Controller: " << this->GetController() << "\n";
-  os << indent << "LastParallelBytes: " << this->GetLastParallelBytes() << "\n";
 }
 
 void vtkPSPTVolumeMapper::vtkInternals::DescribeMesh(
@@ -539,7 +539,6 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   // A failure on any rank is known to all at a shared decision: then no rank resolves.
   const bool ok = drawn >= 0 && frame.Finish();
   const double seconds = self->StopTiming();
-  ReportCellCounts(frame, owners, all);
   ostate->PopFramebufferBindings();
   if (!ok)
   {
@@ -548,29 +547,31 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   }
   self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   spt.CoverageDrawn = spt.CoverageDrawn || (plan.Coverage && drawn > 0);
-  for (vtkSPTVolumeMapper* mapper : all)
-  {
-    mapper->EstimatedError = spt.ImageError(self);
-    mapper->LastRepetitionCount = self->GetAccumulatedRepetitions();
-  }
+  this->ReportStatistics(self, frame, owners, all);
   if (root)
   {
     this->ResolveOnRoot(self, target);
   }
 }
 
-void vtkPSPTVolumeMapper::vtkInternals::ReportCellCounts(const vtkSPTParallelFrame& frame,
-  const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all)
+void vtkPSPTVolumeMapper::vtkInternals::ReportStatistics(vtkSPTVolumeMapper* self,
+  const vtkSPTParallelFrame& frame, const std::vector<vtkSPTVolumeMapper*>& owners,
+  const std::vector<vtkSPTVolumeMapper*>& all)
 {
+  vtkSPTFrameStatistics::Values values;
+  values.RepetitionCount = self->GetAccumulatedRepetitions();
+  values.EstimatedError = Of(self).ImageError(self);
+  values.DepthSlabs = frame.GetDepthSlabs();
+  values.ParallelBytes = static_cast<vtkIdType>(this->Reduction->GetBytes());
   for (vtkSPTVolumeMapper* mapper : all)
   {
-    mapper->LastPointCellCount = 0;
-    mapper->LastComputedCellCount = 0;
-  }
-  for (size_t v = 0; v < owners.size(); ++v)
-  {
-    owners[v]->LastPointCellCount = frame.GetPointCellCount(v);
-    owners[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
+    mapper->EstimatedError = values.EstimatedError;
+    mapper->LastRepetitionCount = values.RepetitionCount;
+    const auto owner = std::find(owners.begin(), owners.end(), mapper);
+    const size_t v = static_cast<size_t>(owner - owners.begin());
+    values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
+    values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
+    mapper->FrameStatistics->Record(values);
   }
 }
 

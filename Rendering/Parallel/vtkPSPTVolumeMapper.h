@@ -5,7 +5,22 @@
  * Each rank draws its own piece of the data set as it is (any shape, interleaved, with
  * overlapping bounds), with no redistribution and no compositing in visibility order: the
  * ranks' depth keys are combined by a global minimum and their sums by a global sum, and rank
- * 0 resolves the image of the whole. Without a controller it is vtkSPTVolumeMapper.
+ * 0 resolves the image of the whole over its own scene, and marks the volume's pixels at the
+ * near plane of its depth buffer, so that a depth compositor (ParaView's IceT) keeps them; the
+ * other ranks draw nothing of the volume. Without a controller it is vtkSPTVolumeMapper.
+ *
+ * The random numbers follow the cells' global ids (the input's cell-data GlobalIds, which the
+ * mapper uses with or without a controller whenever the input has them), so the image is that
+ * of one process rendering the whole with the same seed. Every process must render every
+ * frame, with the same settings, image size and scalars (an array of the same name and number
+ * of components); otherwise rank 0 reports the first rank that differs and nothing is drawn.
+ * TargetError, ProgressiveRefinement and AutoAdjustRepetitions apply as in one process: rank 0
+ * estimates the noise of the whole image and every rank follows its estimate; the ranks
+ * continue an accumulation only if all do, and draw the fewest repetitions any rank's time
+ * budget allows. Every SPT volume of the renderer is combined. A renderer's frustum culler
+ * would skip the render of a rank whose piece lies outside the view while the others wait for
+ * it: remove it (renderer->GetCullers()->RemoveAllItems(), as ParaView's parallel rendering
+ * does; a warning says so). Needs image load/store (OpenGL 4.4) on every process.
  *
  * This module overrides vtkSPTVolumeMapper in VTK's object factory: where it is loaded (the
  * Python package spt, the ParaView plugin, a program that initializes the module),
@@ -19,6 +34,7 @@
 #define vtkPSPTVolumeMapper_h
 
 #include "SPTRenderingParallelModule.h" // For export macro
+#include "vtkDeprecation.h"             // For VTK_DEPRECATION
 #include "vtkSPTVolumeMapper.h"
 
 #include <memory> // For the internals
@@ -35,35 +51,17 @@ public:
   ///@{
   /**
    * The processes of a parallel render, each with its own piece of the data set; null (the
-   * default): this process renders alone. With a controller, every process renders and its
-   * image combines with the others' by reductions through the controller (a global minimum
-   * of the scene depth and of the depth keys, a sum of colors and coverage); rank 0 resolves
-   * the image of the whole over its own scene, and the other ranks draw nothing of the volume;
-   * rank 0 also marks the volume's pixels at the near plane of its depth buffer, so that a
-   * depth compositor (ParaView's IceT) keeps them.
-   * The random numbers follow the cells' global ids (the input's cell-data GlobalIds, which
-   * the mapper uses with or without a controller whenever the input has them), so the image
-   * is that of one process rendering the whole with the same seed. Every process must
-   * render every frame, with the same settings, image size and scalars (an array of the same
-   * name and number of components); otherwise rank 0 reports the first rank that differs and
-   * nothing is drawn. TargetError, ProgressiveRefinement and AutoAdjustRepetitions apply as in
-   * one process: rank 0 estimates the noise of the whole image (the halves' sums move to it
-   * after each step) and every rank follows its estimate; the ranks continue an accumulation
-   * only if all do, and draw the fewest repetitions any rank's time budget allows. Every SPT
-   * volume of the renderer is combined. A renderer's frustum culler would skip the render of
-   * a rank whose piece lies outside the view while the others wait for it: remove it
-   * (renderer->GetCullers()->RemoveAllItems(), as ParaView's parallel rendering does; a
-   * warning says so). Needs image load/store (OpenGL 4.4) on every process.
+   * default): this process renders alone. Every process must render every frame with the
+   * same settings, image size and scalars; rank 0 shows the image of the whole.
    */
   void SetController(vtkMultiProcessController* controller) override;
   vtkMultiProcessController* GetController() override;
   ///@}
 
   /**
-   * The bytes this process contributed to the reductions of the last parallel render (its
-   * share of the scene depth, the depth keys, the sums and, with TargetError, the halves' sums
-   * after each step, and the settings and decisions exchanged); 0 without a controller.
+   * Deprecated: GetFrameStatistics()->GetParallelBytes().
    */
+  VTK_DEPRECATION("Use GetFrameStatistics()->GetParallelBytes()")
   vtkIdType GetLastParallelBytes();
 
 protected:

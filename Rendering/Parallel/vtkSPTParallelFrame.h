@@ -70,6 +70,8 @@ public:
   {
     return this->Frame.GetComputedCellCount(volume);
   }
+  /// The depth slabs the frame draws.
+  int GetDepthSlabs() const { return this->Frame.GetDepthSlabs(); }
 
 private:
   static vtkSPTFrame::Settings WithExchanges(

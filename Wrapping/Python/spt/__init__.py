@@ -31,10 +31,11 @@ from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow, vtkSPTEGLRenderWindow
 # Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
 # vtkSPTVolumeMapper() then makes the mapper that also renders across MPI ranks.
 from .SPTRenderingParallel import vtkPSPTVolumeMapper
-from .SPTRenderingSPT import vtkSPTVolumeMapper
+from .SPTRenderingSPT import vtkSPTFrameStatistics, vtkSPTVolumeMapper
 
 __all__ = [
     "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow",
+    "vtkSPTFrameStatistics",
     "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetGenMesher",
     "vtkTetrahedralVolumeMapper"]
 

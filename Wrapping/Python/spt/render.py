@@ -381,9 +381,11 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
     report: Dict[str, float] = {}
     if hasattr(mapper, "GetGPUMemorySize"):
         report["gpu_memory"] = float(mapper.GetGPUMemorySize())
-    if hasattr(mapper, "GetLastComputedCellCount"):
-        report["point_cells"] = float(mapper.GetLastPointCellCount())
-        report["computed_cells"] = float(mapper.GetLastComputedCellCount())
+    if hasattr(mapper, "GetFrameStatistics"):
+        statistics = mapper.GetFrameStatistics()
+        report["point_cells"] = float(statistics.GetPointCellCount())
+        report["computed_cells"] = float(statistics.GetComputedCellCount())
+        report["depth_slabs"] = float(statistics.GetDepthSlabs())
     if HAVE_BASELINES and isinstance(mapper, vtkPBVRVolumeMapper):
         report["particles"] = float(mapper.GetNumberOfParticles())
         report["particle_sets"] = float(mapper.GetNumberOfParticleSets())

@@ -199,8 +199,8 @@ def main() -> None:
     if rank == 0:
         np.save(arguments.output, np.stack(images))
         report = {"ranks": ranks, "cells": pieces[0].GetNumberOfCells(),
-                  "bytes": mappers[0].GetLastParallelBytes(), "repetitions": counts,
-                  "estimated_errors": estimates}
+                  "bytes": mappers[0].GetFrameStatistics().GetParallelBytes(),
+                  "repetitions": counts, "estimated_errors": estimates}
         arguments.output.with_suffix(".json").write_text(json.dumps(report))
     window.Finalize()
 

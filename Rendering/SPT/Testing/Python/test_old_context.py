@@ -80,7 +80,8 @@ for compute in (True, False):
     mapper.SetComputeTraversal(compute)
     images.append(render.render(grid, data.default_transfer_function(grid), mapper,
                                 size=(128, 128)).image)
-    print("points", mapper.GetLastPointCellCount(), "computed", mapper.GetLastComputedCellCount())
+    statistics = mapper.GetFrameStatistics()
+    print("points", statistics.GetPointCellCount(), "computed", statistics.GetComputedCellCount())
 print("alpha", images[1][..., 3].max())
 print("difference", np.abs(images[0] - images[1]).max())
 """

@@ -47,7 +47,8 @@ def _render(name, compute, case="", level=16):
     mapper.SetComputeTraversal(compute)
     actors = (opaque_plane(grid),) if case == "opaque" else ()
     image = render.render(grid, s.property, mapper, view, (SIZE, SIZE), actors=actors).image
-    return (image, mapper.GetLastPointCellCount(), mapper.GetLastComputedCellCount(),
+    statistics = mapper.GetFrameStatistics()
+    return (image, statistics.GetPointCellCount(), statistics.GetComputedCellCount(),
             mapper.GetEstimatedError())
 
 
@@ -84,7 +85,7 @@ def test_compute_images_repeat(have_display):
     mapper.SetSmallCellSize(ALL_SMALL)
     mapper.ComputeTraversalOn()
     again = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
-    assert mapper.GetLastComputedCellCount() > 0
+    assert mapper.GetFrameStatistics().GetComputedCellCount() > 0
     np.testing.assert_array_equal(first, again)
 
 
@@ -106,13 +107,14 @@ def test_one_repetition_needs_no_keys(have_display):
     mapper = render.spt_mapper(1, seed=3)
     mapper.ComputeTraversalOn()
     image = render.render(s.grid, s.property, mapper, s.view, (256, 256)).image
-    points = mapper.GetLastPointCellCount()
+    points = mapper.GetFrameStatistics().GetPointCellCount()
     assert 0 < points < 0.5 * s.grid.GetNumberOfCells()
-    assert mapper.GetLastComputedCellCount() == 0
+    assert mapper.GetFrameStatistics().GetComputedCellCount() == 0
     assert image[..., 3].max() > 0.2
     mapper.SetRepetitionLevel(2)
     render.render(s.grid, s.property, mapper, s.view, (256, 256))
-    assert mapper.GetLastComputedCellCount() == points, "a group computes every point"
+    computed = mapper.GetFrameStatistics().GetComputedCellCount()
+    assert computed == points, "a group computes every point"
 
 
 def test_two_volumes_share_the_compute_traversal(have_display):
@@ -136,8 +138,8 @@ def test_two_volumes_share_the_compute_traversal(have_display):
         render.place_camera(renderer, union, s.view)
         window.Render()
         images.append(render.read_rgba(window))
-        counts = [m.GetLastComputedCellCount() for m in mappers]
-        points = [m.GetLastPointCellCount() for m in mappers]
+        counts = [m.GetFrameStatistics().GetComputedCellCount() for m in mappers]
+        points = [m.GetFrameStatistics().GetPointCellCount() for m in mappers]
         window.Finalize()
         if compute:
             assert all(p > 0 for p in points) and counts == points
@@ -164,7 +166,8 @@ def _automatic(name, size):
         mapper = render.spt_mapper(16, seed=3)
         mapper.SetComputeTraversal(mode)
         images.append(render.render(s.grid, s.property, mapper, s.view, (size, size)).image)
-        counts.append((mapper.GetLastPointCellCount(), mapper.GetLastComputedCellCount()))
+        statistics = mapper.GetFrameStatistics()
+        counts.append((statistics.GetPointCellCount(), statistics.GetComputedCellCount()))
     return counts, images
 
 

@@ -50,7 +50,8 @@ def _render(name, small_cell_size, view=None, cell_scalars=False, opaque=False, 
         mapper.SetRepetitionsPerPass(1)
     actors = (opaque_plane(grid),) if opaque else ()
     result = render.render(grid, prop, mapper, view or s.view, (SIZE, SIZE), actors=actors)
-    return result.image, mapper.GetLastPointCellCount(), mapper.GetNumberOfTetrahedra()
+    points = mapper.GetFrameStatistics().GetPointCellCount()
+    return result.image, points, mapper.GetNumberOfTetrahedra()
 
 
 def _check_same_image(points, triangles):
@@ -101,7 +102,7 @@ def test_points_need_the_mesh_in_front_of_the_near_plane(have_display):
     image = render.read_rgba(window)
     window.Finalize()
     assert image[..., 3].mean() > 0.05, "the view from inside is empty"
-    assert mapper.GetLastPointCellCount() == 0
+    assert mapper.GetFrameStatistics().GetPointCellCount() == 0
     _, small, tetrahedra = _render("default", 1.0)
     _, most, _ = _render("default", ALL_SMALL)
     assert small < most <= tetrahedra
@@ -134,7 +135,7 @@ def test_needles_are_drawn_as_triangles(have_display):
     mapper.SetSmallCellSize(ALL_SMALL)
     image = render.render(grid, prop, mapper, render.View(azimuth=30.0, elevation=20.0),
                           (SIZE, SIZE)).image
-    assert mapper.GetLastPointCellCount() == 1
+    assert mapper.GetFrameStatistics().GetPointCellCount() == 1
     covered = image[..., 3] > 0.05
     columns = np.nonzero(covered.any(axis=0))[0]
     assert columns.size > 0, "nothing drawn"

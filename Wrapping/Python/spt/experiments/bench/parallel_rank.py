@@ -85,7 +85,7 @@ def main(argv: Optional[Sequence[str]] = None) -> None:
     render.place_camera(renderer, scene.grid.GetBounds(), scene.view)
     frames = render_frames(window, mapper, arguments.frames, MPI.COMM_WORLD.Barrier)
     measures = {"rank": rank, "cells": piece.GetNumberOfCells(), "frames": frames,
-                "bytes_per_frame": mapper.GetLastParallelBytes(),
+                "bytes_per_frame": mapper.GetFrameStatistics().GetParallelBytes(),
                 "piece_bytes": piece.GetActualMemorySize() * 1024,
                 "gpu_bytes": mapper.GetGPUMemorySize(),
                 "peak_rss_bytes": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}

@@ -1,0 +1,74 @@
+/**
+ * @class   vtkSPTFrameStatistics
+ * @brief   what the last render of a vtkSPTVolumeMapper drew
+ *
+ * vtkSPTVolumeMapper::GetFrameStatistics() returns the mapper's own instance, which every
+ * render updates: how many repetitions the image shown averages, its estimated error, how the
+ * cells were drawn and what a parallel render exchanged. For benchmarks, tests and
+ * interactive displays of progress; nothing in it changes how the mapper renders.
+ *
+ * @sa
+ * vtkSPTVolumeMapper vtkPSPTVolumeMapper
+ */
+
+#ifndef vtkSPTFrameStatistics_h
+#define vtkSPTFrameStatistics_h
+
+#include "SPTRenderingSPTModule.h" // For export macro
+#include "vtkObject.h"
+
+class SPTRENDERINGSPT_EXPORT vtkSPTFrameStatistics : public vtkObject
+{
+public:
+  static vtkSPTFrameStatistics* New();
+  vtkTypeMacro(vtkSPTFrameStatistics, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Repetitions averaged into the image shown (all renders of a progressive image).
+  vtkGetMacro(RepetitionCount, int);
+  /// The image's estimated error (noise and rounding); -1 without an error target or estimate.
+  vtkGetMacro(EstimatedError, double);
+  /// Depth slabs the last render drew.
+  vtkGetMacro(DepthSlabs, int);
+  /// Tetrahedra of this mapper's input drawn as points (see SmallCellSize).
+  vtkGetMacro(PointCellCount, vtkIdType);
+  /// Tetrahedra of this mapper's input visited in compute passes (see ComputeTraversal).
+  vtkGetMacro(ComputedCellCount, vtkIdType);
+  /// Bytes this process contributed to a parallel render's reductions; 0 in one process.
+  vtkGetMacro(ParallelBytes, vtkIdType);
+
+  /// All counts back to those of a mapper that has not rendered.
+  void Reset();
+
+#ifndef __VTK_WRAP__
+  /// What a render records; the mappers' own.
+  struct Values
+  {
+    int RepetitionCount = 0;
+    double EstimatedError = -1.0;
+    int DepthSlabs = 1;
+    vtkIdType PointCellCount = 0;
+    vtkIdType ComputedCellCount = 0;
+    vtkIdType ParallelBytes = 0;
+  };
+  /// Record what a render drew.
+  void Record(const Values& values);
+#endif
+
+protected:
+  vtkSPTFrameStatistics() = default;
+  ~vtkSPTFrameStatistics() override = default;
+
+  int RepetitionCount = 0;
+  double EstimatedError = -1.0;
+  int DepthSlabs = 1;
+  vtkIdType PointCellCount = 0;
+  vtkIdType ComputedCellCount = 0;
+  vtkIdType ParallelBytes = 0;
+
+private:
+  vtkSPTFrameStatistics(const vtkSPTFrameStatistics&) = delete;
+  void operator=(const vtkSPTFrameStatistics&) = delete;
+};
+
+#endif
