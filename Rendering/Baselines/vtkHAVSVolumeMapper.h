@@ -82,17 +82,11 @@ public:
 
   ///@{
   /**
-   * How the read-modify-write of the k-buffer is kept in primitive order:
-   * - FRAGMENT_SHADER_INTERLOCK: image load/store in a pixel_interlock_ordered critical
-   *   section (GL_ARB_fragment_shader_interlock);
-   * - FRAMEBUFFER_FETCH: the k-buffer is a set of color attachments read as inout outputs
-   *   (GL_EXT_shader_framebuffer_fetch, coherent), which the extension orders by primitive;
-   * - RASTERIZATION_ORDER: image load/store without synchronization, correct only on a
-   *   rasterizer that shades one pixel's fragments one at a time in primitive order (Mesa's
-   *   llvmpipe); a data race on other GPUs. Never chosen automatically;
-   * - AUTOMATIC (default): the first of FRAGMENT_SHADER_INTERLOCK and FRAMEBUFFER_FETCH that
-   *   the context has; an error if it has neither.
-   * GetKBufferSynchronizationInUse() says what the last render used (-1: none yet).
+   * How the k-buffer's read-modify-write is kept in primitive order: FRAGMENT_SHADER_INTERLOCK
+   * (GL_ARB_fragment_shader_interlock), FRAMEBUFFER_FETCH (GL_EXT_shader_framebuffer_fetch),
+   * RASTERIZATION_ORDER (none: correct only where one pixel's fragments are shaded in order,
+   * as on llvmpipe; never chosen automatically) or AUTOMATIC (default: the first of the two
+   * extensions the context has, an error without either). See GetKBufferSynchronizationInUse().
    */
   vtkSetClampMacro(KBufferSynchronization, int, AUTOMATIC, RASTERIZATION_ORDER);
   vtkGetMacro(KBufferSynchronization, int);

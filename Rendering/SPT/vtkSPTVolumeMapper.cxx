@@ -155,10 +155,15 @@ void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
 {
   for (size_t v = 0; v < mappers.size(); ++v)
   {
-    mappers[v]->EstimatedError = this->ImageError(self);
-    mappers[v]->LastRepetitionCount = self->GetAccumulatedRepetitions();
-    mappers[v]->LastPointCellCount = frame.GetPointCellCount(v);
-    mappers[v]->LastComputedCellCount = frame.GetComputedCellCount(v);
+    vtkSPTFrameStatistics::Values values;
+    values.RepetitionCount = self->GetAccumulatedRepetitions();
+    values.EstimatedError = this->ImageError(self);
+    values.DepthSlabs = frame.GetDepthSlabs();
+    values.PointCellCount = frame.GetPointCellCount(v);
+    values.ComputedCellCount = frame.GetComputedCellCount(v);
+    mappers[v]->EstimatedError = values.EstimatedError;
+    mappers[v]->LastRepetitionCount = values.RepetitionCount;
+    mappers[v]->FrameStatistics->Record(values);
   }
 }
 
@@ -358,6 +363,40 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
 
+void vtkSPTVolumeMapper::SetSamplingToPaper()
+{
+  this->SetRepetitionsPerPass(1);
+  this->SetEstimator(SURVIVOR_ESTIMATOR);
+  this->SetStratifiedSampling(false);
+  this->SetExactCoverage(false);
+  this->SetDepthSlabs(1);
+}
+
+void vtkSPTVolumeMapper::SetSamplingToDefault()
+{
+  // The members' initial values.
+  this->SetRepetitionsPerPass(256);
+  this->SetEstimator(VISIBILITY_ESTIMATOR);
+  this->SetStratifiedSampling(true);
+  this->SetExactCoverage(true);
+  this->SetDepthSlabs(1);
+}
+
+vtkSPTFrameStatistics* vtkSPTVolumeMapper::GetFrameStatistics()
+{
+  return this->FrameStatistics;
+}
+
+vtkIdType vtkSPTVolumeMapper::GetLastPointCellCount()
+{
+  return this->FrameStatistics->GetPointCellCount();
+}
+
+vtkIdType vtkSPTVolumeMapper::GetLastComputedCellCount()
+{
+  return this->FrameStatistics->GetComputedCellCount();
+}
+
 void vtkSPTVolumeMapper::SetController(vtkMultiProcessController* controller)
 {
   if (controller)
@@ -395,7 +434,6 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepetitionsPerPass: " << this->RepetitionsPerPass << "\n";
   os << indent << "SmallCellSize: " << this->SmallCellSize << "\n";
-  os << indent << "LastPointCellCount: " << this->LastPointCellCount << "\n";
   const char* const computeModes[] = { "Off", "On", "Auto" };
   os << indent << "ComputeTraversal: " << computeModes[this->ComputeTraversal] << "\n";
   os << indent << "StratifiedSampling: " << (this->StratifiedSampling ? "On" : "Off") << "\n";
@@ -408,4 +446,6 @@ void vtkSPTVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ReuseNoiseEstimate: " << (this->ReuseNoiseEstimate ? "On" : "Off") << "\n";
   os << indent << "EstimatedError: " << this->EstimatedError << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
+  os << indent << "FrameStatistics:\n";
+  this->FrameStatistics->PrintSelf(os, indent.GetNextIndent());
 }

@@ -70,6 +70,37 @@ def test_estimator_and_exact_coverage():
     assert "ExactCoverage: Off" in str(mapper)
 
 
+_SAMPLING_SETTINGS = ["RepetitionsPerPass", "Estimator", "StratifiedSampling", "ExactCoverage",
+                      "DepthSlabs"]
+
+
+def _sampling(mapper):
+    return {name: getattr(mapper, "Get" + name)() for name in _SAMPLING_SETTINGS}
+
+
+def test_paper_sampling_is_one_call_and_the_defaults_another():
+    mapper = spt.vtkSPTVolumeMapper()
+    defaults = _sampling(mapper)
+    mapper.SetSamplingToPaper()
+    assert _sampling(mapper) == {
+        "RepetitionsPerPass": 1, "Estimator": spt.vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
+        "StratifiedSampling": 0, "ExactCoverage": 0, "DepthSlabs": 1}
+    mapper.SetDepthSlabs(4)
+    mapper.SetSamplingToDefault()
+    assert _sampling(mapper) == defaults
+
+
+def test_frame_statistics_of_a_mapper_that_has_not_rendered():
+    mapper = spt.vtkSPTVolumeMapper()
+    statistics = mapper.GetFrameStatistics()
+    assert isinstance(statistics, spt.vtkSPTFrameStatistics)
+    assert statistics is mapper.GetFrameStatistics()
+    assert (statistics.GetRepetitionCount(), statistics.GetEstimatedError(),
+            statistics.GetPointCellCount(), statistics.GetComputedCellCount(),
+            statistics.GetParallelBytes()) == (0, -1.0, 0, 0, 0)
+    assert "FrameStatistics:" in str(mapper) and "ParallelBytes: 0" in str(mapper)
+
+
 def test_print_self_lists_every_setting():
     text = str(spt.vtkSPTVolumeMapper())
     for setting in ["RepetitionLevel", "SubpixelLevel", "Seed", "PreIntegrationScalarResolution",

@@ -60,6 +60,29 @@ def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling, 
         assert np.abs(several - single).max() <= 1.0 / 255.0 + 1e-6, per_pass
 
 
+def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
+    """SetSamplingToPaper() is the paper's method: the image of the survivor estimator with
+    independent thresholds, no exact coverage and one repetition per pass, set one by one; the
+    frame statistics report what the render drew."""
+    s = _scene()
+    mapper = render.spt_mapper(12, seed=7)
+    mapper.SetSamplingToPaper()
+    paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    assert paper[..., 3].max() > 0.2, "the image is empty"
+    one_by_one = _image(12, 7, False, per_pass=1, sampling="survivor")
+    assert np.array_equal(paper, one_by_one)
+    statistics = mapper.GetFrameStatistics()
+    assert statistics.GetRepetitionCount() == mapper.GetLastRepetitionCount() == 12
+    assert statistics.GetDepthSlabs() == 1 and statistics.GetEstimatedError() == -1.0
+    assert 0 <= statistics.GetPointCellCount() <= mapper.GetNumberOfTetrahedra()
+    assert statistics.GetParallelBytes() == 0
+    # The defaults' image is another one: the same expectation, less noise.
+    mapper.SetSamplingToDefault()
+    default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    reference = _reference()
+    assert metrics.rmse(default, reference) < metrics.rmse(paper, reference)
+
+
 def test_depth_keys_are_reported_and_released(have_display):
     s = _scene()
     window, renderer = render.make_window(SIZE, SIZE)
@@ -72,7 +95,7 @@ def test_depth_keys_are_reported_and_released(have_display):
     window.Render()
     # Where the groups' traversals visit the points in a compute pass, its fixed-point sums
     # (two targets of four terms) come on top.
-    sums = 8 * 4 if mapper.GetLastComputedCellCount() > 0 else 0
+    sums = 8 * 4 if mapper.GetFrameStatistics().GetComputedCellCount() > 0 else 0
     assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (8 * 4 + sums)
     # The default estimator with exact coverage: its RGBA32F coverage buffer on top.
     mapper.SetEstimatorToVisibility()
@@ -95,7 +118,7 @@ def test_depth_keys_are_reported_and_released(have_display):
     # sample and the sums.
     mapper.SetRepetitionLevel(1)
     window.Render()
-    group_of_one = 4 + sums if mapper.GetLastComputedCellCount() > 0 else 0
+    group_of_one = 4 + sums if mapper.GetFrameStatistics().GetComputedCellCount() > 0 else 0
     assert mapper.GetGPUMemorySize() - single == SIZE * SIZE * (16 + group_of_one)
     window.Finalize()
 
