@@ -122,6 +122,14 @@ def test_spt_has_an_error_target_by_default(builtin):
     assert report["property_groups"][GROUPS[SPT]][:2] == ["TargetError", "RepetitionLevel"]
 
 
+def test_spt_panel_shows_quality_and_refinement_the_rest_is_advanced(rendered):
+    """What a user decides in the panel: the target error, its cap and progressive
+    refinement; every other SPT setting is behind the panel's advanced toggle."""
+    visibility = read_report(rendered[SPT])["panel_visibility"]
+    shown = [name for name in SETTINGS[SPT] if visibility[name] != "advanced"]
+    assert shown == ["TargetError", "RepetitionLevel", "ProgressiveRefinement"], visibility
+
+
 @pytest.mark.parametrize("method", METHODS)
 def test_settings_are_documented_and_grouped(rendered, method):
     """The XML documentation is what the Properties panel shows as tooltips; each method's

@@ -345,6 +345,8 @@ def report(display, defaults, reader, view, args):
     info["defaults"] = defaults
     info["documentation"] = {name: documentation(display, name) for name in names}
     info["property_groups"] = property_groups(display)
+    info["panel_visibility"] = {name: display.GetProperty(name).SMProperty.GetPanelVisibility()
+                                for name in names}
     info["cells"] = int(reader.GetDataInformation().GetNumberOfCells())
     info["camera"] = get_camera(view)
     points = elements(simple.GetOpacityTransferFunction("field"), "Points")
