@@ -43,7 +43,8 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
     assert not re.search(r"\bnan\b|\binf\b", text)
     assert "not measured" not in text and "did not measure" not in text.split("## Cell")[1]
     # the appendix is the benchmark's own table dump, written from the same file
-    assert (tmp_path / "bench.md").read_text() == (BENCH.parent / "bench.md").read_text()
+    assert (tmp_path / "bench.md").read_text() == (BENCH.parent / "bench.md").read_text(), \
+        "regenerate it: python3 -m spt report"
 
 
 @needs_committed
