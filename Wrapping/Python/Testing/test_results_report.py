@@ -1,7 +1,8 @@
 """The results page for readers (``python3 -m spt report``): generated from the committed
-benchmark results it has every section and every figure with its command, the committed page
-is what the generator writes from them, a run that measured nothing says how to measure each
-section, the race's findings follow its rows, and bad input is refused."""
+benchmark results it has every section and every figure with its command, the figures are
+drawn again from them, the committed page is what the generator writes from them, a run that
+measured nothing says how to measure each section, the race's findings follow its rows, and
+bad input is refused."""
 
 import json
 import pathlib
@@ -28,7 +29,7 @@ def headings(text):
 def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
     shutil.copy(BENCH, tmp_path / "bench.json")
     result = run("report", "--input", str(tmp_path / "bench.json"),
-                 "--output", str(tmp_path / "results.md"))
+                 "--output", str(tmp_path / "results.md"), "--figures")
     assert result.returncode == 0, result.stderr
     text = (tmp_path / "results.md").read_text()
     assert headings(text) == list(report.SECTIONS)
@@ -40,6 +41,7 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
         after = text.split(picture, 1)[1][:400]
         assert f"`python3 -m spt bench --sections {sections} --output out/bench`" in after
         assert (BENCH.parent / path).exists(), f"{path} is referenced but not committed"
+        assert (tmp_path / path).stat().st_size > 10_000, f"{path} not drawn from bench.json"
     assert not re.search(r"\bnan\b|\binf\b", text)
     assert "not measured" not in text and "did not measure" not in text.split("## Cell")[1]
     # the appendix is the benchmark's own table dump, written from the same file

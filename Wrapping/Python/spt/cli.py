@@ -201,6 +201,8 @@ def _add_report(commands) -> None:
     report.add_argument("--output", type=pathlib.Path,
                         default=pathlib.Path("Documentation/results.md"),
                         help="the Markdown file to write")
+    report.add_argument("--figures", action="store_true",
+                        help="also draw the figures again next to the input, from its results")
 
 
 def _add_mesh(commands) -> None:
@@ -288,8 +290,9 @@ def _bench(arguments: argparse.Namespace) -> None:
 def _report(arguments: argparse.Namespace) -> None:
     from .experiments.bench.results import write_results
 
-    write_results(arguments.input, arguments.output)
-    print(f"{arguments.output} and {arguments.input.parent / 'bench.md'} written from "
+    write_results(arguments.input, arguments.output, figures=arguments.figures)
+    drawn = " and the figures" if arguments.figures else ""
+    print(f"{arguments.output}, {arguments.input.parent / 'bench.md'}{drawn} written from "
           f"{arguments.input}")
 
 

@@ -3,7 +3,8 @@ dated and naming the machine, each figure with the command that measures it agai
 
 ``python3 -m spt report --input out/bench/bench.json --output out/results.md`` writes it from
 a ``bench.json`` without measuring anything, and rewrites the full tables (``bench.md``, the
-appendix) next to the input. A benchmark run writes both as well.
+appendix) next to the input; ``--figures`` draws the figures there again too. A benchmark run
+writes all of them.
 """
 
 from __future__ import annotations
@@ -68,7 +69,8 @@ def figure(name: str, folder: str) -> List[str]:
     """A figure, its caption and the command that measures and draws it again."""
     path, caption, sections = FIGURES[name]
     return [f"![{caption}]({folder}{path})", "",
-            f"*Figure: {caption}.* Measured and drawn again by "
+            f"*Figure: {caption}.* Drawn from `bench.json` by `python3 -m spt report "
+            f"--figures`; measured and drawn again by "
             f"`{BENCH_COMMAND.format(sections=sections)}`.", ""]
 
 
@@ -550,12 +552,17 @@ def _with_fits(results: Dict[str, object]) -> Dict[str, object]:
 
 
 def write_results(source: pathlib.Path, output: pathlib.Path,
-                  results: Optional[Dict[str, object]] = None) -> str:
+                  results: Optional[Dict[str, object]] = None, figures: bool = False) -> str:
     """Write ``output`` (results.md) and the appendix ``bench.md`` next to ``source``, from
-    the run in ``source`` (bench.json); returns the text of ``output``."""
+    the run in ``source`` (bench.json), and with ``figures`` the figures there too; returns
+    the text of ``output``."""
     results = load(source) if results is None else results
     plain = json.loads(json.dumps(results, default=lambda v: v.as_dict()))
     write_report(_with_fits(plain), source.parent)
+    if figures:
+        from .runner import plot
+
+        plot(_with_fits(plain), source.parent)
     folder = _relative(source.parent, output.parent)
     folder = "" if folder == "." else folder + "/"
     command = REPORT_COMMAND.format(input=_relative(source, pathlib.Path.cwd()),

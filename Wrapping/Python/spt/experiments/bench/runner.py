@@ -97,7 +97,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
     return measured
 
 
-def _plot(results: Dict[str, object], output: pathlib.Path) -> None:
+def plot(results: Dict[str, object], output: pathlib.Path) -> None:
+    """Draw the benchmark's figures from its results into ``output``."""
     entries = results["entries"]
     plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
     plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
@@ -149,7 +150,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
                       results["memory_models"])
     results["crossovers"] = crossovers(entries, results["memory_models"])
     results["floor_ratios"] = floor_ratios(entries)
-    _plot(results, output)
+    plot(results, output)
     _write_json(results, output)
     write_results(output / "bench.json", output / "results.md", results)
     return results
