@@ -34,7 +34,8 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
     text = (tmp_path / "results.md").read_text()
     assert headings(text) == list(report.SECTIONS)
     machine = json.loads(BENCH.read_text())["machine"]
-    assert re.search(r"Measured in runs up to \d{4}-\d\d-\d\d on " + re.escape(machine), text)
+    assert re.search(r"Measured in runs up to \d{4}-\d\d-\d\d on " + re.escape(machine)
+                     + ": a software rasterizer, no GPU", text)
     for name, (path, caption, sections) in report.FIGURES.items():
         picture = f"![{caption}]({path})"
         assert picture in text, name
@@ -92,7 +93,7 @@ def test_a_run_that_measured_nothing_says_how_to_measure_each_section(tmp_path):
                                   "date": "2000-01-02"}))
     text = report.write_results(source, tmp_path / "results.md")
     assert headings(text) == list(report.SECTIONS)
-    assert "Measured in runs up to 2000-01-02 on a test machine" in text
+    assert "Measured in runs up to 2000-01-02 on a test machine. Times vary" in text
     for section in ("race", "camera", "cells", "quality", "host", "large", "parallel"):
         assert f"`python3 -m spt bench --sections {section} --output out/bench`" in text
     assert "![" not in text

@@ -173,8 +173,8 @@ def race_findings(race: Dict[str, object]) -> List[str]:
              f"{_listing(losses)}"
              + (f", and does not reach VTK PT's error by L = {race['max_repetitions']} on "
                 f"{', '.join(missed)}" if missed else "")
-             + ". Where one repetition is enough, SPT's time is that of its two traversals, "
-             "which a software rasterizer pays per primitive and per pixel; where the noise "
+             + ". Where one repetition is enough, SPT's time is that of its two traversals of "
+             "the mesh, each paid per primitive and per pixel; where the noise "
              "needs many repetitions, it is their traversal pair. SPT's frame grows more "
              "slowly with the cells than VTK PT's, whose sort and projection run on the host, "
              "so the ratio falls as the mesh grows (compare the drills).",
@@ -496,11 +496,16 @@ def _relative(path: pathlib.Path, start: pathlib.Path) -> str:
     return pathlib.Path(os.path.relpath(path.resolve(), start.resolve())).as_posix()
 
 
+def software(machine: str) -> bool:
+    """Whether the machine's OpenGL renderer is a software rasterizer."""
+    return any(name in machine.lower() for name in ("llvmpipe", "softpipe", "swiftshader"))
+
+
 def header(results: Dict[str, object], date: str, command: str) -> List[str]:
     return ["# Results", "",
-            f"Measured in runs up to {date} on {results['machine']}: a software rasterizer, "
-            "no GPU. "
-            "Times vary with the machine's load, so every comparison is a ratio taken within "
+            f"Measured in runs up to {date} on {results['machine']}"
+            + (": a software rasterizer, no GPU. " if software(results["machine"]) else ". ")
+            + "Times vary with the machine's load, so every comparison is a ratio taken within "
             "one process. Errors are RMSE of premultiplied RGBA against the exact reference "
             "(`spt.raycast`) over the volume's footprint.", "",
             f"This page is generated from the benchmark's `bench.json` by `{command}`. A full "
