@@ -1,8 +1,8 @@
 """Measure a compute traversal of the cells against drawing them as points.
 
 SPT's traversals of a large mesh on llvmpipe are bound by rasterizing one point per small cell
-(Documentation/results.md, "A compute traversal of the small cells"; the mapper's own compute
-pass is vtkSPTVolumeMapper's ComputeTraversal). This experiment does the same work per (cell,
+(Documentation/design.md, "The small cells in a compute pass"; the mapper's own compute pass
+is vtkSPTVolumeMapper's ComputeTraversal). This experiment does the same work per (cell,
 sample) both ways, in one OpenGL context, on a race scene:
 
 - *points*: one GL_POINTS primitive per cell, drawn by the mapper's own vertex stage

@@ -134,6 +134,9 @@ def test_a_small_run_writes_results_plots_and_report(tmp_path):
     assert spt_entries[1]["gpu_memory"] > spt_entries[0]["gpu_memory"] > 0
     report = (tmp_path / "bench.md").read_text()
     assert "## Image size" in report and (tmp_path / "image.png").stat().st_size > 0
+    summary = (tmp_path / "results.md").read_text()
+    assert "**Image.**" in summary and "(image.png)" in summary
+    assert f"Measured in runs up to {written['date']}" in summary
 
 
 def test_the_camera_section_compares_inside_with_outside(tmp_path, have_display):

@@ -191,6 +191,20 @@ def _add_bench(commands) -> None:
                        help="every section at small sizes, a smoke run of a few minutes")
 
 
+def _add_report(commands) -> None:
+    report = commands.add_parser(
+        "report", help="write results.md (and the full tables, bench.md, next to the input) "
+                       "from a benchmark's bench.json, without measuring")
+    report.add_argument("--input", type=pathlib.Path,
+                        default=pathlib.Path("Documentation/bench/bench.json"),
+                        help="a bench.json written by `python3 -m spt bench`")
+    report.add_argument("--output", type=pathlib.Path,
+                        default=pathlib.Path("Documentation/results.md"),
+                        help="the Markdown file to write")
+    report.add_argument("--figures", action="store_true",
+                        help="also draw the figures again next to the input, from its results")
+
+
 def _add_mesh(commands) -> None:
     mesh = commands.add_parser(
         "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
@@ -215,6 +229,7 @@ def _parser() -> argparse.ArgumentParser:
     _add_convergence_and_pbvr(figure)
     _add_sampling_sorting_accuracy(figure)
     _add_bench(commands)
+    _add_report(commands)
     _add_mesh(commands)
     return parser
 
@@ -270,6 +285,15 @@ def _bench(arguments: argparse.Namespace) -> None:
     bench.run(arguments.output, sections, settings)
     print((arguments.output / "bench.md").read_text(encoding="utf-8"))
     print(f"Results, plots and bench.md written to {arguments.output}")
+
+
+def _report(arguments: argparse.Namespace) -> None:
+    from .experiments.bench.results import write_results
+
+    write_results(arguments.input, arguments.output, figures=arguments.figures)
+    drawn = " and the figures" if arguments.figures else ""
+    print(f"{arguments.output}, {arguments.input.parent / 'bench.md'}{drawn} written from "
+          f"{arguments.input}")
 
 
 def _demo(arguments: argparse.Namespace) -> None:
@@ -353,7 +377,7 @@ def _accuracy(arguments: argparse.Namespace) -> None:
           f"plot written to {arguments.output / 'accuracy.png'}")
 
 
-_COMMANDS = {"demo": _demo, "bench": _bench, "mesh": _mesh}
+_COMMANDS = {"demo": _demo, "bench": _bench, "report": _report, "mesh": _mesh}
 _FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
             "sorting": _sorting, "accuracy": _accuracy}
 

@@ -462,7 +462,7 @@ def generate(shape: str, cells: int, seed: int = 0, cache: bool = True) -> vtkUn
     ``seed`` places the field's maxima (the mesh itself depends only on shape and cells). With
     ``cache``, the mesh is read from, or written to, :func:`cache_path`. TetGen takes about
     30 microseconds of CPU and 200 to 260 bytes per tetrahedron: 35 s for 10^6, 7 to 15
-    minutes and 3 GB for 1.3 * 10^7 (see the README).
+    minutes and 3 GB for 1.3 * 10^7 (see Documentation/design.md).
     """
     return to_grid(generate_arrays(shape, cells, seed, cache))
 

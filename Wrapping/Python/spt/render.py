@@ -451,8 +451,8 @@ def reference(grid: vtkDataSet, prop: vtkVolumeProperty, view: View = View(),
 
     ``exact`` is the default: VTK's ray caster misses or doubles segments of rays that graze
     a curved boundary (on the Oxygen Post its silhouette is off by up to 0.2 in alpha, see
-    the README), while :mod:`spt.raycast` clips every ray against every tetrahedron it may
-    cross. ``vtk`` is needed when opaque ``actors`` cut the volume.
+    Documentation/baselines.md), while :mod:`spt.raycast` clips every ray against every
+    tetrahedron it may cross. ``vtk`` is needed when opaque ``actors`` cut the volume.
     """
     if method not in REFERENCE_METHODS:
         raise ValueError(f"unknown reference method '{method}'; choose from "

@@ -61,17 +61,21 @@ def plot_residuals(models: Dict[str, Fit], path: pathlib.Path, unit: str) -> Non
     plots.save(figure, path)
 
 
-def _error_against_time(axes, points: Sequence[Entry], stochastic: Sequence[str],
-                        key: str) -> None:
-    for index, name in enumerate(stochastic):
+def _error_against_time(axes, points: Sequence[Entry], methods: Sequence[str],
+                        stochastic: Sequence[str], key: str) -> None:
+    """One scene's panel; each method keeps its color (its place in ``methods``) in every
+    panel, whichever methods the scene has."""
+    for name in stochastic:
         curve = sorted((e for e in points if e["method"] == name), key=lambda e: e[key])
         if curve:
+            index = methods.index(name)
             axes.loglog([e[key] for e in curve], [e["rmse"] for e in curve],
-                        plots.line_style(index), markersize=4,
+                        plots.line_style(index), color=f"C{index % 10}", markersize=4,
                         label=curve[0].get("label", _label(name)))
     for e in points:
         if e["method"] not in stochastic:
-            axes.loglog([e[key]], [e["rmse"]], "s", markersize=6,
+            index = methods.index(e["method"])
+            axes.loglog([e[key]], [e["rmse"]], "s", color=f"C{index % 10}", markersize=6,
                         label=e.get("label", _label(e["method"])))
 
 
@@ -83,15 +87,22 @@ def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
     if not scenes:
         return
     key = key or time_key(entries)
+    methods = list(stochastic) + [m for m in dict.fromkeys(e["method"] for e in entries)
+                                  if m not in stochastic]
     figure = plots.figure(4.2 * len(scenes), 4.8)
     for index, scene in enumerate(scenes):
         axes = figure.add_subplot(1, len(scenes), index + 1)
-        _error_against_time(axes, [e for e in entries if e["scene"] == scene], stochastic, key)
+        _error_against_time(axes, [e for e in entries if e["scene"] == scene], methods,
+                            stochastic, key)
         plots.finish_axes(axes, "CPU seconds per frame, all threads" if key == "cpu_seconds"
                           else "frame time [s]", "RMSE against the exact reference", scene,
                           legend=False)
-    # One legend under the panels: inside them it hid the lowest curves.
-    handles, labels = figure.axes[0].get_legend_handles_labels()
+    # One legend under the panels (inside them it hid the lowest curves), of every method.
+    legend = {}
+    for axes in figure.axes:
+        for handle, label in zip(*axes.get_legend_handles_labels()):
+            legend.setdefault(label, handle)
+    handles, labels = list(legend.values()), list(legend)
     figure.legend(handles, labels, loc="lower center", ncol=4, fontsize=plots.LEGEND_FONT_SIZE)
     figure.tight_layout(rect=(0.0, 0.12, 1.0, 1.0))
     figure.savefig(str(path), dpi=plots.DPI)

@@ -1,9 +1,10 @@
 """A benchmark run: the chosen sections, the models fitted to everything measured, the plots
-and the report."""
+and the reports (``bench.md``, every table; ``results.md``, the summary for readers)."""
 
 from __future__ import annotations
 
 import dataclasses
+import datetime
 import json
 import os
 import pathlib
@@ -16,7 +17,7 @@ from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene
 from .models import memory_models, predict_large, time_models
 from .plots import plot_error_against_time, plot_residuals, plot_sweep
-from .report import write_report
+from .results import write_results
 from .settings import SECTIONS, Settings
 from .timing import record, time_method
 
@@ -96,7 +97,8 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
     return measured
 
 
-def _plot(results: Dict[str, object], output: pathlib.Path) -> None:
+def plot(results: Dict[str, object], output: pathlib.Path) -> None:
+    """Draw the benchmark's figures from its results into ``output``."""
     entries = results["entries"]
     plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
     plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
@@ -123,9 +125,10 @@ def _write_json(results: Dict[str, object], output: pathlib.Path) -> None:
 
 def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
         settings: Optional[Settings] = None) -> Dict[str, object]:
-    """Run the chosen sections and write ``bench.json``, the plots and ``bench.md`` into
-    ``output``; returns the results. Earlier results in ``output/bench.json`` of sections
-    not run now are kept, so a long run can be done section by section."""
+    """Run the chosen sections and write ``bench.json``, the plots, ``bench.md`` and
+    ``results.md`` into ``output``; returns the results. Earlier results in
+    ``output/bench.json`` of sections not run now are kept, so a long run can be done
+    section by section."""
     settings = settings or Settings()
     unknown = [s for s in sections if s not in SECTIONS]
     if unknown:
@@ -137,7 +140,8 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
         previous = json.loads((output / "bench.json").read_text())
     results = _measure(sections, settings, previous, output)
     entries = results["entries"]
-    results.update(machine=machine(), shape=settings.shape, frames=settings.frames,
+    today = datetime.datetime.now(datetime.timezone.utc).date().isoformat()
+    results.update(date=today, machine=machine(), shape=settings.shape, frames=settings.frames,
                    settings=dataclasses.asdict(settings), time_models=time_models(entries),
                    cpu_time_models=time_models(entries, "cpu_seconds"),
                    memory_models=memory_models(entries))
@@ -146,7 +150,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
                       results["memory_models"])
     results["crossovers"] = crossovers(entries, results["memory_models"])
     results["floor_ratios"] = floor_ratios(entries)
-    _plot(results, output)
+    plot(results, output)
     _write_json(results, output)
-    write_report(results, output)
+    write_results(output / "bench.json", output / "results.md", results)
     return results
