@@ -248,3 +248,86 @@ def test_the_parallel_section_runs_ranks_with_the_same_image(have_display, tmp_p
         most = least + samples * 32 * (r["first_repetitions"] // 2 - 1) + 4096
         assert least <= r["bytes_per_frame_per_rank"] <= most
     assert "## Parallel" in (tmp_path / "bench.md").read_text()
+
+
+def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, have_display,
+                                                           monkeypatch):
+    """``--size 24,16``: the race at each size in one run (smallest first in bench.json), a
+    table per size in results.md and each method's growth from the rows' own frames; a later
+    run at one size keeps the other."""
+    from spt import cli
+    from spt.experiments.bench import host, results_views
+
+    monkeypatch.setattr(host, "perf_available", lambda: False)  # thread time: quicker
+    arguments = cli._parser().parse_args(["bench", "--size", "24,16"])
+    assert arguments.race_sizes == [24, 16]
+    settings = dataclasses.replace(bench.Settings(), race_scenes=("default",), frames=1,
+                                   race_sizes=tuple(arguments.race_sizes),
+                                   race_max_repetitions=1)
+    results = bench.run(tmp_path, ["race"], settings)
+    small, large = results["race"], results["race_sizes"][0]
+    assert (small["size"], large["size"], len(results["race_sizes"])) == (16, 24, 1)
+    for race in (small, large):
+        assert {r["method"] for r in race["rows"]} >= {"pt", "havs6", "spt", "pbvr"}
+        assert all(r["rmse"] >= 0.0 and r["seconds"] > 0.0 for r in race["rows"])
+    assert (tmp_path / "race" / "24x24" / "default_pt_1.png").exists()
+    text = (tmp_path / "results.md").read_text()
+    assert "**16 x 16.**" in text and "**24 x 24.**" in text
+    pt = [next(r for r in race["rows"] if r["method"] == "pt") for race in (small, large)]
+    growth = next(line for line in text.splitlines() if line.startswith("| default")
+                  and "x) |" in line)
+    assert f"({pt[1]['seconds'] / pt[0]['seconds']:.3g}x)" in growth
+    assert "## The race at 24 x 24" in (tmp_path / "bench.md").read_text()
+    # a later race at 16 only (its measurement stubbed) keeps the race at 24 as it was
+    from spt.experiments.bench import race
+
+    monkeypatch.setattr(race, "race", lambda s, p, o, previous, references: dict(
+        previous, size=s.race_size, rows=[]))
+    again = race.races(dataclasses.replace(settings, race_sizes=(16,)), None, tmp_path,
+                       [small, large])
+    assert [r["size"] for r in again] == [16, 24] == [
+        r["size"] for r in results_views.races({"race": again[0], "race_sizes": again[1:]})]
+    assert again[0]["rows"] == [] and again[1]["rows"] == large["rows"]
+
+
+@pytest.mark.parametrize("text", ["256,x", "0", ","])
+def test_bad_race_sizes_are_refused(text):
+    result = subprocess.run([sys.executable, "-m", "spt", "bench", "--size", text],
+                            capture_output=True, text=True, env=environment(), check=False)
+    assert result.returncode == 2 and "--size" in result.stderr
+
+
+def test_the_paraview_section_compares_the_three_volumes_with_the_exact_image(
+        tmp_path, have_x_display):
+    """pvpython with the plugin on the embedded mesh in a small view: each representation's
+    still and interactive renders, its error against the exact image of the same camera, and
+    the table in results.md derived from them."""
+    import os
+
+    if not shutil.which("pvpython"):
+        pytest.skip("pvpython (ParaView 5.11) is not installed")
+    if not os.environ.get("SPT_PARAVIEW_PLUGIN"):
+        pytest.skip("SPT_PARAVIEW_PLUGIN is not set: the plugin was not built or the test "
+                    "runs outside ctest")
+    settings = dataclasses.replace(bench.Settings.quick(), paraview_size=(96, 60))
+    results = bench.run(tmp_path, ["paraview"], settings)
+    (scene,) = results["paraview"]["scenes"]
+    rows = {r["representation"]: r for r in scene["rows"]}
+    assert list(rows) == list(settings.paraview_representations)
+    floor = scene["read_back_floor"]
+    for name, row in rows.items():
+        assert (row["width"], row["height"], row["cells"]) == (96, 60, 48_000), name
+        assert len(row["still_seconds"]) == 3 and row["seconds"] == row["still_seconds"][1]
+        assert row["interactive_seconds"] > 0.0 and row["desired_update_rate"] > 0.0
+        # the volume, not an empty view: about the reference's coverage, a small error
+        assert floor / 2 < row["rmse"] < 0.05, (name, row["rmse"])
+        assert row["alpha_mean"] > 0.5 * scene["reference_alpha_mean"], name
+    spt = rows["Volume (SPT)"]
+    assert spt["mapper"] == "vtkPSPTVolumeMapper" and spt["still"]["repetitions"] >= 1
+    # SPT's error against the exact image is about what it estimated (within 2x)
+    assert spt["rmse"] < 2.0 * max(spt["still"]["estimated_error"], floor)
+    volume = rows["Volume"]
+    line = next(x for x in (tmp_path / "results.md").read_text().splitlines()
+                if x.startswith("| default"))
+    assert f"{spt['seconds'] / volume['seconds']:.3g}, {spt['rmse']:.3g}" in line
+    assert "## ParaView: a 96 x 60 view" in (tmp_path / "bench.md").read_text()

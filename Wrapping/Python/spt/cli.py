@@ -39,6 +39,14 @@ def _levels(text: str) -> List[int]:
     return levels
 
 
+def _sizes(text: str) -> List[int]:
+    parse = _positive_int(MAX_IMAGE_SIZE)
+    sizes = [parse(part) for part in text.split(",") if part.strip()]
+    if not sizes:
+        raise argparse.ArgumentTypeError("give at least one image size")
+    return sizes
+
+
 def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
     """A comma-separated list of names, each one of ``choices``."""
     names = [part.strip() for part in text.split(",") if part.strip()]
@@ -167,7 +175,8 @@ def _add_bench(commands) -> None:
     bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
     bench.add_argument("--sections", type=_sections, default=None,
                        help="comma-separated sections to run (default: all): "
-                            "race,cells,repetitions,subpixels,image,quality,host,large,parallel")
+                            "race,cells,repetitions,subpixels,image,quality,host,large,parallel,"
+                            "paraview")
     bench.add_argument("--shape", choices=("drill", "torus", "helix"), default="drill",
                        help="generated mesh of the sweeps (default drill)")
     bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,
@@ -187,6 +196,13 @@ def _add_bench(commands) -> None:
                        help="the race's largest repetition level (default 256)")
     bench.add_argument("--race-size", type=_positive_int(MAX_IMAGE_SIZE), default=None,
                        help="the race's image width and height (default 256)")
+    bench.add_argument("--size", type=_sizes, default=None, dest="race_sizes",
+                       help="comma-separated image sizes of the race, each width and height, "
+                            "e.g. 256,1024 (default 256); the races at other sizes in "
+                            "OUTPUT/bench.json are kept")
+    bench.add_argument("--paraview-scenes", type=_paraview_scenes, default=None,
+                       help="comma-separated scenes of the paraview section (default: disk,"
+                            "drill-0.2M,drill-1M)")
     bench.add_argument("--quick", action="store_true",
                        help="every section at small sizes, a smoke run of a few minutes")
 
@@ -252,6 +268,12 @@ def _race_scenes(text: str) -> List[str]:
     return _names(text, scene_names(), "scene")
 
 
+def _paraview_scenes(text: str) -> List[str]:
+    from .experiments.bench.paraview_view import scene_names
+
+    return _names(text, scene_names(), "scene")
+
+
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
     from .experiments.tables import print_table
 
@@ -280,6 +302,10 @@ def _bench(arguments: argparse.Namespace) -> None:
         changes["race_max_repetitions"] = arguments.max_repetitions
     if arguments.race_size is not None:
         changes["race_size"] = arguments.race_size
+    if arguments.race_sizes is not None:
+        changes["race_sizes"] = tuple(arguments.race_sizes)
+    if arguments.paraview_scenes is not None:
+        changes["paraview_scenes"] = tuple(arguments.paraview_scenes)
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)

@@ -249,10 +249,11 @@ def has_error_target() -> bool:
 
 
 def race_scene_rows(name: str, settings: Settings, progress: Progress, output: pathlib.Path,
-                    use_perf: bool) -> List[Entry]:
-    """Every method of the race on one scene."""
+                    use_perf: bool, references: Optional[pathlib.Path] = None) -> List[Entry]:
+    """Every method of the race on one scene; its images go to ``output``, the cached
+    reference to ``references`` (default: ``output/references``)."""
     s = race_scene(name)
-    reference = cached_reference(s, settings.race_size, output / "references")
+    reference = cached_reference(s, settings.race_size, references or output / "references")
     metrics.write_png(output / f"{s.name}_reference.png", reference)
     progress.step(f"{name} reference")
     lap = Lap(s, reference, metrics.read_back_floor(reference), settings.race_size, use_perf,
@@ -302,7 +303,7 @@ def steps(settings: Settings) -> int:
     """The progress steps of the race."""
     per_scene = (1 + len(EXACT_METHODS) + len(STOCHASTIC_METHODS)
                  * len(levels(settings.race_max_repetitions)) + 3 * int(has_error_target()))
-    return len(settings.race_scenes) * per_scene
+    return len(settings.race_scenes) * per_scene * len(settings.race_image_sizes())
 
 
 #: What makes two runs' rows comparable: the same image, camera, frames and host-time source.
@@ -343,17 +344,36 @@ def merge_runs(measured: Dict[str, object], previous: Optional[Dict[str, object]
 
 
 def race(settings: Settings, progress: Progress, output: pathlib.Path,
-         previous: Optional[Dict[str, object]] = None) -> Dict[str, object]:
-    """The race on every scene of ``settings.race_scenes``; images and the cached references
-    go to ``output``. Returns the rows, the summary and how host time was measured, with the
-    scenes of ``previous`` (an earlier race) that this one did not run (merge_runs())."""
+         previous: Optional[Dict[str, object]] = None,
+         references: Optional[pathlib.Path] = None) -> Dict[str, object]:
+    """The race on every scene of ``settings.race_scenes`` at ``settings.race_size``; images
+    go to ``output``, the cached references to ``references`` (default:
+    ``output/references``). Returns the rows, the summary and how host time was measured,
+    with the scenes of ``previous`` (an earlier race) that this one did not run
+    (merge_runs())."""
     output.mkdir(parents=True, exist_ok=True)
     use_perf = host.perf_available()
     rows: List[Entry] = []
     for name in settings.race_scenes:
-        rows += race_scene_rows(name, settings, progress, output, use_perf)
+        rows += race_scene_rows(name, settings, progress, output, use_perf, references)
     measured = {"size": settings.race_size, "azimuth": AZIMUTH, "elevation": ELEVATION,
                 "frames": FRAMES, "max_repetitions": settings.race_max_repetitions,
                 "host_source": "perf" if use_perf else "thread_time",
                 "rows": rows, "summary": summarize(rows)}
     return merge_runs(measured, previous)
+
+
+def races(settings: Settings, progress: Progress, output: pathlib.Path,
+          previous: Sequence[Dict[str, object]] = ()) -> List[Dict[str, object]]:
+    """The race at each of ``settings.race_image_sizes()``, size after size, each merged with
+    the earlier race of its size in ``previous`` (merge_runs()); the earlier races at other
+    sizes are kept. Returns every race, smallest size first. The images of the smallest size
+    measured go to ``output``, the others' to ``output/<size>x<size>``; the references are
+    cached in ``output/references`` (keyed by size)."""
+    sizes = settings.race_image_sizes()
+    by_size = {int(r["size"]): r for r in previous if r}
+    for size in sizes:
+        folder = output if size == sizes[0] else output / f"{size}x{size}"
+        at_size = dataclasses.replace(settings, race_size=size, race_sizes=None)
+        by_size[size] = race(at_size, progress, folder, by_size.get(size), output / "references")
+    return [by_size[size] for size in sorted(by_size)]

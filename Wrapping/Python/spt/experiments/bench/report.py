@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import os
 import pathlib
-from typing import Dict, Iterable, List, Sequence
+from typing import Dict, Iterable, List, Optional, Sequence
 
 from .. import tables
 from .methods import METHODS
@@ -357,6 +357,31 @@ def parallel_section(measured) -> List[str]:
         paraview_parallel_table(paraview)
 
 
+def paraview_view_section(measured: Optional[Dict[str, object]]) -> List[str]:
+    """Every still and interactive render of the ``paraview`` section."""
+    if not measured or not measured.get("scenes"):
+        return []
+    rows = [[r["scene"], r["representation"], r["cells"], r["seconds"],
+             ", ".join(f"{v:.3g}" for v in r["still_seconds"]), r["rmse"], r["rmse_rgba"],
+             (r.get("still") or {}).get("repetitions", "-"), r["interactive_seconds"],
+             1.0 / r["desired_update_rate"], (r.get("interactive") or {}).get("repetitions", "-"),
+             r["used_lod"]]
+            for scene in measured["scenes"] for r in scene["rows"]]
+    width, height = measured["size"]
+    return [f"## ParaView: a {width} x {height} view", "",
+            "pvpython with the plugin, each representation at its defaults. Still renders: "
+            "the first three, the second is the one timed; RMSE of the second's image in the "
+            "view (RGB over black) and of a screenshot over a transparent background (RGBA), "
+            "against the exact reference; the second interactive render against one over the "
+            "desired update rate.", "",
+            table(["scene", "representation", "tetrahedra", "still [s]", "still renders [s]",
+                   "RMSE (view)", "RMSE (RGBA shot)", "L", "interactive [s]",
+                   "requested [s]", "L interactive", "LOD"], rows),
+            table(["scene", "exact reference [s]", "read-back floor", "unit distance"],
+                  [[m["scene"], m["reference_seconds"], m["read_back_floor"],
+                    m["unit_distance"]] for m in measured["scenes"]])]
+
+
 def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
     """Write ``bench.md`` into ``output``; returns its text."""
     entries = results["entries"]
@@ -366,6 +391,10 @@ def write_report(results: Dict[str, object], output: pathlib.Path) -> str:
              "one run of its section (of its scene in the race). Generated meshes: "
              + results["shape"] + ".", ""]
     lines += race_section(results.get("race"))
+    for other in results.get("race_sizes") or []:
+        at = race_section(other)
+        lines += [f"## The race at {other['size']} x {other['size']}"] + at[1:]
+    lines += paraview_view_section(results.get("paraview"))
     lines += camera_section(results.get("camera"))
     lines += cells_section(results)
     lines += sweep_sections(entries)

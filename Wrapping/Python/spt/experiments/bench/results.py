@@ -21,6 +21,7 @@ from .. import tables
 from .methods import METHODS
 from .models import Fit
 from .report import write_report
+from .results_views import attach, views_section
 
 Entry = Dict[str, object]
 
@@ -44,8 +45,8 @@ FIGURES = {
 
 #: The report's sections, in order: each heading is written whether or not the run measured
 #: it (a section that was not measured says how to measure it).
-SECTIONS = ("The race: time to quality", "The camera anywhere", "Cell count",
-            "Repetitions, subpixels and image size", "Fitted models", "Crossovers",
+SECTIONS = ("The race: time to quality", "Larger views and ParaView", "The camera anywhere",
+            "Cell count", "Repetitions, subpixels and image size", "Fitted models", "Crossovers",
             "Time to quality at fixed levels", "Host time per frame", "The paper's large case",
             "Parallel rendering", "Figures made outside the benchmark", "Appendix")
 
@@ -244,7 +245,7 @@ def sweep_table(entries: Sequence[Entry], sweep: str, key: str,
 
 def cells_section(results: Dict[str, object], folder: str) -> List[str]:
     entries = [e for e in results["entries"] if e.get("sweep") == "cells"]
-    lines = [f"## {SECTIONS[2]}", ""]
+    lines = [f"## {SECTIONS[3]}", ""]
     if not entries:
         return lines + not_measured("cells")
     settings = results["settings"]
@@ -267,7 +268,7 @@ def cells_section(results: Dict[str, object], folder: str) -> List[str]:
 
 def levels_section(results: Dict[str, object], folder: str) -> List[str]:
     entries = results["entries"]
-    lines = [f"## {SECTIONS[3]}", ""]
+    lines = [f"## {SECTIONS[4]}", ""]
     swept = [(s, k, u) for s, k, u in (("repetitions", "repetitions", ("L = ", "")),
                                        ("subpixels", "subpixels", ("SubpixelLevel ", "")),
                                        ("image", "width", ("", " px wide")))
@@ -289,7 +290,7 @@ def levels_section(results: Dict[str, object], folder: str) -> List[str]:
 def models_section(results: Dict[str, object], folder: str) -> List[str]:
     wall, cpu = results.get("time_models") or {}, results.get("cpu_time_models") or {}
     memory = results.get("memory_models") or {}
-    lines = [f"## {SECTIONS[4]}", ""]
+    lines = [f"## {SECTIONS[5]}", ""]
     if not wall:
         return lines + not_measured("cells,repetitions,subpixels,image")
     rows = [[wall[k]["name"], _f(wall[k]["r2"]),
@@ -315,7 +316,7 @@ def _range(values: Sequence[float]) -> str:
 
 def crossovers_section(results: Dict[str, object]) -> List[str]:
     cross = results.get("crossovers") or {}
-    lines = [f"## {SECTIONS[5]}", ""]
+    lines = [f"## {SECTIONS[6]}", ""]
     if not any(cross.values()):
         return lines + not_measured("cells,repetitions,subpixels,image,quality")
     if cross.get("memory"):
@@ -359,7 +360,7 @@ def crossovers_section(results: Dict[str, object]) -> List[str]:
 
 def quality_section(results: Dict[str, object], folder: str) -> List[str]:
     chosen = [e for e in results["entries"] if e.get("sweep") == "quality" and "rmse" in e]
-    lines = [f"## {SECTIONS[6]}", ""]
+    lines = [f"## {SECTIONS[7]}", ""]
     if not chosen:
         return lines + not_measured("quality")
     scenes = sorted({e["scene"] for e in chosen})
@@ -380,7 +381,7 @@ def quality_section(results: Dict[str, object], folder: str) -> List[str]:
 
 def host_section(results: Dict[str, object]) -> List[str]:
     host = results.get("host") or []
-    lines = [f"## {SECTIONS[7]}", ""]
+    lines = [f"## {SECTIONS[8]}", ""]
     if not host:
         return lines + not_measured("host")
     lines += ["Where an SPT frame's CPU time goes (`perf`): *host* is this project's library, "
@@ -397,7 +398,7 @@ def host_section(results: Dict[str, object]) -> List[str]:
 
 def large_section(results: Dict[str, object]) -> List[str]:
     large = results.get("large")
-    lines = [f"## {SECTIONS[8]}", ""]
+    lines = [f"## {SECTIONS[9]}", ""]
     if not large:
         return lines + not_measured("large")
     nan = float("nan")
@@ -411,7 +412,7 @@ def large_section(results: Dict[str, object]) -> List[str]:
 
 def camera_section(results: Dict[str, object]) -> List[str]:
     camera = results.get("camera")
-    lines = [f"## {SECTIONS[1]}", ""]
+    lines = [f"## {SECTIONS[2]}", ""]
     if not camera:
         return lines + not_measured("camera")
     return lines + ["The camera dollies from the framed view into the mesh; ratio: the frame "
@@ -427,7 +428,7 @@ def parallel_section(results: Dict[str, object]) -> List[str]:
     measured = results.get("parallel") or {}
     vtk = measured.get("vtk", []) if isinstance(measured, dict) else measured
     paraview = measured.get("paraview", []) if isinstance(measured, dict) else []
-    lines = [f"## {SECTIONS[9]}", ""]
+    lines = [f"## {SECTIONS[10]}", ""]
     if not vtk and not paraview:
         return lines + not_measured("parallel")
     lines += [f"Ranks on this machine's {os.cpu_count()} cores, each with an interleaved "
@@ -470,7 +471,7 @@ OTHER_FIGURES = (
 
 
 def other_section() -> List[str]:
-    return [f"## {SECTIONS[10]}", "",
+    return [f"## {SECTIONS[11]}", "",
             "Not part of `bench.json`; each command writes its images, a table and a plot:",
             ""] + [f"- {what}: `{command}`" for what, command in OTHER_FIGURES] + [""]
 
@@ -519,7 +520,8 @@ def compose(results: Dict[str, object], date: str, command: str, folder: str,
             appendix: str) -> str:
     """The Markdown text of ``results.md``."""
     parts: List[Callable[[], List[str]]] = [
-        lambda: race_section(results, folder), lambda: camera_section(results),
+        lambda: race_section(results, folder),
+        lambda: views_section(results, SECTIONS[1]), lambda: camera_section(results),
         lambda: cells_section(results, folder), lambda: levels_section(results, folder),
         lambda: models_section(results, folder), lambda: crossovers_section(results),
         lambda: quality_section(results, folder), lambda: host_section(results),
@@ -527,7 +529,7 @@ def compose(results: Dict[str, object], date: str, command: str, folder: str,
     lines = header(results, date, command)
     for part in parts:
         lines += part()
-    lines += [f"## {SECTIONS[11]}", "",
+    lines += [f"## {SECTIONS[12]}", "",
               f"Every measurement of the run, table by table: [{appendix}]({appendix}).", ""]
     text = "\n".join(line.rstrip(" ") for line in lines)
     while "\n\n\n" in text:
@@ -536,7 +538,8 @@ def compose(results: Dict[str, object], date: str, command: str, folder: str,
 
 
 def load(path: pathlib.Path) -> Dict[str, object]:
-    """A ``bench.json``, its models as :class:`Fit` objects for the appendix."""
+    """A ``bench.json``, with the ``large-views.json`` next to it if there is one
+    (:func:`.results_views.attach`)."""
     try:
         results = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as error:
@@ -544,7 +547,7 @@ def load(path: pathlib.Path) -> Dict[str, object]:
     missing = [k for k in ("machine", "entries", "settings") if k not in results]
     if missing:
         raise ValueError(f"{path} is not a benchmark's bench.json: no {', '.join(missing)}")
-    return results
+    return attach(results, path)
 
 
 def _with_fits(results: Dict[str, object]) -> Dict[str, object]:
@@ -561,7 +564,7 @@ def write_results(source: pathlib.Path, output: pathlib.Path,
     """Write ``output`` (results.md) and the appendix ``bench.md`` next to ``source``, from
     the run in ``source`` (bench.json), and with ``figures`` the figures there too; returns
     the text of ``output``."""
-    results = load(source) if results is None else results
+    results = load(source) if results is None else attach(results, source)
     plain = json.loads(json.dumps(results, default=lambda v: v.as_dict()))
     write_report(_with_fits(plain), source.parent)
     if figures:

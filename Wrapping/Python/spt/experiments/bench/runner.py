@@ -12,7 +12,7 @@ from typing import Dict, List, Optional, Sequence
 
 from ... import render
 from ...progress import Progress
-from . import camera, host, parallel, quality, race, sweeps
+from . import camera, host, parallel, paraview_view, quality, race, sweeps
 from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene
 from .models import memory_models, predict_large, time_models
@@ -62,6 +62,7 @@ def steps(settings: Settings, section: str) -> int:
         "host": len(settings.host_cells),
         "large": 1,
         "parallel": parallel.steps(settings),
+        "paraview": paraview_view.steps(settings),
     }[section]
 
 
@@ -76,15 +77,21 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
         if e.get("sweep") not in sections or not settings.wants(e.get("method", ""))]
     progress = Progress(sum(steps(settings, s) for s in sections), "bench")
     measured = {key: previous.get(key)
-                for key in ("race", "camera", "host", "large", "parallel")}
+                for key in ("race", "race_sizes", "camera", "host", "large", "parallel",
+                            "paraview")}
     for section in sections:
         if section in SWEEPS:
             entries += SWEEPS[section](settings, progress)
         elif section == "quality":
             entries += quality.quality(settings, progress, output)
         elif section == "race":
-            measured["race"] = race.race(settings, progress, output / "race",
-                                         previous.get("race"))
+            earlier = [previous.get("race")] + list(previous.get("race_sizes") or [])
+            measured["race"], *others = race.races(settings, progress, output / "race",
+                                                   [r for r in earlier if r])
+            measured["race_sizes"] = others
+        elif section == "paraview":
+            measured["paraview"] = paraview_view.paraview(
+                settings, progress, output / "paraview", previous.get("paraview"))
         elif section == "camera":
             measured["camera"] = camera.camera_section(settings, progress)
         elif section == "host":
@@ -141,7 +148,8 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
     results = _measure(sections, settings, previous, output)
     entries = results["entries"]
     today = datetime.datetime.now(datetime.timezone.utc).date().isoformat()
-    results.update(date=today, machine=machine(), shape=settings.shape, frames=settings.frames,
+    results.update(date=today, machine=machine(), load_average=list(os.getloadavg()),
+                   cores=os.cpu_count(), shape=settings.shape, frames=settings.frames,
                    settings=dataclasses.asdict(settings), time_models=time_models(entries),
                    cpu_time_models=time_models(entries, "cpu_seconds"),
                    memory_models=memory_models(entries))

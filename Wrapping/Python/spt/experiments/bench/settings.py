@@ -7,7 +7,7 @@ from typing import Optional, Tuple
 
 #: The sections of a full run, in the order they run. The race is the headline.
 SECTIONS = ("race", "camera", "cells", "repetitions", "subpixels", "image", "quality", "host",
-            "large", "parallel")
+            "large", "parallel", "paraview")
 
 #: The race's scenes: the real data sets and the generated drill at three sizes.
 RACE_SCENES = ("spx", "torus", "bluntfin", "post", "drill-0.2M", "drill-1M", "drill-3M")
@@ -43,6 +43,8 @@ class Settings:
     large_repetitions: int = 144
     race_scenes: Tuple[str, ...] = RACE_SCENES
     race_size: int = 256
+    # the race at several image sizes, each measured alone (None: race_size only)
+    race_sizes: Optional[Tuple[int, ...]] = None
     race_max_repetitions: int = 256       # the cap of L in the race: 1, 2, 4, ... up to it
     camera_scenes: Tuple[str, ...] = ("default", "bluntfin")
     camera_size: int = 256
@@ -58,8 +60,17 @@ class Settings:
     parallel_paraview_ranks: Tuple[int, ...] = (1, 2, 4)
     parallel_paraview_representations: Tuple[str, ...] = ("Volume (SPT)", "Volume (HAVS-like)",
                                                           "Volume")
+    # pvpython with the plugin: a ParaView view, its still and interactive renders
+    paraview_scenes: Tuple[str, ...] = ("disk", "drill-0.2M", "drill-1M")
+    paraview_size: Tuple[int, int] = (1280, 800)
+    paraview_representations: Tuple[str, ...] = ("Volume", "Volume (HAVS-like)",
+                                                 "Volume (SPT)")
     # run the sections for these methods only, keeping the other methods' earlier results
     only_methods: Optional[Tuple[str, ...]] = None
+
+    def race_image_sizes(self) -> Tuple[int, ...]:
+        """The race's image sizes, smallest first."""
+        return tuple(sorted(set(self.race_sizes or (self.race_size,))))
 
     def wants(self, name: str) -> bool:
         return self.only_methods is None or name in self.only_methods
@@ -75,4 +86,5 @@ class Settings:
                         race_scenes=("default",), race_size=128, race_max_repetitions=16,
                         camera_scenes=("default",), camera_size=64, camera_repetitions=4,
                         parallel_scenes=("default",), parallel_ranks=(1, 2),
-                        parallel_size=128, parallel_paraview_ranks=(2,))
+                        parallel_size=128, parallel_paraview_ranks=(2,),
+                        paraview_scenes=("default",), paraview_size=(160, 100))

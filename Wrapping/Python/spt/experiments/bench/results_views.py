@@ -1,0 +1,192 @@
+"""The part of ``results.md`` on the views people look at: the race at each image size it was
+run at, how each method's frame grows from the smallest size to the largest, and the
+``paraview`` section (still and interactive renders in a ParaView view).
+
+A run's own ``bench.json`` holds these as ``race`` and ``race_sizes`` (the race at each size,
+smallest first) and ``paraview``. Measurements made apart from the full run can be kept in
+``large-views.json`` next to it, a ``bench.json`` of the ``race`` and ``paraview`` sections
+only; :func:`attach` reads it, and this part of the page then reports that file's run.
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+from typing import Dict, List, Optional
+
+Entry = Dict[str, object]
+
+#: The file of measurements made apart from the full run, next to ``bench.json``.
+LARGE_VIEWS = "large-views.json"
+SIZES_COMMAND = ("python3 -m spt bench --sections race,paraview --size 256,1024 "
+                 "--output out/bench")
+
+
+def attach(results: Dict[str, object], source: pathlib.Path) -> Dict[str, object]:
+    """``results`` with the run of ``large-views.json`` next to ``source`` as
+    ``large_views``, where that file exists."""
+    path = source.parent / LARGE_VIEWS
+    if not path.exists() or "large_views" in results:
+        return results
+    try:
+        views = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as error:
+        raise ValueError(f"cannot read {path}: {error}") from None
+    return dict(results, large_views=views)
+
+
+def races(results: Dict[str, object]) -> List[Dict[str, object]]:
+    """The race at each size it was run at, smallest first."""
+    chosen = [results.get("race")] + list(results.get("race_sizes") or [])
+    return sorted((r for r in chosen if r), key=lambda r: r["size"])
+
+
+def _row(race: Dict[str, object], scene: str, method: str) -> Optional[Entry]:
+    return next((r for r in race["rows"] if r["scene"] == scene and r["method"] == method),
+                None)
+
+
+def _growth(small: Optional[Entry], large: Optional[Entry]) -> str:
+    from .results import _f
+
+    if not small or not large:
+        return "-"
+    return (f"{_f(small['seconds'])} s to {_f(large['seconds'])} s "
+            f"({_f(large['seconds'] / small['seconds'])}x)")
+
+
+def _to_error(race: Dict[str, object], scene: str) -> str:
+    from .results import _at, _reached
+
+    return _at(_reached(race["summary"], scene, "spt"))
+
+
+def growth_table(small: Dict[str, object], large: Dict[str, object]) -> str:
+    """Per scene raced at both sizes: VTK PT's frame, SPT's frame at VTK PT's error (its
+    error target), and SPT's time to VTK PT's error as a multiple of VTK PT's frame, at the
+    smaller size and the larger."""
+    from .results import _table
+    from .results import race_scenes
+
+    rows = []
+    for scene in race_scenes(small):
+        if scene not in race_scenes(large):
+            continue
+        pt = (_row(small, scene, "pt"), _row(large, scene, "pt"))
+        target = (_row(small, scene, "spt-target"), _row(large, scene, "spt-target"))
+        rows.append([scene, f"{pt[1]['cells']:,}", _growth(*pt), _growth(*target),
+                     f"{_to_error(small, scene)}; {_to_error(large, scene)}"])
+    return _table(["scene", "tetrahedra", "VTK PT's frame",
+                   "SPT at VTK PT's error (error target)",
+                   f"SPT's time to VTK PT's error at {small['size']}; at {large['size']}"],
+                  rows)
+
+
+def sizes_part(results: Dict[str, object]) -> List[str]:
+    """The race at each size and the growth from the smallest to the largest."""
+    from .results import race_table
+
+    measured = races(results)
+    if len(measured) < 2:
+        return ["The race was run at one image size. Run it at several with "
+                f"`{SIZES_COMMAND}`.", ""]
+    lines = ["The race's scenes, camera and methods at each image size, each size in its own "
+             "run of the race, the sizes one after the other in one process "
+             "(`--size`); the columns as in the race above.", ""]
+    for race in measured:
+        lines += [f"**{race['size']} x {race['size']}.**", "", race_table(race)]
+    small, large = measured[0], measured[-1]
+    lines += [f"**From {small['size']} x {small['size']} to {large['size']} x "
+              f"{large['size']}** ({(large['size'] / small['size']) ** 2:g} times the "
+              "pixels): each method's frame at both sizes and its growth.", "",
+              growth_table(small, large)]
+    return lines
+
+
+def _representation(scene: Entry, name: str) -> Optional[Entry]:
+    return next((r for r in scene["rows"] if r["representation"] == name), None)
+
+
+def _against(row: Optional[Entry], volume: Optional[Entry]) -> str:
+    from .results import _f
+
+    if not row or not volume:
+        return "-"
+    return f"{_f(row['seconds'] / volume['seconds'])}, {_f(row['rmse'])}"
+
+
+def _spt_cell(row: Optional[Entry], volume: Optional[Entry]) -> str:
+    if not row:
+        return "-"
+    still = row.get("still") or {}
+    return _against(row, volume) + (f" (L={still['repetitions']})" if still else "")
+
+
+def _interactive(row: Optional[Entry]) -> str:
+    from .results import _f
+
+    if not row or not row.get("desired_update_rate"):
+        return "-"
+    requested = 1.0 / row["desired_update_rate"]
+    reps = (row.get("interactive") or {}).get("repetitions")
+    return (f"{_f(row['interactive_seconds'])} s, {_f(row['interactive_seconds'] / requested)}"
+            + (f" (L={reps})" if reps else "") + (", LOD" if row.get("used_lod") else ""))
+
+
+def paraview_table(measured: Dict[str, object]) -> str:
+    from .results import _f, _table
+
+    rows = []
+    for scene in measured["scenes"]:
+        volume = _representation(scene, "Volume")
+        havs = _representation(scene, "Volume (HAVS-like)")
+        spt = _representation(scene, "Volume (SPT)")
+        first = scene["rows"][0]
+        rows.append([scene["scene"], f"{first['cells']:,}",
+                     f"{_f(volume['seconds'])} s, {_f(volume['rmse'])}" if volume else "-",
+                     _against(havs, volume), _spt_cell(spt, volume), _interactive(spt),
+                     f"{_f(scene['reference_seconds'])} s" if scene.get("reference_seconds")
+                     else "cached"])
+    return _table(["scene", "tetrahedra", "\"Volume\": still render, RMSE",
+                   "\"Volume (HAVS-like)\": time / Volume's, RMSE",
+                   "\"Volume (SPT)\": time / Volume's, RMSE",
+                   "SPT interactive: time, / requested", "exact reference"], rows)
+
+
+def paraview_part(results: Dict[str, object]) -> List[str]:
+    measured = results.get("paraview")
+    if not measured or not measured.get("scenes"):
+        return ["This run did not measure the ParaView view. Measure it with "
+                "`python3 -m spt bench --sections paraview --output out/bench` (pvpython and "
+                "the plugin: SPT_PARAVIEW_PLUGIN or PV_PLUGIN_PATH).", ""]
+    width, height = measured["size"]
+    return [f"**In ParaView.** pvpython with the plugin, a {width} x {height} render view, "
+            "ParaView's default transfer functions for the scene's array, the camera turned "
+            f"by azimuth {measured['azimuth']:g} and elevation {measured['elevation']:g} from "
+            "ParaView's own and reset; each representation at its defaults, one after the "
+            "other in one process. Time: the second still render (`StillRender`, finished); "
+            "RMSE: the image that render left in the view (over black, the premultiplied "
+            "color) against the exact reference of the same camera and size (spt.raycast on "
+            "the tetrahedra ParaView hands the mappers). SPT interactive: the second "
+            "`InteractiveRender` and its ratio to the time ParaView asks for (one over the "
+            "render window's desired update rate); LOD where ParaView drew its stand-in. "
+            "The exact reference's own time is given where this run rendered it.", "",
+            paraview_table(measured)]
+
+
+def views_section(results: Dict[str, object], heading: str) -> List[str]:
+    """The section: from ``large-views.json`` where :func:`attach` found it, else from the
+    run itself."""
+    source = results.get("large_views") or results
+    lines = [f"## {heading}", ""]
+    if results.get("large_views"):
+        load = source.get("load_average")
+        lines += [f"Measured apart from the full run, on {source['date']} on "
+                  f"{source['machine']}"
+                  + (f" with a load average of {load[0]:.1f} on its "
+                     f"{source.get('cores', 2)} cores" if load else "")
+                  + f" (`{LARGE_VIEWS}`, written by `{SIZES_COMMAND}`).", ""]
+    return lines + sizes_part(source) + paraview_part(source)
+
+
+__all__ = ["LARGE_VIEWS", "attach", "races", "views_section"]
