@@ -6,7 +6,11 @@ VTK's projected tetrahedra.
 - the race (:mod:`.race`): every method's error against the exact reference and its frame
   time on real and generated scenes, each stochastic method's time to reach VTK PT's error,
   HAVS-like k=6's and fixed errors as multiples of VTK PT's frame, and each method's host CPU
-  time per frame;
+  time per frame; at each image size of ``--size`` (256 by default), each size in its own
+  race, and the growth of each method's frame from the smallest size to the largest;
+- the view people look at in ParaView (:mod:`.paraview_view`): pvpython with the plugin, a
+  1280 x 800 view, the still and interactive renders of "Volume", "Volume (HAVS-like)" and
+  "Volume (SPT)" at their defaults, each image against the exact image of the same camera;
 - sweeps of the cell count (generated meshes, 10 thousand up), the repetition level, the
   subpixel level and the image size, for every method (:mod:`.sweeps`);
 - the *floor*: all tetrahedron faces drawn opaque by ``vtkPolyDataMapper`` at the same image
