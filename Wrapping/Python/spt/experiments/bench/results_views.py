@@ -90,9 +90,9 @@ def sizes_part(results: Dict[str, object]) -> List[str]:
     if len(measured) < 2:
         return ["The race was run at one image size. Run it at several with "
                 f"`{SIZES_COMMAND}`.", ""]
-    lines = ["The race's scenes, camera and methods at each image size, each size in its own "
-             "run of the race, the sizes one after the other in one process "
-             "(`--size`); the columns as in the race above.", ""]
+    lines = ["The race's camera and methods at each image size (`--size`), the sizes one "
+             "after the other in one process per scene, the stochastic methods up to L = "
+             f"{measured[0]['max_repetitions']}; the columns as in the race above.", ""]
     for race in measured:
         lines += [f"**{race['size']} x {race['size']}.**", "", race_table(race)]
     small, large = measured[0], measured[-1]
@@ -185,7 +185,8 @@ def views_section(results: Dict[str, object], heading: str) -> List[str]:
                   f"{source['machine']}"
                   + (f" with a load average of {load[0]:.1f} on its "
                      f"{source.get('cores', 2)} cores" if load else "")
-                  + f" (`{LARGE_VIEWS}`, written by `{SIZES_COMMAND}`).", ""]
+                  + f" (`{LARGE_VIEWS}`, a `bench.json` of the sections race and paraview "
+                  "only).", ""]
     return lines + sizes_part(source) + paraview_part(source)
 
 
