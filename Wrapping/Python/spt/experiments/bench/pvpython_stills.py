@@ -179,11 +179,17 @@ def digest(grid, prop, camera, size):
     return value.hexdigest()[:16]
 
 
-def reference(view, mapper, actor, size, directory, scene):
-    """The exact image of the view's camera, cached, and the seconds it took (0 if read)."""
+def reference(view, mapper, actor, size, directory, arguments):
+    """The exact image of the view's camera, cached, and the seconds it took (0 if read).
+    The mapper's input with the colored array as its active scalars (ParaView's mappers draw
+    the array by name)."""
     from spt import raycast
 
-    grid, prop = mapper.GetDataSetInput(), actor.GetProperty()
+    drawn, prop = mapper.GetDataSetInput(), actor.GetProperty()
+    grid = drawn.NewInstance()
+    grid.ShallowCopy(drawn)
+    grid.GetPointData().SetActiveScalars(arguments.array)
+    scene = arguments.scene
     camera = view.GetRenderer().GetActiveCamera()
     path = directory / f"{scene}-{size[0]}x{size[1]}-{digest(grid, prop, camera, size)}.npy"
     if path.exists():
@@ -216,7 +222,7 @@ def main():
                                             arguments.output)
         if exact is None:
             exact, seconds = reference(view, mapper, actor, size, arguments.references,
-                                       arguments.scene)
+                                       arguments)
             metrics.write_png(arguments.output / "reference.png", exact)
             report = {"reference_seconds": seconds,
                       "read_back_floor": metrics.read_back_floor(exact),
