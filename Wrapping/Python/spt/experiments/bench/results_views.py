@@ -181,12 +181,12 @@ def views_section(results: Dict[str, object], heading: str) -> List[str]:
     lines = [f"## {heading}", ""]
     if results.get("large_views"):
         load = source.get("load_average")
-        lines += [f"Measured apart from the full run, on {source['date']} on "
+        lines += [f"Measured apart from the full run (`{LARGE_VIEWS}`, a `bench.json` of the "
+                  f"sections race and paraview only), on {source['date']} on "
                   f"{source['machine']}"
-                  + (f" with a load average of {load[0]:.1f} on its "
-                     f"{source.get('cores', 2)} cores" if load else "")
-                  + f" (`{LARGE_VIEWS}`, a `bench.json` of the sections race and paraview "
-                  "only).", ""]
+                  + (f", shared with other jobs (load average {load[0]:.1f} on its "
+                     f"{source.get('cores', 2)} cores when the last section ended)"
+                     if load else "") + ".", ""]
     return lines + sizes_part(source) + paraview_part(source)
 
 
