@@ -108,6 +108,11 @@ def screenshot(view, path, size):
     return rgba
 
 
+def file_name(representation):
+    """The representation's name as a file name: Volume_SPT for "Volume (SPT)"."""
+    return representation.replace(" ", "_").replace("(", "").replace(")", "")
+
+
 def view_image(window):
     """What the view shows after its last render, over its black background: the volume's
     premultiplied color, as float RGB, row 0 at the top."""
@@ -135,8 +140,8 @@ def measure(view, display, representation, size, output):
            "still": spt_state(mapper)}
     still += [timed(view.StillRender, window) for _ in range(STILL_RENDERS - 2)]
     row.update(still_seconds=still, seconds=still[1])
-    name = representation.replace(" ", "_").replace("(", "").replace(")", "")
-    image = {"shown": shown, "rgba": screenshot(view, output / f"{name}.png", size)}
+    shot = output / f"{file_name(representation)}.png"
+    image = {"shown": shown, "rgba": screenshot(view, shot, size)}
     interactive = [timed(view.SMProxy.InteractiveRender, window) for _ in range(2)]
     row.update(interactive_seconds=interactive[1],
                desired_update_rate=float(window.GetDesiredUpdateRate()),
@@ -227,8 +232,8 @@ def main():
             report = {"reference_seconds": seconds,
                       "read_back_floor": metrics.read_back_floor(exact),
                       "reference_alpha_mean": float(exact[..., 3].mean())}
-        metrics.write_png(arguments.output / f"{row['representation']}-shown.png".replace(
-            " ", "_"), np.dstack([image["shown"], np.ones(image["shown"].shape[:2])]))
+        metrics.write_png(arguments.output / f"{file_name(representation)}-shown.png",
+                          np.dstack([image["shown"], np.ones(image["shown"].shape[:2])]))
         row.update(scene=arguments.scene, cells=int(mapper.GetDataSetInput().GetNumberOfCells()),
                    width=size[0], height=size[1], rmse=rgb_rmse(image["shown"], exact),
                    rmse_rgba=metrics.rmse(image["rgba"], exact),
