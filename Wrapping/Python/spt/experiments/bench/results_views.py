@@ -128,7 +128,8 @@ def _interactive(row: Optional[Entry]) -> str:
     if not row or not row.get("desired_update_rate"):
         return "-"
     requested = 1.0 / row["desired_update_rate"]
-    reps = (row.get("interactive") or {}).get("repetitions")
+    # with ParaView's stand-in drawn, the mapper's own count is its last still render's
+    reps = None if row.get("used_lod") else (row.get("interactive") or {}).get("repetitions")
     return (f"{_f(row['interactive_seconds'])} s, {_f(row['interactive_seconds'] / requested)}"
             + (f" (L={reps})" if reps else "") + (", LOD" if row.get("used_lod") else ""))
 
@@ -137,7 +138,7 @@ def paraview_table(measured: Dict[str, object]) -> str:
     from .results import _f, _table
 
     rows = []
-    for scene in measured["scenes"]:
+    for scene in sorted(measured["scenes"], key=lambda s: s["rows"][0]["cells"]):
         volume = _representation(scene, "Volume")
         havs = _representation(scene, "Volume (HAVS-like)")
         spt = _representation(scene, "Volume (SPT)")
