@@ -115,8 +115,8 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     return 0;
   }
   settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
-  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble,
-                     settings.DepthSlabs, this->DepthKeyBudget(renWin))
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs,
+                     this->DepthKeyBudget(renWin))
                  : 1;
 }
 
