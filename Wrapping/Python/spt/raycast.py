@@ -15,7 +15,7 @@ two on small meshes, and :func:`spt.render.reference_image` can use either.
 
 from __future__ import annotations
 
-from typing import Optional, Tuple
+from typing import Optional, Sequence, Tuple
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -266,15 +266,24 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, camera: vtkCamera,
            size: Tuple[int, int], mesh: Optional[_Mesh] = None) -> np.ndarray:
     """The exact image of ``grid`` seen by ``camera`` at ``size`` (width, height): float
     premultiplied RGBA, row 0 at the top, as :func:`spt.render.read_rgba` returns it."""
+    return render_volumes([(mesh or _Mesh(grid), prop)], camera, size)
+
+
+def render_volumes(volumes: Sequence[Tuple[object, vtkVolumeProperty]], camera: vtkCamera,
+                   size: Tuple[int, int]) -> np.ndarray:
+    """The exact image of several volumes, each a grid (or its prepared mesh) with a
+    property of its own, in one space: every ray's segments of all of them composited
+    front to back, wherever they interpenetrate (as :func:`render` does for one)."""
     width, height = size
-    tf = TransferFunction(prop)
-    mesh = mesh or _Mesh(grid)
     m, origin, direction = _camera_rays(camera, width, height)
     parts = []
-    for tet, pixel in _pairs(mesh, m, width, height):
-        pixel, enter, length, front, back = _segments(mesh, tet, pixel, origin, direction)
-        depth, color = _integrate(tf, length, front, back)
-        parts.append((pixel, enter, depth, color))
+    for grid, prop in volumes:
+        tf = TransferFunction(prop)
+        mesh = grid if isinstance(grid, _Mesh) else _Mesh(grid)
+        for tet, pixel in _pairs(mesh, m, width, height):
+            pixel, enter, length, front, back = _segments(mesh, tet, pixel, origin, direction)
+            depth, color = _integrate(tf, length, front, back)
+            parts.append((pixel, enter, depth, color))
     if not parts:
         return np.zeros((height, width, 4))
     pixel, enter, depth, color = (np.concatenate(p) for p in zip(*parts))
