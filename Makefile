@@ -1,5 +1,8 @@
 # Quick start on a fresh Debian 12 machine (as root, or with sudo):
-#   make demo   install what is missing, build, install, and render the default data set
+#   make demo   install what is missing, build, install, and run the demo (out/demo): SPT,
+#               VTK's projected tetrahedra and HAVS-like against the exact reference on
+#               interpenetrating volumes and on a drill of 10^6 tetrahedra
+#   make pictures  the README's pictures (Documentation/images), from the installed package
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
 #   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
@@ -53,7 +56,7 @@ PACKAGES = cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps debian-root-deps configure build install demo test test-egl test-debian13 \
+.PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
 	build-vtk-wheel test-vtk-wheel sanitize lint clean
 
@@ -93,6 +96,10 @@ install: build
 
 demo: install
 	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
+
+pictures: install
+	cd /tmp && $(XVFB) $(PYTHON) -m spt figures readme --output $(CURDIR)/Documentation/images \
+	  --bench $(CURDIR)/Documentation/bench/bench.json
 
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
