@@ -51,10 +51,6 @@ def generated_scene(name: str, shape: str, cells: int, view: render.View
     return make
 
 
-#: The demo's data set: the generated drill, the shape of the paper's large data set, at a
-#: size that renders in seconds.
-DEMO_SCENE = "drill"
-
 #: The cameras of the named scenes.
 VIEWS: Dict[str, render.View] = {
     "drill": render.View(azimuth=30.0, elevation=25.0, zoom=1.3),
