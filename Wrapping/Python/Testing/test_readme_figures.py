@@ -27,10 +27,10 @@ def _race():
 
 def test_race_curves_are_the_benchmarks_ratios():
     curves = readme.race_curves(_race())
-    assert curves["SPT"] == [(100, 1.5), (900, 0.5)]
+    assert curves["SPT"] == [(100, 1.5, "a"), (900, 0.5, "b")]
     assert curves["SPT, 8 depth slabs"] == []  # not reached: no point
-    havs = curves["HAVS-like k=6 (its own error)"]
-    assert havs == [(100, pytest.approx(1.5)), (900, pytest.approx(0.25))]
+    havs = curves[readme.HAVS_LABEL]
+    assert havs == [(100, pytest.approx(1.5), "a"), (900, pytest.approx(0.25), "b")]
     assert not any(9.0 in point for points in curves.values() for point in points)
 
 

@@ -50,39 +50,56 @@ def interpenetrating_picture(size: int = 256, cells: int = PAIR_CELLS) -> np.nda
          "|SPT - exact| x4", "|VTK PT - exact| x4"])
 
 
+#: The HAVS-like curve's label: its frame, at its own error.
+HAVS_LABEL = "HAVS-like k=6's frame (its own error)"
+#: Scene names in the plot.
+SCENE_NAMES = {"spx": "SPX", "torus": "torus", "bluntfin": "Blunt Fin", "post": "Oxygen Post",
+               "drill-0.2M": "drill 0.2M", "drill-1M": "drill 1M", "drill-3M": "drill 3M"}
+
+
 def race_curves(race: Dict[str, object]) -> Dict[str, List[tuple]]:
-    """Per curve, (cells, time to VTK PT's error / VTK PT's frame) of every scene that
-    reached it, and HAVS-like k=6's frame / VTK PT's frame."""
+    """Per curve, (cells, time to VTK PT's error / VTK PT's frame, scene) of every scene
+    that reached it, and HAVS-like k=6's frame / VTK PT's frame."""
     cells = {row["scene"]: row["cells"] for row in race["rows"]}
     frames = {(row["scene"], row["method"]): row["seconds"] for row in race["rows"]
               if not row["stochastic"]}
     curves: Dict[str, List[tuple]] = {label: [] for _, label in RACE_CURVES}
-    curves["HAVS-like k=6 (its own error)"] = []
+    curves[HAVS_LABEL] = []
     for entry in race["summary"]:
         for method, label in RACE_CURVES:
             reached = entry["reached"].get("VTK PT's error")
             if entry["method"] == method and reached:
-                curves[label].append((cells[entry["scene"]], reached["ratio"]))
+                curves[label].append((cells[entry["scene"]], reached["ratio"], entry["scene"]))
     for scene in dict.fromkeys(row["scene"] for row in race["rows"]):
         if (scene, "havs6") in frames and (scene, "pt") in frames:
-            curves["HAVS-like k=6 (its own error)"].append(
-                (cells[scene], frames[(scene, "havs6")] / frames[(scene, "pt")]))
+            curves[HAVS_LABEL].append(
+                (cells[scene], frames[(scene, "havs6")] / frames[(scene, "pt")], scene))
     return {label: sorted(points) for label, points in curves.items()}
 
 
 def race_plot(bench: Dict[str, object], path: pathlib.Path) -> None:
-    """The race's times to VTK PT's error against cells, on log scales."""
-    figure = plots.figure(6.0, 3.6)
+    """The race's times to VTK PT's error against cells, on log scales, each SPT point
+    named by its scene."""
+    from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+
+    figure = plots.figure(6.4, 3.8)
     axes = figure.add_subplot(1, 1, 1)
     for index, (label, points) in enumerate(race_curves(bench["race"]).items()):
         if points:
-            x, y = zip(*points)
-            axes.plot(x, y, plots.line_style(index), label=label)
+            x, y, names = zip(*points)
+            axes.plot(x, y, plots.line_style(index)[0], label=label)
+            if index == 0:
+                for point in zip(x, y, names):
+                    axes.annotate(SCENE_NAMES.get(point[2], point[2]), point[:2], fontsize=7,
+                                  xytext=(4, 3), textcoords="offset points")
     axes.axhline(1.0, color="black", linewidth=0.8)
     axes.set_xscale("log")
     axes.set_yscale("log")
+    axes.yaxis.set_major_locator(FixedLocator([0.25, 0.5, 1.0, 2.0, 4.0, 8.0]))
+    axes.yaxis.set_major_formatter(ScalarFormatter())
+    axes.yaxis.set_minor_formatter(NullFormatter())
     size = bench["race"]["size"]
-    plots.finish_axes(axes, "tetrahedra", "time / VTK PT's frame",
+    plots.finish_axes(axes, "tetrahedra", "time / VTK PT's frame (below 1: faster)",
                       f"Time to VTK PT's error, {size} x {size}, {bench.get('machine', '')}")
     figure.tight_layout()
     figure.canvas.draw()
