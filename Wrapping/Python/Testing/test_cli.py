@@ -223,3 +223,15 @@ def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
     assert rows["SPT, paper's sampling, L=8"]["particles"] == "-"
     convergence = (output / "pbvr_convergence.md").read_text()
     assert "| L=2 | L=8 |" in convergence and "PBVR, cell average" in convergence
+
+
+def test_the_demos_large_scene_is_the_iron_protein_where_the_data_are(tmp_path, monkeypatch):
+    from spt.experiments import demo
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("SPT_DATA_DIR", str(tmp_path))
+    assert demo.default_large_scene() == "drill-1M"
+    (tmp_path / "ironProt.vtk").write_text("")
+    assert demo.default_large_scene() == "ironprot_full"
+    monkeypatch.delenv("SPT_DATA_DIR")  # and no shared/data above tmp_path
+    assert demo.default_large_scene() == "drill-1M"

@@ -129,9 +129,10 @@ def _add_demo(commands) -> None:
     demo.add_argument("--target-error", type=_target_error, default=None,
                       help="the error SPT races to besides VTK PT's, RMSE of premultiplied "
                            "RGBA (default 0.005)")
-    demo.add_argument("--dataset", type=_demo_scene, default="drill-1M",
-                      help="the large scene (default: drill-1M, the generated drill of "
-                           "10^6 tetrahedra; 'default' is the embedded helix mesh)")
+    demo.add_argument("--dataset", type=_demo_scene, default=None,
+                      help="the large scene (default: ironprot_full, 1.5M tetrahedra, where "
+                           "the data sets are, else drill-1M, the generated drill of 10^6; "
+                           "'default' is the embedded helix mesh)")
     demo.add_argument("--pair-cells", type=_pair_cells, default=200_000,
                       help="tetrahedra of the interpenetrating drill and ring, in all "
                            "(default 200000)")
