@@ -152,6 +152,7 @@ def test_demo_writes_images_and_the_race(tmp_path, have_display):
     for name in ("comparison.png", "race.md", "results.json"):
         assert (output / name).stat().st_size > 100, name
     document = json.loads((output / "results.json").read_text())
+    assert "cores" in document["machine"] and document["load_average"]["end"] >= 0.0
     scenes = {scene["scene"]: scene for scene in document["scenes"]}
     assert list(scenes) == ["interpenetrating", "default"]
     assert scenes["interpenetrating"]["volumes"] == 2 and scenes["default"]["volumes"] == 1

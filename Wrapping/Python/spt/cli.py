@@ -327,6 +327,8 @@ def _report(arguments: argparse.Namespace) -> None:
 
 
 def _demo(arguments: argparse.Namespace) -> None:
+    import json
+
     from . import render
     from .experiments import demo
 
@@ -336,8 +338,11 @@ def _demo(arguments: argparse.Namespace) -> None:
                         arguments.dataset, arguments.pair_cells, target_error=target)
     _print_table([column.format(target=target) for column in demo.RACE_HEADER],
                  demo.race_rows(results))
+    document = json.loads((arguments.output / "results.json").read_text(encoding="utf-8"))
+    load = document["load_average"]
     print(f"Times are multiples of VTK PT's frame (best of {demo.FRAMES}), "
-          f"{arguments.size} x {arguments.size}.")
+          f"{arguments.size} x {arguments.size}, on {document['machine']} (load average "
+          f"{load['start']:.1f} at the start, {load['end']:.1f} at the end).")
     print(demo.WHERE_SPT_LOSES)
     print(f"Images, comparison.png, race.md and results.json written to {arguments.output}")
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
+import os
 import pathlib
 from typing import Dict, List, Optional, Sequence
 
@@ -33,7 +34,7 @@ import numpy as np
 from .. import data, meshes, metrics, render, scenes, volumes
 from ..progress import Progress
 from . import tables
-from .bench import race
+from .bench import race, runner
 
 PathLike = pathlib.Path
 Entry = Dict[str, object]
@@ -213,10 +214,12 @@ def demo(output: PathLike, size: int = 256, repetitions: int = 256,
          large: Optional[str] = None, pair_cells: int = PAIR_CELLS,
          target_error: float = render.DEFAULT_TARGET_ERROR) -> List[Entry]:
     """The main job: the race on the interpenetrating pair (``pair_cells`` tetrahedra) and on
-    ``large``, each method against the exact reference. Writes every image,
-    ``comparison.png``, ``race.md`` and ``results.json`` to ``output``; returns the results
-    (per scene: rows of method, repetitions, RMSE and seconds, and the race's summary)."""
+    ``large`` (default: :func:`default_large_scene`), each method against the exact
+    reference. Writes every image, ``comparison.png``, ``race.md`` and ``results.json`` (with
+    the machine and its load average) to ``output``; returns the results (per scene: rows of
+    method, repetitions, RMSE and seconds, and the race's summary)."""
     output.mkdir(parents=True, exist_ok=True)
+    load_at_start = os.getloadavg()[0]
     progress = Progress(2 + 2 * (3 + len(levels(repetitions))), "demo")
     large = large or default_large_scene()
     big = _large_scene(large)  # first: a missing data set fails before anything is drawn
@@ -228,7 +231,10 @@ def demo(output: PathLike, size: int = 256, repetitions: int = 256,
     metrics.write_png(output / "comparison.png", comparison(results))
     header = [column.format(target=target_error) for column in RACE_HEADER]
     tables.write_table(output / "race.md", header, race_rows(results))
-    document = {"size": size, "frames": FRAMES, "max_repetitions": repetitions,
+    # Other processes on the machine slow the frames down, and not all methods alike.
+    document = {"machine": runner.machine(),
+                "load_average": {"start": load_at_start, "end": os.getloadavg()[0]},
+                "size": size, "frames": FRAMES, "max_repetitions": repetitions,
                 "target_error": target_error, "where_spt_loses": WHERE_SPT_LOSES,
                 "scenes": _json_ready(results)}
     (output / "results.json").write_text(json.dumps(document, indent=1), encoding="utf-8")
