@@ -53,12 +53,13 @@ LADDER_FACTOR = 4
 #: The race table's columns.
 RACE_HEADER = ["scene", "tetrahedra", "VTK PT: RMSE, frame", "HAVS-like k=6: RMSE, frame",
                "SPT to VTK PT's error", "SPT to RMSE {target:g}"]
-#: Where SPT loses, from the benchmark (Documentation/bench/bench.md, this machine's race).
+#: Where SPT loses, from the benchmark's race on 2 cores with llvmpipe (Documentation/results.md).
 WHERE_SPT_LOSES = (
-    "SPT loses on small meshes on a software rasterizer: where one VTK PT frame sorts a few "
-    "thousand cells in milliseconds, SPT's two traversals rasterized by llvmpipe cost more "
-    "(in the benchmark's race, SPX at 12,936 cells and the torus at 9,216 reach VTK PT's "
-    "error in 1.8 and 5.0 VTK PT frames, the drill at 0.2M in 3.1).")
+    "SPT loses where a VTK PT frame is cheap, on small meshes on a software rasterizer: "
+    "SPT's two traversals rasterized by llvmpipe cost more than sorting a few thousand cells "
+    "(in the benchmark's race on 2 cores, SPX, the torus, Blunt Fin and the drill at 0.2M "
+    "reach VTK PT's error in 1.3 to 5.0 VTK PT frames, and the drill at 1M, where VTK PT is "
+    "near exact, in 1.04).")
 
 
 def default_large_scene() -> str:
