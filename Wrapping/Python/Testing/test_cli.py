@@ -89,7 +89,7 @@ def test_bad_arguments_are_refused(arguments, message):
 
 @pytest.mark.parametrize("command", [("demo",), ("figures", "convergence"), ("figures", "pbvr"),
                                      ("figures", "sampling"), ("figures", "sorting"),
-                                     ("figures", "accuracy")])
+                                     ("figures", "accuracy"), ("figures", "readme")])
 def test_an_output_that_is_a_file_is_refused(command, tmp_path):
     existing = tmp_path / "a_file"
     existing.write_text("")
