@@ -12,6 +12,11 @@
 #   make test-vtk-wheel  the C++ module and tests built against PyPI's VTK wheel (vtk 9.5.0) and
 #               run without X (.ci/vtk-wheel-sdk; kept in VTK_WHEEL_CACHE, default
 #               /var/cache/spt/vtk-sdk); make build-vtk-wheel stops after the build
+#   make wheel  the Python wheel (dist/spt_volume-*.whl) against PyPI's vtk 9.5 (.ci/wheel:
+#               scikit-build-core, VTK's wrapping tools built from ../shared/third_party; kept in
+#               WHEEL_CACHE, default /var/cache/spt/wheel)
+#   make test-wheel  the wheel, then pip install of it (with vtk and pyvista from PyPI) in a
+#               fresh virtual environment without Debian's VTK, and its tests there without X
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -58,7 +63,7 @@ PACKAGES = cmake ninja-build g++ make \
 
 .PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
-	build-vtk-wheel test-vtk-wheel sanitize lint clean
+	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint clean
 
 all: build
 
@@ -150,6 +155,18 @@ test-vtk-wheel: build-vtk-wheel
 	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
 	  nice -n 15 ctest --output-on-failure --timeout 1500
 
+# The Python wheel (pyproject.toml) against the vtk wheel of VTK_WHEEL_VERSION, whose SDK
+# .ci/vtk-wheel-sdk prepares in VTK_WHEEL_CACHE; test-wheel installs it in a fresh virtual
+# environment and runs Testing/Wheel and the package's own tests there (.ci/wheel).
+WHEEL_CACHE ?= /var/cache/spt/wheel
+WHEEL_ENV = SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_WHEEL_CACHE=$(WHEEL_CACHE) \
+	VTK_WHEEL_VERSION=$(VTK_WHEEL_VERSION) JOBS=$(JOBS) SPT_WHEEL_OUTPUT=$(CURDIR)/dist
+wheel: deps
+	$(WHEEL_ENV) .ci/wheel
+
+test-wheel: deps
+	$(WHEEL_ENV) .ci/wheel --test
+
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
 # anything in this project's code fails the run.
@@ -179,4 +196,4 @@ lint: deps
 	clang-format --dry-run -Werror $(CXX_SOURCES)
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-sanitize out
+	rm -rf $(BUILD) $(BUILD)-sanitize out dist
