@@ -144,8 +144,8 @@ test-debian-unstable: debian-root-deps
 # The C++ module and its C++ tests against the VTK of PyPI's wheel (vtk) with Kitware's SDK
 # (vtk-sdk) of the same version, pointed at the wheel's Linux libraries (.ci/vtk-wheel-sdk): the
 # glad loader and the VTK API of 9.5 without a Debian that ships them. No Python package (the
-# SDK's wrapping tools are macOS programs) and no ParaView plugin. The tests run without X:
-# every window is the EGL window.
+# SDK's wrapping tools are macOS programs; the wheel below builds VTK's tools from source) and
+# no ParaView plugin. The tests run without X: every window is the EGL window.
 VTK_WHEEL_VERSION ?= 9.5.0
 VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
 build-vtk-wheel: deps

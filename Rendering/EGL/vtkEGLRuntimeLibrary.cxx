@@ -71,8 +71,8 @@ extern "C"
   {
     SPT_EGL_FORWARD(eglBindAPI, EGL_FALSE, api);
   }
-  EGLBoolean eglChooseConfig(EGLDisplay display, const EGLint* attributes, EGLConfig* configs,
-    EGLint size, EGLint* count)
+  EGLBoolean eglChooseConfig(
+    EGLDisplay display, const EGLint* attributes, EGLConfig* configs, EGLint size, EGLint* count)
   {
     SPT_EGL_FORWARD(eglChooseConfig, EGL_FALSE, display, attributes, configs, size, count);
   }
@@ -85,7 +85,8 @@ extern "C"
   {
     SPT_EGL_FORWARD(eglDestroyContext, EGL_FALSE, display, context);
   }
-  EGLBoolean eglMakeCurrent(EGLDisplay display, EGLSurface draw, EGLSurface read, EGLContext context)
+  EGLBoolean eglMakeCurrent(
+    EGLDisplay display, EGLSurface draw, EGLSurface read, EGLContext context)
   {
     SPT_EGL_FORWARD(eglMakeCurrent, EGL_FALSE, display, draw, read, context);
   }

@@ -26,8 +26,8 @@ extern "C"
   SPT_EGL_HIDDEN const char* eglQueryString(EGLDisplay display, EGLint name);
   SPT_EGL_HIDDEN __eglMustCastToProperFunctionPointerType eglGetProcAddress(const char* name);
   SPT_EGL_HIDDEN EGLBoolean eglBindAPI(EGLenum api);
-  SPT_EGL_HIDDEN EGLBoolean eglChooseConfig(EGLDisplay display, const EGLint* attributes,
-    EGLConfig* configs, EGLint size, EGLint* count);
+  SPT_EGL_HIDDEN EGLBoolean eglChooseConfig(
+    EGLDisplay display, const EGLint* attributes, EGLConfig* configs, EGLint size, EGLint* count);
   SPT_EGL_HIDDEN EGLContext eglCreateContext(
     EGLDisplay display, EGLConfig config, EGLContext share, const EGLint* attributes);
   SPT_EGL_HIDDEN EGLBoolean eglDestroyContext(EGLDisplay display, EGLContext context);

@@ -56,6 +56,9 @@ class MeshingUnavailable(RuntimeError):
             "meshing (e.g. the generated default mesh, `--dataset default`), or build the project "
             "from source with TetGen (SPT_BUILD_MESHING=ON).")
 
+
+__all__ += ["MeshingUnavailable"]
+
 #: Whether the build has the baselines SPT is compared with (SPT_BUILD_BASELINES).
 HAVE_BASELINES = _importlib_util.find_spec(__name__ + ".SPTRenderingBaselines") is not None
 if HAVE_BASELINES:

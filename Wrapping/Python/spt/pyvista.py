@@ -155,8 +155,8 @@ def add_volume(plotter: pyvista.Plotter, mesh: Any, scalars: Any = None, clim=No
     ``pyvista.Volume``), whose ``mapper`` is the SPT mapper and ``prop`` its property.
 
     The arguments are those of ``pyvista.Plotter.add_volume`` (see there), but for
-    ``opacity_unit_distance``, which defaults to :func:`default_opacity_unit_distance` (PyVista's rule
-    for image data) rather than 1, and:
+    ``opacity_unit_distance``, which defaults to :func:`default_opacity_unit_distance`
+    (PyVista's rule for image data) rather than 1, and:
 
     target_error
         SPT's error target, the RMSE of premultiplied RGBA its image may keep (see
