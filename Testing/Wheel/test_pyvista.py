@@ -61,10 +61,14 @@ def test_presets_and_colour_maps_are_pyvistas():
 
 def test_opacity_unit_distance_follows_pyvistas_rule_for_images():
     image = pv.ImageData(dimensions=(9, 9, 9))
+    image.point_data["x"] = image.points[:, 0]
     pyvistas = image.length / (np.mean(image.dimensions) - 1)
     assert spt.pyvista.default_opacity_unit_distance(image) == pytest.approx(pyvistas)
-    mesh = pv.wrap(data.make_default_mesh())
     plotter = _plotter()
+    # An image's unit distance is PyVista's, from its own cells, not from the tetrahedra.
+    drawn = spt.pyvista.add_volume(plotter, image, show_scalar_bar=False)
+    assert drawn.prop.GetScalarOpacityUnitDistance() == pytest.approx(pyvistas)
+    mesh = pv.wrap(data.make_default_mesh())
     actor = spt.pyvista.add_volume(plotter, mesh, show_scalar_bar=False)
     assert actor.prop.GetScalarOpacityUnitDistance() == \
         pytest.approx(mesh.length / np.cbrt(mesh.n_cells))

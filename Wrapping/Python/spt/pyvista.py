@@ -47,9 +47,9 @@ def default_opacity_unit_distance(mesh: pyvista.DataSet) -> float:
     return float(mesh.length / np.cbrt(cells))
 
 
-def tetrahedra(mesh: Any) -> pyvista.UnstructuredGrid:
-    """A copy of ``mesh`` (any data set PyVista wraps, or a MultiBlock) as an unstructured grid
-    of tetrahedra with its data on the points, as PyVista's ``add_volume`` draws it."""
+def as_dataset(mesh: Any) -> pyvista.DataSet:
+    """``mesh`` as a PyVista data set with a volume: a PyVista or VTK data set as it is (not
+    copied), a MultiBlock combined into one unstructured grid."""
     if isinstance(mesh, pyvista.MultiBlock):
         mesh = mesh.combine()
     elif not pyvista.is_pyvista_dataset(mesh):
@@ -59,8 +59,14 @@ def tetrahedra(mesh: Any) -> pyvista.UnstructuredGrid:
         mesh = wrapped
     if isinstance(mesh, pyvista.PolyData):
         raise TypeError("a PolyData has no volume to render; a 3D mesh is needed")
+    return mesh
+
+
+def tetrahedra(mesh: Any) -> pyvista.UnstructuredGrid:
+    """A copy of ``mesh`` (any data set PyVista wraps, or a MultiBlock) as an unstructured grid
+    of tetrahedra with its data on the points, as PyVista's ``add_volume`` draws it."""
     # A copy: the input keeps its cell data and cells.
-    grid = mesh.cell_data_to_point_data()
+    grid = as_dataset(mesh).cell_data_to_point_data()
     if not isinstance(grid, pyvista.UnstructuredGrid):
         grid = grid.cast_to_unstructured_grid()
     if grid.n_cells and not (grid.celltypes == VTK_TETRA).all():
@@ -171,6 +177,9 @@ def add_volume(plotter: pyvista.Plotter, mesh: Any, scalars: Any = None, clim=No
     unknown = set(property_args) - {"ambient", "diffuse", "specular", "specular_power", "shade"}
     if unknown:
         raise TypeError(f"unexpected arguments: {', '.join(sorted(unknown))}")
+    mesh = as_dataset(mesh)
+    # The unit distance of the mesh's own cells (an image's: PyVista's), before the split.
+    unit = opacity_unit_distance or default_opacity_unit_distance(mesh)
     grid = tetrahedra(mesh)
     values, title = _scalars(grid, scalars, preference)
     grid.point_data.set_array(values, title)
@@ -179,7 +188,6 @@ def add_volume(plotter: pyvista.Plotter, mesh: Any, scalars: Any = None, clim=No
                          plotter.theme)
     mapper = _mapper(method, target_error)
     mapper.SetInputData(grid)
-    unit = opacity_unit_distance or default_opacity_unit_distance(grid)
     prop = pyvista.plotting.volume_property.VolumeProperty(
         lookup_table=table, opacity_unit_distance=unit, **property_args)
     volume = pyvista.Volume()
