@@ -12,6 +12,9 @@ Two scenes at 256 x 256 by default:
   sets are, else the race's generated drill at 10^6 tetrahedra, where VTK PT sorts and
   projects every cell on the CPU each frame.
 
+A build without the meshing module (the pip wheel; ``spt.HAVE_MESHING``) races the large scene
+alone, by default the embedded helix mesh where the data sets are not.
+
 On each: VTK PT and HAVS-like k=6, each the best of two frames after an untimed one, and SPT
 at L = 1, 4, 16, ... until its error is at most VTK PT's and the demo's target error, the best
 of two frames each. SPT's time to an error is the frame of the smallest L at or below it, as
@@ -31,7 +34,7 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .. import data, meshes, metrics, render, scenes, volumes
+from .. import HAVE_MESHING, data, meshes, metrics, render, scenes, volumes
 from ..progress import Progress
 from . import tables
 from .bench import race, runner
@@ -63,13 +66,14 @@ WHERE_SPT_LOSES = (
 
 
 def default_large_scene() -> str:
-    """The iron protein in full where its file is in the data sets, else the drill at 1M."""
+    """The iron protein in full where its file is in the data sets, else the drill at 1M, or,
+    in a build without the meshing module (the pip wheel), the embedded helix mesh."""
     try:
         if (data.data_dir() / LARGE_DATA_FILE).is_file():
             return LARGE_DATA_SCENE
     except FileNotFoundError:
         pass
-    return LARGE_SCENE
+    return LARGE_SCENE if HAVE_MESHING else "default"
 
 
 def _large_scene(name: str) -> volumes.VolumesScene:
@@ -221,14 +225,20 @@ def demo(output: PathLike, size: int = 256, repetitions: int = 256,
     method, repetitions, RMSE and seconds, and the race's summary)."""
     output.mkdir(parents=True, exist_ok=True)
     load_at_start = os.getloadavg()[0]
-    progress = Progress(2 + 2 * (3 + len(levels(repetitions))), "demo")
+    # The interpenetrating drill and ring are TetGen meshes: a build without the meshing module
+    # (the pip wheel) races the large scene alone.
+    count = 2 if HAVE_MESHING else 1
+    progress = Progress(count + count * (3 + len(levels(repetitions))), "demo")
     large = large or default_large_scene()
     big = _large_scene(large)  # first: a missing data set fails before anything is drawn
     progress.step(f"{large}: {big.cells():,} tetrahedra")
-    pair = volumes.interpenetrating(pair_cells)
-    progress.step(f"interpenetrating: {pair.cells():,} tetrahedra")
+    chosen = [big]
+    if HAVE_MESHING:
+        pair = volumes.interpenetrating(pair_cells)
+        progress.step(f"interpenetrating: {pair.cells():,} tetrahedra")
+        chosen.insert(0, pair)
     results = [race_scene(s, size, repetitions, target_error, progress, output)
-               for s in (pair, big)]
+               for s in chosen]
     metrics.write_png(output / "comparison.png", comparison(results))
     header = [column.format(target=target_error) for column in RACE_HEADER]
     tables.write_table(output / "race.md", header, race_rows(results))
