@@ -61,8 +61,10 @@ public:
 std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
 {
   std::string source = shader;
+  // The segments are cut by the clipping planes only where the mapper has some.
+  const char* planes = this->Matrices.ClippingPlaneCount > 0 ? "#define HAVS_CLIPPING_PLANES\n" : "";
   vtkShaderProgram::Substitute(
-    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions());
+    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions() + planes);
   vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
   return source;
 }
@@ -93,6 +95,7 @@ void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
   program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
   program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
   program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
+  this->Matrices.SetClippingPlaneUniforms(program);
 }
 
 bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(vtkTextureObject* table, int width, int height)

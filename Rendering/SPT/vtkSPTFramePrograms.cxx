@@ -84,8 +84,9 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
   vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
 
-  std::string defines =
-    common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  // The fragment stage cuts the segments by the clipping planes only where some volume has them.
+  std::string defines = common + (this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "") +
+    this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
   if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
   {
     defines += "\n#define SPT_WRITE_COVERAGE";
@@ -124,6 +125,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
   defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
   defines += this->SlabDefines(kind);
   defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
   defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
@@ -260,4 +262,5 @@ void vtkSPTFrame::SetVolumeUniforms(vtkShaderProgram* program, const Volume& vol
   const bool parallel = matrices.ParallelProjection;
   const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };
   program->SetUniform4f("eyeVC", eyeVC);
+  matrices.SetClippingPlaneUniforms(program);
 }

@@ -133,14 +133,20 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
 {
   // Everything that changes the expected image: each volume's matrices (camera, volume
-  // transform), input and table as built and mapper settings, the viewport, and whatever any
-  // prop of the renderer would draw differently (opaque geometry bounds the volume).
+  // transform) and clipping planes as they are now (a vtkPlane changed in place, as an
+  // interactive widget changes it, changes them), input and table as built and mapper
+  // settings, the viewport, and whatever any prop of the renderer would draw differently
+  // (opaque geometry bounds the volume).
   std::vector<double> signature;
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
     const vtkInternals& internals = *mapper->Internals;
-    signature.insert(signature.end(), internals.Matrices.MCVC, internals.Matrices.MCVC + 16);
-    signature.insert(signature.end(), internals.Matrices.VCDC, internals.Matrices.VCDC + 16);
+    const vtkVolumeViewMatrices& matrices = internals.Matrices;
+    signature.insert(signature.end(), matrices.MCVC, matrices.MCVC + 16);
+    signature.insert(signature.end(), matrices.VCDC, matrices.VCDC + 16);
+    signature.push_back(matrices.ClippingPlaneCount);
+    signature.insert(signature.end(), matrices.ClippingPlanes[0],
+      matrices.ClippingPlanes[0] + 4 * matrices.ClippingPlaneCount);
     signature.push_back(double(mapper->GetMesh()->GetBuildTime()));
     signature.push_back(double(internals.Table->GetBuildTime()));
     signature.push_back(double(mapper->GetMTime()));
