@@ -93,6 +93,7 @@ CASES = {
     "none": Case(()),
     "one oblique": Case((((0.2, 0.0, 0.0), (1.0, 0.3, 0.2)),)),
     "the other side": Case((((0.2, 0.0, 0.0), (-1.0, -0.3, -0.2)),)),
+    "moved, none": Case((), moved=True),
     "two, moved": Case(((MOVED_CENTER, (1.0, 0.3, 0.2)), (MOVED_CENTER, (0.0, -0.4, 1.0))),
                        moved=True),
     "one tetrahedron, none": Case((), mesh="one"),
@@ -126,10 +127,13 @@ class Window:
                               clipping_planes=self.volume.GetMapper().GetClippingPlanes())
 
 
-def window_with(mapper, case: Case, size: int, dolly: float = 1.0) -> Window:
-    """The default scene through ``mapper`` with the case's planes, the camera framing the
-    (moved) volume, dollied in by ``dolly`` (8: the near plane cuts the mesh)."""
+def window_with(mapper, case: Case, size: int, dolly: float = 1.0,
+                parallel: bool = False) -> Window:
+    """The case's mesh through ``mapper`` with the case's planes, the camera framing the
+    (moved) volume, dollied in by ``dolly`` (8: the near plane cuts the mesh), in parallel
+    projection or perspective."""
     grid, prop, view = _scene(case.mesh)
+    view = render.View(view.azimuth, view.elevation, view.zoom, parallel)
     window, renderer = render.make_window(size, size)
     volume = render.add_volume(renderer, grid, prop, mapper)
     if case.moved:
@@ -144,18 +148,20 @@ def window_with(mapper, case: Case, size: int, dolly: float = 1.0) -> Window:
     return Window(window, renderer, volume, planes, case)
 
 
-def image(mapper, case: Case, size: int, dolly: float = 1.0) -> np.ndarray:
+def image(mapper, case: Case, size: int, dolly: float = 1.0, parallel: bool = False
+          ) -> np.ndarray:
     """One render of the case through ``mapper``."""
-    w = window_with(mapper, case, size, dolly)
+    w = window_with(mapper, case, size, dolly, parallel)
     result = w.image()
     w.window.Finalize()
     return result
 
 
 @lru_cache(maxsize=None)
-def reference(name: str, size: int, dolly: float = 1.0) -> np.ndarray:
+def reference(name: str, size: int, dolly: float = 1.0, parallel: bool = False) -> np.ndarray:
     """The exact reference of a case of CASES."""
-    w = window_with(vtk.vtkUnstructuredGridVolumeRayCastMapper(), CASES[name], size, dolly)
+    w = window_with(vtk.vtkUnstructuredGridVolumeRayCastMapper(), CASES[name], size, dolly,
+                    parallel)
     result = w.reference()
     w.window.Finalize()
     return result
@@ -164,7 +170,8 @@ def reference(name: str, size: int, dolly: float = 1.0) -> np.ndarray:
 def unclipped_name(name: str) -> str:
     """The case of CASES without planes on the same mesh."""
     return next(other for other, case in CASES.items()
-                if not case.planes and case.mesh == CASES[name].mesh)
+                if not case.planes and case.mesh == CASES[name].mesh
+                and case.moved == CASES[name].moved)
 
 
 def check_clipping_changes_the_image(size: int) -> None:
