@@ -76,6 +76,9 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  // The segments are cut by the clipping planes (and the cells wholly cut away are skipped)
+  // only where some volume has them.
+  common += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
   std::string vertex = points ? vtkSPTTetrahedraPointsVS : vtkSPTTetrahedraVS;
   std::string geometry = points ? "" : vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(vertex, "//Volume::Defines::Dec", common);
@@ -84,9 +87,8 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
   vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
 
-  // The fragment stage cuts the segments by the clipping planes only where some volume has them.
-  std::string defines = common + (this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "") +
-    this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  std::string defines =
+    common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
   if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
   {
     defines += "\n#define SPT_WRITE_COVERAGE";

@@ -45,6 +45,11 @@ uniform usamplerBuffer tetrahedra;
 uniform samplerBuffer points;
 uniform samplerBuffer scalars;
 
+#ifdef SPT_CLIPPING_PLANES
+uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a point is
+uniform int clippingPlaneCount; // kept where dot(plane, (x, 1)) >= 0 for each of them
+#endif
+
 uniform int cellIdOffset; // where this volume's cell ids start among the frame's volumes
 #ifdef SPT_GLOBAL_IDS
 uniform usamplerBuffer randomIds; // per tetrahedron: the id from the input's global cell id
@@ -227,9 +232,6 @@ bool cellSegment(out Segment segment)
 #endif
 
 #ifdef SPT_CLIPPING_PLANES
-uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a point is
-uniform int clippingPlaneCount; // kept where dot(plane, (x, 1)) >= 0 for each of them
-
 // Cuts the segment to the part that every clipping plane keeps. The scalar is linear along
 // the segment, so the cut ends get the exact scalar, and the table the shortened thickness:
 // the cut segment's own color. False when nothing is left.
