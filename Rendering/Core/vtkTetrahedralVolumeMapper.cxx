@@ -164,8 +164,8 @@ bool vtkTetrahedralVolumeMapper::ComputeMatrices(
   }
   if (!matrices.ComputeClippingPlanes(ren, this->ClippingPlanes))
   {
-    vtkErrorMacro(<< this->ClippingPlanes->GetNumberOfItems()
-                  << " clipping planes: at most " << vtkVolumeViewMatrices::MaximumClippingPlanes
+    vtkErrorMacro(<< this->ClippingPlanes->GetNumberOfItems() << " clipping planes: at most "
+                  << vtkVolumeViewMatrices::MaximumClippingPlanes
                   << " are supported; nothing is drawn. Remove some (RemoveClippingPlane()).");
     return false;
   }

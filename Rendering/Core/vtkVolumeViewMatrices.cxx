@@ -263,7 +263,7 @@ bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneColl
     {
       view[j] *= this->ViewScale;
     }
-    const double length = vtkMath::Norm(view); // of the normal
+    const double length = vtkMath::Norm(view);             // of the normal
     const double unit = length > 0.0 ? 1.0 / length : 0.0; // a zero normal keeps everything
     for (int j = 0; j < 4; ++j)
     {

@@ -23,8 +23,8 @@ from typing import Iterable, Optional, Sequence, Tuple
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import (VTK_TETRA, vtkDataSet, vtkPlane, vtkPlaneCollection,
-                                            vtkUnstructuredGrid)
+from vtkmodules.vtkCommonDataModel import (VTK_TETRA, vtkDataSet, vtkPlane,
+                                           vtkPlaneCollection, vtkUnstructuredGrid)
 from vtkmodules.vtkCommonMath import vtkMatrix4x4
 from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
 from vtkmodules.vtkRenderingCore import vtkCamera, vtkVolumeProperty

@@ -4,9 +4,10 @@ reference of the clipped volume (spt.raycast with the same planes and the volume
 HAVS cuts each segment between two of a pixel's sorted fragments where the ray crosses a
 plane: a cut tetrahedron is drawn exactly (within the 8-bit read-back), and a clipped mesh is
 as close to its reference as the unclipped mesh is to its own over the same pixels (1.5 times,
-as test_havs.py's margins), in perspective and in parallel projection. PBVR keeps the particles on the kept side
-of every plane: its bias against the clipped reference is that of the unclipped scene to within
-four standard errors, measured from two seeds. Seven planes give an error and nothing drawn.
+as test_havs.py's margins), in perspective and in parallel projection. PBVR keeps the
+particles on the kept side of every plane: its bias against the clipped reference is that of
+the unclipped scene to within four standard errors, measured from two seeds. Seven planes give
+an error and nothing drawn.
 """
 
 import math
