@@ -169,6 +169,12 @@ bool vtkTetrahedralVolumeMapper::ComputeMatrices(
                   << " are supported; nothing is drawn. Remove some (RemoveClippingPlane()).");
     return false;
   }
+  if (!finite(matrices.ClippingPlanes[0], 4 * matrices.ClippingPlaneCount))
+  {
+    vtkErrorMacro("A clipping plane is not finite (NaN or Inf in its origin or normal); "
+                  "nothing is drawn.");
+    return false;
+  }
   return true;
 }
 

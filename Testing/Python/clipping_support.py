@@ -185,8 +185,9 @@ def check_clipping_changes_the_image(size: int) -> None:
             assert metrics.rmse(clipped, unclipped) > 0.02, f"{name}: the planes cut nothing"
 
 
-def check_too_many_planes(mapper, size: int) -> None:
-    """Seven planes: an error that says why, nothing drawn, no crash; with six, it draws."""
+def check_bad_planes(mapper, size: int) -> None:
+    """Seven planes: an error that says why, nothing drawn, no crash; with six, it draws. A
+    plane with NaN in its normal: an error, nothing drawn."""
     messages = watch(mapper)
     planes = [plane((0.0, 0.0, 0.0), (1.0, 0.0, -1.0)) for _ in range(7)]
     w = window_with(mapper, CASES["none"], size)
@@ -197,6 +198,12 @@ def check_too_many_planes(mapper, size: int) -> None:
     assert drawn[..., 3].max() == 0.0, "an image from more planes than the mapper honours"
     mapper.RemoveClippingPlane(planes[0])
     assert w.image()[..., 3].max() > 0.2, "six planes must draw"
+    messages.errors.clear()
+    mapper.RemoveAllClippingPlanes()
+    mapper.AddClippingPlane(plane((0.0, 0.0, 0.0), (float("nan"), 0.0, 1.0)))
+    drawn = w.image()
+    assert messages.errors and "not finite" in messages.errors[0], messages.errors
+    assert drawn[..., 3].max() == 0.0, "an image from a plane that is not finite"
     w.window.Finalize()
 
 

@@ -6,7 +6,8 @@ standard errors, and its alpha noise is that of keeping each (cut) segment with 
 alpha. The cases: one oblique plane; two planes with the volume moved, rotated and scaled by
 its matrix; the near plane cutting the mesh (segments cut by it too); the compute
 traversal. A plane changed in place (as PyVista's plane widget changes it) restarts
-progressive refinement; seven planes give an error and nothing drawn.
+progressive refinement; seven planes, or a plane that is not finite, give an error and
+nothing drawn.
 """
 
 import math
@@ -17,7 +18,7 @@ import pytest
 import spt
 from spt import metrics, render
 
-from clipping_support import (CASES, check_clipping_changes_the_image, check_too_many_planes,
+from clipping_support import (CASES, check_clipping_changes_the_image, check_bad_planes,
                               image, keep_images, reference, unclipped_name, window_with)
 from image_statistics import estimate
 from statistics_checks import Z, check_alpha_noise_is_bernoulli
@@ -115,5 +116,5 @@ def test_a_plane_changed_in_place_restarts_refinement(have_display):
     w.window.Finalize()
 
 
-def test_more_than_six_planes_is_an_error(have_display):
-    check_too_many_planes(_mapper(1), SIZE)
+def test_more_than_six_planes_or_a_nan_plane_is_an_error(have_display):
+    check_bad_planes(_mapper(1), SIZE)
