@@ -62,10 +62,8 @@ std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
 {
   std::string source = shader;
   // The segments are cut by the clipping planes only where the mapper has some.
-  const char* planes =
-    this->Matrices.ClippingPlaneCount > 0 ? "#define HAVS_CLIPPING_PLANES\n" : "";
-  vtkShaderProgram::Substitute(
-    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions() + planes);
+  vtkShaderProgram::Substitute(source, "//HAVS::Defines::Dec",
+    this->KBuffer->GetShaderDefinitions() + this->Matrices.ClippingPlaneDefine("HAVS"));
   vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
   return source;
 }

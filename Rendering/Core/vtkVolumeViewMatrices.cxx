@@ -285,3 +285,25 @@ void vtkVolumeViewMatrices::SetClippingPlaneUniforms(vtkShaderProgram* program) 
     program->SetUniformi("clippingPlaneCount", this->ClippingPlaneCount);
   }
 }
+
+std::string vtkVolumeViewMatrices::ClippingPlaneDefine(const std::string& prefix) const
+{
+  return this->ClippingPlaneCount > 0 ? "#define " + prefix + "_CLIPPING_PLANES\n" : "";
+}
+
+void vtkVolumeViewMatrices::AppendSignature(std::vector<double>& signature) const
+{
+  signature.insert(signature.end(), this->MCVC, this->MCVC + 16);
+  signature.insert(signature.end(), this->VCDC, this->VCDC + 16);
+  signature.push_back(this->ClippingPlaneCount);
+  signature.insert(signature.end(), this->ClippingPlanes[0],
+    this->ClippingPlanes[0] + 4 * this->ClippingPlaneCount);
+}
+
+void vtkVolumeViewMatrices::SetUniforms(vtkShaderProgram* program) const
+{
+  program->SetUniformMatrix4x4("MCVCMatrix", const_cast<float*>(this->MCVC));
+  program->SetUniformMatrix4x4("VCDCMatrix", const_cast<float*>(this->VCDC));
+  program->SetUniformMatrix3x3("VCMCLinear", const_cast<float*>(this->VCMCLinear));
+  this->SetClippingPlaneUniforms(program);
+}

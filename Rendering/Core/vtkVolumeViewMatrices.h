@@ -12,6 +12,9 @@
 
 #include "SPTRenderingCoreModule.h" // For export macro
 
+#include <string> // For ClippingPlaneDefine()
+#include <vector> // For AppendSignature()
+
 class vtkMatrix4x4;
 class vtkPlaneCollection;
 class vtkRenderer;
@@ -81,6 +84,19 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
    * `clippingPlaneCount`, where the program uses them.
    */
   void SetClippingPlaneUniforms(vtkShaderProgram* program) const;
+
+  /// The uniforms MCVCMatrix, VCDCMatrix and VCMCLinear, and the clipping planes.
+  void SetUniforms(vtkShaderProgram* program) const;
+
+  /// "#define <prefix>_CLIPPING_PLANES\n" where there are clipping planes, else nothing.
+  std::string ClippingPlaneDefine(const std::string& prefix) const;
+
+  /**
+   * Appends what of this frame changes the image: MCVC, VCDC and the clipping planes as they
+   * are now (a vtkPlane changed in place, as an interactive widget changes it, changes no
+   * MTime of the mapper or of its plane collection).
+   */
+  void AppendSignature(std::vector<double>& signature) const;
 
 private:
   // BoundsDistance and ClippingDistance, from the normalized bounds and the inverse projection.

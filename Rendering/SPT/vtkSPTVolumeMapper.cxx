@@ -141,12 +141,7 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
     const vtkInternals& internals = *mapper->Internals;
-    const vtkVolumeViewMatrices& matrices = internals.Matrices;
-    signature.insert(signature.end(), matrices.MCVC, matrices.MCVC + 16);
-    signature.insert(signature.end(), matrices.VCDC, matrices.VCDC + 16);
-    signature.push_back(matrices.ClippingPlaneCount);
-    signature.insert(signature.end(), matrices.ClippingPlanes[0],
-      matrices.ClippingPlanes[0] + 4 * matrices.ClippingPlaneCount);
+    internals.Matrices.AppendSignature(signature);
     signature.push_back(double(mapper->GetMesh()->GetBuildTime()));
     signature.push_back(double(internals.Table->GetBuildTime()));
     signature.push_back(double(mapper->GetMTime()));

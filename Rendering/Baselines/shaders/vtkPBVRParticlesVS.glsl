@@ -1,5 +1,4 @@
 //VTK::System::Dec
-//PBVR::Defines::Dec
 
 // PBVR vertex stage (Sakamoto et al. 2007, 2010): one opaque particle per vertex, drawn as a
 // point of one (sub)pixel. The particles were generated at the density that the smallest pixel
@@ -27,12 +26,15 @@ uniform int seed;                 // bit pattern of an unsigned value
 uniform sampler2D colorTable;        // the color transfer function over the scalar range
 uniform vec2 colorTexelScaleOffset;  // maps [0, 1] onto the centers of the first and last texels
 
+out vec3 colorVSOutput;
+
+//Volume::Random::Impl
+
+// The clipping planes (PBVR_CLIPPING_PLANES, defined with the random hash where there are some).
 #ifdef PBVR_CLIPPING_PLANES
 uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a particle
 uniform int clippingPlaneCount; // is kept where dot(plane, (x, 1)) >= 0 for each of them
 #endif
-
-out vec3 colorVSOutput;
 
 // Whether the particle is kept: by its depth's density, and by every clipping plane.
 bool kept(float keep, float footprintMC, vec4 positionVC)
@@ -46,8 +48,6 @@ bool kept(float keep, float footprintMC, vec4 positionVC)
 #endif
   return inside;
 }
-
-//Volume::Random::Impl
 
 void main()
 {
