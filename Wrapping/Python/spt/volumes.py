@@ -98,21 +98,6 @@ def interpenetrating(cells: int = 200_000) -> VolumesScene:
                         INTERPENETRATING_VIEW)
 
 
-def _best_frame(window, mapper: vtkAbstractVolumeMapper, frames: int,
-                warm_up: bool = True) -> float:
-    """An untimed frame (:func:`spt.render.warm_up`) if ``warm_up``, then the best of
-    ``frames``, each finished on the GPU."""
-    if warm_up:
-        render.warm_up(window, mapper)
-    seconds = float("inf")
-    for _ in range(max(1, frames)):
-        start = time.perf_counter()
-        window.Render()
-        window.WaitForCompletion()
-        seconds = min(seconds, time.perf_counter() - start)
-    return seconds
-
-
 def _open(s: VolumesScene, mappers: Sequence[vtkAbstractVolumeMapper],
           size: Tuple[int, int]):
     window, renderer = render.make_window(*size)
@@ -134,7 +119,7 @@ def draw(s: VolumesScene, make_mapper: Callable[[], vtkAbstractVolumeMapper],
     The rendering's mapper is the first volume's (the one that draws all SPT volumes)."""
     mappers = [make_mapper() for _ in s.volumes]
     window, renderer = _open(s, mappers, size)
-    seconds = _best_frame(window, mappers[0], frames)
+    seconds = render.best_frame(window, mappers[0], frames)
     rendering = render.Rendering(image=render.read_rgba(window), seconds=seconds,
                                  mapper=mappers[0], report=render.mapper_report(mappers[0]))
     _close(window, renderer)
@@ -153,7 +138,7 @@ def draw_levels(s: VolumesScene, levels: Sequence[int], size: Tuple[int, int] = 
     try:
         for index, level in enumerate(levels):
             mappers[0].SetRepetitionLevel(level)  # the first SPT volume draws them all
-            seconds = _best_frame(window, mappers[0], frames, warm_up=index == 0)
+            seconds = render.best_frame(window, mappers[0], frames, warm=index == 0)
             yield render.Rendering(image=render.read_rgba(window), seconds=seconds,
                                    mapper=mappers[0])
     finally:
