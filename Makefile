@@ -1,5 +1,8 @@
 # Quick start on a fresh Debian 12 machine (as root, or with sudo):
-#   make demo   install what is missing, build, install, and render the default data set
+#   make demo   install what is missing, build, install, and run the demo (out/demo): SPT,
+#               VTK's projected tetrahedra and HAVS-like against the exact reference on
+#               interpenetrating volumes and on a drill of 10^6 tetrahedra
+#   make pictures  the README's pictures (Documentation/images), from the installed package
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
 #   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
@@ -9,6 +12,11 @@
 #   make test-vtk-wheel  the C++ module and tests built against PyPI's VTK wheel (vtk 9.5.0) and
 #               run without X (.ci/vtk-wheel-sdk; kept in VTK_WHEEL_CACHE, default
 #               /var/cache/spt/vtk-sdk); make build-vtk-wheel stops after the build
+#   make wheel  the Python wheel (dist/spt_volume-*.whl) against PyPI's vtk 9.5 (.ci/wheel:
+#               scikit-build-core, VTK's wrapping tools built from ../shared/third_party; kept in
+#               WHEEL_CACHE, default /var/cache/spt/wheel)
+#   make test-wheel  the wheel, then pip install of it (with vtk and pyvista from PyPI) in a
+#               fresh virtual environment without Debian's VTK, and its tests there without X
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -53,9 +61,9 @@ PACKAGES = cmake ninja-build g++ make \
 	xvfb xauth libgl1-mesa-dri \
 	clang-format flake8
 
-.PHONY: all deps debian-root-deps configure build install demo test test-egl test-debian13 \
+.PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
-	build-vtk-wheel test-vtk-wheel sanitize lint clean
+	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint clean
 
 all: build
 
@@ -93,6 +101,10 @@ install: build
 
 demo: install
 	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
+
+pictures: install
+	cd /tmp && $(XVFB) $(PYTHON) -m spt figures readme --output $(CURDIR)/Documentation/images \
+	  --bench $(CURDIR)/Documentation/bench/bench.json
 
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
@@ -132,8 +144,8 @@ test-debian-unstable: debian-root-deps
 # The C++ module and its C++ tests against the VTK of PyPI's wheel (vtk) with Kitware's SDK
 # (vtk-sdk) of the same version, pointed at the wheel's Linux libraries (.ci/vtk-wheel-sdk): the
 # glad loader and the VTK API of 9.5 without a Debian that ships them. No Python package (the
-# SDK's wrapping tools are macOS programs) and no ParaView plugin. The tests run without X:
-# every window is the EGL window.
+# SDK's wrapping tools are macOS programs; the wheel below builds VTK's tools from source) and
+# no ParaView plugin. The tests run without X: every window is the EGL window.
 VTK_WHEEL_VERSION ?= 9.5.0
 VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
 build-vtk-wheel: deps
@@ -142,6 +154,18 @@ build-vtk-wheel: deps
 test-vtk-wheel: build-vtk-wheel
 	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
 	  nice -n 15 ctest --output-on-failure --timeout 1500
+
+# The Python wheel (pyproject.toml) against the vtk wheel of VTK_WHEEL_VERSION, whose SDK
+# .ci/vtk-wheel-sdk prepares in VTK_WHEEL_CACHE; test-wheel installs it in a fresh virtual
+# environment and runs Testing/Wheel and the package's own tests there (.ci/wheel).
+WHEEL_CACHE ?= /var/cache/spt/wheel
+WHEEL_ENV = SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_WHEEL_CACHE=$(WHEEL_CACHE) \
+	VTK_WHEEL_VERSION=$(VTK_WHEEL_VERSION) JOBS=$(JOBS) SPT_WHEEL_OUTPUT=$(CURDIR)/dist
+wheel: deps
+	$(WHEEL_ENV) .ci/wheel
+
+test-wheel: deps
+	$(WHEEL_ENV) .ci/wheel --test
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
@@ -172,4 +196,4 @@ lint: deps
 	clang-format --dry-run -Werror $(CXX_SOURCES)
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-sanitize out
+	rm -rf $(BUILD) $(BUILD)-sanitize out dist

@@ -61,8 +61,9 @@ public:
 std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
 {
   std::string source = shader;
-  vtkShaderProgram::Substitute(
-    source, "//HAVS::Defines::Dec", this->KBuffer->GetShaderDefinitions());
+  // The segments are cut by the clipping planes only where the mapper has some.
+  vtkShaderProgram::Substitute(source, "//HAVS::Defines::Dec",
+    this->KBuffer->GetShaderDefinitions() + this->Matrices.ClippingPlaneDefine("HAVS"));
   vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
   return source;
 }
@@ -93,6 +94,7 @@ void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
   program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
   program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
   program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
+  this->Matrices.SetClippingPlaneUniforms(program);
 }
 
 bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(vtkTextureObject* table, int width, int height)

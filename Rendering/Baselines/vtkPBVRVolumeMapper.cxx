@@ -288,9 +288,7 @@ void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
       this->Ensemble->GetPassHeight()));
   const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
     0.5f / TransferFunctionSamples };
-  program->SetUniformMatrix4x4("MCVCMatrix", transforms.MCVC);
-  program->SetUniformMatrix4x4("VCDCMatrix", transforms.VCDC);
-  program->SetUniformMatrix3x3("VCMCLinear", transforms.VCMCLinear);
+  transforms.SetUniforms(program);
   program->SetUniformf("viewToModelVolume",
     static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
   program->SetUniformf("pixelAreaFactor", pixelArea);
@@ -501,8 +499,8 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   int perPass = 1;
   Traversal kind = Traversal::Single;
   int count = this->ChooseRepetitions(vol, this->RepetitionLevel, perPass, kind);
-  std::vector<double> signature(internals.Transforms.MCVC, internals.Transforms.MCVC + 16);
-  signature.insert(signature.end(), internals.Transforms.VCDC, internals.Transforms.VCDC + 16);
+  std::vector<double> signature;
+  internals.Transforms.AppendSignature(signature);
   signature.push_back(double(internals.GenerationCount));
   signature.push_back(double(this->GetMTime()));
   const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
@@ -521,7 +519,8 @@ void vtkPBVRVolumeMapper::DrawSets(int x, int y, int first, int count)
   vtkEnsembleBuffer* ensemble = internals.Ensemble;
   vtkTextureObject* colors = internals.GetColorTexture(renWin);
   std::string vertex = vtkPBVRParticlesVS;
-  vtkShaderProgram::Substitute(vertex, "//Volume::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(vertex, "//Volume::Random::Impl",
+    internals.Transforms.ClippingPlaneDefine("PBVR") + vtkHashRandom);
   vtkShaderProgram* program =
     renWin->GetShaderCache()->ReadyShaderProgram(vertex.c_str(), vtkPBVRParticlesFS, "");
   if (!colors || !program)

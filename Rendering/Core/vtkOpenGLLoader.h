@@ -22,6 +22,7 @@
 #include "vtk_glew.h" // For the OpenGL declarations (GLEW)
 #endif
 
+#include <cstddef> // For size_t
 #include <cstring> // For std::strcmp
 
 namespace vtkOpenGLLoader
@@ -72,6 +73,22 @@ inline bool HasExtension(const char* name)
     }
   }
   return false;
+}
+
+/// The free memory of the current context's device in bytes, where its driver says
+/// (GL_NVX_gpu_memory_info, GL_ATI_meminfo: both in KiB); 0 where it does not.
+inline size_t FreeDeviceMemoryBytes()
+{
+  GLint kib[4] = { 0, 0, 0, 0 };
+  if (HasExtension("GL_NVX_gpu_memory_info"))
+  {
+    glGetIntegerv(0x9049, kib); // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX
+  }
+  else if (HasExtension("GL_ATI_meminfo"))
+  {
+    glGetIntegerv(0x87FC, kib); // GL_TEXTURE_FREE_MEMORY_ATI: the pool's free memory first
+  }
+  return glGetError() == GL_NO_ERROR && kib[0] > 0 ? size_t(kib[0]) * 1024 : 0;
 }
 
 /// The bits per channel of the color buffer that the bound draw framebuffer draws into first

@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
@@ -159,6 +160,19 @@ bool vtkTetrahedralVolumeMapper::ComputeMatrices(
   {
     vtkErrorMacro("The camera or the volume's transform is not finite (NaN or Inf in its "
                   "matrices); nothing is drawn. Check the camera and the data's bounds.");
+    return false;
+  }
+  if (!matrices.ComputeClippingPlanes(ren, this->ClippingPlanes))
+  {
+    vtkErrorMacro(<< this->ClippingPlanes->GetNumberOfItems() << " clipping planes: at most "
+                  << vtkVolumeViewMatrices::MaximumClippingPlanes
+                  << " are supported; nothing is drawn. Remove some (RemoveClippingPlane()).");
+    return false;
+  }
+  if (!finite(matrices.ClippingPlanes[0], 4 * matrices.ClippingPlaneCount))
+  {
+    vtkErrorMacro("A clipping plane is not finite (NaN or Inf in its origin or normal); "
+                  "nothing is drawn.");
     return false;
   }
   return true;

@@ -127,8 +127,10 @@ protected:
   bool PrepareMesh(vtkVolume* vol, bool cellScalars);
 
   /**
-   * Compute the frame's matrices; false, with an error, when they are not finite (a camera
-   * or a volume transform with NaN or Inf in it, as ResetCamera() makes for such bounds).
+   * Compute the frame's matrices and the mapper's clipping planes in them; false, with an
+   * error, when they are not finite (a camera or a volume transform with NaN or Inf in it, as
+   * ResetCamera() makes for such bounds) or there are more clipping planes than the shaders
+   * take (vtkVolumeViewMatrices::MaximumClippingPlanes).
    */
   bool ComputeMatrices(vtkRenderer* ren, vtkVolume* vol, vtkVolumeViewMatrices& matrices);
 

@@ -4,7 +4,10 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
 #include "vtkVolume.h"
 
 #include "vtkShaderSourceUtilities.h"
@@ -226,4 +229,81 @@ void vtkVolumeViewMatrices::ComputeDistances(const double* bounds, vtkMatrix4x4*
     clipToView->MultiplyPoint(ndc, view);
     this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
   }
+}
+
+bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneCollection* planes)
+{
+  const int count = planes ? planes->GetNumberOfItems() : 0;
+  if (count > MaximumClippingPlanes)
+  {
+    return false;
+  }
+  // A plane p of world coordinates is p^T (view -> world) in view coordinates, and the
+  // normalized view scales view coordinates by 1 / ViewScale.
+  vtkNew<vtkMatrix4x4> viewToWorld;
+  vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
+  this->ClippingPlaneCount = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    vtkPlane* plane = planes->GetItem(i);
+    double normal[3], origin[3];
+    plane->GetNormal(normal);
+    plane->GetOrigin(origin);
+    const double world[4] = { normal[0], normal[1], normal[2], -vtkMath::Dot(normal, origin) };
+    double view[4];
+    for (int j = 0; j < 4; ++j)
+    {
+      view[j] = 0.0;
+      for (int k = 0; k < 4; ++k)
+      {
+        view[j] += world[k] * viewToWorld->GetElement(k, j);
+      }
+    }
+    for (int j = 0; j < 3; ++j)
+    {
+      view[j] *= this->ViewScale;
+    }
+    const double length = vtkMath::Norm(view);             // of the normal
+    const double unit = length > 0.0 ? 1.0 / length : 0.0; // a zero normal keeps everything
+    for (int j = 0; j < 4; ++j)
+    {
+      this->ClippingPlanes[i][j] = static_cast<float>(view[j] * unit);
+    }
+    ++this->ClippingPlaneCount;
+  }
+  return true;
+}
+
+void vtkVolumeViewMatrices::SetClippingPlaneUniforms(vtkShaderProgram* program) const
+{
+  if (program->IsUniformUsed("clippingPlanes"))
+  {
+    program->SetUniform4fv("clippingPlanes", MaximumClippingPlanes, this->ClippingPlanes);
+  }
+  if (program->IsUniformUsed("clippingPlaneCount"))
+  {
+    program->SetUniformi("clippingPlaneCount", this->ClippingPlaneCount);
+  }
+}
+
+std::string vtkVolumeViewMatrices::ClippingPlaneDefine(const std::string& prefix) const
+{
+  return this->ClippingPlaneCount > 0 ? "#define " + prefix + "_CLIPPING_PLANES\n" : "";
+}
+
+void vtkVolumeViewMatrices::AppendSignature(std::vector<double>& signature) const
+{
+  signature.insert(signature.end(), this->MCVC, this->MCVC + 16);
+  signature.insert(signature.end(), this->VCDC, this->VCDC + 16);
+  signature.push_back(this->ClippingPlaneCount);
+  signature.insert(signature.end(), this->ClippingPlanes[0],
+    this->ClippingPlanes[0] + 4 * this->ClippingPlaneCount);
+}
+
+void vtkVolumeViewMatrices::SetUniforms(vtkShaderProgram* program) const
+{
+  program->SetUniformMatrix4x4("MCVCMatrix", const_cast<float*>(this->MCVC));
+  program->SetUniformMatrix4x4("VCDCMatrix", const_cast<float*>(this->VCDC));
+  program->SetUniformMatrix3x3("VCMCLinear", const_cast<float*>(this->VCMCLinear));
+  this->SetClippingPlaneUniforms(program);
 }

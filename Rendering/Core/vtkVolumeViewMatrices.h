@@ -12,8 +12,13 @@
 
 #include "SPTRenderingCoreModule.h" // For export macro
 
+#include <string> // For ClippingPlaneDefine()
+#include <vector> // For AppendSignature()
+
 class vtkMatrix4x4;
+class vtkPlaneCollection;
 class vtkRenderer;
+class vtkShaderProgram;
 class vtkTetrahedralMesh;
 class vtkVolume;
 
@@ -54,11 +59,44 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
   /// triangles on the screen.
   bool Mirrored = false;
 
+  /// The most clipping planes a mapper honours (as VTK's polygonal mappers).
+  static constexpr int MaximumClippingPlanes = 6;
+  /// The mapper's clipping planes in normalized view coordinates, each a unit normal and an
+  /// offset: a point x is kept where dot(plane, (x, 1)) >= 0, the side of the vtkPlane that its
+  /// normal points to, as VTK's mappers keep.
+  int ClippingPlaneCount = 0;
+  float ClippingPlanes[MaximumClippingPlanes][4] = {};
+
   /**
    * The matrices of the renderer's active camera for the volume's matrix and the mesh's
    * normalization.
    */
   void Compute(vtkRenderer* ren, vtkVolume* vol, const vtkTetrahedralMesh* mesh);
+
+  /**
+   * ClippingPlanes from planes in world coordinates (after Compute(), whose view scale they
+   * share); false, with nothing set, for more than MaximumClippingPlanes of them.
+   */
+  bool ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneCollection* planes);
+
+  /**
+   * The shaders' clipping planes: the uniforms `clippingPlanes` (vec4[6]) and
+   * `clippingPlaneCount`, where the program uses them.
+   */
+  void SetClippingPlaneUniforms(vtkShaderProgram* program) const;
+
+  /// The uniforms MCVCMatrix, VCDCMatrix and VCMCLinear, and the clipping planes.
+  void SetUniforms(vtkShaderProgram* program) const;
+
+  /// "#define <prefix>_CLIPPING_PLANES\n" where there are clipping planes, else nothing.
+  std::string ClippingPlaneDefine(const std::string& prefix) const;
+
+  /**
+   * Appends what of this frame changes the image: MCVC, VCDC and the clipping planes as they
+   * are now (a vtkPlane changed in place, as an interactive widget changes it, changes no
+   * MTime of the mapper or of its plane collection).
+   */
+  void AppendSignature(std::vector<double>& signature) const;
 
 private:
   // BoundsDistance and ClippingDistance, from the normalized bounds and the inverse projection.

@@ -7,8 +7,12 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkVersionMacros.h"
 
+#ifdef SPT_EGL_RUNTIME_LIBRARY
+#include "vtkEGLRuntimeLibrary.h"
+#else
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#endif
 
 #include <cstring>
 #include <map>
@@ -260,6 +264,12 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
   }
   if (display == EGL_NO_DISPLAY)
   {
+#ifdef SPT_EGL_RUNTIME_LIBRARY
+    if (internals.Error.empty())
+    {
+      internals.Error = vtkEGLRuntimeLibraryError();
+    }
+#endif
     if (internals.Error.empty())
     {
       internals.Error = "libEGL offers neither a GPU through EGL_EXT_platform_device nor Mesa's "

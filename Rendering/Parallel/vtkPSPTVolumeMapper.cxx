@@ -463,10 +463,11 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, v
     ? Of(self).Compute.Get()
     : nullptr;
   settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;
-  // Every rank has the same ensemble size, so the same repetitions per traversal.
+  // Every rank has the same ensemble size, so the same repetitions per traversal; the keys
+  // that the ranks exchange stay within the fixed budget.
   settings.DepthSlabs = SPTInternals::DepthSlabsThatFit(self->DepthSlabs, self->GetEnsemble());
-  const int perPass = SPTInternals::RepetitionsPerTraversal(
-    self->RepetitionsPerPass, self->GetEnsemble(), settings.DepthSlabs);
+  const int perPass = SPTInternals::RepetitionsPerTraversal(self->RepetitionsPerPass,
+    self->GetEnsemble(), settings.DepthSlabs, SPTInternals::FixedKeyBudget);
   const FramePlan plan =
     this->PlanParallel(self, vol, perPass, SPTInternals::Signature(ren, all, target));
   if (plan.Cheapest)

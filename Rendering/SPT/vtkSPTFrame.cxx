@@ -65,6 +65,7 @@ vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensem
   for (const Volume& volume : volumes)
   {
     this->NearPlaneCuts = this->NearPlaneCuts || volume.Matrices->NearPlaneCutsBounds;
+    this->ClippingPlanes = this->ClippingPlanes || volume.Matrices->ClippingPlaneCount > 0;
   }
   const int mostSlabs = MaximumDepthSlabs; // a value: std::min takes references
   this->FrameSettings.DepthSlabs = std::max(1, std::min(this->FrameSettings.DepthSlabs, mostSlabs));

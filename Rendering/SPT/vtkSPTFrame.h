@@ -215,7 +215,8 @@ private:
   const std::vector<Volume>& Volumes;
   Settings FrameSettings;
   vtkObject* Reporter;
-  bool NearPlaneCuts = false; // the near plane cuts the bounds of some volume
+  bool NearPlaneCuts = false;  // the near plane cuts the bounds of some volume
+  bool ClippingPlanes = false; // some volume has clipping planes (vtkVolumeViewMatrices)
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of
   // vtkSPTMeshBuffers about SmallCellSize pixels across or less; the others are drawn as the

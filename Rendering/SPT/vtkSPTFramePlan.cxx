@@ -10,25 +10,54 @@
 #include "vtkOpenGLRenderWindow.h"
 
 #include "vtkEnsembleBuffer.h"
+#include "vtkSPTComputeTraversal.h"
 #include "vtkSPTDepthKeyBuffer.h"
+
+#include <vtksys/SystemInformation.hxx>
 
 #include <algorithm>
 #include <sstream>
 #include <utility>
 #include <vector>
 
+namespace
+{
+// The host's physical memory in bytes; 0 where unknown.
+size_t HostMemoryBytes()
+{
+  vtksys::SystemInformation host;
+  const long long kib = host.GetHostMemoryTotal();
+  return kib > 0 ? static_cast<size_t>(kib) * 1024 : 0;
+}
+}
+
 int vtkSPTVolumeMapper::vtkInternals::RepetitionsPerTraversal(
-  int asked, const vtkEnsembleBuffer* ensemble, int slabs)
+  int asked, const vtkEnsembleBuffer* ensemble, int slabs, size_t budget)
 {
   // A traversal of many repetitions costs little more than one of a single repetition, so at
   // the sizes where memory allows, a frame of 256 repetitions is one pair of traversals
   // instead of sixteen. Depth slabs share the keys' memory.
-  constexpr size_t budget = size_t(128) << 20;
   const size_t samples =
     std::max<size_t>(1, size_t(ensemble->GetPassWidth()) * size_t(ensemble->GetPassHeight()));
   const size_t perSlab = budget / (4 * samples * size_t(std::max(slabs, 1)));
   const int fits = static_cast<int>(std::min<size_t>(perSlab, 256));
   return std::min(asked, std::max(fits, 16 / std::max(slabs, 1)));
+}
+
+size_t vtkSPTVolumeMapper::vtkInternals::DepthKeyBudget(vtkOpenGLRenderWindow* renWin)
+{
+  // An eighth of the memory the device has free, between the fixed budget and 1 GiB (256
+  // repetitions at 1024 x 1024): a software rasterizer's device is the host's memory; a GPU
+  // says what it has free where its driver offers a query (NVIDIA's, AMD's); else the fixed
+  // budget, which any OpenGL 4.4 device holds.
+  if (this->KeyBudget == 0)
+  {
+    const size_t free = vtkSPTComputeTraversal::IsSoftwareRasterizer(renWin)
+      ? HostMemoryBytes()
+      : vtkOpenGLLoader::FreeDeviceMemoryBytes();
+    this->KeyBudget = std::min(std::max(free / 8, FixedKeyBudget), size_t(1) << 30);
+  }
+  return this->KeyBudget;
 }
 
 int vtkSPTVolumeMapper::vtkInternals::DepthSlabsThatFit(
@@ -86,7 +115,8 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
     return 0;
   }
   settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
-  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs)
+  return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs,
+                     this->DepthKeyBudget(renWin))
                  : 1;
 }
 

@@ -76,6 +76,9 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
   common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  // The segments are cut by the clipping planes (and the cells wholly cut away are skipped)
+  // only where some volume has them.
+  common += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
   std::string vertex = points ? vtkSPTTetrahedraPointsVS : vtkSPTTetrahedraVS;
   std::string geometry = points ? "" : vtkSPTTetrahedraGS;
   vtkShaderProgram::Substitute(vertex, "//Volume::Defines::Dec", common);
@@ -124,6 +127,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
   defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
   defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
   defines += this->SlabDefines(kind);
   defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
   defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
@@ -260,4 +264,5 @@ void vtkSPTFrame::SetVolumeUniforms(vtkShaderProgram* program, const Volume& vol
   const bool parallel = matrices.ParallelProjection;
   const float eyeVC[4] = { 0.0f, 0.0f, parallel ? 1.0f : 0.0f, parallel ? 0.0f : 1.0f };
   program->SetUniform4f("eyeVC", eyeVC);
+  matrices.SetClippingPlaneUniforms(program);
 }

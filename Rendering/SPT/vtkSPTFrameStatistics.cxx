@@ -11,22 +11,17 @@ void vtkSPTFrameStatistics::Reset()
 
 void vtkSPTFrameStatistics::Record(const Values& values)
 {
-  this->RepetitionCount = values.RepetitionCount;
-  this->EstimatedError = values.EstimatedError;
-  this->DepthSlabs = values.DepthSlabs;
-  this->PointCellCount = values.PointCellCount;
-  this->ComputedCellCount = values.ComputedCellCount;
-  this->ParallelBytes = values.ParallelBytes;
+  this->Current = values;
   this->Modified();
 }
 
 void vtkSPTFrameStatistics::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "RepetitionCount: " << this->RepetitionCount << "\n";
-  os << indent << "EstimatedError: " << this->EstimatedError << "\n";
-  os << indent << "DepthSlabs: " << this->DepthSlabs << "\n";
-  os << indent << "PointCellCount: " << this->PointCellCount << "\n";
-  os << indent << "ComputedCellCount: " << this->ComputedCellCount << "\n";
-  os << indent << "ParallelBytes: " << this->ParallelBytes << "\n";
+  os << indent << "RepetitionCount: " << this->Current.RepetitionCount << "\n";
+  os << indent << "EstimatedError: " << this->Current.EstimatedError << "\n";
+  os << indent << "DepthSlabs: " << this->Current.DepthSlabs << "\n";
+  os << indent << "PointCellCount: " << this->Current.PointCellCount << "\n";
+  os << indent << "ComputedCellCount: " << this->Current.ComputedCellCount << "\n";
+  os << indent << "ParallelBytes: " << this->Current.ParallelBytes << "\n";
 }

@@ -24,24 +24,7 @@ public:
   vtkTypeMacro(vtkSPTFrameStatistics, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Repetitions averaged into the image shown (all renders of a progressive image).
-  vtkGetMacro(RepetitionCount, int);
-  /// The image's estimated error (noise and rounding); -1 without an error target or estimate.
-  vtkGetMacro(EstimatedError, double);
-  /// Depth slabs the last render drew.
-  vtkGetMacro(DepthSlabs, int);
-  /// Tetrahedra of this mapper's input drawn as points (see SmallCellSize).
-  vtkGetMacro(PointCellCount, vtkIdType);
-  /// Tetrahedra of this mapper's input visited in compute passes (see ComputeTraversal).
-  vtkGetMacro(ComputedCellCount, vtkIdType);
-  /// Bytes this process contributed to a parallel render's reductions; 0 in one process.
-  vtkGetMacro(ParallelBytes, vtkIdType);
-
-  /// All counts back to those of a mapper that has not rendered.
-  void Reset();
-
-#ifndef __VTK_WRAP__
-  /// What a render records; the mappers' own.
+  /// What a render records (by the mappers, through Record()).
   struct Values
   {
     int RepetitionCount = 0;
@@ -51,6 +34,24 @@ public:
     vtkIdType ComputedCellCount = 0;
     vtkIdType ParallelBytes = 0;
   };
+
+  /// Repetitions averaged into the image shown (all renders of a progressive image).
+  int GetRepetitionCount() const { return this->Current.RepetitionCount; }
+  /// The image's estimated error (noise and rounding); -1 without an error target or estimate.
+  double GetEstimatedError() const { return this->Current.EstimatedError; }
+  /// Depth slabs the last render drew.
+  int GetDepthSlabs() const { return this->Current.DepthSlabs; }
+  /// Tetrahedra of this mapper's input drawn as points (see SmallCellSize).
+  vtkIdType GetPointCellCount() const { return this->Current.PointCellCount; }
+  /// Tetrahedra of this mapper's input visited in compute passes (see ComputeTraversal).
+  vtkIdType GetComputedCellCount() const { return this->Current.ComputedCellCount; }
+  /// Bytes this process contributed to a parallel render's reductions; 0 in one process.
+  vtkIdType GetParallelBytes() const { return this->Current.ParallelBytes; }
+
+  /// All counts back to those of a mapper that has not rendered.
+  void Reset();
+
+#ifndef __VTK_WRAP__
   /// Record what a render drew.
   void Record(const Values& values);
 #endif
@@ -59,16 +60,11 @@ protected:
   vtkSPTFrameStatistics() = default;
   ~vtkSPTFrameStatistics() override = default;
 
-  int RepetitionCount = 0;
-  double EstimatedError = -1.0;
-  int DepthSlabs = 1;
-  vtkIdType PointCellCount = 0;
-  vtkIdType ComputedCellCount = 0;
-  vtkIdType ParallelBytes = 0;
-
 private:
   vtkSPTFrameStatistics(const vtkSPTFrameStatistics&) = delete;
   void operator=(const vtkSPTFrameStatistics&) = delete;
+
+  Values Current;
 };
 
 #endif

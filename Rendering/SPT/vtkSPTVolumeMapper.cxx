@@ -133,14 +133,15 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target)
 {
   // Everything that changes the expected image: each volume's matrices (camera, volume
-  // transform), input and table as built and mapper settings, the viewport, and whatever any
-  // prop of the renderer would draw differently (opaque geometry bounds the volume).
+  // transform) and clipping planes as they are now (a vtkPlane changed in place, as an
+  // interactive widget changes it, changes them), input and table as built and mapper
+  // settings, the viewport, and whatever any prop of the renderer would draw differently
+  // (opaque geometry bounds the volume).
   std::vector<double> signature;
   for (vtkSPTVolumeMapper* mapper : mappers)
   {
     const vtkInternals& internals = *mapper->Internals;
-    signature.insert(signature.end(), internals.Matrices.MCVC, internals.Matrices.MCVC + 16);
-    signature.insert(signature.end(), internals.Matrices.VCDC, internals.Matrices.VCDC + 16);
+    internals.Matrices.AppendSignature(signature);
     signature.push_back(double(mapper->GetMesh()->GetBuildTime()));
     signature.push_back(double(internals.Table->GetBuildTime()));
     signature.push_back(double(mapper->GetMTime()));

@@ -138,9 +138,9 @@ public:
   ///@{
   /**
    * Repetitions drawn per traversal with image atomics (OpenGL 4.4; 4 bytes per repetition
-   * and sample). Fewer are drawn where the depth keys would pass 128 MiB (never fewer than
-   * 16), and 1 where the context lacks image load/store. 1 draws each repetition as its own
-   * pass, as in the paper. Range 1 to 256, default 256.
+   * and sample). Fewer are drawn where the keys would pass the device's budget (an eighth of
+   * its free memory, 128 MiB to 1 GiB; never fewer than 16), and 1 without image load/store.
+   * 1 draws each repetition as its own pass, as in the paper. Range 1 to 256, default 256.
    */
   vtkSetClampMacro(RepetitionsPerPass, int, 1, 256);
   vtkGetMacro(RepetitionsPerPass, int);

@@ -67,8 +67,16 @@ public:
 
   // What a frame draws (vtkSPTFramePlan.cxx).
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
-  // repetition) stay within 128 MiB, and never fewer than 16, or than asked if fewer.
-  static int RepetitionsPerTraversal(int asked, const vtkEnsembleBuffer* ensemble, int slabs);
+  // repetition) stay within `budget` bytes, and never fewer than 16, or than asked if fewer.
+  static int RepetitionsPerTraversal(
+    int asked, const vtkEnsembleBuffer* ensemble, int slabs, size_t budget);
+  // The depth keys' budget that any device holds, and that the ranks of a parallel render
+  // exchange at most per traversal.
+  static constexpr size_t FixedKeyBudget = size_t(128) << 20;
+  // The depth keys' budget of one process: what the device can spare (at least the fixed
+  // budget, at most 1 GiB), found once per mapper.
+  size_t DepthKeyBudget(vtkOpenGLRenderWindow* renWin);
+  size_t KeyBudget = 0;
   // The depth slabs, of `asked`, whose sums fit the memory allotted to them.
   static int DepthSlabsThatFit(int asked, const vtkEnsembleBuffer* ensemble);
   // Repetitions per traversal that the context and the image size allow, and the estimator

@@ -32,6 +32,9 @@ void main()
     parallelProjection != 0 ? -positionVCVSOutput.z : length(positionVCVSOutput);
   vec2 fragment = vec2(clamp(scalar, 0.0, 1.0) + crossing, distance);
 
+#ifdef HAVS_CLIPPING_PLANES
+  clipRay(gl_FragCoord.xy / viewportSize * 2.0 - 1.0);
+#endif
   KBUFFER_BEGIN_CRITICAL_SECTION;
   loadKBuffer();
   if (accumulated.a < OPAQUE_ALPHA)

@@ -10,6 +10,9 @@ in vec2 texCoord; // pixel centers: (x + 0.5) / width, (y + 0.5) / height
 
 void main()
 {
+#ifdef HAVS_CLIPPING_PLANES
+  clipRay(texCoord * 2.0 - 1.0);
+#endif
   KBUFFER_BEGIN_CRITICAL_SECTION;
   loadKBuffer();
   if (accumulated.a < OPAQUE_ALPHA)

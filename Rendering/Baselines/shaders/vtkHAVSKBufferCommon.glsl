@@ -134,8 +134,48 @@ float modelLengthPerDistance(vec2 ndc)
   return length(VCMCLinear * rayDirectionVC(ndc));
 }
 
+#ifdef HAVS_CLIPPING_PLANES
+uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a point is
+uniform int clippingPlaneCount; // kept where dot(plane, (x, 1)) >= 0 for each of them
+
+// The distances along the pixel's ray between which every clipping plane keeps it (clipRay()).
+vec2 keptDistances = vec2(0.0, EMPTY_DISTANCE);
+
+// Where the clipping planes keep the ray through ndc, in the distances that the entries hold:
+// from the eye along the unit direction, or (parallel) from the view plane along -z.
+void clipRay(vec2 ndc)
+{
+  vec3 direction = rayDirectionVC(ndc);
+  vec3 origin = vec3(0.0);
+  if (parallelProjection != 0)
+  {
+    vec4 nearVC = DCVCMatrix * vec4(ndc, -1.0, 1.0);
+    origin = vec3(nearVC.xy / nearVC.w, 0.0);
+  }
+  for (int k = 0; k < clippingPlaneCount; ++k)
+  {
+    float atOrigin = dot(clippingPlanes[k], vec4(origin, 1.0));
+    float slope = dot(clippingPlanes[k].xyz, direction);
+    if (slope > 0.0)
+    {
+      keptDistances.x = max(keptDistances.x, -atOrigin / slope);
+    }
+    else if (slope < 0.0)
+    {
+      keptDistances.y = min(keptDistances.y, -atOrigin / slope);
+    }
+    else if (atOrigin < 0.0)
+    {
+      keptDistances = vec2(EMPTY_DISTANCE, 0.0);
+    }
+  }
+}
+#endif
+
 // Front-to-back compositing of the segment from `front` to `back` (Engel, Kraus and Ertl
-// 2001: the table holds the premultiplied color and opacity of a linear segment).
+// 2001: the table holds the premultiplied color and opacity of a linear segment). With
+// clipping planes, of the part of it that they keep: the scalar is linear along the segment,
+// so the cut ends' scalars and the shortened thickness are those of the cut segment.
 void compositeSegment(vec2 front, vec2 back, float lengthScale)
 {
   float frontCrossing = floor(front.x * 0.5); // 0 inside, 1 exit, 2 entry
@@ -146,6 +186,19 @@ void compositeSegment(vec2 front, vec2 back, float lengthScale)
   }
   float frontScalar = front.x - 2.0 * frontCrossing;
   float backScalar = back.x - 2.0 * backCrossing;
+#ifdef HAVS_CLIPPING_PLANES
+  float from = max(front.y, keptDistances.x);
+  float to = min(back.y, keptDistances.y);
+  if (from >= to)
+  {
+    return;
+  }
+  float perDistance = (backScalar - frontScalar) / (back.y - front.y);
+  backScalar = frontScalar + (to - front.y) * perDistance;
+  frontScalar += (from - front.y) * perDistance;
+  front.y = from;
+  back.y = to;
+#endif
   float thickness = max(back.y - front.y, 0.0) * lengthScale;
   vec3 coordinate = vec3(clamp(frontScalar, 0.0, 1.0), clamp(backScalar, 0.0, 1.0),
     sqrt(min(thickness * thicknessToTable, 1.0)));

@@ -30,6 +30,25 @@ out vec3 colorVSOutput;
 
 //Volume::Random::Impl
 
+// The clipping planes (PBVR_CLIPPING_PLANES, defined with the random hash where there are some).
+#ifdef PBVR_CLIPPING_PLANES
+uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a particle
+uniform int clippingPlaneCount; // is kept where dot(plane, (x, 1)) >= 0 for each of them
+#endif
+
+// Whether the particle is kept: by its depth's density, and by every clipping plane.
+bool kept(float keep, float footprintMC, vec4 positionVC)
+{
+  bool inside = keep * footprintMC < generatedFootprint;
+#ifdef PBVR_CLIPPING_PLANES
+  for (int k = 0; k < clippingPlaneCount; ++k)
+  {
+    inside = inside && dot(clippingPlanes[k], positionVC) >= 0.0;
+  }
+#endif
+  return inside;
+}
+
 void main()
 {
   vec4 positionVC = MCVCMatrix * vec4(particleMC.xyz - 0.5, 1.0);
@@ -45,7 +64,7 @@ void main()
   uvec4 key = uvec4(uint(gl_VertexID), uint(seed), 0x85EBCA6Bu, 0xC2B2AE35u);
   float keep = float(pcg4d(key).x >> 8u) * (1.0 / 16777216.0);
   // A point outside the clip volume is not drawn.
-  gl_Position = keep * footprintMC < generatedFootprint ? positionDC : vec4(2.0, 2.0, 2.0, 1.0);
+  gl_Position = kept(keep, footprintMC, positionVC) ? positionDC : vec4(2.0, 2.0, 2.0, 1.0);
   gl_PointSize = min(sqrt(max(generatedFootprint / footprintMC, 1.0)), largestPointSize);
   colorVSOutput = texture(colorTable,
     vec2(particleMC.w * colorTexelScaleOffset.x + colorTexelScaleOffset.y, 0.5)).rgb;

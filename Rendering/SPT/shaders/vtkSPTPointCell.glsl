@@ -1,8 +1,9 @@
 // One tetrahedron drawn as a point (or visited by the compute traversal): its face planes and
 // scalar plane as functions of normalized device coordinates (see vtkSPTFacePlane.glsl), the
 // square of normalized device coordinates that holds its projection, cut to the viewport, and
-// the depth of its nearest vertex. False for a flat cell, which holds no volume, and for one
-// outside the viewport. Needs MCVCMatrix, VCDCMatrix, DCVCMatrix and the mesh's buffers.
+// the depth of its nearest vertex. False for a flat cell, which holds no volume, for one
+// outside the viewport, and for one wholly on the cut side of a clipping plane. Needs
+// MCVCMatrix, VCDCMatrix, DCVCMatrix, the mesh's buffers (and the clipping planes).
 bool pointCell(int id, out vec4 facePlanes[4], out vec4 scalarPlane, out vec2 low,
   out vec2 high, out float nearest)
 {
@@ -34,5 +35,16 @@ bool pointCell(int id, out vec4 facePlanes[4], out vec4 scalarPlane, out vec2 lo
   low = max(min(min(p0, p1), min(p2, p3)), vec2(-1.0));
   high = min(max(max(p0, p1), max(p2, p3)), vec2(1.0));
   nearest = min(min(c0.z / c0.w, c1.z / c1.w), min(c2.z / c2.w, c3.z / c3.w));
+#ifdef SPT_CLIPPING_PLANES
+  for (int k = 0; k < clippingPlaneCount; ++k)
+  {
+    vec4 plane = clippingPlanes[k];
+    if (max(max(dot(plane, vec4(v0, 1.0)), dot(plane, vec4(v1, 1.0))),
+          max(dot(plane, vec4(v2, 1.0)), dot(plane, vec4(v3, 1.0)))) < 0.0)
+    {
+      return false;
+    }
+  }
+#endif
   return dot(cross(v1 - v0, v2 - v0), v3 - v0) != 0.0 && !any(lessThan(high, low));
 }

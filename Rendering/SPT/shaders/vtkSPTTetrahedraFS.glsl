@@ -45,6 +45,11 @@ uniform usamplerBuffer tetrahedra;
 uniform samplerBuffer points;
 uniform samplerBuffer scalars;
 
+#ifdef SPT_CLIPPING_PLANES
+uniform vec4 clippingPlanes[6]; // the mapper's clipping planes (view coordinates): a point is
+uniform int clippingPlaneCount; // kept where dot(plane, (x, 1)) >= 0 for each of them
+#endif
+
 uniform int cellIdOffset; // where this volume's cell ids start among the frame's volumes
 #ifdef SPT_GLOBAL_IDS
 uniform usamplerBuffer randomIds; // per tetrahedron: the id from the input's global cell id
@@ -226,8 +231,54 @@ bool cellSegment(out Segment segment)
 }
 #endif
 
-// This fragment's segment, cut where opaque geometry hides the rest of it. False when
-// nothing of it is visible.
+#ifdef SPT_CLIPPING_PLANES
+// Cuts the segment to the part that every clipping plane keeps. The scalar is linear along
+// the segment, so the cut ends get the exact scalar, and the table the shortened thickness:
+// the cut segment's own color. False when nothing is left.
+bool clipSegment(inout Segment segment)
+{
+  vec4 front = vec4(segment.frontVC, 1.0);
+  vec4 back = vec4(segment.backVC, 1.0);
+  float enter = 0.0;
+  float leave = 1.0;
+  for (int k = 0; k < clippingPlaneCount; ++k)
+  {
+    float atFront = dot(clippingPlanes[k], front);
+    float atBack = dot(clippingPlanes[k], back);
+    if (atFront < 0.0 && atBack < 0.0)
+    {
+      return false;
+    }
+    if (atFront < 0.0)
+    {
+      enter = max(enter, atFront / (atFront - atBack));
+    }
+    else if (atBack < 0.0)
+    {
+      leave = min(leave, atFront / (atFront - atBack));
+    }
+  }
+  if (enter >= leave)
+  {
+    return false;
+  }
+  if (enter > 0.0 || leave < 1.0)
+  {
+    float frontScalar = segment.frontScalar;
+    segment.frontVC = mix(front.xyz, back.xyz, enter);
+    segment.backVC = mix(front.xyz, back.xyz, leave);
+    segment.frontScalar = mix(frontScalar, segment.backScalar, enter);
+    segment.backScalar = mix(frontScalar, segment.backScalar, leave);
+    vec4 frontDC = VCDCMatrix * vec4(segment.frontVC, 1.0);
+    segment.frontDepth = enter > 0.0
+      ? clamp(0.5 * frontDC.z / frontDC.w + 0.5, 0.0, 1.0) : segment.frontDepth;
+  }
+  return true;
+}
+#endif
+
+// This fragment's segment, cut by the clipping planes and where opaque geometry hides the rest
+// of it. False when nothing of it is visible.
 bool visibleSegment(out Segment segment)
 {
 #ifdef SPT_CLIPPED_CELLS
@@ -244,6 +295,12 @@ bool visibleSegment(out Segment segment)
   {
     return false;
   }
+#ifdef SPT_CLIPPING_PLANES
+  if (!clipSegment(segment))
+  {
+    return false;
+  }
+#endif
 
 #ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.

@@ -19,6 +19,10 @@ uniform vec2 passSizeInPixels;
 uniform usamplerBuffer tetrahedra; // four point ids per tetrahedron
 uniform samplerBuffer points;      // model coordinates
 uniform samplerBuffer scalars;     // per point, or per tetrahedron (SPT_CELL_SCALARS)
+#ifdef SPT_CLIPPING_PLANES
+uniform vec4 clippingPlanes[6]; // view coordinates: kept where dot(plane, (x, 1)) >= 0
+uniform int clippingPlaneCount;
+#endif
 
 flat out int tetrahedronId;
 // The cell's face planes as functions of normalized device coordinates (x, y, z, 1): the

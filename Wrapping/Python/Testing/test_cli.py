@@ -1,5 +1,6 @@
 """python3 -m spt: the demo and the figures run, and bad arguments are refused clearly."""
 
+import json
 import os
 import pathlib
 import re
@@ -47,6 +48,7 @@ BAD_ARGUMENTS = [
     (("demo", "--target-error", "0"), "outside 0 (exclusive) .. 1"),
     (("demo", "--target-error", "lots"), "not a number"),
     (("demo", "--dataset", "spx,post"), "give one data set"),
+    (("demo", "--pair-cells", "1000"), "outside 20000.."),
     (("demo", "--output"), "expected one argument"),
     (("figures",), "required"),
     (("figures", "nosuch"), "invalid choice"),
@@ -87,7 +89,7 @@ def test_bad_arguments_are_refused(arguments, message):
 
 @pytest.mark.parametrize("command", [("demo",), ("figures", "convergence"), ("figures", "pbvr"),
                                      ("figures", "sampling"), ("figures", "sorting"),
-                                     ("figures", "accuracy")])
+                                     ("figures", "accuracy"), ("figures", "readme")])
 def test_an_output_that_is_a_file_is_refused(command, tmp_path):
     existing = tmp_path / "a_file"
     existing.write_text("")
@@ -111,27 +113,58 @@ def test_accuracy_figure(tmp_path):
     assert -0.6 < slope < -0.4
 
 
+def _check_ladder(scene, target):
+    """SPT's levels grow fourfold from 1 to the cap and stop at the first whose error is at
+    most the goal (VTK PT's error and the target), and the summary is what the rows say."""
+    rows = scene["rows"]
+    assert [row["method"] for row in rows[:2]] == ["vtk_pt", "havs6"]
+    ladder = rows[2:]
+    assert ladder and {row["method"] for row in ladder} == {"spt"}
+    levels = [row["repetitions"] for row in ladder]
+    assert levels == [1, 4, 16][:len(levels)]
+    for row in rows:
+        assert 0.0 < row["rmse"] < 1.0 and row["seconds"] > 0.0, row
+    pt = rows[0]
+    goal = min(pt["rmse"], target)
+    assert all(row["rmse"] > goal for row in ladder[:-1])
+    assert ladder[-1]["rmse"] <= goal or levels[-1] == 16
+    summary = scene["summary"]
+    assert summary["vtk_pt_rmse"] == pt["rmse"] and summary["vtk_pt_seconds"] == pt["seconds"]
+    reached = summary["spt_to_vtk_pt_error"]
+    first = next((row for row in ladder if row["rmse"] <= pt["rmse"]), None)
+    assert (reached is None) == (first is None)
+    if first is not None:
+        assert reached["repetitions"] == first["repetitions"]
+        assert reached["ratio"] == pytest.approx(first["seconds"] / pt["seconds"])
+
+
 def test_demo_writes_images_and_the_race(tmp_path, have_display):
-    result = run("demo", "--dataset", "default", "--size", "64", "--repetitions", "16",
-                 "--output", str(tmp_path / "demo"))
+    """The demo at a small size: its images, and results.json consistent with itself; on
+    the interpenetrating volumes, which VTK composites one after the other, SPT's image is far
+    closer to the exact one than the sorted renderers'."""
+    output = tmp_path / "demo"
+    result = run("demo", "--dataset", "default", "--size", "64", "--pair-cells", "20000",
+                 "--repetitions", "16", "--output", str(output))
     assert result.returncode == 0, result.stderr
-    for name in ("spt.png", "vtk_pt.png", "reference.png", "comparison.png", "table.md"):
-        assert (tmp_path / "demo" / name).stat().st_size > 100, name
+    for scene in ("interpenetrating", "default"):
+        for method in ("reference", "vtk_pt", "havs6", "spt"):
+            assert (output / f"{scene}_{method}.png").stat().st_size > 100
+    for name in ("comparison.png", "race.md", "results.json"):
+        assert (output / name).stat().st_size > 100, name
+    document = json.loads((output / "results.json").read_text())
+    assert "cores" in document["machine"] and document["load_average"]["end"] >= 0.0
+    scenes = {scene["scene"]: scene for scene in document["scenes"]}
+    assert list(scenes) == ["interpenetrating", "default"]
+    assert scenes["interpenetrating"]["volumes"] == 2 and scenes["default"]["volumes"] == 1
+    for scene in scenes.values():
+        _check_ladder(scene, document["target_error"])
+    pair = scenes["interpenetrating"]["rows"]
+    spt = min(row["rmse"] for row in pair if row["method"] == "spt")
+    assert spt < 0.5 * min(pair[0]["rmse"], pair[1]["rmse"]), pair
     lines = result.stdout.splitlines()
-    header = re.split(r"\s{2,}", lines[0].strip())
-    end = next(i for i, line in enumerate(lines) if line.startswith("SPT reaches"))
-    # A method without a repetition count leaves the last column empty.
-    table = [re.split(r"\s{2,}", line.strip()) for line in lines[2:end]]
-    rows = {cells[0]: dict(zip(header, cells)) for cells in table}
-    assert header[:2] == ["method", "RMSE"] and header[-1] == "repetitions"
-    assert {"VTK PT", "HAVS-like k=2", "HAVS-like k=6", "PBVR (32 repetitions)",
-            "SPT at VTK PT's error", "reference"} <= set(rows)
-    at_target = rows["SPT (target error 0.005)"]
-    assert 0.0 < float(at_target["RMSE"]) < 0.3
-    assert 2 <= int(at_target["repetitions"]) <= 16
-    assert float(rows["VTK PT"]["time / VTK PT"]) == 1.0
-    assert float(rows["reference"]["RMSE"]) == 0.0
-    assert "SPT reaches VTK PT's error in" in result.stdout
+    assert lines[0].split()[0] == "scene" and "SPT to VTK PT's error" in lines[0]
+    assert lines[2].startswith("interpenetrating") and lines[3].startswith("default")
+    assert "SPT loses" in result.stdout
 
 
 def test_missing_data_is_a_clear_error(tmp_path):
@@ -191,3 +224,15 @@ def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
     assert rows["SPT, paper's sampling, L=8"]["particles"] == "-"
     convergence = (output / "pbvr_convergence.md").read_text()
     assert "| L=2 | L=8 |" in convergence and "PBVR, cell average" in convergence
+
+
+def test_the_demos_large_scene_is_the_iron_protein_where_the_data_are(tmp_path, monkeypatch):
+    from spt.experiments import demo
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("SPT_DATA_DIR", str(tmp_path))
+    assert demo.default_large_scene() == "drill-1M"
+    (tmp_path / "ironProt.vtk").write_text("")
+    assert demo.default_large_scene() == "ironprot_full"
+    monkeypatch.delenv("SPT_DATA_DIR")  # and no shared/data above tmp_path
+    assert demo.default_large_scene() == "drill-1M"

@@ -231,3 +231,36 @@ def test_bad_input_raises_with_the_reason():
         raycast.render(grid, zero_unit, camera, (8, 8))
     with pytest.raises(ValueError, match="method"):
         render.reference(grid, prop, method="nonsense")
+
+
+def test_several_volumes_are_the_image_of_their_union(have_display):
+    """Two interpenetrating volumes with one property: every ray's segments of both,
+    composited together, are the image of the two meshes appended into one grid; a second
+    volume with another, transparent property leaves the first as it is alone."""
+    grid = data.make_default_mesh()
+    b = grid.GetBounds()
+    offset = (0.3 * (b[1] - b[0]), 0.2 * (b[3] - b[2]), 0.1 * (b[5] - b[4]))
+    transform = vtk.vtkTransform()
+    transform.Translate(*offset)
+    moved = vtk.vtkTransformFilter()
+    moved.SetInputData(grid)
+    moved.SetTransform(transform)
+    moved.Update()
+    union = vtk.vtkAppendFilter()
+    union.AddInputData(grid)
+    union.AddInputData(moved.GetOutput())
+    union.Update()
+    prop = data.default_transfer_function(grid)
+    camera = _parallel_camera(union.GetOutput(), SIZE)
+    both = raycast.render_volumes([(grid, prop), (moved.GetOutput(), prop)], camera,
+                                  (SIZE, SIZE))
+    whole = raycast.render(union.GetOutput(), prop, camera, (SIZE, SIZE))
+    assert both[..., 3].max() > 0.2
+    np.testing.assert_allclose(both, whole, atol=1e-9)
+    clear = data.default_transfer_function(grid)
+    clear.GetScalarOpacity().RemoveAllPoints()
+    clear.GetScalarOpacity().AddPoint(0.0, 0.0)
+    alone = raycast.render(grid, prop, camera, (SIZE, SIZE))
+    with_clear = raycast.render_volumes([(grid, prop), (moved.GetOutput(), clear)], camera,
+                                        (SIZE, SIZE))
+    np.testing.assert_allclose(with_clear, alone, atol=1e-9)

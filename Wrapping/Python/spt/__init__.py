@@ -6,7 +6,7 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
     mapper = spt.vtkSPTVolumeMapper()    # sorting-free (the paper's method)
     baseline = spt.vtkHAVSVolumeMapper() # sorted baseline: HAVS (Callahan et al. 2005)
     particles = spt.vtkPBVRVolumeMapper() # sorting-free baseline: particles (PBVR)
-    mesher = spt.vtkTetGenMesher()        # closed triangulated surface -> tetrahedra (TetGen)
+    mesher = spt.vtkTetGenMesher()        # surface -> tetrahedra (TetGen; HAVE_MESHING)
     window = spt.vtkHeadlessEGLRenderWindow()  # a render window without X (EGL)
 
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
@@ -25,7 +25,6 @@ from vtkmodules import vtkParallelCore as _vtkParallelCore  # noqa: F401
 
 import importlib.util as _importlib_util
 
-from .SPTMeshing import vtkTetGenMesher
 from .SPTRenderingCore import vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper
 from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow, vtkSPTEGLRenderWindow
 # Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
@@ -36,8 +35,29 @@ from .SPTRenderingSPT import vtkSPTFrameStatistics, vtkSPTVolumeMapper
 __all__ = [
     "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow",
     "vtkSPTFrameStatistics",
-    "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetGenMesher",
-    "vtkTetrahedralVolumeMapper"]
+    "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetrahedralVolumeMapper"]
+
+#: Whether the build has the TetGen meshing module (SPT_BUILD_MESHING; the pip wheel has not):
+#: without it, :mod:`spt.meshes` (the generated drill and ring) raises :class:`MeshingUnavailable`.
+HAVE_MESHING = _importlib_util.find_spec(__name__ + ".SPTMeshing") is not None
+if HAVE_MESHING:
+    from .SPTMeshing import vtkTetGenMesher
+
+    __all__ += ["vtkTetGenMesher"]
+
+
+class MeshingUnavailable(RuntimeError):
+    """Raised where the package would mesh with TetGen in a build without the meshing module."""
+
+    def __init__(self, what: str):
+        super().__init__(
+            f"{what} needs SPT's TetGen meshing module (spt.vtkTetGenMesher), which this build "
+            "leaves out (the pip wheel does: TetGen is not on PyPI). Use a data set that needs no "
+            "meshing (e.g. the generated default mesh, `--dataset default`), or build the project "
+            "from source with TetGen (SPT_BUILD_MESHING=ON).")
+
+
+__all__ += ["MeshingUnavailable"]
 
 #: Whether the build has the baselines SPT is compared with (SPT_BUILD_BASELINES).
 HAVE_BASELINES = _importlib_util.find_spec(__name__ + ".SPTRenderingBaselines") is not None

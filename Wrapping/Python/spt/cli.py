@@ -107,19 +107,43 @@ def _seed(text: str) -> int:
     return value
 
 
+def _demo_scene(text: str) -> str:
+    from .experiments.bench.race import scene_names
+
+    names = _names(text, scene_names(), "data set")
+    if len(names) != 1:
+        raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
+    return names[0]
+
+
+def _pair_cells(text: str) -> int:
+    from .meshes import MAX_CELLS, MIN_CELLS
+
+    value = _convert(text.replace("_", ""), int, "a whole number")
+    if not 2 * MIN_CELLS <= value <= MAX_CELLS:
+        raise argparse.ArgumentTypeError(f"{value} is outside {2 * MIN_CELLS}..{MAX_CELLS}")
+    return value
+
+
 def _add_demo(commands) -> None:
     demo = commands.add_parser(
-        "demo", help="render a data set with SPT, VTK's projected tetrahedra and the reference")
+        "demo", help="two scenes where sorting fails or costs: SPT against VTK's projected "
+                     "tetrahedra, HAVS-like and the exact reference")
     demo.add_argument("--output", type=_output_directory, default=pathlib.Path("out/demo"))
-    demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=384,
-                      help="image width and height in pixels (default 384)")
+    demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256,
+                      help="image width and height in pixels (default 256)")
     demo.add_argument("--repetitions", type=_positive_int(65536), default=256,
-                      help="SPT's RepetitionLevel, the cap of its error target (default 256)")
+                      help="SPT's largest repetition level (default 256)")
     demo.add_argument("--target-error", type=_target_error, default=None,
-                      help="SPT's error target, RMSE of premultiplied RGBA (default 0.005)")
-    demo.add_argument("--dataset", type=_dataset, default="drill",
-                      help="data set (default: drill, the generated drill of 200,000 "
-                           "tetrahedra; 'default' is the embedded helix mesh of the tests)")
+                      help="the error SPT races to besides VTK PT's, RMSE of premultiplied "
+                           "RGBA (default 0.005)")
+    demo.add_argument("--dataset", type=_demo_scene, default=None,
+                      help="the large scene (default: ironprot_full, 1.5M tetrahedra, where "
+                           "the data sets are, else drill-1M, the generated drill of 10^6; "
+                           "'default' is the embedded helix mesh)")
+    demo.add_argument("--pair-cells", type=_pair_cells, default=200_000,
+                      help="tetrahedra of the interpenetrating drill and ring, in all "
+                           "(default 200000)")
 
 
 def _add_figure(figure, name: str, help_text: str) -> argparse.ArgumentParser:
@@ -166,6 +190,12 @@ def _add_sampling_sorting_accuracy(figure) -> None:
     accuracy = _add_figure(
         figure, "accuracy", "stochastic against exact brightness along random rays")
     accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
+    readme = _add_figure(
+        figure, "readme", "the README's picture (interpenetrating volumes) and race plot")
+    readme.add_argument("--bench", type=pathlib.Path,
+                        default=pathlib.Path("Documentation/bench/bench.json"),
+                        help="the benchmark's results whose race is plotted")
+    _add_figure_size(readme)
 
 
 def _add_bench(commands) -> None:
@@ -323,22 +353,24 @@ def _report(arguments: argparse.Namespace) -> None:
 
 
 def _demo(arguments: argparse.Namespace) -> None:
+    import json
+
     from . import render
     from .experiments import demo
 
     target = (render.DEFAULT_TARGET_ERROR if arguments.target_error is None
               else arguments.target_error)
-    rows = demo.demo(arguments.output, arguments.size, arguments.repetitions,
-                     arguments.dataset, target_error=target)
-    _print_table(demo.DEMO_TABLE_HEADER, rows)
-    race = next(row for row in rows if row[0] == "SPT at VTK PT's error")
-    turned = next(row for row in rows if row[0] == demo.TURNED_LABEL)
-    slabs = next(row for row in rows if row[0] == demo.SLABS_LABEL)
-    print(f"SPT reaches VTK PT's error in {race[5]:.2f} x VTK PT's time "
-          f"({race[6]} repetitions); after another view, in {turned[5]:.2f} x "
-          f"({turned[6]} repetitions); with {demo.DEMO_DEPTH_SLABS} depth slabs, in "
-          f"{slabs[5]:.2f} x ({slabs[6]} repetitions).")
-    print(f"Images and comparison.png written to {arguments.output}")
+    results = demo.demo(arguments.output, arguments.size, arguments.repetitions,
+                        arguments.dataset, arguments.pair_cells, target_error=target)
+    _print_table([column.format(target=target) for column in demo.RACE_HEADER],
+                 demo.race_rows(results))
+    document = json.loads((arguments.output / "results.json").read_text(encoding="utf-8"))
+    load = document["load_average"]
+    print(f"Times are multiples of VTK PT's frame (best of {demo.FRAMES}), "
+          f"{arguments.size} x {arguments.size}, on {document['machine']} (load average "
+          f"{load['start']:.1f} at the start, {load['end']:.1f} at the end).")
+    print(demo.WHERE_SPT_LOSES)
+    print(f"Images, comparison.png, race.md and results.json written to {arguments.output}")
 
 
 def _mesh(arguments: argparse.Namespace) -> None:
@@ -403,9 +435,16 @@ def _accuracy(arguments: argparse.Namespace) -> None:
           f"plot written to {arguments.output / 'accuracy.png'}")
 
 
+def _readme(arguments: argparse.Namespace) -> None:
+    from .experiments.readme import readme_figures
+
+    for path in readme_figures(arguments.output, arguments.bench, arguments.size):
+        print(f"{path} ({path.stat().st_size // 1024} KiB)")
+
+
 _COMMANDS = {"demo": _demo, "bench": _bench, "report": _report, "mesh": _mesh}
 _FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
-            "sorting": _sorting, "accuracy": _accuracy}
+            "sorting": _sorting, "accuracy": _accuracy, "readme": _readme}
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -373,6 +373,9 @@ class MeshArrays:
 def tetrahedralize(shape: str, cells: int) -> Tuple[np.ndarray, np.ndarray]:
     """Points and tetrahedra of the shape meshed by TetGen to about ``cells`` tetrahedra; if the
     first count is off by more than RETRY_TOLERANCE, meshed once more with a corrected bound."""
+    from . import HAVE_MESHING, MeshingUnavailable
+    if not HAVE_MESHING:
+        raise MeshingUnavailable(f"Meshing the {shape} of about {cells} tetrahedra")
     from . import vtkTetGenMesher
 
     resolution, bound = mesh_parameters(shape, cells)

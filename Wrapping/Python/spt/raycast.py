@@ -7,6 +7,10 @@ from the cell's linear interpolant); each segment is integrated with the optical
 :class:`vtkPreIntegrationTable` and VTK's ``vtkUnstructuredGridLinearRayIntegrator``
 (attenuation ``tau(s) = opacity(s) / unit distance``, emission ``C(s) tau(s)``) by fine
 quadrature; the segments of a ray are composited front to back after sorting by depth.
+A volume's matrix places the mesh in the world (lengths are measured in the data's own
+coordinates, as VTK's mappers measure them), and clipping planes (world coordinates, VTK's
+convention: the side that a plane's normal points to is kept) cut each ray to the interval that
+all of them keep, so that a segment is cut where the ray crosses a plane.
 
 It is slow (seconds per hundred thousand tetrahedra) but has no approximation beyond the
 quadrature, which makes it a check of VTK's ray caster: ``tests/test_raycast.py`` compares the
@@ -15,11 +19,13 @@ two on small meshes, and :func:`spt.render.reference_image` can use either.
 
 from __future__ import annotations
 
-from typing import Optional, Tuple
+from typing import Iterable, Optional, Sequence, Tuple
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkDataSet, vtkUnstructuredGrid
+from vtkmodules.vtkCommonDataModel import (VTK_TETRA, vtkDataSet, vtkPlane,
+                                           vtkPlaneCollection, vtkUnstructuredGrid)
+from vtkmodules.vtkCommonMath import vtkMatrix4x4
 from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
 from vtkmodules.vtkRenderingCore import vtkCamera, vtkVolumeProperty
 
@@ -133,12 +139,59 @@ class _Mesh:
             self.base = s[:, 0] - np.einsum("nj,nj->n", self.gradient, v[:, 0])
 
 
-def _camera_rays(camera: vtkCamera, width: int, height: int
+#: The most clipping planes VTK's mappers (and this project's) honour.
+MAXIMUM_CLIPPING_PLANES = 6
+
+
+def _matrix(matrix: Optional[vtkMatrix4x4]) -> np.ndarray:
+    """A vtkMatrix4x4 as an array (the identity for None)."""
+    if matrix is None:
+        return np.eye(4)
+    return np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+
+
+def _data_planes(planes, model: np.ndarray) -> np.ndarray:
+    """Clipping planes (vtkPlane, in world coordinates) as rows (n, d) of data coordinates: a
+    data point x is kept where n.x + d >= 0."""
+    if planes is None:
+        return np.zeros((0, 4))
+    if isinstance(planes, vtkPlaneCollection):
+        planes = [planes.GetItem(i) for i in range(planes.GetNumberOfItems())]
+    planes = list(planes)
+    if len(planes) > MAXIMUM_CLIPPING_PLANES:
+        raise ValueError(f"{len(planes)} clipping planes: at most {MAXIMUM_CLIPPING_PLANES} "
+                         "are supported")
+    rows = []
+    for plane in planes:
+        if not isinstance(plane, vtkPlane):
+            raise TypeError(f"a clipping plane must be a vtkPlane, not {type(plane).__name__}")
+        normal, origin = np.array(plane.GetNormal()), np.array(plane.GetOrigin())
+        rows.append(np.r_[normal, -normal @ origin])
+    return np.array(rows).reshape(-1, 4) @ model
+
+
+def _kept_interval(planes: np.ndarray, origin: np.ndarray, direction: np.ndarray
+                   ) -> Tuple[np.ndarray, np.ndarray]:
+    """Per ray, the parameters between which every plane keeps it (within [0, 1])."""
+    low, high = np.zeros(len(origin)), np.ones(len(origin))
+    for plane in planes:
+        at_origin = origin @ plane[:3] + plane[3]
+        slope = direction @ plane[:3]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = -at_origin / slope
+        low = np.where(slope > 0.0, np.maximum(low, t), low)
+        high = np.where(slope < 0.0, np.minimum(high, t), high)
+        high = np.where((slope == 0.0) & (at_origin < 0.0), -1.0, high)
+    return low, high
+
+
+def _camera_rays(camera: vtkCamera, width: int, height: int, model: np.ndarray = np.eye(4)
                  ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """World-to-NDC matrix and, for every pixel centre, the ray's near point and direction
-    from the near to the far clipping plane."""
+    """Data-to-NDC matrix (through the volume's matrix ``model``) and, for every pixel
+    centre, the ray's near point and direction from the near to the far clipping plane, in
+    data coordinates."""
     matrix = camera.GetCompositeProjectionTransformMatrix(width / height, -1.0, 1.0)
-    m = np.array([[matrix.GetElement(i, j) for j in range(4)] for i in range(4)])
+    m = _matrix(matrix) @ model
     inverse = np.linalg.inv(m)
     jj, ii = np.meshgrid(np.arange(height), np.arange(width), indexing="ij")
     x = 2.0 * (ii.ravel() + 0.5) / width - 1.0
@@ -209,9 +262,9 @@ def _pairs(mesh: _Mesh, m: np.ndarray, width: int, height: int):
 
 
 def _segments(mesh: _Mesh, tet: np.ndarray, pixel: np.ndarray, origin: np.ndarray,
-              direction: np.ndarray):
+              direction: np.ndarray, kept: Tuple[np.ndarray, np.ndarray]):
     """Entry parameter, length and front and back scalars of each ray-tetrahedron pair that
-    intersects."""
+    intersects within the part of the ray that ``kept`` (per pixel) gives."""
     o, d = origin[pixel], direction[pixel]
     normals, offsets = mesh.normals[tet], mesh.offsets[tet]
     nd = np.einsum("nkj,nj->nk", normals, d)
@@ -221,7 +274,7 @@ def _segments(mesh: _Mesh, tet: np.ndarray, pixel: np.ndarray, origin: np.ndarra
     enter = np.where(nd < 0.0, t, -np.inf).max(axis=1)
     leave = np.where(nd > 0.0, t, np.inf).min(axis=1)
     parallel_outside = ((nd == 0.0) & (distance < 0.0)).any(axis=1)
-    enter, leave = np.maximum(enter, 0.0), np.minimum(leave, 1.0)
+    enter, leave = np.maximum(enter, kept[0][pixel]), np.minimum(leave, kept[1][pixel])
     hit = (leave > enter) & ~parallel_outside
     tet, pixel, enter, leave, o, d = tet[hit], pixel[hit], enter[hit], leave[hit], o[hit], d[hit]
     g, c = mesh.gradient[tet], mesh.base[tet]
@@ -263,18 +316,37 @@ def _composite(pixel: np.ndarray, enter: np.ndarray, depth: np.ndarray, color: n
 
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, camera: vtkCamera,
-           size: Tuple[int, int], mesh: Optional[_Mesh] = None) -> np.ndarray:
+           size: Tuple[int, int], mesh: Optional[_Mesh] = None,
+           matrix: Optional[vtkMatrix4x4] = None,
+           clipping_planes: Optional[Iterable[vtkPlane]] = None) -> np.ndarray:
     """The exact image of ``grid`` seen by ``camera`` at ``size`` (width, height): float
-    premultiplied RGBA, row 0 at the top, as :func:`spt.render.read_rgba` returns it."""
+    premultiplied RGBA, row 0 at the top, as :func:`spt.render.read_rgba` returns it.
+    ``matrix`` is the volume's (vtkVolume.GetMatrix(), data to world), ``clipping_planes``
+    the mapper's (vtkPlane objects or a vtkPlaneCollection, world coordinates, at most six)."""
+    return render_volumes([(mesh or _Mesh(grid), prop, matrix, clipping_planes)], camera, size)
+
+
+def render_volumes(volumes: Sequence[tuple], camera: vtkCamera,
+                   size: Tuple[int, int]) -> np.ndarray:
+    """The exact image of several volumes, each a grid (or its prepared mesh) with a
+    property of its own, and optionally its matrix and clipping planes (as :func:`render`
+    takes them), in one space: every ray's segments of all of them composited front to back,
+    wherever they interpenetrate (as :func:`render` does for one). A ray's parameter is the
+    same in every volume's data coordinates, so the segments sort across volumes."""
     width, height = size
-    tf = TransferFunction(prop)
-    mesh = mesh or _Mesh(grid)
-    m, origin, direction = _camera_rays(camera, width, height)
     parts = []
-    for tet, pixel in _pairs(mesh, m, width, height):
-        pixel, enter, length, front, back = _segments(mesh, tet, pixel, origin, direction)
-        depth, color = _integrate(tf, length, front, back)
-        parts.append((pixel, enter, depth, color))
+    for grid, prop, *placement in volumes:
+        matrix, planes = (list(placement) + [None, None])[:2]
+        tf = TransferFunction(prop)
+        mesh = grid if isinstance(grid, _Mesh) else _Mesh(grid)
+        model = _matrix(matrix)
+        m, origin, direction = _camera_rays(camera, width, height, model)
+        kept = _kept_interval(_data_planes(planes, model), origin, direction)
+        for tet, pixel in _pairs(mesh, m, width, height):
+            pixel, enter, length, front, back = _segments(mesh, tet, pixel, origin, direction,
+                                                          kept)
+            depth, color = _integrate(tf, length, front, back)
+            parts.append((pixel, enter, depth, color))
     if not parts:
         return np.zeros((height, width, 4))
     pixel, enter, depth, color = (np.concatenate(p) for p in zip(*parts))

@@ -376,6 +376,21 @@ class Rendering:
     report: Dict[str, float] = dataclasses.field(default_factory=dict)
 
 
+def best_frame(window: vtkRenderWindow, mapper: vtkAbstractVolumeMapper, frames: int,
+               warm: bool = True) -> float:
+    """The best of ``frames`` renders of ``window``, in seconds, each finished on the GPU;
+    after an untimed one (:func:`warm_up`) if ``warm``."""
+    if warm:
+        warm_up(window, mapper)
+    seconds = float("inf")
+    for _ in range(max(1, frames)):
+        start = time.perf_counter()
+        window.Render()
+        window.WaitForCompletion()
+        seconds = min(seconds, time.perf_counter() - start)
+    return seconds
+
+
 def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
     """What a mapper of this project says about its last render (empty for VTK's own)."""
     report: Dict[str, float] = {}
@@ -420,13 +435,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
-    warm_up(window, mapper)
-    seconds = float("inf")
-    for _ in range(max(1, frames)):
-        start = time.perf_counter()
-        window.Render()
-        window.WaitForCompletion()
-        seconds = min(seconds, time.perf_counter() - start)
+    seconds = best_frame(window, mapper, frames)
     report = mapper_report(mapper)
     image = read_rgba(window)
     if reference:

@@ -51,10 +51,6 @@ def generated_scene(name: str, shape: str, cells: int, view: render.View
     return make
 
 
-#: The demo's data set: the generated drill, the shape of the paper's large data set, at a
-#: size that renders in seconds.
-DEMO_SCENE = "drill"
-
 #: The cameras of the named scenes.
 VIEWS: Dict[str, render.View] = {
     "drill": render.View(azimuth=30.0, elevation=25.0, zoom=1.3),
@@ -64,6 +60,7 @@ VIEWS: Dict[str, render.View] = {
     "bluntfin": render.View(azimuth=40.0, elevation=25.0),
     "post": render.View(azimuth=30.0, elevation=20.0),
     "torus": render.View(azimuth=20.0, elevation=40.0),
+    "ironprot_full": render.View(azimuth=35.0, elevation=25.0),
 }
 
 SCENES: Dict[str, Callable[[], Scene]] = {
@@ -74,6 +71,7 @@ SCENES: Dict[str, Callable[[], Scene]] = {
     "bluntfin": data_scene("bluntfin", VIEWS["bluntfin"], 0.5),
     "post": data_scene("post", VIEWS["post"], 0.5),
     "torus": data_scene("torus", VIEWS["torus"]),
+    "ironprot_full": data_scene("ironprot_full", VIEWS["ironprot_full"]),
 }
 
 

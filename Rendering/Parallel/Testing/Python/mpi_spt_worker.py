@@ -43,6 +43,8 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--keep-cullers", action="store_true",
                         help="keep VTK's frustum culler, which may skip a rank's render")
     parser.add_argument("--depth-slabs", type=int, default=1, help="DepthSlabs")
+    parser.add_argument("--clipping-plane", action="store_true",
+                        help="every rank's mapper clipped by one oblique plane")
     parser.add_argument("--frames", type=int, default=2)
     parser.add_argument("--target-error", type=float, default=None,
                         help="TargetError; --repetitions is then the cap")
@@ -120,6 +122,16 @@ def halved_opacity(volume_property):
     return copy
 
 
+def oblique_plane():
+    """A plane through the default mesh, as the ranks' mappers all have it."""
+    import vtk
+
+    plane = vtk.vtkPlane()
+    plane.SetOrigin(0.2, 0.0, 0.0)
+    plane.SetNormal(1.0, 0.3, 0.2)
+    return plane
+
+
 def add_volumes(arguments, renderer, controller, scene):
     """This rank's SPT volumes of the scene (two with --second-volume) in ``renderer``, each
     with its piece of the mesh; returns their mappers and pieces."""
@@ -150,6 +162,8 @@ def add_volumes(arguments, renderer, controller, scene):
             mapper.SetAutoAdjustRepetitions(True)
         if controller is not None:
             mapper.SetController(controller)
+        if arguments.clipping_plane:
+            mapper.AddClippingPlane(oblique_plane())
         piece = piece_of(grid, renamed=second == arguments.second_volume)
         volume = render.add_volume(renderer, piece, volume_property, mapper)
         if second:

@@ -161,6 +161,18 @@ def test_depth_slabs_on_two_ranks_equal_one_process(slab_renders, renders):
     assert expected <= report["bytes"] <= expected + 4096
 
 
+def test_clipping_planes_on_two_ranks_equal_one_process(have_display, tmp_path, renders):
+    """Each rank cuts its piece's segments by the mappers' clipping plane: the combined image
+    is one process's image of the clipped volume, not the unclipped one."""
+    serial, _, _ = run(tmp_path / "clipped0.npy", 0, "--clipping-plane")
+    two, _, errors = run(tmp_path / "clipped2.npy", 2, "--clipping-plane")
+    assert "ERR" not in errors, errors
+    assert serial[0][..., 3].max() > 0.2, "the image is empty"
+    assert largest_difference(serial[0], two[0]) <= 1.0
+    unclipped, _, _ = renders[0]
+    assert metrics.rmse(two[0], unclipped[0]) > 0.05, "the plane changes nothing"
+
+
 def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
     """The keys of 12 repetitions lie in a buffer of 16 layers (the shaders are compiled for
     a power of two): the ranks exchange the 12 layers in use, and combine them as one process

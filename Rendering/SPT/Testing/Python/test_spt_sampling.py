@@ -9,6 +9,7 @@ refinement and the time budget of vtkSPTVolumeMapper.
 - The time budget cuts the repetitions when the allocated render time is short.
 """
 
+import os
 from functools import lru_cache
 
 import numpy as np
@@ -272,3 +273,25 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
     pair_error = metrics.rmse(pair, _reference())
     single_error = metrics.rmse(single, _reference())
     assert pair_error < 0.25 * single_error, f"pair {pair_error:.4f}, single {single_error:.4f}"
+
+
+def test_depth_keys_follow_the_device_memory(have_display):
+    """On a software rasterizer the depth keys' budget is an eighth of the host's memory (at
+    most 1 GiB): at 1024 x 1024, 64 repetitions are one group, where a fixed 128 MiB would
+    hold 32. The GPU memory counts the keys of the lanes drawn per traversal."""
+    size, level = 1024, 64
+    s = _scene()
+    memory = {}
+    for per_pass in (16, 256):
+        mapper = render.spt_mapper(level, per_pass=per_pass)
+        window, renderer = render.make_window(size, size)
+        render.add_volume(renderer, s.grid, s.property, mapper)
+        render.place_camera(renderer, s.grid.GetBounds(), s.view)
+        window.Render()
+        capabilities = window.ReportCapabilities()
+        memory[per_pass] = mapper.GetGPUMemorySize()
+        window.Finalize()
+    host = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    if "llvmpipe" not in capabilities or host // 8 < size * size * 4 * level:
+        pytest.skip("the budget follows the host's memory on llvmpipe with 2 GiB or more")
+    assert memory[256] - memory[16] == size * size * 4 * (level - 16)
