@@ -207,8 +207,11 @@ def _add_bench(commands) -> None:
                        help="comma-separated sections to run (default: all): "
                             "race,cells,repetitions,subpixels,image,quality,host,large,parallel,"
                             "paraview")
-    bench.add_argument("--shape", choices=("drill", "torus", "helix"), default="drill",
-                       help="generated mesh of the sweeps (default drill)")
+    from . import HAVE_MESHING
+    bench.add_argument("--shape", choices=("drill", "torus", "helix"),
+                       default="drill" if HAVE_MESHING else "helix",
+                       help="generated mesh of the sweeps (default drill; helix, which needs "
+                            "no TetGen, in builds without the meshing module)")
     bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,
                        help="largest mesh of the cell sweep (default 10,000,000)")
     bench.add_argument("--large-cells", type=_positive_int(10 ** 9), default=None,
