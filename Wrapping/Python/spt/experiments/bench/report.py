@@ -64,14 +64,15 @@ def race_rows_table(race: Dict[str, object]) -> str:
                  + ["CPU, all threads [s]"], rows)
 
 
-def _runs(race: Dict[str, object]) -> str:
-    """Which scenes were raced together, where a race was run scene by scene."""
+def race_runs(race: Dict[str, object],
+              note: str = ": each scene's methods in one process, so compare ratios within a "
+                          "scene.") -> str:
+    """Which scenes were raced together, where a race was run scene by scene, and ``note``."""
     runs = race.get("runs") or []
     if len(runs) < 2:
         return ""
     groups = "; ".join(", ".join(run["scenes"]) for run in runs)
-    return (f" The scenes were raced in {len(runs)} runs ({groups}): each scene's methods in "
-            "one process, so compare ratios within a scene.")
+    return f" The scenes were raced in {len(runs)} runs ({groups}){note}"
 
 
 def _read_back_floors(race: Dict[str, object]) -> str:
@@ -102,7 +103,7 @@ def race_section(race: Dict[str, object]) -> List[str]:
             f"process. Stochastic methods at L = 1, 2, 4, ... up to "
             f"{race['max_repetitions']}, until every target is reached. Time to an error: "
             "the frame of the smallest L at or below it, as a multiple of VTK PT's frame. "
-            f"Host CPU time: {source}.{_runs(race)}{_read_back_floors(race)}", "",
+            f"Host CPU time: {source}.{race_runs(race)}{_read_back_floors(race)}", "",
             "![race](race.png)", "", race_summary_table(race), race_rows_table(race)]
 
 

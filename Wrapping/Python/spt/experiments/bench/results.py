@@ -20,7 +20,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 from .. import tables
 from .methods import METHODS
 from .models import Fit
-from .report import write_report
+from .report import race_runs, write_report
 from .results_views import attach, views_section
 
 Entry = Dict[str, object]
@@ -187,15 +187,6 @@ def race_findings(race: Dict[str, object]) -> List[str]:
     return lines + [""]
 
 
-def _runs(race: Dict[str, object]) -> str:
-    runs = race.get("runs") or []
-    if len(runs) < 2:
-        return ""
-    groups = "; ".join(", ".join(run["scenes"]) for run in runs)
-    return (f" The scenes were raced in {len(runs)} runs ({groups}), with the methods that "
-            "each run had: compare within a scene.")
-
-
 def race_section(results: Dict[str, object], folder: str) -> List[str]:
     race = results.get("race")
     lines = [f"## {SECTIONS[0]}", ""]
@@ -212,7 +203,7 @@ def race_section(results: Dict[str, object], folder: str) -> List[str]:
         "(below 1: faster than VTK PT). \"Error target\": SPT with `TargetError` set to VTK "
         "PT's error, from a new mapper. Images are read back in 8 bits per channel, which "
         f"alone leaves an error of about {_f(min(floors)) if floors else '0.0011'}."
-        + _runs(race), "",
+        + race_runs(race, ", with the methods that each run had: compare within a scene."), "",
         race_table(race)]
     lines += race_findings(race)
     return lines + figure("race", folder)
