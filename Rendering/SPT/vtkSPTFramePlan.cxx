@@ -55,7 +55,8 @@ size_t vtkSPTVolumeMapper::vtkInternals::DepthKeyBudget(vtkOpenGLRenderWindow* r
     const size_t free = vtkSPTComputeTraversal::IsSoftwareRasterizer(renWin)
       ? HostMemoryBytes()
       : vtkOpenGLLoader::FreeDeviceMemoryBytes();
-    this->KeyBudget = std::min(std::max(free / 8, FixedKeyBudget), size_t(1) << 30);
+    const size_t fixed = FixedKeyBudget; // a value: std::max takes references
+    this->KeyBudget = std::min(std::max(free / 8, fixed), size_t(1) << 30);
   }
   return this->KeyBudget;
 }
