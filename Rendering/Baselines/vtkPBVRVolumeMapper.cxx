@@ -305,6 +305,9 @@ void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
   program->SetUniform2f("colorTexelScaleOffset", colorTexel);
   program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
   program->SetUniformi("subpixelLevel", subpixelLevel);
+  float pixelScale[2];
+  this->Ensemble->GetPixelScale(pixelScale);
+  program->SetUniform2f("pixelScale", pixelScale);
 }
 
 void vtkPBVRVolumeMapper::vtkInternals::DrawSet(
@@ -489,7 +492,8 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkSavedGLState savedState(ostate);
 
   vtkEnsembleBuffer* ensemble = internals.Ensemble;
-  if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel) ||
+  if (!ensemble->Prepare(renWin, target.Width, target.Height, this->SubpixelLevel,
+        this->ChooseSampleDistance(vol)) ||
     !this->PrepareParticles(ren, vol, ensemble->GetPassWidth(), ensemble->GetPassHeight()))
   {
     return;
@@ -505,6 +509,7 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   signature.push_back(double(this->GetMTime()));
   const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
   AppendSceneSignature(ren, viewport, signature);
+  signature.push_back(ensemble->GetSampleDistance());
   const int first = this->ContinueAccumulation(std::move(signature), count);
   count = std::max(0, std::min(count, internals.Generated.Sets - first));
   this->DrawSets(target.X, target.Y, first, count);

@@ -20,6 +20,7 @@
 #include "vtkEnsembleResolveFS.h"
 #include "vtkEnsembleSceneFS.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -31,23 +32,36 @@ vtkEnsembleBuffer::vtkEnsembleBuffer() = default;
 vtkEnsembleBuffer::~vtkEnsembleBuffer() = default;
 
 bool vtkEnsembleBuffer::Prepare(
-  vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel)
+  vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel, double sampleDistance)
 {
   int hasDepth = 0;
   const int depthFormat = vtkSceneDepthTexture::QueryFormat(&hasDepth);
-  if (renWin != this->Context || width != this->Width || height != this->Height ||
+  sampleDistance = std::max(1.0, sampleDistance);
+  const int imageWidth = sampleDistance > 1.0 ? int(std::ceil(width / sampleDistance)) : width;
+  const int imageHeight = sampleDistance > 1.0 ? int(std::ceil(height / sampleDistance)) : height;
+  this->SampleDistance = sampleDistance;
+  if (renWin != this->Context || imageWidth != this->Width || imageHeight != this->Height ||
+    width != this->ViewportWidth || height != this->ViewportHeight ||
     subpixelLevel != this->SubpixelLevel || depthFormat != this->SceneDepth->GetFormat())
   {
     if (this->Context && this->Context != renWin)
     {
       this->ReleaseGraphicsResources(this->Context);
     }
-    this->Width = width;
-    this->Height = height;
+    this->Width = imageWidth;
+    this->Height = imageHeight;
+    this->ViewportWidth = width;
+    this->ViewportHeight = height;
     this->SubpixelLevel = subpixelLevel;
     this->Allocate(renWin, depthFormat);
   }
   return this->Context != nullptr;
+}
+
+void vtkEnsembleBuffer::GetPixelScale(float scale[2]) const
+{
+  scale[0] = this->Width > 0 ? float(this->ViewportWidth) / float(this->Width) : 1.0f;
+  scale[1] = this->Height > 0 ? float(this->ViewportHeight) / float(this->Height) : 1.0f;
 }
 
 void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
@@ -58,7 +72,7 @@ void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
   bool ok = vtkFramebufferTextures::AllocateFloat(this->PassColor, renWin, w, h, 4) &&
     this->PassDepth->AllocateDepth(w, h, vtkTextureObject::Float32) &&
     vtkFramebufferTextures::AllocateFloat(this->Sum, renWin, w, h, 4) &&
-    this->SceneDepth->Allocate(renWin, this->Width, this->Height, depthFormat);
+    this->SceneDepth->Allocate(renWin, this->ViewportWidth, this->ViewportHeight, depthFormat);
   // The passes' depth is free while the sums are drawn: SPT's color traversal tests against it.
   ok = ok &&
     vtkFramebufferTextures::Attach(
@@ -356,12 +370,15 @@ void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCove
 {
   exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
   // The mean is premultiplied: "over" the scene.
-  vtkScopedOverBlending over(this->Context->GetState(), x, y, this->Width, this->Height);
+  vtkScopedOverBlending over(
+    this->Context->GetState(), x, y, this->ViewportWidth, this->ViewportHeight);
   vtkShaderProgram* program = this->Mean->Program;
   this->Context->GetShaderCache()->ReadyShaderProgram(program);
   this->Sum->Activate();
   program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
   program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformi("interpolate",
+    this->Width != this->ViewportWidth || this->Height != this->ViewportHeight ? 1 : 0);
   program->SetUniformf("inversePassCount", 1.0f / float(numberOfPasses));
   program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
   if (exactCoverage)
@@ -397,7 +414,7 @@ void vtkEnsembleBuffer::MarkFootprint(int x, int y)
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglViewport viewport(ostate);
-  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglViewport(x, y, this->ViewportWidth, this->ViewportHeight);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -413,20 +430,21 @@ void vtkEnsembleBuffer::MarkFootprint(int x, int y)
 
 std::vector<unsigned char> vtkEnsembleBuffer::ReadSceneColor(int x, int y) const
 {
-  std::vector<unsigned char> color(size_t(this->Width) * size_t(this->Height) * 4);
+  std::vector<unsigned char> color(size_t(this->ViewportWidth) * size_t(this->ViewportHeight) * 4);
   if (!this->Context)
   {
     return color;
   }
   vtkOpenGLState* ostate = this->Context->GetState();
   ostate->vtkglPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(x, y, this->Width, this->Height, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  glReadPixels(
+    x, y, this->ViewportWidth, this->ViewportHeight, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
   return color;
 }
 
 bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>& color)
 {
-  if (color.size() != size_t(this->Width) * size_t(this->Height) * 4)
+  if (color.size() != size_t(this->ViewportWidth) * size_t(this->ViewportHeight) * 4)
   {
     return false;
   }
@@ -438,10 +456,11 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
   {
     return false;
   }
-  if (!vtkFramebufferTextures::HasSize(this->SceneColor, this->Width, this->Height))
+  if (!vtkFramebufferTextures::HasSize(this->SceneColor, this->ViewportWidth, this->ViewportHeight))
   {
     vtkFramebufferTextures::UseNearestTexels(this->SceneColor, this->Context);
-    if (!this->SceneColor->Allocate2D(this->Width, this->Height, 4, VTK_UNSIGNED_CHAR))
+    if (!this->SceneColor->Allocate2D(
+          this->ViewportWidth, this->ViewportHeight, 4, VTK_UNSIGNED_CHAR))
     {
       return false;
     }
@@ -449,8 +468,8 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
   vtkOpenGLState* ostate = this->Context->GetState();
   this->SceneColor->Activate();
   ostate->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexSubImage2D(this->SceneColor->GetTarget(), 0, 0, 0, this->Width, this->Height, GL_RGBA,
-    GL_UNSIGNED_BYTE, color.data());
+  glTexSubImage2D(this->SceneColor->GetTarget(), 0, 0, 0, this->ViewportWidth, this->ViewportHeight,
+    GL_RGBA, GL_UNSIGNED_BYTE, color.data());
   vtkTextureObject* depth = this->SceneDepth->GetTexture();
   depth->Activate();
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
@@ -460,7 +479,7 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
   vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
   vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
   vtkOpenGLState::ScopedglViewport viewport(ostate);
-  ostate->vtkglViewport(x, y, this->Width, this->Height);
+  ostate->vtkglViewport(x, y, this->ViewportWidth, this->ViewportHeight);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_ALWAYS);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -483,14 +502,17 @@ size_t vtkEnsembleBuffer::GetGPUMemorySize() const
     return 0;
   }
   const size_t samples = size_t(this->GetPassWidth()) * size_t(this->GetPassHeight());
-  const size_t pixels = size_t(this->Width) * size_t(this->Height);
-  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel,
-  // and the RGBA32F coverage when it is used; the composited scene's RGBA8 when it is drawn.
+  const size_t pixels = size_t(this->ViewportWidth) * size_t(this->ViewportHeight);
+  // Two RGBA32F color buffers and a 32-bit depth buffer per sample, 32-bit depth per pixel of
+  // the viewport, and the RGBA32F coverage when it is used; the composited scene's RGBA8 when
+  // it is drawn; the noise estimate's RG32F per pixel of the image.
   const size_t coverage = this->Coverage->GetHandle() ? 16 : 0;
   const size_t secondHalf = this->SecondHalf->GetHandle() ? 16 : 0;
   const size_t noise = this->Noise->GetHandle() ? 8 : 0;
   const size_t sceneColor = this->SceneColor->GetHandle() ? 4 : 0;
-  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + noise + sceneColor);
+  const size_t imagePixels = size_t(this->Width) * size_t(this->Height);
+  return samples * (16 + 16 + 4 + coverage + secondHalf) + pixels * (4 + sceneColor) +
+    imagePixels * noise;
 }
 
 void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
@@ -517,13 +539,17 @@ void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
   }
   this->SceneDepth->ReleaseGraphicsResources(window);
   this->Context = nullptr;
-  this->Width = this->Height = this->SubpixelLevel = 0;
+  this->Width = this->Height = this->ViewportWidth = this->ViewportHeight = 0;
+  this->SubpixelLevel = 0;
+  this->SampleDistance = 1.0;
 }
 
 void vtkEnsembleBuffer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Size: " << this->Width << " x " << this->Height << "\n";
+  os << indent << "Viewport: " << this->ViewportWidth << " x " << this->ViewportHeight << "\n";
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "SubpixelLevel: " << this->SubpixelLevel << "\n";
   os << indent << "GPUMemorySize: " << this->GetGPUMemorySize() << "\n";
 }

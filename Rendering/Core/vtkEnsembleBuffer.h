@@ -47,9 +47,13 @@ public:
 
   /**
    * Size the buffers for a viewport of width x height pixels at the given subpixel level.
-   * Buffers are reallocated only when the size, the level or the context changes.
+   * With a sample distance d above 1 the image has ceil(width / d) x ceil(height / d) pixels
+   * (of subpixelLevel^2 samples each), which Resolve() interpolates bilinearly to the
+   * viewport: the cheaper image of an interactive render. Buffers are reallocated only when
+   * a size, the level or the context changes.
    */
-  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel);
+  bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel,
+    double sampleDistance = 1.0);
 
   /**
    * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
@@ -162,6 +166,12 @@ public:
   /// The second half's sum (SetHalves()); the sum holds both halves.
   vtkTextureObject* GetSecondHalfTexture() { return this->SecondHalf; }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
+  /// The image's pixels (the viewport's at a sample distance of 1), and the viewport's.
+  int GetImageWidth() const { return this->Width; }
+  int GetImageHeight() const { return this->Height; }
+  double GetSampleDistance() const { return this->SampleDistance; }
+  /// The viewport's pixels per image pixel along x and y: 1 at a sample distance of 1.
+  void GetPixelScale(float scale[2]) const;
   int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   int GetSubpixelLevel() const { return this->SubpixelLevel; }
   ///@}
@@ -189,8 +199,11 @@ private:
   std::vector<float> DrawNoise(vtkShaderProgram* program, int halfCount, bool exactCoverage);
 
   vtkOpenGLRenderWindow* Context = nullptr;
-  int Width = 0;
+  int Width = 0; // the image's pixels
   int Height = 0;
+  int ViewportWidth = 0;
+  int ViewportHeight = 0;
+  double SampleDistance = 1.0;
   int SubpixelLevel = 0;
 
   vtkNew<vtkTextureObject> PassColor;

@@ -14,6 +14,7 @@
 #include "vtkGPUFrameTimer.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace
 {
@@ -94,6 +95,22 @@ public:
       return std::max(1, static_cast<int>(allotted / time));
     }
 
+    // The time of the best frame of one repetition measured, or 0: a pair of traversals
+    // where the mapper draws them (far less noise than a single pass), else a single pass.
+    double OneRepetition() const
+    {
+      return this->TimePerPair > 0.0 ? this->TimePerPair : this->TimePerSinglePass;
+    }
+
+    // The times predicted when the image's pixels change by `factor`: a repetition's time is
+    // mostly its fragments' (the next render measures it).
+    void Scale(double factor)
+    {
+      this->TimePerGroup *= factor;
+      this->TimePerPair *= factor;
+      this->TimePerSinglePass *= factor;
+    }
+
     void Measure(double seconds, int count, int perPass, Traversal kind)
     {
       if (kind == Traversal::Group)
@@ -116,7 +133,8 @@ public:
   RepetitionBudget Budget;
   vtkGPUFrameTimer Timer;
   vtkNew<vtkTimerLog> Clock;
-  bool Timed = false; // by the GPU timer
+  bool Timed = false;   // by the GPU timer
+  bool Resized = false; // the image's sample distance changed for this render
 };
 
 vtkStochasticVolumeMapper::vtkStochasticVolumeMapper()
@@ -141,6 +159,43 @@ int vtkStochasticVolumeMapper::ChooseRepetitions(
     return level;
   }
   return this->Schedule->Budget.Choose(vol->GetAllocatedRenderTime(), level, perPass, kind);
+}
+
+double vtkStochasticVolumeMapper::ChooseSampleDistance(vtkVolume* vol)
+{
+  vtkSchedule::RepetitionBudget& budget = this->Schedule->Budget;
+  const double current = this->ImageSampleDistance;
+  if (!this->AutoAdjustSampleDistances)
+  {
+    return this->ImageSampleDistance;
+  }
+  if (!this->AutoAdjustRepetitions)
+  {
+    this->ImageSampleDistance = 1.0f; // no render is timed: every pixel
+    return 1.0;
+  }
+  // Predicted at every pixel, one repetition takes the time measured at the current distance
+  // times the pixels' ratio; the distance that fits the allotted time is its square root. A
+  // coarser image of the best single repetition comes before a noisier way of drawing it.
+  const double atEveryPixel = budget.OneRepetition() * current * current;
+  const double allotted = vol->GetAllocatedRenderTime();
+  double distance = 1.0;
+  if (atEveryPixel > 0.0 && allotted > 0.0 && atEveryPixel > allotted)
+  {
+    distance =
+      std::min(double(this->MaximumImageSampleDistance), std::sqrt(atEveryPixel / allotted));
+    // Within a tenth of the current distance, keep it: the buffers are sized once.
+    distance = std::abs(distance - current) < 0.1 * current ? current : distance;
+  }
+  if (distance != current)
+  {
+    // The next render sizes its buffers anew, which its time would count: it keeps the
+    // predicted times, and the render after it measures.
+    budget.Scale((current * current) / (distance * distance));
+    this->ImageSampleDistance = float(distance);
+    this->Schedule->Resized = true;
+  }
+  return this->ImageSampleDistance;
 }
 
 int vtkStochasticVolumeMapper::ContinueAccumulation(std::vector<double> signature, int& count)
@@ -220,11 +275,12 @@ void vtkStochasticVolumeMapper::AddRepetitions(
   int drawn, int perPass, Traversal kind, double seconds)
 {
   vtkSchedule& schedule = *this->Schedule;
-  if (seconds >= 0.0 && drawn > 0)
+  if (seconds >= 0.0 && drawn > 0 && !schedule.Resized)
   {
     this->TimePerRepetition = seconds / drawn;
     schedule.Budget.Measure(seconds, drawn, perPass, kind);
   }
+  schedule.Resized = false;
   schedule.Accumulated += drawn;
   this->LastRepetitionCount = schedule.Accumulated;
 }
@@ -249,6 +305,10 @@ void vtkStochasticVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ProgressiveRefinement: " << (this->ProgressiveRefinement ? "On" : "Off") << "\n";
   os << indent << "MaximumProgressiveRepetitions: " << this->MaximumProgressiveRepetitions << "\n";
   os << indent << "AutoAdjustRepetitions: " << (this->AutoAdjustRepetitions ? "On" : "Off") << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << (this->AutoAdjustSampleDistances ? "On" : "Off")
+     << "\n";
+  os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
   os << indent << "LastRepetitionCount: " << this->LastRepetitionCount << "\n";
   os << indent << "TimePerRepetition: " << this->TimePerRepetition << "\n";
 }

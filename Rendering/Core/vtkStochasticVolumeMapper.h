@@ -92,6 +92,31 @@ public:
 
   ///@{
   /**
+   * Fit the render time with fewer pixels: where even one repetition takes longer than the
+   * allocated render time (with AutoAdjustRepetitions), draw the image with its pixels
+   * ImageSampleDistance viewport pixels apart, interpolated to the viewport, as
+   * vtkUnstructuredGridVolumeRayCastMapper does; still renders draw every pixel. The distance
+   * is chosen from the renders before (1 to MaximumImageSampleDistance). Default on.
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * The distance between the image's pixels, in viewport pixels: the last render's where
+   * AutoAdjustSampleDistances chooses it, else set here (default 1, every pixel; 1 to 16).
+   */
+  vtkSetClampMacro(ImageSampleDistance, float, 1.0f, 16.0f);
+  vtkGetMacro(ImageSampleDistance, float);
+  /// The largest distance AutoAdjustSampleDistances chooses (default 4; 1 to 16).
+  vtkSetClampMacro(MaximumImageSampleDistance, float, 1.0f, 16.0f);
+  vtkGetMacro(MaximumImageSampleDistance, float);
+  ///@}
+
+  ///@{
+  /**
    * The repetitions averaged into the image of the last render (fewer than RepetitionLevel
    * when the time budget cut them, more with progressive refinement), and the measured time
    * of one repetition in seconds (0 before the first measurement).
@@ -128,6 +153,13 @@ protected:
    * while perPass is above 1, Pair where a pair fits (or has not been timed yet), else Single.
    */
   int ChooseRepetitions(vtkVolume* vol, int level, int& perPass, Traversal& kind) const;
+
+  /**
+   * The sample distance of this render's image (ImageSampleDistance): with
+   * AutoAdjustSampleDistances, the smallest that lets the best frame of one repetition, timed
+   * in the renders before, fit the volume's allocated render time; 1 in still renders.
+   */
+  double ChooseSampleDistance(vtkVolume* vol);
 
   /**
    * Where this render's repetitions start: after those accumulated, when refining
@@ -172,6 +204,9 @@ protected:
   vtkTypeBool ProgressiveRefinement = 0;
   int MaximumProgressiveRepetitions = 4096;
   vtkTypeBool AutoAdjustRepetitions = 1;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  float ImageSampleDistance = 1.0f;
+  float MaximumImageSampleDistance = 4.0f;
   int LastRepetitionCount = 0;
   double TimePerRepetition = 0.0;
 

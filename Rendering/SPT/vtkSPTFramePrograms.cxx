@@ -218,6 +218,9 @@ void vtkSPTFrame::SetFrameUniforms(
   program->SetUniformi("sceneDepthTexture", ensemble->GetSceneDepthTexture()->GetTextureUnit());
   program->SetUniformi("subpixelLevel", this->FrameSettings.SubpixelLevel);
   program->SetUniform2f("passSizeInPixels", passSize);
+  float pixelScale[2];
+  ensemble->GetPixelScale(pixelScale);
+  program->SetUniform2f("pixelScale", pixelScale);
   program->SetUniformi("seed", static_cast<int>(this->FrameSettings.Seed));
   // Strata: the repetitions of this draw form one block (progressive renders add blocks),
   // or two, one per half, so that the halves stay independent.

@@ -148,6 +148,7 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   }
   const int viewport[4] = { target.X, target.Y, target.Width, target.Height };
   AppendSceneSignature(ren, viewport, signature);
+  signature.push_back(mappers.front()->GetEnsemble()->GetSampleDistance());
   return signature;
 }
 
@@ -329,7 +330,8 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSavedGLState savedState(ostate);
   vtkEnsembleBuffer* ensemble = self->GetEnsemble();
-  if (!ensemble->Prepare(renWin, target.Width, target.Height, self->SubpixelLevel))
+  if (!ensemble->Prepare(
+        renWin, target.Width, target.Height, self->SubpixelLevel, self->ChooseSampleDistance(vol)))
   {
     return;
   }

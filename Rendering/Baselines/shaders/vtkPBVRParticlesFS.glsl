@@ -8,10 +8,18 @@ in vec3 colorVSOutput;
 
 uniform sampler2D sceneDepthTexture; // depth of the opaque scene, one texel per pixel
 uniform int subpixelLevel;
+uniform vec2 pixelScale; // viewport pixels per image pixel: 1 but in interactive renders
 
 void main()
 {
-  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(gl_FragCoord.xy) / subpixelLevel, 0).r;
+  ivec2 scenePixel = ivec2(gl_FragCoord.xy) / subpixelLevel;
+  if (pixelScale != vec2(1.0))
+  {
+    // An image with fewer pixels than the viewport: the viewport pixel at this one's center.
+    scenePixel = min(ivec2((vec2(scenePixel) + 0.5) * pixelScale),
+      textureSize(sceneDepthTexture, 0) - 1);
+  }
+  float sceneDepth = texelFetch(sceneDepthTexture, scenePixel, 0).r;
   if (gl_FragCoord.z >= sceneDepth)
   {
     discard;

@@ -9,17 +9,21 @@
 // the coefficient (the tau-weighted mean color of the sample's segments) does not depend on
 // the random numbers and E[a] = A, so the expectation stays exact; what is left of the noise
 // is the segments' color differences.
+//
+// With interpolate, the image has fewer pixels than the viewport (an interactive render's
+// sample distance): each viewport pixel is the bilinear interpolation of the four image
+// pixels around it, premultiplied.
 in vec2 texCoord;
 uniform sampler2D sumTexture;
 uniform sampler2D coverageTexture;   // per sample: (sum(tau_i * color_i), sum(tau_i))
 uniform int exactCoverage;
 uniform int subpixelLevel;
+uniform int interpolate;
 uniform float inversePassCount;      // 1 / repetitions
 
-void main()
+vec4 resolvePixel(ivec2 pixel)
 {
-  ivec2 pixels = textureSize(sumTexture, 0) / subpixelLevel;
-  ivec2 first = ivec2(floor(texCoord * vec2(pixels))) * subpixelLevel;
+  ivec2 first = pixel * subpixelLevel;
   vec4 sum = vec4(0.0);
   for (int j = 0; j < subpixelLevel; ++j)
   {
@@ -36,5 +40,24 @@ void main()
       sum += mean;
     }
   }
-  gl_FragData[0] = sum / float(subpixelLevel * subpixelLevel);
+  return sum / float(subpixelLevel * subpixelLevel);
+}
+
+void main()
+{
+  ivec2 pixels = textureSize(sumTexture, 0) / subpixelLevel;
+  if (interpolate == 0)
+  {
+    gl_FragData[0] = resolvePixel(ivec2(floor(texCoord * vec2(pixels))));
+    return;
+  }
+  vec2 position = texCoord * vec2(pixels) - 0.5;
+  ivec2 low = ivec2(floor(position));
+  vec2 weight = position - vec2(low);
+  ivec2 last = pixels - 1;
+  vec4 p00 = resolvePixel(clamp(low, ivec2(0), last));
+  vec4 p10 = resolvePixel(clamp(low + ivec2(1, 0), ivec2(0), last));
+  vec4 p01 = resolvePixel(clamp(low + ivec2(0, 1), ivec2(0), last));
+  vec4 p11 = resolvePixel(clamp(low + ivec2(1, 1), ivec2(0), last));
+  gl_FragData[0] = mix(mix(p00, p10, weight.x), mix(p01, p11, weight.x), weight.y);
 }

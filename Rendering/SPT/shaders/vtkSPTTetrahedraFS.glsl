@@ -34,6 +34,7 @@ uniform mat3 VCMCLinear;               // view -> model, for lengths: the unit d
 uniform sampler2D sceneDepthTexture;   // depth of the opaque scene, one texel per pixel
                                        // (SPT_SCENE_DEPTH: opaque geometry was drawn)
 uniform int subpixelLevel;
+uniform vec2 pixelScale;               // viewport pixels per image pixel: 1 but in interactive renders
 uniform vec2 passSizeInPixels;
 uniform mat4 DCVCMatrix;               // clip -> view
 uniform mat4 VCDCMatrix;               // view -> clip
@@ -304,7 +305,14 @@ bool visibleSegment(out Segment segment)
 
 #ifdef SPT_SCENE_DEPTH
   // Opaque geometry hides what lies behind it and cuts a segment that it passes through.
-  float sceneDepth = texelFetch(sceneDepthTexture, ivec2(samplePosition) / subpixelLevel, 0).r;
+  ivec2 scenePixel = ivec2(samplePosition) / subpixelLevel;
+  if (pixelScale != vec2(1.0))
+  {
+    // An image with fewer pixels than the viewport: the viewport pixel at this one's center.
+    scenePixel = min(ivec2((vec2(scenePixel) + 0.5) * pixelScale),
+      textureSize(sceneDepthTexture, 0) - 1);
+  }
+  float sceneDepth = texelFetch(sceneDepthTexture, scenePixel, 0).r;
   if (segment.frontDepth >= sceneDepth)
   {
     return false;

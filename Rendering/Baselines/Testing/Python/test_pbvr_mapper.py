@@ -222,6 +222,7 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     window, renderer = render.make_window(*SIZE)
     mapper = render.pbvr_mapper(level, seed=1)
     mapper.AutoAdjustRepetitionsOn()
+    mapper.AutoAdjustSampleDistancesOff()  # every pixel: the image of one render of them all
     mapper.ProgressiveRefinementOn()
     render.add_volume(renderer, s.grid, s.property, mapper)
     render.place_camera(renderer, s.grid.GetBounds(), s.view)
@@ -250,3 +251,55 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     assert np.array_equal(render.read_rgba(full_window), progressive)
     window.Finalize()
     full_window.Finalize()
+
+
+def _pbvr_image(mapper, size, interactive_renders=0):
+    s = scenes.scene("default")
+    window, renderer = render.make_window(size, size)
+    render.add_volume(renderer, s.grid, s.property, mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window.Render()
+    image = render.read_rgba(window)
+    window.Finalize()
+    return image
+
+
+def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated(have_display):
+    """At sample distance 2 in a viewport of 2n x 2n pixels PBVR draws the particles of an
+    n x n viewport (their size and number follow the image's pixels) and the resolve
+    interpolates them bilinearly."""
+    fine_mapper = render.pbvr_mapper(8, seed=3)
+    fine_mapper.AutoAdjustSampleDistancesOff()
+    fine_mapper.SetImageSampleDistance(2.0)
+    fine = _pbvr_image(fine_mapper, 2 * SIZE[0])
+    coarse = _pbvr_image(render.pbvr_mapper(8, seed=3), SIZE[0])
+    assert coarse[..., 3].max() > 0.2, "an empty image"
+    height, width = coarse.shape[:2]
+    position = (np.arange(2 * width) + 0.5) / 2 - 0.5
+    low = np.floor(position).astype(int)
+    weight = (position - low)[None, :, None]
+    low, high = np.clip(low, 0, width - 1), np.clip(low + 1, 0, width - 1)
+    rows = coarse[:, low] * (1 - weight) + coarse[:, high] * weight
+    interpolated = (rows[low] * (1 - weight.transpose(1, 0, 2)) +
+                    rows[high] * weight.transpose(1, 0, 2))
+    assert np.abs(fine - interpolated).max() <= 1.0 / 255.0 + 1e-6
+
+
+def test_with_the_time_budget_interactive_sets_have_fewer_pixels(have_display):
+    s = scenes.scene("default")
+    window, renderer = render.make_window(*SIZE)
+    mapper = render.pbvr_mapper(4, seed=1)
+    mapper.AutoAdjustRepetitionsOn()
+    render.add_volume(renderer, s.grid, s.property, mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window.Render()
+    assert mapper.GetImageSampleDistance() == 1.0
+    window.SetDesiredUpdateRate(1000.0)  # 1 ms: not even one set
+    for _ in range(3):
+        window.Render()
+    assert 1.0 < mapper.GetImageSampleDistance() <= 4.0
+    assert render.read_rgba(window)[..., 3].max() > 0.2, "an empty interactive image"
+    window.SetDesiredUpdateRate(0.0001)
+    window.Render()
+    assert mapper.GetImageSampleDistance() == 1.0
+    window.Finalize()

@@ -195,6 +195,7 @@ def test_time_budget_cuts_repetitions_during_interaction(have_display):
     its still update rate afterwards."""
     mapper = render.spt_mapper(64, seed=1)
     mapper.AutoAdjustRepetitionsOn()
+    mapper.AutoAdjustSampleDistancesOff()  # every pixel: the repetitions' budget alone
     window, renderer = window_with(mapper, SIZE)
     render_at_still_rate(window)
     assert mapper.GetLastRepetitionCount() == 64
@@ -219,6 +220,7 @@ def _budget_mapper_after_a_still_render():
     its own after one render at the still rate (all 64 repetitions, which it times)."""
     mapper = render.spt_mapper(64, seed=1, per_pass=16)
     mapper.AutoAdjustRepetitionsOn()
+    mapper.AutoAdjustSampleDistancesOff()  # every pixel: the repetitions' budget alone
     window, renderer = window_with(mapper, SIZE)
     window.SetDesiredUpdateRate(0.0001)
     window.Render()
