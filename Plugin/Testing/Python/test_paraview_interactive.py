@@ -114,3 +114,44 @@ def test_above_the_lod_threshold_paraview_draws_its_stand_in(session):
 def test_without_the_budget_interactive_renders_draw_all(session):
     dragged = renders(session, "unadjusted_drag", interactive=True)
     assert [r["repetitions"] for r in dragged] == [REPETITIONS]
+
+
+def test_where_one_repetition_misses_the_time_dragging_draws_fewer_pixels(session):
+    """With 16 samples per pixel one repetition takes longer than ParaView's interactive
+    frame: while the mouse moves the image's pixels move apart (at most the default maximum of
+    4 view pixels), so that a frame fits better, and the still render after it draws every
+    pixel and the full Repetition Level."""
+    still = renders(session, "distance_still", interactive=False)[-1]
+    dragged = renders(session, "distance_drag", interactive=True)
+    allotted = dragged[0]["allotted_seconds"]
+    if still["seconds_per_repetition"] <= allotted:
+        pytest.skip(f"one repetition fits ParaView's {allotted * 1e3:.0f} ms here")
+    assert still["sample_distance"] == 1.0
+    distances = [r["sample_distance"] for r in dragged]
+    assert 1.0 < distances[-1] <= 4.0, distances
+    assert all(1 <= r["repetitions"] <= REPETITIONS for r in dragged), dragged
+    released = renders(session, "distance_drag", interactive=False)[-1]
+    assert released["sample_distance"] == 1.0
+    assert released["repetitions"] == REPETITIONS
+
+
+def test_the_coarser_interactive_image_shows_the_same_volume(session):
+    """The interactive image of fewer pixels is the still image blurred and noisier: its mean
+    over 7 x 7 pixels differs from the still image's by less than a fifth of the volume's
+    mean brightness, and by more than nothing per pixel."""
+    directory = session[0]
+    dragged = renders(session, "distance_screenshot_interactive", True)[-1]
+    if dragged["sample_distance"] == 1.0:
+        pytest.skip("the interactive screenshot drew every pixel here")
+    interactive = pvs.read_png(directory / "distance_interactive.png")[..., :3]
+    still = pvs.read_png(directory / "distance_still.png")[..., :3]
+    pvs.keep(directory / "distance_interactive.png", "paraview_interactive_fewer_pixels.png")
+    pvs.check_volume_image(interactive)
+    pvs.check_volume_image(still)
+    difference = interactive - still
+    pixel = np.sqrt((difference ** 2).mean())
+    local = np.abs(pvs.box_filter(difference, 3)).mean()
+    covered = still.max(axis=-1) > 1.0 / 255.0
+    brightness = still[covered].mean()
+    assert pixel > 0.0
+    assert local < 0.2 * brightness, f"{local:.4f} over 7 x 7 against a mean of {brightness:.4f}"

@@ -6,7 +6,8 @@ view proxy's InteractiveRender() while the mouse moves and StillRender() when it
 as the GUI does. After every render of the view the report records the render window's desired
 update rate (ParaView sets 5 for interactive renders and 0.002 for still ones), the time the
 renderer allotted to the volume, whether ParaView drew its level-of-detail stand-in, and the
-repetitions in the SPT image. Writes REPORT.json and the views as PNG in the output directory.
+repetitions in the SPT image and its sample distance. Writes REPORT.json and the views as
+PNG in the output directory.
 
     pvpython interactive_renders.py --plugin SPT.so --data mesh.vtk --output DIR
 """
@@ -54,6 +55,7 @@ class Recorder:
             "used_lod": bool(self.view.GetUsedLODForLastRender()),
             "repetitions": self.mapper.GetLastRepetitionCount(),
             "seconds_per_repetition": self.mapper.GetTimePerRepetition(),
+            "sample_distance": self.mapper.GetImageSampleDistance(),
         })
 
 
@@ -88,6 +90,8 @@ def main(argv):
     display.SetRepresentationType("Volume (SPT)")
     display.TargetError = 0.0  # every still render draws RepetitionLevel repetitions
     display.RepetitionLevel = args.repetitions
+    # The repetitions' budget alone first; the image's sample distance in the last steps.
+    display.AutoAdjustSampleDistances = 0
     render_volume.look_along(view, "z")
     recorder = Recorder(view, display)
 
@@ -120,6 +124,20 @@ def main(argv):
     display.AutoAdjustRepetitions = 0
     recorder.step = "unadjusted_drag"
     drag(view, 1, args.size)
+    display.AutoAdjustRepetitions = 1
+
+    # Where not even one repetition fits an interactive frame (16 samples per pixel here), the
+    # image has fewer pixels while the mouse moves, and all of them again when it is released.
+    display.AutoAdjustSampleDistances = 1
+    display.SubpixelLevel = 4
+    recorder.step = "distance_still"
+    simple.Render(view)
+    recorder.step = "distance_drag"
+    drag(view, 6, args.size)
+    recorder.step = "distance_screenshot_interactive"
+    screenshot(view, output / "distance_interactive.png", args.size, True)
+    recorder.step = "distance_screenshot_still"
+    screenshot(view, output / "distance_still.png", args.size, False)
 
     (output / "report.json").write_text(json.dumps({
         "repetition_level": args.repetitions,

@@ -30,7 +30,7 @@ METHODS = {
             "StratifiedSampling",
             "ReuseNoiseEstimate", "Estimator", "ExactCoverage", "DepthSlabs",
             "ProgressiveRefinement",
-            "AutoAdjustRepetitions")},
+            "AutoAdjustRepetitions", "AutoAdjustSampleDistances", "MaximumImageSampleDistance")},
         "repetitions": "RepetitionLevel",
         "seed": "Seed",
         "target": "TargetError",
