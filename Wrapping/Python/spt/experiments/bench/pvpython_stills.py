@@ -8,7 +8,9 @@ turned by ``--azimuth`` and ``--elevation`` from ParaView's own and reset, and f
 representation in turn, at its defaults: three still renders (``StillRender``, finished with
 ``WaitForCompletion``; the first builds what the later ones reuse), the image the second
 left in the view (over black: the premultiplied color), a screenshot over a transparent
-background (its alpha too), and two interactive renders (``InteractiveRender``). The exact
+background (its alpha too), and six interactive renders (``InteractiveRender``), the camera
+turned by half a degree before each, as a drag turns it (the median of the last three is
+reported). The exact
 image of the same camera and size (spt.raycast, on the tetrahedra the representation draws
 and its volume property) is the reference of both images; it is cached in ``--references``.
 Writes a JSON report and each image as PNG into ``--output``.
@@ -25,6 +27,8 @@ from paraview import simple
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 STILL_RENDERS = 3
+# Interactive renders as while dragging: the first ones time and size what the later reuse.
+INTERACTIVE_RENDERS = 6
 
 
 def parse():
@@ -90,7 +94,8 @@ def spt_state(mapper):
     return {"repetitions": int(mapper.GetLastRepetitionCount()),
             "estimated_error": float(mapper.GetEstimatedError()),
             "target_error": float(mapper.GetTargetError()),
-            "repetition_level": int(mapper.GetRepetitionLevel())}
+            "repetition_level": int(mapper.GetRepetitionLevel()),
+            "sample_distance": float(mapper.GetImageSampleDistance())}
 
 
 def screenshot(view, path, size):
@@ -128,6 +133,18 @@ def view_image(window):
     return metrics.from_vtk_image(grab.GetOutput(), as_float_rgba=True)[..., :3]
 
 
+def drag_renders(view, window):
+    """The times of INTERACTIVE_RENDERS interactive renders, the camera turned by half a
+    degree before each, as a drag turns it, and turned back after them."""
+    camera = view.GetActiveCamera()
+    times = []
+    for _ in range(INTERACTIVE_RENDERS):
+        camera.Azimuth(0.5)
+        times.append(timed(view.SMProxy.InteractiveRender, window))
+    camera.Azimuth(-0.5 * INTERACTIVE_RENDERS)
+    return times
+
+
 def measure(view, display, representation, size, output):
     """Still renders (the second timed and kept), a screenshot over a transparent
     background and interactive renders of one representation."""
@@ -142,8 +159,9 @@ def measure(view, display, representation, size, output):
     row.update(still_seconds=still, seconds=still[1])
     shot = output / f"{file_name(representation)}.png"
     image = {"shown": shown, "rgba": screenshot(view, shot, size)}
-    interactive = [timed(view.SMProxy.InteractiveRender, window) for _ in range(2)]
-    row.update(interactive_seconds=interactive[1],
+    interactive = drag_renders(view, window)
+    row.update(interactive_seconds=float(np.median(interactive[-3:])),
+               interactive_all_seconds=interactive,
                desired_update_rate=float(window.GetDesiredUpdateRate()),
                allotted_seconds=float(actor.GetAllocatedRenderTime()),
                used_lod=bool(view.GetClientSideObject().GetUsedLODForLastRender()),

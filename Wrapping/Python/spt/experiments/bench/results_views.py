@@ -129,9 +129,11 @@ def _interactive(row: Optional[Entry]) -> str:
         return "-"
     requested = 1.0 / row["desired_update_rate"]
     # with ParaView's stand-in drawn, the mapper's own count is its last still render's
-    reps = None if row.get("used_lod") else (row.get("interactive") or {}).get("repetitions")
+    state = {} if row.get("used_lod") else (row.get("interactive") or {})
+    reps, distance = state.get("repetitions"), state.get("sample_distance")
+    shape = (f"L={reps}" if reps else "") + (f", d={_f(distance)}" if reps and distance else "")
     return (f"{_f(row['interactive_seconds'])} s, {_f(row['interactive_seconds'] / requested)}"
-            + (f" (L={reps})" if reps else "") + (", LOD" if row.get("used_lod") else ""))
+            + (f" ({shape})" if shape else "") + (", LOD" if row.get("used_lod") else ""))
 
 
 def paraview_table(measured: Dict[str, object]) -> str:
@@ -168,9 +170,14 @@ def paraview_part(results: Dict[str, object]) -> List[str]:
             "other in one process. Time: the second still render (`StillRender`, finished); "
             "RMSE: the image that render left in the view (over black, the premultiplied "
             "color) against the exact reference of the same camera and size (spt.raycast on "
-            "the tetrahedra ParaView hands the mappers). SPT interactive: the second "
-            "`InteractiveRender` and its ratio to the time ParaView asks for (one over the "
-            "render window's desired update rate); LOD where ParaView drew its stand-in. "
+            "the tetrahedra ParaView hands the mappers). SPT interactive: "
+            + ("the median of the last three of six `InteractiveRender`s, the camera turned by "
+               "half a degree before each as a drag turns it, "
+               if any("interactive_all_seconds" in row for scene in measured["scenes"]
+                      for row in scene["rows"]) else "the second `InteractiveRender`, ")
+            + "and its ratio to the time ParaView asks for (one over the "
+            "render window's desired update rate), with the repetitions L and, where "
+            "measured, the image's sample distance d; LOD where ParaView drew its stand-in. "
             "The exact reference's own time is given where this run rendered it.", "",
             paraview_table(measured)]
 
