@@ -294,10 +294,11 @@ def test_with_the_time_budget_interactive_sets_have_fewer_pixels(have_display):
     render.place_camera(renderer, s.grid.GetBounds(), s.view)
     window.Render()
     assert mapper.GetImageSampleDistance() == 1.0
-    window.SetDesiredUpdateRate(1000.0)  # 1 ms: not even one set
+    window.SetDesiredUpdateRate(1.0e6)  # 1 us: not even one set, at any sample distance
     for _ in range(3):
         window.Render()
-    assert 1.0 < mapper.GetImageSampleDistance() <= 4.0
+    assert mapper.GetTimePerRepetition() > 1.0e-6
+    assert mapper.GetImageSampleDistance() == mapper.GetMaximumImageSampleDistance() == 4.0
     assert render.read_rgba(window)[..., 3].max() > 0.2, "an empty interactive image"
     window.SetDesiredUpdateRate(0.0001)
     window.Render()

@@ -93,7 +93,7 @@ def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers(have_display):
 
 
 def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel(have_display):
-    """With a budget of 1 ms not even one repetition fits, so the sample distance climbs to
+    """With a budget of 1 us not even one repetition fits, so the sample distance climbs to
     its maximum; a lower maximum caps it; a still render draws every pixel, the image of a
     mapper that never rendered interactively, bit for bit."""
     mapper = render.spt_mapper(16, seed=4)
@@ -102,7 +102,7 @@ def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel(hav
     render_at_still_rate(window)
     still = render.read_rgba(window)
     assert mapper.GetImageSampleDistance() == 1.0
-    window.SetDesiredUpdateRate(1000.0)
+    window.SetDesiredUpdateRate(1.0e6)
     distances = []
     for _ in range(4):
         window.Render()

@@ -5,7 +5,9 @@ run at, how each method's frame grows from the smallest size to the largest, and
 A run's own ``bench.json`` holds these as ``race`` and ``race_sizes`` (the race at each size,
 smallest first) and ``paraview``. Measurements made apart from the full run can be kept in
 ``large-views.json`` next to it, a ``bench.json`` of the ``race`` and ``paraview`` sections
-only; :func:`attach` reads it, and this part of the page then reports that file's run.
+only, and the ``paraview`` section measured again alone in ``paraview-views.json``;
+:func:`attach` reads them, and this part of the page then reports those files' runs, each with
+its own date and load.
 """
 
 from __future__ import annotations
@@ -18,21 +20,36 @@ Entry = Dict[str, object]
 
 #: The file of measurements made apart from the full run, next to ``bench.json``.
 LARGE_VIEWS = "large-views.json"
+#: The ParaView section measured alone, next to ``bench.json``; it takes the place of the one in
+#: ``large-views.json``.
+PARAVIEW_VIEWS = "paraview-views.json"
+PARAVIEW_COMMAND = "python3 -m spt bench --sections paraview --output out/bench"
 SIZES_COMMAND = ("python3 -m spt bench --sections race,paraview --size 256,1024 "
                  "--output out/bench")
 
 
 def attach(results: Dict[str, object], source: pathlib.Path) -> Dict[str, object]:
-    """``results`` with the run of ``large-views.json`` next to ``source`` as
-    ``large_views``, where that file exists."""
-    path = source.parent / LARGE_VIEWS
-    if not path.exists() or "large_views" in results:
-        return results
-    try:
-        views = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as error:
-        raise ValueError(f"cannot read {path}: {error}") from None
-    return dict(results, large_views=views)
+    """``results`` with the runs of ``large-views.json`` and ``paraview-views.json`` next
+    to ``source`` as ``large_views`` and ``paraview_views``, where those files exist."""
+    attached = dict(results)
+    for key, name in (("large_views", LARGE_VIEWS), ("paraview_views", PARAVIEW_VIEWS)):
+        path = source.parent / name
+        if not path.exists() or key in results:
+            continue
+        try:
+            attached[key] = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as error:
+            raise ValueError(f"cannot read {path}: {error}") from None
+    return attached
+
+
+def _measured_apart(run: Dict[str, object], name: str, sections: str) -> str:
+    load = run.get("load_average")
+    return (f"Measured apart from the full run (`{name}`, a `bench.json` of the {sections} "
+            f"only), on {run['date']} on {run['machine']}"
+            + (f", shared with other jobs (load average {load[0]:.1f} on its "
+               f"{run.get('cores', 2)} cores when the last section ended)" if load else "")
+            + ".")
 
 
 def races(results: Dict[str, object]) -> List[Dict[str, object]]:
@@ -188,14 +205,14 @@ def views_section(results: Dict[str, object], heading: str) -> List[str]:
     source = results.get("large_views") or results
     lines = [f"## {heading}", ""]
     if results.get("large_views"):
-        load = source.get("load_average")
-        lines += [f"Measured apart from the full run (`{LARGE_VIEWS}`, a `bench.json` of the "
-                  f"sections race and paraview only), on {source['date']} on "
-                  f"{source['machine']}"
-                  + (f", shared with other jobs (load average {load[0]:.1f} on its "
-                     f"{source.get('cores', 2)} cores when the last section ended)"
-                     if load else "") + ".", ""]
-    return lines + sizes_part(source) + paraview_part(source)
+        lines += [_measured_apart(source, LARGE_VIEWS, "sections race and paraview"), ""]
+    lines += sizes_part(source)
+    paraview = results.get("paraview_views")
+    if paraview and paraview.get("paraview"):
+        lines += [_measured_apart(paraview, PARAVIEW_VIEWS, "section paraview") + " "
+                  f"Measured again by `{PARAVIEW_COMMAND}`.", ""]
+        return lines + paraview_part(paraview)
+    return lines + paraview_part(source)
 
 
-__all__ = ["LARGE_VIEWS", "attach", "races", "views_section"]
+__all__ = ["LARGE_VIEWS", "PARAVIEW_VIEWS", "attach", "races", "views_section"]
