@@ -149,7 +149,8 @@ test-debian-unstable: debian-root-deps
 VTK_WHEEL_VERSION ?= 9.5.0
 VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
 build-vtk-wheel: deps
-	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
+	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_VTK_WHEEL_BUILD=$(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) \
+	  JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
 
 test-vtk-wheel: build-vtk-wheel
 	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
