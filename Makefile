@@ -14,9 +14,10 @@
 #               /var/cache/spt/vtk-sdk); make build-vtk-wheel stops after the build
 #   make wheel  the Python wheel (dist/spt_volume-*.whl) against PyPI's vtk 9.5 (.ci/wheel:
 #               scikit-build-core, VTK's wrapping tools built from ../shared/third_party; kept in
-#               WHEEL_CACHE, default /var/cache/spt/wheel)
-#   make test-wheel  the wheel, then pip install of it (with vtk and pyvista from PyPI) in a
-#               fresh virtual environment without Debian's VTK, and its tests there without X
+#               WHEEL_CACHE, default /var/cache/spt/wheel), one per CPython of WHEEL_PYTHONS
+#   make test-wheel  the wheels, then pip install of each (with vtk and pyvista from PyPI) in a
+#               fresh virtual environment of its Python without Debian's VTK, and its tests there
+#               without X
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
@@ -24,7 +25,10 @@
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
 # writes its images and tables, default out/demo), TESTS (a regular expression: test,
-# test-egl and test-debian13 run only the tests whose names match, e.g. TESTS=paraview_mpi).
+# test-egl and test-debian13 run only the tests whose names match, e.g. TESTS=paraview_mpi),
+# WHEEL_PYTHONS (the CPython interpreters that make wheel and test-wheel build and test a wheel
+# for, one each, default /usr/bin/python3; e.g. WHEEL_PYTHONS="/usr/bin/python3
+# ~/.pyenv/versions/3.13.0/bin/python3.13" for cp311 and cp313).
 
 PREFIX ?= /usr/local
 BUILD ?= build
@@ -149,7 +153,8 @@ test-debian-unstable: debian-root-deps
 VTK_WHEEL_VERSION ?= 9.5.0
 VTK_WHEEL_CACHE ?= /var/cache/spt/vtk-sdk
 build-vtk-wheel: deps
-	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
+	SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_VTK_WHEEL_BUILD=$(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) \
+	  JOBS=$(JOBS) .ci/vtk-wheel-sdk $(VTK_WHEEL_VERSION)
 
 test-vtk-wheel: build-vtk-wheel
 	cd $(VTK_WHEEL_CACHE)/build-$(VTK_WHEEL_VERSION) && env -u DISPLAY -u XAUTHORITY \
@@ -157,15 +162,23 @@ test-vtk-wheel: build-vtk-wheel
 
 # The Python wheel (pyproject.toml) against the vtk wheel of VTK_WHEEL_VERSION, whose SDK
 # .ci/vtk-wheel-sdk prepares in VTK_WHEEL_CACHE; test-wheel installs it in a fresh virtual
-# environment and runs Testing/Wheel and the package's own tests there (.ci/wheel).
+# environment and runs Testing/Wheel and the package's own tests there (.ci/wheel). One wheel
+# per CPython of WHEEL_PYTHONS (interpreters, default Debian's), each against the vtk wheel of
+# the same Python and tested in an environment of that interpreter.
 WHEEL_CACHE ?= /var/cache/spt/wheel
+WHEEL_PYTHONS ?= $(PYTHON)
 WHEEL_ENV = SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_WHEEL_CACHE=$(WHEEL_CACHE) \
 	VTK_WHEEL_VERSION=$(VTK_WHEEL_VERSION) JOBS=$(JOBS) SPT_WHEEL_OUTPUT=$(CURDIR)/dist
 wheel: deps
-	$(WHEEL_ENV) .ci/wheel
+	@for python in $(WHEEL_PYTHONS); do \
+	  echo "make wheel: $$python"; SPT_WHEEL_PYTHON=$$python $(WHEEL_ENV) .ci/wheel || exit 1; \
+	done
 
 test-wheel: deps
-	$(WHEEL_ENV) .ci/wheel --test
+	@for python in $(WHEEL_PYTHONS); do \
+	  echo "make test-wheel: $$python"; \
+	  SPT_WHEEL_PYTHON=$$python $(WHEEL_ENV) .ci/wheel --test || exit 1; \
+	done
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;
