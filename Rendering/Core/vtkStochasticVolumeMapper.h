@@ -107,6 +107,7 @@ public:
   /**
    * The distance between the image's pixels, in viewport pixels: the last render's where
    * AutoAdjustSampleDistances chooses it, else set here (default 1, every pixel; 1 to 16).
+   * The ranks of a parallel render (vtkPSPTVolumeMapper) draw every pixel.
    */
   vtkSetClampMacro(ImageSampleDistance, float, 1.0f, 16.0f);
   vtkGetMacro(ImageSampleDistance, float);
