@@ -78,6 +78,16 @@ def screenshot(view, path, size, interactive):
     view.UseInteractiveRenderingForScreenshots = 0
 
 
+def drag_and_screenshots(view, recorder, output, size, moves, prefix=""):
+    """Steps PREFIXdrag (a drag of `moves` moves), PREFIXscreenshot_interactive and
+    PREFIXscreenshot_still (PREFIXinteractive.png and PREFIXstill.png)."""
+    recorder.step = f"{prefix}drag"
+    drag(view, moves, size)
+    for interactive, name in ((True, "interactive"), (False, "still")):
+        recorder.step = f"{prefix}screenshot_{name}"
+        screenshot(view, output / f"{prefix}{name}.png", size, interactive)
+
+
 def main(argv):
     args = parse_arguments(argv)
     output = pathlib.Path(args.output)
@@ -96,12 +106,7 @@ def main(argv):
     recorder = Recorder(view, display)
 
     simple.Render(view)
-    recorder.step = "drag"
-    drag(view, 3, args.size)
-    recorder.step = "screenshot_interactive"
-    screenshot(view, output / "interactive.png", args.size, True)
-    recorder.step = "screenshot_still"
-    screenshot(view, output / "still.png", args.size, False)
+    drag_and_screenshots(view, recorder, output, args.size, 3)
 
     display.ProgressiveRefinement = 1
     recorder.step = "progressive_still"
@@ -132,12 +137,7 @@ def main(argv):
     display.SubpixelLevel = 4
     recorder.step = "distance_still"
     simple.Render(view)
-    recorder.step = "distance_drag"
-    drag(view, 6, args.size)
-    recorder.step = "distance_screenshot_interactive"
-    screenshot(view, output / "distance_interactive.png", args.size, True)
-    recorder.step = "distance_screenshot_still"
-    screenshot(view, output / "distance_still.png", args.size, False)
+    drag_and_screenshots(view, recorder, output, args.size, 6, prefix="distance_")
 
     (output / "report.json").write_text(json.dumps({
         "repetition_level": args.repetitions,
