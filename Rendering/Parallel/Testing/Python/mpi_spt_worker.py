@@ -160,6 +160,8 @@ def add_volumes(arguments, renderer, controller, scene):
         mapper.SetDepthSlabs(arguments.depth_slabs)
         if arguments.update_rate > 0.0:
             mapper.SetAutoAdjustRepetitions(True)
+            # Ranks draw every pixel; so does the serial render the tests compare them with.
+            mapper.SetAutoAdjustSampleDistances(False)
         if controller is not None:
             mapper.SetController(controller)
         if arguments.clipping_plane:
