@@ -19,6 +19,7 @@
 #include "vtkBatchedVertexArray.h"
 #include "vtkEnsembleBuffer.h"
 #include "vtkPBVRParticleGenerator.h"
+#include "vtkPBVRParticleKey.h"
 #include "vtkSavedGLState.h"
 #include "vtkTetrahedralMesh.h"
 #include "vtkTransferFunctionSamples.h"
@@ -39,52 +40,11 @@ namespace
 // Samples of the transfer functions over the scalar range: the opacity that sets the particle
 // density and the color table of the vertex shader.
 constexpr int TransferFunctionSamples = 4096;
-// Particles made for a cross-section S serve views that need S to 2 S (the surplus is thinned
-// when drawn); beyond that, or below S, they are made again.
-constexpr double LargestFootprintRatio = 2.0;
 // Particles are made for no nearer depth than this multiple of the data's bounding radius:
 // nearer ones (the camera inside or close to the data) are drawn as larger points.
 constexpr double NearestGenerationDepth = 1.0;
-// After a failed generation, a view must need particles this much larger to try again.
-constexpr double RetryFootprintRatio = 1.25;
 // Draw calls stay far below GLsizei's range.
 constexpr vtkIdType MaxParticlesPerDraw = vtkIdType(1) << 28;
-
-// What a particle set was generated for.
-struct ParticleKey
-{
-  vtkMTimeType MeshBuild = 0;
-  vtkMTimeType OpacityChange = 0;
-  unsigned int Seed = 0;
-  int SamplingMode = 0;
-  size_t MaximumParticles = 0;
-  double Footprint = 0.0;
-  int Sets = 0;
-
-  bool SameModel(const ParticleKey& o) const
-  {
-    return MeshBuild == o.MeshBuild && OpacityChange == o.OpacityChange && Seed == o.Seed &&
-      SamplingMode == o.SamplingMode;
-  }
-
-  // Whether particles generated for this key serve a view that needs a cross-section `needed`
-  // and `sets` particle sets within the memory of `wanted`.
-  bool Serves(const ParticleKey& wanted, double needed, int sets, size_t particles) const
-  {
-    return this->SameModel(wanted) && needed >= this->Footprint &&
-      needed <= LargestFootprintRatio * this->Footprint && this->Sets >= sets &&
-      particles <= wanted.MaximumParticles;
-  }
-
-  // Whether a generation for `wanted` fails again as the one for this key did: it can only
-  // succeed with larger particles, fewer sets or more memory.
-  bool FailsAgain(const ParticleKey& wanted) const
-  {
-    return this->SameModel(wanted) && this->Sets <= wanted.Sets &&
-      wanted.Footprint <= RetryFootprintRatio * this->Footprint &&
-      this->MaximumParticles >= wanted.MaximumParticles;
-  }
-};
 
 // The particles that fit in a memory bound (MiB), within the range of a draw's int count.
 size_t ParticlesInMemory(int memory)
@@ -121,9 +81,9 @@ public:
   vtkMTimeType RadiusBuild = 0;
 
   // The particles and what they were made for.
-  ParticleKey Generated;
+  vtkPBVRParticleKey Generated;
   bool HaveParticles = false;
-  ParticleKey Failed;
+  vtkPBVRParticleKey Failed;
   bool HaveFailed = false;
   vtkIdType GenerationCount = 0;
   vtkNew<vtkOpenGLBufferObject> ParticleBuffer;
@@ -138,7 +98,7 @@ public:
   double LargestPointSize = 1.0;
   int GuardBand = 0;
   void PlacePoints(int passWidth, int passHeight);
-  bool Generate(const ParticleKey& wanted);
+  bool Generate(const vtkPBVRParticleKey& wanted);
   bool Upload();
   void ReleaseParticles();
   void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
@@ -253,7 +213,7 @@ void vtkPBVRVolumeMapper::vtkInternals::PlacePoints(int passWidth, int passHeigh
   this->GuardBand = this->LargestPointSize > 1.0 ? int(std::ceil(0.5 * this->LargestPointSize)) : 0;
 }
 
-bool vtkPBVRVolumeMapper::vtkInternals::Generate(const ParticleKey& wanted)
+bool vtkPBVRVolumeMapper::vtkInternals::Generate(const vtkPBVRParticleKey& wanted)
 {
   this->ReleaseParticles();
   vtkPBVRParticleGenerator::Settings settings;
@@ -423,7 +383,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
     return false;
   }
 
-  ParticleKey wanted;
+  vtkPBVRParticleKey wanted;
   wanted.MeshBuild = internals.Mesh->GetBuildTime();
   wanted.OpacityChange = internals.Samples->GetAttenuationTime();
   wanted.Seed = this->Seed;
