@@ -69,6 +69,8 @@ struct BoundsInClipSpace
   bool NearCut = false;                // some corner lies beyond the near plane or behind the eye
   double NearestW = 0.0;               // the smallest clip w of the corners
   double LargestNDC[2] = { 0.0, 0.0 }; // the largest |x / w| and |y / w| of the corners
+  // The smallest and largest x / w and y / w of the corners: xmin, xmax, ymin, ymax.
+  double NDC[4] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
 };
 
 BoundsInClipSpace ProjectBounds(
@@ -96,7 +98,10 @@ BoundsInClipSpace ProjectBounds(
     result.NearestW = std::min(result.NearestW, clip[3]);
     for (int i = 0; i < 2 && !nearCut; ++i)
     {
-      result.LargestNDC[i] = std::max(result.LargestNDC[i], std::abs(clip[i] / clip[3]));
+      const double ndc = clip[i] / clip[3];
+      result.LargestNDC[i] = std::max(result.LargestNDC[i], std::abs(ndc));
+      result.NDC[2 * i] = std::min(result.NDC[2 * i], ndc);
+      result.NDC[2 * i + 1] = std::max(result.NDC[2 * i + 1], ndc);
     }
   }
   return result;
@@ -195,6 +200,12 @@ void vtkVolumeViewMatrices::Compute(
   const BoundsInClipSpace box =
     ProjectBounds(mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip);
   this->NearPlaneCutsBounds = box.NearCut;
+  for (int i = 0; i < 4; ++i)
+  {
+    // The whole view where the near plane cuts the box: its corners bound nothing then.
+    const double whole = (i % 2 == 0) ? -1.0 : 1.0;
+    this->ScreenBounds[i] = box.NearCut ? whole : std::max(-1.0, std::min(1.0, box.NDC[i]));
+  }
   ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
     this->NDCPerLength, this->TypicalNDCPerLength);
   this->ComputeDistances(mesh->GetNormalizedBounds(), clipToView);

@@ -44,6 +44,9 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
   /// with the camera inside or close to the mesh: then some tetrahedra may be cut by it. Side
   /// planes, as in a view zoomed into the mesh, only clip what the outlines cover.
   bool NearPlaneCutsBounds = false;
+  /// Normalized device coordinates that bound the projection of the mesh's bounds, within the
+  /// view: xmin, xmax, ymin, ymax (the whole view, -1 to 1, where the near plane cuts them).
+  double ScreenBounds[4] = { -1.0, 1.0, -1.0, 1.0 };
   /// An upper bound of the x and y extents, in normalized device coordinates, of the
   /// projection of a segment of unit length (normalized model units) that lies within the
   /// mesh's bounds; zero when the near plane cuts the bounds (no bound then).

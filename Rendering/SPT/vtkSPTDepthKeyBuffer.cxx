@@ -144,10 +144,21 @@ int vtkSPTDepthKeyBuffer::GetCompiledLanes(int repetitions)
   return vtkMath::NearestPowerOfTwo(repetitions);
 }
 
-void vtkSPTDepthKeyBuffer::Clear()
+void vtkSPTDepthKeyBuffer::Clear(const int* footprint)
 {
   const GLuint nothingKept = 0xFFFFFFFFu;
-  glClearTexImage(this->Keys->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nothingKept);
+  if (!footprint)
+  {
+    glClearTexImage(this->Keys->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nothingKept);
+    return;
+  }
+  // The texture is layers x width x height: every layer of the footprint's samples.
+  if (footprint[2] > 0 && footprint[3] > 0)
+  {
+    glClearTexSubImage(this->Keys->GetHandle(), 0, 0, footprint[0], footprint[1],
+      this->AllocatedLayers, footprint[2], footprint[3], GL_RED_INTEGER, GL_UNSIGNED_INT,
+      &nothingKept);
+  }
 }
 
 void vtkSPTDepthKeyBuffer::BindImage(int unit)

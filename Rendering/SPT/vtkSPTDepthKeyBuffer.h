@@ -85,9 +85,10 @@ public:
   static int GetCompiledLanes(int repetitions);
 
   /**
-   * Set every key to "nothing kept" (the largest key).
+   * Set every key to "nothing kept" (the largest key); with `footprint` (x, y, width, height of
+   * samples), only the keys of those samples, every layer.
    */
-  void Clear();
+  void Clear(const int* footprint = nullptr);
 
   /**
    * Bind the keys as image unit `unit` for the fragment shaders, and make the writes of the

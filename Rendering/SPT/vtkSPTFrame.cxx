@@ -52,6 +52,22 @@ private:
 };
 }
 
+class vtkSPTFrame::ScopedFootprint
+{
+public:
+  ScopedFootprint(vtkOpenGLState* state, const int footprint[4])
+    : Box(state)
+    , Test(state, GL_SCISSOR_TEST)
+  {
+    state->vtkglEnable(GL_SCISSOR_TEST);
+    state->vtkglScissor(footprint[0], footprint[1], footprint[2], footprint[3]);
+  }
+
+private:
+  vtkOpenGLState::ScopedglScissor Box;
+  vtkOpenGLState::ScopedglEnableDisable Test;
+};
+
 vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
   vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
   vtkObject* reporter)
@@ -328,9 +344,36 @@ bool vtkSPTFrame::TraverseAdding(
   return true;
 }
 
+void vtkSPTFrame::ChooseFootprint()
+{
+  const int size[2] = { this->Ensemble->GetPassWidth(), this->Ensemble->GetPassHeight() };
+  double ndc[4] = { 1.0, -1.0, 1.0, -1.0 };
+  for (const Volume& volume : this->Volumes)
+  {
+    const double* bounds = volume.Matrices->ScreenBounds;
+    for (int axis = 0; axis < 2; ++axis)
+    {
+      ndc[2 * axis] = std::min(ndc[2 * axis], bounds[2 * axis]);
+      ndc[2 * axis + 1] = std::max(ndc[2 * axis + 1], bounds[2 * axis + 1]);
+    }
+  }
+  const bool whole = this->NearPlaneCuts || this->FrameSettings.AfterKeys;
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    // A sample is drawn where its center, (i + 0.5) / size in [0, 1], lies in a primitive.
+    const double low = 0.5 * (ndc[2 * axis] + 1.0) * size[axis];
+    const double high = 0.5 * (ndc[2 * axis + 1] + 1.0) * size[axis];
+    const int from = whole ? 0 : std::max(0, static_cast<int>(std::floor(low)) - 1);
+    const int to = whole ? size[axis] : std::min(size[axis], static_cast<int>(std::ceil(high)) + 1);
+    this->Footprint[axis] = from;
+    this->Footprint[2 + axis] = std::max(0, to - from);
+  }
+}
+
 bool vtkSPTFrame::DrawGroups(int first, int count, int perPass, bool coverage, bool halves)
 {
   vtkOpenGLState* ostate = this->Window->GetState();
+  this->ChooseFootprint();
   // Visibility is the atomic minimum of the keys: no depth buffer. A group shorter than
   // perPass (the last one) still runs all perPass decisions; its extra layers are not read.
   ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -378,7 +421,7 @@ bool vtkSPTFrame::DrawGroupKeys(int r, int inGroup, bool withCoverage)
   vtkEnsembleBuffer* ensemble = this->Ensemble;
   const bool slabs = this->FrameSettings.DepthSlabs > 1;
   bool ok = true;
-  this->DepthKeys->Clear();
+  this->DepthKeys->Clear(this->Footprint);
   vtkSPTDepthKeyBuffer::Barrier();
   if (withCoverage)
   {
@@ -439,8 +482,12 @@ bool vtkSPTFrame::WriteSlabsMeanColor()
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglEnable(GL_BLEND);
   ostate->vtkglBlendFuncSeparate(GL_DST_ALPHA, GL_ZERO, GL_ZERO, GL_ONE);
-  const bool written =
-    this->DepthKeys->DrawSlabsMeanColor(SlabDepthsImageUnit, this->SlabDefines(PassKind::Colors));
+  bool written = false;
+  {
+    ScopedFootprint footprint(ostate, this->Footprint);
+    written =
+      this->DepthKeys->DrawSlabsMeanColor(SlabDepthsImageUnit, this->SlabDefines(PassKind::Colors));
+  }
   vtkSPTDepthKeyBuffer::Barrier();
   if (!written)
   {
@@ -472,8 +519,12 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled
     ostate->vtkglDepthFunc(GL_ALWAYS);
     ostate->vtkglDepthMask(GL_TRUE);
   }
-  const bool done = this->DepthKeys->PrepareSurvivors(
-    DepthKeyImageUnit, SlabDepthsImageUnit, inGroup, secondHalfFrom, sortKeys);
+  bool done = false;
+  {
+    ScopedFootprint footprint(ostate, this->Footprint);
+    done = this->DepthKeys->PrepareSurvivors(
+      DepthKeyImageUnit, SlabDepthsImageUnit, inGroup, secondHalfFrom, sortKeys);
+  }
   vtkSPTDepthKeyBuffer::Barrier();
   if (!cull || !done)
   {

@@ -215,7 +215,15 @@ private:
   const std::vector<Volume>& Volumes;
   Settings FrameSettings;
   vtkObject* Reporter;
-  bool NearPlaneCuts = false;  // the near plane cuts the bounds of some volume
+  bool NearPlaneCuts = false; // the near plane cuts the bounds of some volume
+  // The samples of the pass that the volumes' bounds cover on the screen (x, y, width,
+  // height), with a sample of margin; the whole pass where the near plane cuts them or the
+  // ranks of a parallel frame combine the keys. A group's keys are cleared, sorted and read
+  // only there: no fragment lands outside it.
+  int Footprint[4] = { 0, 0, 0, 0 };
+  void ChooseFootprint();
+  // Limit the full-screen passes over the keys to the footprint, until it goes out of scope.
+  class ScopedFootprint;
   bool ClippingPlanes = false; // some volume has clipping planes (vtkVolumeViewMatrices)
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of

@@ -1,0 +1,91 @@
+"""SPT works only where its volumes are on screen: a group's depth keys are cleared, sorted
+and read in the samples that the projection of the volumes' bounding boxes covers.
+
+The keys outside that footprint keep whatever an earlier frame left there. The tests check
+that nothing reads them: a mapper that has just drawn a view filled by the volume draws a view
+where the volume is small, off centre and partly outside the view, exactly as a mapper that
+draws that view first, bit for bit; and two volumes far apart, after views that leave keys
+under each of them, the same.
+"""
+
+import numpy as np
+import pytest
+
+import scene_support
+from spt import render
+from vtkmodules.vtkRenderingCore import vtkVolume
+
+SIZE = 192
+REPETITIONS = 16
+
+
+def _volumes(grid, prop, apart):
+    """The mesh as one volume, or as two volumes far apart (the second moved by its own
+    transform): their mappers and the bounds of what they show."""
+    mappers = [render.spt_mapper(REPETITIONS, seed=3)]
+    volumes = [vtkVolume()]
+    bounds = list(grid.GetBounds())
+    if apart:
+        mappers.append(render.spt_mapper(REPETITIONS, seed=4))
+        volumes.append(vtkVolume())
+        shift = 3.0 * (bounds[1] - bounds[0])
+        volumes[1].SetPosition(shift, 0.0, 0.0)
+        bounds[1] += shift
+    for mapper, volume in zip(mappers, volumes):
+        mapper.SetInputData(grid)
+        volume.SetMapper(mapper)
+        volume.SetProperty(prop)
+    return volumes, bounds
+
+
+def _draw(window, renderer, bounds, view, zoom, centre):
+    render.place_camera(renderer, bounds, view)
+    camera = renderer.GetActiveCamera()
+    camera.Zoom(zoom)
+    camera.SetWindowCenter(*centre)
+    renderer.ResetCameraClippingRange(bounds)
+    window.Render()
+    return render.read_rgba(window)
+
+
+def _small_view(apart, first_fills):
+    """The image of the small view, after views that leave depth keys where the small view's
+    footprint does not reach, where `first_fills`: one filled by the volume; with two volumes,
+    the small view with both volumes on the place of the second, then of the first, so that
+    each one's pixels hold keys of the same depths as its own."""
+    s = scene_support.scene("default")
+    window, renderer = render.make_window(SIZE, SIZE)
+    volumes, bounds = _volumes(s.grid, s.property, apart)
+    for volume in volumes:
+        renderer.AddVolume(volume)
+    zoom = 0.5 if apart else 0.45
+    if first_fills and not apart:
+        filled = _draw(window, renderer, s.grid.GetBounds(), s.view, 4.0, (0.0, 0.0))
+        assert (filled[..., 3] > 0.0).mean() > 0.9, "the first view is not filled"
+    if first_fills and apart:
+        places = [volume.GetPosition() for volume in volumes]
+        for place in reversed(places):
+            for volume in volumes:
+                volume.SetPosition(place)
+            _draw(window, renderer, bounds, s.view, zoom, (0.0, 0.0))
+        for volume, place in zip(volumes, places):
+            volume.SetPosition(place)
+    # Small, off centre, cut by the view's left and bottom edges where one volume shows.
+    centre = (0.0, 0.0) if apart else (0.875, 0.75)
+    image = _draw(window, renderer, bounds, s.view, zoom, centre)
+    window.Finalize()
+    return image
+
+
+@pytest.mark.parametrize("apart", [False, True], ids=["one off centre", "two apart"])
+def test_keys_outside_the_footprint_are_never_read(apart, have_display):
+    after = _small_view(apart, first_fills=True)
+    first = _small_view(apart, first_fills=False)
+    covered = (first[..., 3] > 0.0).mean()
+    assert 0.005 < covered < 0.5, f"the volumes cover {covered:.3f} of the view"
+    if apart:
+        half = SIZE // 2
+        for side, part in (("left", first[:, :half]), ("right", first[:, half:])):
+            assert part[..., 3].max() > 0.2, f"no volume in the view's {side} half"
+    assert np.array_equal(after, first), (
+        f"max difference {np.abs(after - first).max():.4f} after the views before")
