@@ -4,19 +4,26 @@ and read in the samples that the projection of the volumes' bounding boxes cover
 The keys outside that footprint keep whatever an earlier frame left there. The tests check
 that nothing reads them: a mapper that has just drawn a view filled by the volume draws a view
 where the volume is small, off centre and partly outside the view, exactly as a mapper that
-draws that view first, bit for bit; and two volumes far apart, after views that leave keys
-under each of them, the same.
+draws that view first, bit for bit; two volumes far apart, after views that leave keys under
+each of them, the same; and where the view's edges cut the volume, its image is as unbiased
+against the exact reference as the centred view's.
 """
+
+import math
 
 import numpy as np
 import pytest
 
+import image_statistics
 import scene_support
-from spt import render
+from spt import raycast, render
 from vtkmodules.vtkRenderingCore import vtkVolume
 
 SIZE = 192
 REPETITIONS = 16
+Z = 4.0  # standard errors
+#: The bias floor of SPT's statistical tests (statistics_checks).
+BIAS_FLOOR = 0.012
 
 
 def _volumes(grid, prop, apart):
@@ -89,3 +96,30 @@ def test_keys_outside_the_footprint_are_never_read(apart, have_display):
             assert part[..., 3].max() > 0.2, f"no volume in the view's {side} half"
     assert np.array_equal(after, first), (
         f"max difference {np.abs(after - first).max():.4f} after the views before")
+
+
+def _unbiased_estimate(centre):
+    """Two seeds' images of the small view against the exact reference of the same camera
+    (spt.raycast)."""
+    s = scene_support.scene("default")
+    images = []
+    for seed in (3, 5):
+        window, renderer = render.make_window(SIZE, SIZE)
+        volumes, bounds = _volumes(s.grid, s.property, False)
+        volumes[0].GetMapper().SetSeed(seed)
+        renderer.AddVolume(volumes[0])
+        images.append(_draw(window, renderer, bounds, s.view, 0.45, centre))
+        exact = raycast.render(s.grid, s.property, renderer.GetActiveCamera(), (SIZE, SIZE))
+        window.Finalize()
+    assert images[0][..., 3].max() > 0.2, "the image is (almost) empty"
+    return image_statistics.estimate(images[0], images[1], exact, REPETITIONS)
+
+
+def test_volume_cut_by_the_view_is_unbiased(have_display):
+    """Where the view's edges cut the volume, and its footprint with it, the image is as
+    unbiased against the exact reference as the same view centred."""
+    centred, cut = _unbiased_estimate((0.0, 0.0)), _unbiased_estimate((0.875, 0.75))
+    tolerance = Z * math.hypot(centred.bias2_error, cut.bias2_error)
+    assert cut.bias2 <= centred.bias2 + tolerance, (
+        f"bias {cut.bias:.4f}, centred {centred.bias:.4f}")
+    assert cut.bias <= BIAS_FLOOR, f"bias {cut.bias:.4f}"
