@@ -144,15 +144,10 @@ int vtkSPTDepthKeyBuffer::GetCompiledLanes(int repetitions)
   return vtkMath::NearestPowerOfTwo(repetitions);
 }
 
-void vtkSPTDepthKeyBuffer::Clear(const int* footprint)
+void vtkSPTDepthKeyBuffer::Clear(const int footprint[4])
 {
-  const GLuint nothingKept = 0xFFFFFFFFu;
-  if (!footprint)
-  {
-    glClearTexImage(this->Keys->GetHandle(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &nothingKept);
-    return;
-  }
   // The texture is layers x width x height: every layer of the footprint's samples.
+  const GLuint nothingKept = 0xFFFFFFFFu;
   if (footprint[2] > 0 && footprint[3] > 0)
   {
     glClearTexSubImage(this->Keys->GetHandle(), 0, 0, footprint[0], footprint[1],

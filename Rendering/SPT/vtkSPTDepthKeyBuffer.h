@@ -85,10 +85,10 @@ public:
   static int GetCompiledLanes(int repetitions);
 
   /**
-   * Set every key to "nothing kept" (the largest key); with `footprint` (x, y, width, height of
-   * samples), only the keys of those samples, every layer.
+   * Set the keys of the samples of `footprint` (x, y, width, height) to "nothing kept" (the
+   * largest key), every layer.
    */
-  void Clear(const int* footprint = nullptr);
+  void Clear(const int footprint[4]);
 
   /**
    * Bind the keys as image unit `unit` for the fragment shaders, and make the writes of the
