@@ -114,7 +114,7 @@ test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
 
 # The whole suite once more without X: no Xvfb and no DISPLAY, so that every window is the EGL
-# window (vtkSPTEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
+# window (vtkHeadlessEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
 # windows are GLX only) and the comparison of an EGL image with an X one.
 test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \

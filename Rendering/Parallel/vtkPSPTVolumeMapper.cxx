@@ -135,11 +135,6 @@ vtkMultiProcessController* vtkPSPTVolumeMapper::GetController()
   return this->Internals->Reduction->GetController();
 }
 
-vtkIdType vtkPSPTVolumeMapper::GetLastParallelBytes()
-{
-  return this->GetFrameStatistics()->GetParallelBytes();
-}
-
 bool vtkPSPTVolumeMapper::RenderAcrossRanks(vtkRenderer* ren, const SharedVolumeList& shared)
 {
   if (!this->Internals->Reduction->GetController())

@@ -34,7 +34,6 @@
 #define vtkPSPTVolumeMapper_h
 
 #include "SPTRenderingParallelModule.h" // For export macro
-#include "vtkDeprecation.h"             // For VTK_DEPRECATION
 #include "vtkSPTVolumeMapper.h"
 
 #include <memory> // For the internals
@@ -54,15 +53,9 @@ public:
    * default): this process renders alone. Every process must render every frame with the
    * same settings, image size and scalars; rank 0 shows the image of the whole.
    */
-  void SetController(vtkMultiProcessController* controller) override;
-  vtkMultiProcessController* GetController() override;
+  void SetController(vtkMultiProcessController* controller);
+  vtkMultiProcessController* GetController();
   ///@}
-
-  /**
-   * Deprecated: GetFrameStatistics()->GetParallelBytes().
-   */
-  VTK_DEPRECATION("Use GetFrameStatistics()->GetParallelBytes()")
-  vtkIdType GetLastParallelBytes();
 
 protected:
   vtkPSPTVolumeMapper();

@@ -390,31 +390,6 @@ vtkSPTFrameStatistics* vtkSPTVolumeMapper::GetFrameStatistics()
   return this->FrameStatistics;
 }
 
-vtkIdType vtkSPTVolumeMapper::GetLastPointCellCount()
-{
-  return this->FrameStatistics->GetPointCellCount();
-}
-
-vtkIdType vtkSPTVolumeMapper::GetLastComputedCellCount()
-{
-  return this->FrameStatistics->GetComputedCellCount();
-}
-
-void vtkSPTVolumeMapper::SetController(vtkMultiProcessController* controller)
-{
-  if (controller)
-  {
-    vtkErrorMacro("A parallel render needs vtkPSPTVolumeMapper (SPT::RenderingParallel), which "
-                  "vtkSPTVolumeMapper::New() makes once that module is initialized (link it and "
-                  "call vtk_module_autoinit, or import spt): this mapper renders alone.");
-  }
-}
-
-vtkMultiProcessController* vtkSPTVolumeMapper::GetController()
-{
-  return nullptr;
-}
-
 bool vtkSPTVolumeMapper::RenderAcrossRanks(vtkRenderer*, const SharedVolumeList&)
 {
   return false;

@@ -62,7 +62,6 @@
 #define vtkSPTVolumeMapper_h
 
 #include "SPTRenderingSPTModule.h" // For export macro
-#include "vtkDeprecation.h"        // For VTK_DEPRECATION
 #include "vtkNew.h"                // For the frame statistics
 #include "vtkSPTFrameStatistics.h" // For the frame statistics
 #include "vtkStochasticVolumeMapper.h"
@@ -71,7 +70,6 @@
 #include <utility> // For the shared volumes
 #include <vector>  // For the shared volumes
 
-class vtkMultiProcessController;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -107,16 +105,6 @@ public:
    * render; owned by the mapper.
    */
   vtkSPTFrameStatistics* GetFrameStatistics();
-
-  ///@{
-  /**
-   * Deprecated here: the controller of a parallel render is vtkPSPTVolumeMapper's
-   * (SPT::RenderingParallel), which vtkSPTVolumeMapper::New() makes wherever that module is
-   * loaded. On a mapper that is not one, setting a controller is an error and none is kept.
-   */
-  virtual void SetController(vtkMultiProcessController* controller);
-  virtual vtkMultiProcessController* GetController();
-  ///@}
 
   /**
    * @name Advanced settings
@@ -241,16 +229,6 @@ public:
   vtkSetMacro(ReuseNoiseEstimate, vtkTypeBool);
   vtkGetMacro(ReuseNoiseEstimate, vtkTypeBool);
   vtkBooleanMacro(ReuseNoiseEstimate, vtkTypeBool);
-  ///@}
-
-  ///@{
-  /**
-   * Deprecated: GetFrameStatistics()->GetPointCellCount() and GetComputedCellCount().
-   */
-  VTK_DEPRECATION("Use GetFrameStatistics()->GetPointCellCount()")
-  vtkIdType GetLastPointCellCount();
-  VTK_DEPRECATION("Use GetFrameStatistics()->GetComputedCellCount()")
-  vtkIdType GetLastComputedCellCount();
   ///@}
 
   /**

@@ -19,25 +19,6 @@ def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     assert mapper.GetClassName() == "vtkPSPTVolumeMapper"
 
 
-def test_former_names_still_work():
-    """The EGL window's and the single rendering module's former names, kept for a release."""
-    window = spt.vtkSPTEGLRenderWindow()
-    assert isinstance(window, spt.vtkHeadlessEGLRenderWindow)
-    from spt.SPTRendering import vtkSPTVolumeMapper
-    assert vtkSPTVolumeMapper is spt.vtkSPTVolumeMapper
-
-
-def test_former_experiment_modules_still_work():
-    """spt.bench, spt.figures and spt.accuracy, moved to spt.experiments, kept for a release."""
-    from spt import accuracy, bench, figures
-    from spt.experiments import accuracy as moved_accuracy
-    from spt.experiments import bench as moved_bench
-    from spt.experiments import demo, figures as moved_figures
-    assert bench.run is moved_bench.run and bench.__all__ == moved_bench.__all__
-    assert figures.convergence is moved_figures.convergence and figures.demo is demo.demo
-    assert accuracy.main is moved_accuracy.main
-
-
 @pytest.mark.parametrize("name, default, low, high", [
     ("RepetitionLevel", 32, 1, 65536),
     ("SubpixelLevel", 1, 1, 8),
@@ -151,10 +132,11 @@ int main()
 """
 
 
-@pytest.mark.parametrize("component", ["RenderingSPT", "Rendering"])
+@pytest.mark.parametrize("component", ["RenderingSPT", "RenderingParallel"])
 def test_installed_cmake_package_builds_a_cxx_program(tmp_path, component):
     """After `make install`, find_package(SPT) gives SPT::RenderingSPT to a C++ project, which
-    then links neither MPI nor libEGL; SPT::Rendering (every rendering module) still works."""
+    then links neither MPI nor libEGL, and SPT::RenderingParallel, which brings SPT::RenderingSPT
+    with it."""
     if os.environ.get("SPT_TEST_INSTALLED") != "1":
         pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
     (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE.format(component=component))

@@ -26,15 +26,14 @@ from vtkmodules import vtkParallelCore as _vtkParallelCore  # noqa: F401
 import importlib.util as _importlib_util
 
 from .SPTRenderingCore import vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper
-from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow, vtkSPTEGLRenderWindow
+from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow
 # Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
 # vtkSPTVolumeMapper() then makes the mapper that also renders across MPI ranks.
 from .SPTRenderingParallel import vtkPSPTVolumeMapper
 from .SPTRenderingSPT import vtkSPTFrameStatistics, vtkSPTVolumeMapper
 
 __all__ = [
-    "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTEGLRenderWindow",
-    "vtkSPTFrameStatistics",
+    "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTFrameStatistics",
     "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetrahedralVolumeMapper"]
 
 #: Whether the build has the TetGen meshing module (SPT_BUILD_MESHING; the pip wheel has not):

@@ -88,7 +88,8 @@ def test_clipped_segments_of_every_path(where, have_display):
     mappers = [_mapper(seed, compute=where == "compute") for seed in (1, 2)]
     clipped, images = _estimate(name, dolly, mappers=mappers)
     if where == "compute":
-        assert mappers[0].GetLastComputedCellCount() > 0, "no cell in the compute traversal"
+        computed = mappers[0].GetFrameStatistics().GetComputedCellCount()
+        assert computed > 0, "no cell in the compute traversal"
     keep_images(f"spt clipping {where}", [images[0], reference(name, SIZE, dolly)])
     assert clipped.bias <= BIAS_FLOOR, f"{where}: bias {clipped.bias:.4f}"
     check_alpha_noise_is_bernoulli([clipped])
