@@ -28,7 +28,9 @@
 # test-egl and test-debian13 run only the tests whose names match, e.g. TESTS=paraview_mpi),
 # WHEEL_PYTHONS (the CPython interpreters that make wheel and test-wheel build and test a wheel
 # for, one each, default /usr/bin/python3; e.g. WHEEL_PYTHONS="/usr/bin/python3
-# ~/.pyenv/versions/3.13.0/bin/python3.13" for cp311 and cp313).
+# ~/.pyenv/versions/3.13.0/bin/python3.13" for cp311 and cp313), SPT_DATA_DIR (the folder of
+# the real data sets that the demo, the pictures and the tests read; default: none, and the
+# tests that need one skip).
 
 PREFIX ?= /usr/local
 BUILD ?= build
@@ -94,7 +96,8 @@ configure: deps
 	  -DCMAKE_INSTALL_PREFIX=$(PREFIX) \
 	  -DVTK_DIR=$(VTK_DIR) \
 	  -DPython3_EXECUTABLE=$(PYTHON) \
-	  -DBUILD_SHARED_LIBS=ON
+	  -DBUILD_SHARED_LIBS=ON \
+	  -DSPT_DATA_DIR="$(SPT_DATA_DIR)"
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)

@@ -4,6 +4,12 @@
 set(SPT_TESTING_DIR "${CMAKE_CURRENT_LIST_DIR}/../Testing")
 get_filename_component(SPT_TESTING_DIR "${SPT_TESTING_DIR}" ABSOLUTE)
 
+# The real data sets of the Python tests: given at configure time (-DSPT_DATA_DIR=..., by
+# default the environment's SPT_DATA_DIR then), or left empty, when each test reads
+# SPT_DATA_DIR from the environment ctest runs in. Tests that need a missing data set skip.
+set(SPT_DATA_DIR "$ENV{SPT_DATA_DIR}" CACHE PATH
+  "The folder of the real data sets the tests read (empty: SPT_DATA_DIR when ctest runs)")
+
 # spt_add_cxx_tests(<driver> TESTS <test>... LIBRARIES <target>... [AUTOINIT <module>...]
 #                   [BASELINES <test>=<other test>...])
 #
@@ -44,8 +50,8 @@ endfunction ()
 # One ctest `SPT::Python::<name>` per test_<name>.py of the calling directory, run by pytest
 # against the package in the build tree, with the shared helpers of Testing/Python on the path
 # (pytest puts the test's own directory first, with the helpers of that module's tests only).
-# The data sets are found through SPT_DATA_DIR (or a shared/data folder above the working
-# directory); tests that need them are skipped without them.
+# The data sets are found through SPT_DATA_DIR (above); tests that need them are skipped
+# without them.
 function (spt_add_python_tests)
   set(environment
     "PYTHONPATH=${SPT_PYTHON_BUILD_DIR}:${SPT_TESTING_DIR}/Python"
@@ -53,6 +59,9 @@ function (spt_add_python_tests)
     "SPT_TEST_ARTIFACTS=${CMAKE_BINARY_DIR}/Testing/Artifacts"
     "SPT_INSTALL_PREFIX=${CMAKE_INSTALL_PREFIX}"
     "SPT_PYTHON_SITE_DIR=${SPT_PYTHON_SITE_DIR}")
+  if (SPT_DATA_DIR)
+    list(APPEND environment "SPT_DATA_DIR=${SPT_DATA_DIR}")
+  endif ()
   # The ParaView plugin tests run ParaView on the plugin of this build tree.
   if (SPT_BUILD_PARAVIEW_PLUGIN)
     list(APPEND environment

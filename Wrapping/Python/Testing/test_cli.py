@@ -50,6 +50,9 @@ BAD_ARGUMENTS = [
     (("demo", "--dataset", "spx,post"), "give one data set"),
     (("demo", "--pair-cells", "1000"), "outside 20000.."),
     (("demo", "--output"), "expected one argument"),
+    (("demo", "--data-dir", "/nonexistent/spt-data"), "is not a directory"),
+    (("bench", "--data-dir", "/nonexistent/spt-data"), "is not a directory"),
+    (("figures", "sorting", "--data-dir", "/nonexistent/spt-data"), "is not a directory"),
     (("figures",), "required"),
     (("figures", "nosuch"), "invalid choice"),
     (("figures", "convergence", "--levels", "4,x"), "not a whole number"),
@@ -174,12 +177,17 @@ def test_missing_data_is_a_clear_error(tmp_path):
     assert "SPT_DATA_DIR" in result.stderr and "Traceback" not in result.stderr
 
 
-def test_a_damaged_data_file_is_a_clear_error(tmp_path):
-    """A Git LFS pointer in place of a data set: the error names the file, no traceback."""
+@pytest.mark.parametrize("where", ["SPT_DATA_DIR", "--data-dir"])
+def test_a_damaged_data_file_is_a_clear_error(tmp_path, where):
+    """A Git LFS pointer in place of a data set, in the folder that the environment or the
+    option names (the option wins): the error names the file, no traceback."""
     (tmp_path / "spx.vtk").write_text(
         "version https://git-lfs.github.com/spec/v1\noid sha256:0\nsize 1\n")
-    result = run("demo", "--dataset", "spx", "--output", str(tmp_path / "out"), cwd=tmp_path,
-                 SPT_DATA_DIR=str(tmp_path))
+    option = ["--data-dir", str(tmp_path)] if where == "--data-dir" else []
+    environment_dir = tmp_path if where == "SPT_DATA_DIR" else tmp_path / "elsewhere"
+    environment_dir.mkdir(exist_ok=True)
+    result = run("demo", "--dataset", "spx", "--output", str(tmp_path / "out"), *option,
+                 cwd=tmp_path, SPT_DATA_DIR=str(environment_dir))
     assert result.returncode == 1, result.stderr
     assert str(tmp_path / "spx.vtk") in result.stderr and "Traceback" not in result.stderr
 
@@ -227,12 +235,18 @@ def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
 
 
 def test_the_demos_large_scene_is_the_iron_protein_where_the_data_are(tmp_path, monkeypatch):
+    """Where SPT_DATA_DIR says, and nowhere else: not in a shared/data folder above the working
+    directory, which a fresh clone's machine may have for reasons of its own."""
     from spt.experiments import demo
 
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.setenv("SPT_DATA_DIR", str(tmp_path))
+    data_sets = tmp_path / "shared" / "data"
+    data_sets.mkdir(parents=True)
+    work = tmp_path / "clone" / "out"
+    work.mkdir(parents=True)
+    monkeypatch.chdir(work)
+    monkeypatch.setenv("SPT_DATA_DIR", str(data_sets))
     assert demo.default_large_scene() == "drill-1M"
-    (tmp_path / "ironProt.vtk").write_text("")
+    (data_sets / "ironProt.vtk").write_text("")
     assert demo.default_large_scene() == "ironprot_full"
-    monkeypatch.delenv("SPT_DATA_DIR")  # and no shared/data above tmp_path
+    monkeypatch.delenv("SPT_DATA_DIR")
     assert demo.default_large_scene() == "drill-1M"

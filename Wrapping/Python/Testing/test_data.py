@@ -171,13 +171,23 @@ def test_data_dir_env(tmp_path, monkeypatch):
         data.data_dir()
 
 
-def test_data_dir_walks_up(tmp_path, monkeypatch):
-    monkeypatch.delenv(data.DATA_DIR_ENV, raising=False)
+@pytest.mark.parametrize("unset", ["unset", "empty"])
+def test_data_dir_is_only_where_the_user_says(tmp_path, monkeypatch, unset):
+    """Without SPT_DATA_DIR, no folder is guessed: not the working directory's, nor a
+    shared/data folder above it (the same command must find the same data anywhere)."""
+    if unset == "unset":
+        monkeypatch.delenv(data.DATA_DIR_ENV, raising=False)
+    else:
+        monkeypatch.setenv(data.DATA_DIR_ENV, "")
     (tmp_path / "shared" / "data").mkdir(parents=True)
+    (tmp_path / "shared" / "data" / "spx.vtk").write_text("")
     work = tmp_path / "repo" / "sub"
     work.mkdir(parents=True)
     monkeypatch.chdir(work)
-    assert data.data_dir() == (tmp_path / "shared" / "data").resolve()
+    with pytest.raises(FileNotFoundError, match=data.DATA_DIR_ENV):
+        data.data_dir()
+    with pytest.raises(FileNotFoundError, match=data.DATA_DIR_ENV):
+        data.load("spx")
 
 
 def test_unknown_dataset():

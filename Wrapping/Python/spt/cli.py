@@ -7,6 +7,7 @@ The commands' work is in the library (``mesh``) and in :mod:`spt.experiments` (`
 from __future__ import annotations
 
 import argparse
+import os
 import pathlib
 import sys
 from typing import Dict, List, Optional, Sequence
@@ -69,6 +70,20 @@ def _dataset(text: str) -> str:
     if len(names) != 1:
         raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
     return names[0]
+
+
+def _data_directory(text: str) -> pathlib.Path:
+    path = pathlib.Path(text).expanduser()
+    if not path.is_dir():
+        raise argparse.ArgumentTypeError(f"'{text}' is not a directory")
+    return path.resolve()
+
+
+def _add_data_dir(parser: argparse.ArgumentParser) -> None:
+    """The folder of the real data sets; the default is $SPT_DATA_DIR, and nowhere else."""
+    parser.add_argument("--data-dir", type=_data_directory, default=None,
+                        help="the folder holding the real data sets (default: "
+                             "$SPT_DATA_DIR; without either, the generated meshes only)")
 
 
 def _output_directory(text: str) -> pathlib.Path:
@@ -144,6 +159,7 @@ def _add_demo(commands) -> None:
     demo.add_argument("--pair-cells", type=_pair_cells, default=200_000,
                       help="tetrahedra of the interpenetrating drill and ring, in all "
                            "(default 200000)")
+    _add_data_dir(demo)
 
 
 def _add_figure(figure, name: str, help_text: str) -> argparse.ArgumentParser:
@@ -151,6 +167,7 @@ def _add_figure(figure, name: str, help_text: str) -> argparse.ArgumentParser:
     parser = figure.add_parser(name, help=help_text)
     parser.add_argument("--output", type=_output_directory,
                         default=pathlib.Path("out/figures") / name)
+    _add_data_dir(parser)
     return parser
 
 
@@ -203,6 +220,7 @@ def _add_bench(commands) -> None:
         "bench", help="time and GPU memory of every method, fitted models and a report "
                       "(long: about an hour; --quick takes minutes)")
     bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
+    _add_data_dir(bench)
     bench.add_argument("--sections", type=_sections, default=None,
                        help="comma-separated sections to run (default: all): "
                             "race,cells,repetitions,subpixels,image,quality,host,large,parallel,"
@@ -453,6 +471,10 @@ _FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; returns the exit status."""
     arguments = _parser().parse_args(argv)
+    if getattr(arguments, "data_dir", None) is not None:
+        # Through the environment, so that the processes a command starts (the benchmark's
+        # ParaView and MPI ranks) read the same data sets.
+        os.environ["SPT_DATA_DIR"] = str(arguments.data_dir)
     command = (_COMMANDS[arguments.command] if arguments.command in _COMMANDS
                else _FIGURES[arguments.figure])
     try:

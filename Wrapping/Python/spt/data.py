@@ -6,10 +6,10 @@ one array, the scalar to render, set as the active point scalars. By default
 meshes are converted to tetrahedra with ``vtkDataSetTriangleFilter``
 (TetrahedraOnly on), which is what the SPT mapper consumes.
 
-The real data sets are not part of the repository. They are looked up in the
-directory named by the environment variable ``SPT_DATA_DIR`` or, failing
-that, in the first ``shared/data`` directory found walking up from the
-current working directory (see :func:`data_dir`).
+The real data sets are not part of the repository. They are read from the
+directory that the environment variable ``SPT_DATA_DIR`` names (the command
+line's ``--data-dir`` sets it), and from nowhere else: no folder is guessed
+(see :func:`data_dir`).
 """
 
 from __future__ import annotations
@@ -82,33 +82,25 @@ _HIDDEN_ARRAY = "spt_hidden"
 # --------------------------------------------------------------------------
 
 def data_dir() -> pathlib.Path:
-    """Return the directory holding the real data sets.
+    """Return the directory holding the real data sets: ``$SPT_DATA_DIR``.
 
-    ``$SPT_DATA_DIR`` wins when set. Otherwise the current working directory
-    and its parents are searched for a ``shared/data`` sub-directory (so
-    ``../shared/data`` is found when running from the repository root).
+    Only where the user says: the working directory and its parents are not
+    searched, so the same command finds the same data sets wherever it runs.
 
     Raises:
-        FileNotFoundError: if ``$SPT_DATA_DIR`` is set but is not a
-            directory, or if no ``shared/data`` directory is found.
+        FileNotFoundError: if ``$SPT_DATA_DIR`` is unset, empty or not a
+            directory.
     """
     env = os.environ.get(DATA_DIR_ENV)
-    if env:
-        path = pathlib.Path(env).expanduser()
-        if not path.is_dir():
-            raise FileNotFoundError(
-                f"{DATA_DIR_ENV}={env!r} is not a directory")
-        return path.resolve()
-    cwd = pathlib.Path.cwd().resolve()
-    for folder in (cwd, *cwd.parents):
-        candidate = folder / "shared" / "data"
-        if candidate.is_dir():
-            return candidate
-    raise FileNotFoundError(
-        "SPT data directory not found: set the environment variable "
-        f"{DATA_DIR_ENV} to the folder holding the data sets, or run from "
-        f"a directory below one containing 'shared/data' (searched from "
-        f"{cwd})")
+    if not env:
+        raise FileNotFoundError(
+            f"no data directory: set the environment variable {DATA_DIR_ENV} "
+            "(or the command line's --data-dir) to the folder holding the "
+            "data sets")
+    path = pathlib.Path(env).expanduser()
+    if not path.is_dir():
+        raise FileNotFoundError(f"{DATA_DIR_ENV}={env!r} is not a directory")
+    return path.resolve()
 
 
 def _data_file(filename: str) -> str:
