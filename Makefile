@@ -4,7 +4,9 @@
 #               interpenetrating volumes and on a drill of 10^6 tetrahedra
 #   make pictures  the README's pictures (Documentation/images), from the installed package
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
-#   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
+#   make test-egl  without X (no Xvfb, no DISPLAY): the tests of what differs there (ctest label
+#               egl: the EGL window, and each mapper against the exact reference in it);
+#               TESTS=. runs every test through EGL
 #   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
 #               (.ci/debian-root; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
 #   make test-debian-unstable  the same on Debian unstable (sid: ParaView 6, VTK 9.4 or later;
@@ -113,12 +115,14 @@ pictures: install
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
 
-# The whole suite once more without X: no Xvfb and no DISPLAY, so that every window is the EGL
-# window (vtkSPTEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
-# windows are GLX only) and the comparison of an EGL image with an X one.
+# Without X: no Xvfb and no DISPLAY, so that every window is the EGL window
+# (vtkHeadlessEGLRenderWindow). By default the tests labelled egl, those that say something new
+# there (the window itself, the old-context refusal, each mapper against the exact reference);
+# TESTS= chooses others (TESTS=. all of them). What needs X skips, saying so: ParaView's tests
+# (its windows are GLX only) and the comparison of an EGL image with an X one.
 test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
-	  $(CTEST); status=$$?; \
+	  $(CTEST) $(if $(TESTS),,-L egl); status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
 
 # What .ci/debian-root needs on the host beyond `deps` (only the Debian root targets use it).
