@@ -135,6 +135,7 @@ def test_a_run_records_the_package_and_libraries_it_loaded(tmp_path):
     loaded = json.loads(record.read_text())
     assert loaded["package"] == str(package)
     assert any(os.path.basename(p).startswith("libSPTRenderingSPT") for p in loaded["libraries"])
+    assert any(p.startswith(str(package) + os.sep) for p in loaded["libraries"])  # extensions
     # Every file is this build's: under the folder above its libraries and its package.
     build = pathlib.Path(os.path.commonpath([str(package)] + loaded["libraries"]))
     assert build != pathlib.Path("/")
