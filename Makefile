@@ -23,6 +23,8 @@
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
+#   make bench-compare BASE=<git ref>  the race of this tree and of BASE, each built into its
+#               own prefix, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
@@ -69,7 +71,7 @@ PACKAGES = cmake ninja-build g++ make \
 
 .PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
-	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint clean
+	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint bench-compare clean
 
 all: build
 
@@ -211,6 +213,21 @@ CXX_SOURCES = $(shell find Rendering Meshing Plugin Testing \( -name '*.h' -o -n
 lint: deps
 	flake8 .
 	clang-format --dry-run -Werror $(CXX_SOURCES)
+
+# The race of the current tree (the head) against that of BASE, side by side on this machine
+# (Utilities/BenchCompare, Documentation/bench/compare.md): both built alike into prefixes of
+# their own under out/bench-compare, then RUNS races of each, alternately, of the scenes SCENES
+# (which must exist in both) at SIZE x SIZE; compare.json and a table of SPT's time to VTK PT's
+# error, head over base.
+BASE ?=
+SCENES ?= spx,bluntfin
+RUNS ?= 2
+SIZE ?= 256
+bench-compare: deps
+	@test -n "$(BASE)" || { echo "make bench-compare: BASE=<git ref> is required" >&2; exit 2; }
+	$(XVFB) $(PYTHON) Utilities/BenchCompare/bench_compare.py --base '$(BASE)' \
+	  --scenes '$(SCENES)' --runs $(RUNS) --size $(SIZE) --jobs $(JOBS) --vtk-dir $(VTK_DIR) \
+	  --python $(PYTHON) --output $(CURDIR)/out/bench-compare
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-sanitize out dist
