@@ -17,6 +17,8 @@ display. ``python3 -m spt`` is the command line. Apart from the
 library, ``spt.experiments`` holds the demo, the benchmark and the paper's figures.
 """
 
+# A wheel loads the vtk installed beside it: first, that it is one the wheel was built for.
+from . import _vtk_guard  # noqa: F401
 # The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.
 from vtkmodules import vtkCommonExecutionModel as _vtkCommonExecutionModel  # noqa: F401
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
