@@ -4,7 +4,9 @@
 #               interpenetrating volumes and on a drill of 10^6 tetrahedra
 #   make pictures  the README's pictures (Documentation/images), from the installed package
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
-#   make test-egl  every test again without X (no Xvfb, no DISPLAY): rendering through EGL
+#   make test-egl  without X (no Xvfb, no DISPLAY): the tests of what differs there (ctest label
+#               egl: the EGL window, and each mapper against the exact reference in it);
+#               TESTS=. runs every test through EGL
 #   make test-debian13  make test on Debian 13 (trixie) in a debootstrap root file system
 #               (.ci/debian-root; kept in DEBIAN13_CACHE, default /var/cache/spt/debian13)
 #   make test-debian-unstable  the same on Debian unstable (sid: ParaView 6, VTK 9.4 or later;
@@ -21,6 +23,8 @@
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8) and clang-format on every C++ file (.clang-format)
+#   make bench-compare BASE=<git ref>  the race of this tree and of BASE, each built into its
+#               own prefix, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
@@ -69,7 +73,7 @@ PACKAGES = cmake ninja-build g++ make \
 
 .PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
-	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint clean
+	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint bench-compare clean
 
 all: build
 
@@ -116,12 +120,14 @@ pictures: install
 test: install
 	cd $(BUILD) && SPT_TEST_INSTALLED=1 $(XVFB) $(CTEST)
 
-# The whole suite once more without X: no Xvfb and no DISPLAY, so that every window is the EGL
-# window (vtkHeadlessEGLRenderWindow). Only what needs X skips, saying so: ParaView's tests (its
-# windows are GLX only) and the comparison of an EGL image with an X one.
+# Without X: no Xvfb and no DISPLAY, so that every window is the EGL window
+# (vtkHeadlessEGLRenderWindow). By default the tests labelled egl, those that say something new
+# there (the window itself, the old-context refusal, each mapper against the exact reference);
+# TESTS= chooses others (TESTS=. all of them). What needs X skips, saying so: ParaView's tests
+# (its windows are GLX only) and the comparison of an EGL image with an X one.
 test-egl: install
 	cd $(BUILD) && env -u DISPLAY -u XAUTHORITY SPT_TEST_INSTALLED=1 \
-	  $(CTEST); status=$$?; \
+	  $(CTEST) $(if $(TESTS),,-L egl); status=$$?; \
 	  echo "Skipped without X:"; grep -h '^SKIPPED' Testing/Temporary/LastTest.log; exit $$status
 
 # What .ci/debian-root needs on the host beyond `deps` (only the Debian root targets use it).
@@ -210,6 +216,21 @@ CXX_SOURCES = $(shell find Rendering Meshing Plugin Testing \( -name '*.h' -o -n
 lint: deps
 	flake8 .
 	clang-format --dry-run -Werror $(CXX_SOURCES)
+
+# The race of the current tree (the head) against that of BASE, side by side on this machine
+# (Utilities/BenchCompare, Documentation/bench/compare.md): both built alike into prefixes of
+# their own under out/bench-compare, then RUNS races of each, alternately, of the scenes SCENES
+# (which must exist in both) at SIZE x SIZE; compare.json and a table of SPT's time to VTK PT's
+# error, head over base.
+BASE ?=
+SCENES ?= spx,bluntfin
+RUNS ?= 2
+SIZE ?= 256
+bench-compare: deps
+	@test -n "$(BASE)" || { echo "make bench-compare: BASE=<git ref> is required" >&2; exit 2; }
+	$(XVFB) $(PYTHON) Utilities/BenchCompare/bench_compare.py --base '$(BASE)' \
+	  --scenes '$(SCENES)' --runs $(RUNS) --size $(SIZE) --jobs $(JOBS) --vtk-dir $(VTK_DIR) \
+	  --python $(PYTHON) --output $(CURDIR)/out/bench-compare
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-sanitize out dist

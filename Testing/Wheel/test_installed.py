@@ -13,6 +13,7 @@ import vtk
 from vtkmodules.vtkRenderingVolume import vtkUnstructuredGridVolumeMapper
 
 import spt
+import spt.vtkcheck
 from spt import meshes
 
 
@@ -26,10 +27,17 @@ def test_spt_and_vtk_come_from_the_environment_not_debian():
         assert vtk.vtkVersion.GetVTKVersion() == expected
 
 
-def test_metadata_pins_the_vtk_built_against():
+def test_metadata_requires_a_vtk_that_the_installed_one_meets():
+    """The wheel names one vtk requirement (an exact release, or the series it was proven
+    with), the installed vtk meets it, and the next minor series does not."""
     requirements = importlib.metadata.requires("spt-volume")
-    pins = [r for r in requirements if r.replace(" ", "").startswith("vtk==")]
-    assert pins == [f"vtk=={vtk.vtkVersion.GetVTKVersion()}"], requirements
+    pins = [r.replace(" ", "") for r in requirements if r.replace(" ", "").startswith("vtk")
+            and r.replace(" ", "")[3:4] in "=<>"]
+    assert len(pins) == 1, requirements
+    installed = vtk.vtkVersion.GetVTKVersion()
+    assert spt.vtkcheck.satisfies(installed, pins[0]), (installed, pins[0])
+    major, minor = (int(part) for part in installed.split(".")[:2])
+    assert not spt.vtkcheck.satisfies(f"{major}.{minor + 1}.0", pins[0]), pins[0]
 
 
 def test_no_vtk_library_in_the_package():

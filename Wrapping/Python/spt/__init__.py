@@ -12,10 +12,13 @@ The compiled mappers are re-exported here, next to the pure-Python helpers:
 Submodules: ``spt.data`` (data sets and the generated default mesh), ``spt.meshes`` (the
 generated drill and torus meshes at any size, cached on disk), ``spt.scenes`` (named scenes),
 ``spt.render`` (rendering helpers and the reference), ``spt.raycast`` (the exact ray caster)
-and ``spt.metrics`` (image error); ``python3 -m spt`` is the command line. Apart from the
+and ``spt.metrics`` (image error); ``spt.opengl_window`` names the window VTK makes without an X
+display. ``python3 -m spt`` is the command line. Apart from the
 library, ``spt.experiments`` holds the demo, the benchmark and the paper's figures.
 """
 
+# A wheel loads the vtk installed beside it: first, that it is one the wheel was built for.
+from . import _vtk_guard  # noqa: F401
 # The wrapped classes derive from VTK's; importing their VTK modules first registers the bases.
 from vtkmodules import vtkCommonExecutionModel as _vtkCommonExecutionModel  # noqa: F401
 from vtkmodules import vtkRenderingCore as _vtkRenderingCore  # noqa: F401
@@ -25,12 +28,20 @@ from vtkmodules import vtkParallelCore as _vtkParallelCore  # noqa: F401
 
 import importlib.util as _importlib_util
 
+from vtkmodules.vtkCommonCore import vtkVersion as _vtkVersion
+
+from . import opengl_window as _opengl_window
+
 from .SPTRenderingCore import vtkStochasticVolumeMapper, vtkTetrahedralVolumeMapper
 from .SPTRenderingEGL import vtkHeadlessEGLRenderWindow
 # Importing the parallel module registers vtkPSPTVolumeMapper in VTK's object factory:
 # vtkSPTVolumeMapper() then makes the mapper that also renders across MPI ranks.
 from .SPTRenderingParallel import vtkPSPTVolumeMapper
 from .SPTRenderingSPT import vtkSPTFrameStatistics, vtkSPTVolumeMapper
+
+# Without an X display, VTK 9.4 and later would try X first and print an error before falling
+# back to EGL: name the display-less window instead, unless the user has chosen one.
+_opengl_window.choose(_vtkVersion.GetVTKVersion())
 
 __all__ = [
     "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTFrameStatistics",
