@@ -121,20 +121,33 @@ def render(pieces, output, ranks=1, seed=0, preload=None, extra=(), representati
     return pvs.read_png(output), report
 
 
+#: The seed of the independent 1-rank image that the 1-rank run draws after its own.
+OTHER_SEED = 1
+
+
+def other_seed_image(output):
+    """The image that render_volume.py --other-seed wrote next to ``output``, kept too."""
+    path = output.with_name(f"{output.stem}.seed{OTHER_SEED}{output.suffix}")
+    pvs.keep(path, f"mpi_{output.stem}_seed{OTHER_SEED}.png")
+    return pvs.read_png(path)
+
+
 def render_set(pieces, preload, directory, representation, prefix, other_seed=True,
                one_rank_data=None):
     """The 2-rank image, the 1-rank image and (for the stochastic methods) a 1-rank image with
-    another seed, kept as mpi_PREFIXNAME.png. The 1-rank images are of ``one_rank_data``, if
-    given, instead of the pieces."""
+    another seed, drawn by the same process, kept as mpi_PREFIXNAME.png. The 1-rank images are
+    of ``one_rank_data``, if given, instead of the pieces."""
+    one_rank = dict(extra=("--other-seed", OTHER_SEED)) if other_seed else {}
     runs = {"two_ranks": (pieces, dict(ranks=2, preload=preload)),
-            "one_rank": (one_rank_data or pieces, {})}
-    if other_seed:
-        runs["one_rank_seed1"] = (one_rank_data or pieces, dict(seed=1))
+            "one_rank": (one_rank_data or pieces, one_rank)}
     result = {}
     for name, (data, options) in runs.items():
         output = directory / f"{prefix}{name}.png"
         result[name] = render(data, output, representation=representation, **options)
         pvs.keep(output, f"mpi_{prefix}{name}.png")
+    if other_seed:
+        output = directory / f"{prefix}one_rank.png"
+        result["one_rank_seed1"] = (other_seed_image(output), result["one_rank"][1])
     return result
 
 
@@ -268,9 +281,9 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     representation comes first (drawn one after the other, the overlap would be far beyond the
     noise), and the 2-rank image is the 1-rank image."""
     extra = ("--second-offset", "0.0,0.35,0.25")
-    runs = {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {},
-            "one_rank_second_first": dict(extra=extra + ("--second-before",)),
-            "one_rank_seed1": dict(seed=1)}
+    runs = {"two_ranks": dict(ranks=2, preload=preload),
+            "one_rank": dict(extra=extra + ("--other-seed", OTHER_SEED)),
+            "one_rank_second_first": dict(extra=extra + ("--second-before",))}
     rendered = {}
     for name, options in runs.items():
         output = tmp_path / f"two_volumes_{name}.png"
@@ -284,7 +297,8 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     two, report = rendered["two_ranks"]
     assert report["tetrahedra"] == 36000
     assert levels(one, two)["max_levels"] <= 1
-    swapped = compare(one, rendered["one_rank_second_first"][0], rendered["one_rank_seed1"][0])
+    other_seed = other_seed_image(tmp_path / "two_volumes_one_rank.png")
+    swapped = compare(one, rendered["one_rank_second_first"][0], other_seed)
     assert within_noise(swapped), swapped
 
 

@@ -13,6 +13,7 @@ comparison.
 
 import argparse
 import json
+import os
 import sys
 
 from paraview import servermanager, simple
@@ -74,6 +75,9 @@ def parse_arguments(argv):
     parser.add_argument("--target-error", type=float, default=0.0,
                         help="SPT's Target Error (default 0: exactly --repetitions)")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--other-seed", type=int,
+                        help="then draw the view again with this seed (every volume's), into "
+                        "OUTPUT with .seedN before its suffix")
     parser.add_argument("--use-data-partitions", action="store_true",
                         help="keep the pieces where they were read (no redistribution)")
     parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
@@ -333,6 +337,20 @@ def render_plain(display, view, args):
     window.Finalize()
 
 
+def save_with_other_seed(displays, view, args):
+    """The view once more, each volume with Seed --other-seed: an image independent of the
+    first, of the same scene."""
+    chosen = method(args)
+    if "seed" not in chosen:
+        raise SystemExit(f"--other-seed: {args.representation} has no seed")
+    for display in displays:
+        set_setting(display, chosen["seed"], args.other_seed)
+    stem, suffix = os.path.splitext(args.output)
+    simple.SaveScreenshot(f"{stem}.seed{args.other_seed}{suffix}", view,
+                          ImageResolution=[args.size, args.size],
+                          TransparentBackground=int(args.transparent))
+
+
 def report(display, defaults, reader, view, args):
     """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
     own file."""
@@ -393,6 +411,8 @@ def main(argv):
     simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
                           TransparentBackground=int(args.transparent))
     report(display, defaults, reader, view, args)
+    if args.other_seed is not None:
+        save_with_other_seed([display] + ([second[1]] if second else []), view, args)
     if args.plain:
         render_plain(display, view.GetClientSideObject(), args)
 
