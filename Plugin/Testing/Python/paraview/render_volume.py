@@ -9,6 +9,9 @@ and settings rendered once more by a new mapper of the same class in a plain VTK
 comparison.
 
     pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
+
+Several scenes in one process (and one connection): their arguments separated by --then,
+each a full set; the first's --connect and --plugin hold for all.
 """
 
 import argparse
@@ -384,15 +387,8 @@ def report(display, defaults, reader, view, args):
         json.dump(info, stream, indent=1)
 
 
-def main(argv):
-    args = parse_arguments(argv)
-    connected = bool(args.connect)
-    if connected:
-        host, port = args.connect.rsplit(":", 1)
-        simple.Connect(host, int(port))
-    if args.plugin:
-        load_plugin(args.plugin, connected)
-
+def render_scene(args):
+    """Show, screenshot and report one scene, then delete what it made."""
     reader = simple.LegacyVTKReader(FileNames=[args.data])
     view = setup_view(args.size)
     like = None
@@ -416,18 +412,37 @@ def main(argv):
     if args.plain:
         render_plain(display, view.GetClientSideObject(), args)
 
-    # Leave nothing behind for the exit: the view goes before the data.
-    simple.Hide(reader, view)
-    if second:
-        simple.Hide(second[0], view)
-    if sphere:
-        simple.Hide(sphere, view)
+    # Leave nothing behind for the exit or the next scene: the view goes before the data.
+    sources = [reader] + ([second[0]] if second else []) + ([sphere] if sphere else [])
+    for source in sources:
+        simple.Hide(source, view)
     simple.Delete(view)
-    if second:
-        simple.Delete(second[0])
-    if sphere:
-        simple.Delete(sphere)
-    simple.Delete(reader)
+    for source in sources[1:] + sources[:1]:
+        simple.Delete(source)
+
+
+def scenes_of(argv):
+    """The argument lists of the scenes, separated by --then."""
+    scenes = [[]]
+    for argument in argv:
+        if argument == "--then":
+            scenes.append([])
+        else:
+            scenes[-1].append(argument)
+    return [parse_arguments(scene) for scene in scenes]
+
+
+def main(argv):
+    scenes = scenes_of(argv)
+    first = scenes[0]
+    connected = bool(first.connect)
+    if connected:
+        host, port = first.connect.rsplit(":", 1)
+        simple.Connect(host, int(port))
+    if first.plugin:
+        load_plugin(first.plugin, connected)
+    for args in scenes:
+        render_scene(args)
     if connected:
         simple.Disconnect()
 
