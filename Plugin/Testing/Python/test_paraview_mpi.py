@@ -416,35 +416,46 @@ def test_havs_two_ranks_match_one_rank_up_to_rounding(havs_images):
     assert measures["covered_pixels_beyond_rounding"] <= HAVS_OUTLIER_SHARE, measures
 
 
-@pytest.mark.parametrize("method", [SPT, HAVS])
-def test_mpi_pvserver_with_a_pvpython_client(request, method, pieces, preload, tmp_path):
-    """`mpirun -np 2 pvserver` and a pvpython client over loopback: the client gets the image
-    that pvbatch renders on two ranks."""
-    rendered = request.getfixturevalue({SPT: "images", HAVS: "havs_images"}[method])
-    two, _ = rendered["two_ranks"]
+@pytest.fixture(scope="module")
+def client_images(have_x_display, pieces, preload, tmp_path_factory):
+    """`mpirun -np 2 pvserver` and one pvpython client over loopback, which renders SPT and
+    then HAVS-like on it: the images and reports by method."""
+    directory = tmp_path_factory.mktemp("mpi_client")
+    outputs = {SPT: directory / "client.png", HAVS: directory / "havs_client.png"}
     port = pvs.free_port()
     plugins = str(pvs.plugin_path().parents[1])
     command = pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload)
     server = subprocess.Popen(command, env=pvs.environment(PV_PLUGIN_PATH=plugins),
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    scenes = [["--data", pieces, "--output", output, "--report", output.with_suffix(""),
+               "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
+               "--representation", method, "--connect", f"localhost:{port}"]
+              for method, output in outputs.items()]
     try:
         pvs.wait_for(server, "Accepting connection", 180)
-        output = tmp_path / "client.png"
         pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
-                 "--data", pieces, "--output", output, "--report", output.with_suffix(""),
-                 "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
-                 "--representation", method, "--connect", f"localhost:{port}"],
-                env=pvs.environment(PV_PLUGIN_PATH=plugins))
+                 *scenes[0], "--then", *scenes[1]], env=pvs.environment(PV_PLUGIN_PATH=plugins))
         assert server.wait(timeout=180) == 0  # the servers end with their client
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
-    prefix = {SPT: "", HAVS: "havs_"}[method]
-    pvs.keep(output, f"mpi_{prefix}pvserver_client.png")
-    report = json.loads(output.with_suffix(".rank0.json").read_text())
+    for method, output in outputs.items():
+        pvs.keep(output, f"mpi_{output.stem.replace('client', 'pvserver_client')}.png")
+    return {method: (pvs.read_png(output),
+                     json.loads(output.with_suffix(".rank0.json").read_text()))
+            for method, output in outputs.items()}
+
+
+@pytest.mark.parametrize("method", [SPT, HAVS])
+def test_mpi_pvserver_with_a_pvpython_client(request, method, client_images):
+    """The client of `mpirun -np 2 pvserver` gets the image that pvbatch renders on two
+    ranks."""
+    rendered = request.getfixturevalue({SPT: "images", HAVS: "havs_images"}[method])
+    two, _ = rendered["two_ranks"]
+    image, report = client_images[method]
     assert report["process_ids"] == [0.0, 1.0] and report["representation"] == method
-    assert np.abs(pvs.read_png(output) - two).max() <= 2.0 / 255.0
+    assert np.abs(image - two).max() <= 2.0 / 255.0
 
 
 def test_a_wrong_compositing_order_would_not_match(images, tmp_path):
