@@ -83,7 +83,8 @@ def check_subpixel_level_averages_subpixels(make: MapperMaker, size: int,
     fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
     reference = block_mean(fine, 2)
     first, second = (render.render(s.grid, s.property, make(level, 2, seed), s.view,
-                                   (size, size)).image for seed in (1, 2))
+                                   (size, size), frames=0).image
+                     for seed in (1, 2))
     e = image_statistics.estimate(first, second, reference, level)
     mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
     coverage = np.clip(fine[..., 3], 0.0, 1.0)
@@ -105,8 +106,10 @@ def check_opaque_geometry_hides_and_cuts_the_volume(make: MapperMaker, size: int
     reference = render.reference(s.grid, s.property, s.view, (size, size), method="vtk",
                                  actors=[actor]).image
     first, second = (render.render(s.grid, s.property, make(level, 1, seed), s.view,
-                                   (size, size), actors=[actor]).image for seed in (1, 2))
-    without = render.render(s.grid, s.property, make(level, 1, 1), s.view, (size, size)).image
+                                   (size, size), actors=[actor], frames=0).image
+                     for seed in (1, 2))
+    without = render.render(s.grid, s.property, make(level, 1, 1), s.view, (size, size),
+                            frames=0).image
     plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
     assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
     assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
@@ -133,7 +136,8 @@ class SceneRenders:
         if key not in self._images:
             s = scene(name)
             self._images[key] = render.render(s.grid, s.property, self.make(level, seed),
-                                              s.view, (self.size, self.size)).image
+                                              s.view, (self.size, self.size),
+                                              frames=0).image
         return self._images[key]
 
     def reference(self, name: str) -> np.ndarray:

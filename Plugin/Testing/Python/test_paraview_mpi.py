@@ -121,20 +121,33 @@ def render(pieces, output, ranks=1, seed=0, preload=None, extra=(), representati
     return pvs.read_png(output), report
 
 
+#: The seed of the independent 1-rank image that the 1-rank run draws after its own.
+OTHER_SEED = 1
+
+
+def other_seed_image(output):
+    """The image that render_volume.py --other-seed wrote next to ``output``, kept too."""
+    path = output.with_name(f"{output.stem}.seed{OTHER_SEED}{output.suffix}")
+    pvs.keep(path, f"mpi_{output.stem}_seed{OTHER_SEED}.png")
+    return pvs.read_png(path)
+
+
 def render_set(pieces, preload, directory, representation, prefix, other_seed=True,
                one_rank_data=None):
     """The 2-rank image, the 1-rank image and (for the stochastic methods) a 1-rank image with
-    another seed, kept as mpi_PREFIXNAME.png. The 1-rank images are of ``one_rank_data``, if
-    given, instead of the pieces."""
+    another seed, drawn by the same process, kept as mpi_PREFIXNAME.png. The 1-rank images are
+    of ``one_rank_data``, if given, instead of the pieces."""
+    one_rank = dict(extra=("--other-seed", OTHER_SEED)) if other_seed else {}
     runs = {"two_ranks": (pieces, dict(ranks=2, preload=preload)),
-            "one_rank": (one_rank_data or pieces, {})}
-    if other_seed:
-        runs["one_rank_seed1"] = (one_rank_data or pieces, dict(seed=1))
+            "one_rank": (one_rank_data or pieces, one_rank)}
     result = {}
     for name, (data, options) in runs.items():
         output = directory / f"{prefix}{name}.png"
         result[name] = render(data, output, representation=representation, **options)
         pvs.keep(output, f"mpi_{prefix}{name}.png")
+    if other_seed:
+        output = directory / f"{prefix}one_rank.png"
+        result["one_rank_seed1"] = (other_seed_image(output), result["one_rank"][1])
     return result
 
 
@@ -268,9 +281,9 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     representation comes first (drawn one after the other, the overlap would be far beyond the
     noise), and the 2-rank image is the 1-rank image."""
     extra = ("--second-offset", "0.0,0.35,0.25")
-    runs = {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {},
-            "one_rank_second_first": dict(extra=extra + ("--second-before",)),
-            "one_rank_seed1": dict(seed=1)}
+    runs = {"two_ranks": dict(ranks=2, preload=preload),
+            "one_rank": dict(extra=extra + ("--other-seed", OTHER_SEED)),
+            "one_rank_second_first": dict(extra=extra + ("--second-before",))}
     rendered = {}
     for name, options in runs.items():
         output = tmp_path / f"two_volumes_{name}.png"
@@ -284,7 +297,8 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     two, report = rendered["two_ranks"]
     assert report["tetrahedra"] == 36000
     assert levels(one, two)["max_levels"] <= 1
-    swapped = compare(one, rendered["one_rank_second_first"][0], rendered["one_rank_seed1"][0])
+    other_seed = other_seed_image(tmp_path / "two_volumes_one_rank.png")
+    swapped = compare(one, rendered["one_rank_second_first"][0], other_seed)
     assert within_noise(swapped), swapped
 
 
@@ -402,35 +416,46 @@ def test_havs_two_ranks_match_one_rank_up_to_rounding(havs_images):
     assert measures["covered_pixels_beyond_rounding"] <= HAVS_OUTLIER_SHARE, measures
 
 
-@pytest.mark.parametrize("method", [SPT, HAVS])
-def test_mpi_pvserver_with_a_pvpython_client(request, method, pieces, preload, tmp_path):
-    """`mpirun -np 2 pvserver` and a pvpython client over loopback: the client gets the image
-    that pvbatch renders on two ranks."""
-    rendered = request.getfixturevalue({SPT: "images", HAVS: "havs_images"}[method])
-    two, _ = rendered["two_ranks"]
+@pytest.fixture(scope="module")
+def client_images(have_x_display, pieces, preload, tmp_path_factory):
+    """`mpirun -np 2 pvserver` and one pvpython client over loopback, which renders SPT and
+    then HAVS-like on it: the images and reports by method."""
+    directory = tmp_path_factory.mktemp("mpi_client")
+    outputs = {SPT: directory / "client.png", HAVS: directory / "havs_client.png"}
     port = pvs.free_port()
     plugins = str(pvs.plugin_path().parents[1])
     command = pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload)
     server = subprocess.Popen(command, env=pvs.environment(PV_PLUGIN_PATH=plugins),
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    scenes = [["--data", pieces, "--output", output, "--report", output.with_suffix(""),
+               "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
+               "--representation", method, "--connect", f"localhost:{port}"]
+              for method, output in outputs.items()]
     try:
         pvs.wait_for(server, "Accepting connection", 180)
-        output = tmp_path / "client.png"
         pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
-                 "--data", pieces, "--output", output, "--report", output.with_suffix(""),
-                 "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
-                 "--representation", method, "--connect", f"localhost:{port}"],
-                env=pvs.environment(PV_PLUGIN_PATH=plugins))
+                 *scenes[0], "--then", *scenes[1]], env=pvs.environment(PV_PLUGIN_PATH=plugins))
         assert server.wait(timeout=180) == 0  # the servers end with their client
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
-    prefix = {SPT: "", HAVS: "havs_"}[method]
-    pvs.keep(output, f"mpi_{prefix}pvserver_client.png")
-    report = json.loads(output.with_suffix(".rank0.json").read_text())
+    for method, output in outputs.items():
+        pvs.keep(output, f"mpi_{output.stem.replace('client', 'pvserver_client')}.png")
+    return {method: (pvs.read_png(output),
+                     json.loads(output.with_suffix(".rank0.json").read_text()))
+            for method, output in outputs.items()}
+
+
+@pytest.mark.parametrize("method", [SPT, HAVS])
+def test_mpi_pvserver_with_a_pvpython_client(request, method, client_images):
+    """The client of `mpirun -np 2 pvserver` gets the image that pvbatch renders on two
+    ranks."""
+    rendered = request.getfixturevalue({SPT: "images", HAVS: "havs_images"}[method])
+    two, _ = rendered["two_ranks"]
+    image, report = client_images[method]
     assert report["process_ids"] == [0.0, 1.0] and report["representation"] == method
-    assert np.abs(pvs.read_png(output) - two).max() <= 2.0 / 255.0
+    assert np.abs(image - two).max() <= 2.0 / 255.0
 
 
 def test_a_wrong_compositing_order_would_not_match(images, tmp_path):

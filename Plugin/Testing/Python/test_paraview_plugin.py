@@ -60,13 +60,21 @@ def mesh(tmp_path_factory):
     return pvs.write_mesh(tmp_path_factory.mktemp("data") / "mesh.vtk")
 
 
-def render_command(mesh, output, *extra, representation=SPT):
-    return [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
-            "--data", mesh, "--output", output, "--report", output.with_suffix(""),
+def scene_arguments(mesh, output, *extra, representation=SPT):
+    return ["--data", mesh, "--output", output, "--report", output.with_suffix(""),
             "--repetitions", REPETITIONS, "--seed", SEED, "--representation", representation,
             "--target-error", TARGET_ERROR,
             *[argument for item in SET_BY_NAME[representation] for argument in ("--set", item)],
             *extra]
+
+
+def render_command(*scenes):
+    """pvpython drawing the scenes (each its scene_arguments()) one after the other, in one
+    process."""
+    command = [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py"]
+    for index, scene in enumerate(scenes):
+        command += (["--then"] if index else []) + scene
+    return command
 
 
 def read_report(output):
@@ -75,18 +83,17 @@ def read_report(output):
 
 @pytest.fixture(scope="module")
 def rendered(have_x_display, mesh, tmp_path_factory):
-    """pvpython on its own, for each method: LoadPlugin, show the mesh as the method's
-    representation type, set its settings by name, screenshot, and the same scene drawn by a
-    plain VTK pipeline (--plain)."""
+    """pvpython on its own, one process for the three methods: LoadPlugin, then for each
+    method show the mesh as its representation type, set its settings by name, screenshot,
+    and the same scene drawn by a plain VTK pipeline (--plain)."""
     directory = tmp_path_factory.mktemp("builtin")
-    outputs = {}
-    for method in METHODS:
-        output = directory / f"{ARTIFACT[method]}.png"
-        pvs.run(render_command(mesh, output, "--plugin", pvs.plugin_path(),
-                               "--plain", output.with_name(output.stem + "_plain.png"),
-                               representation=method))
+    outputs = {method: directory / f"{ARTIFACT[method]}.png" for method in METHODS}
+    pvs.run(render_command(*[
+        scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
+                        "--plain", output.with_name(output.stem + "_plain.png"),
+                        representation=method) for method, output in outputs.items()]))
+    for method, output in outputs.items():
         pvs.keep(output, f"pvpython_{ARTIFACT[method]}.png")
-        outputs[method] = output
     return outputs
 
 
@@ -184,26 +191,38 @@ def test_the_three_methods_draw_the_same_volume(rendered):
                           np.concatenate([images[method] for method in METHODS], axis=1))
 
 
-@pytest.mark.parametrize("method", METHODS)
-def test_pvserver_with_a_pvpython_client_over_loopback(rendered, mesh, tmp_path, method):
-    """The client loads the plugin on itself and on the server (what Tools > Manage Plugins
-    does), renders remotely, and gets the same image as pvpython on its own."""
+@pytest.fixture(scope="module")
+def client_images(have_x_display, mesh, tmp_path_factory):
+    """A pvserver and one pvpython client over loopback, which loads the plugin on itself and
+    on the server (what Tools > Manage Plugins does) and renders the three methods remotely,
+    one after the other."""
+    directory = tmp_path_factory.mktemp("client")
+    outputs = {method: directory / f"client_{ARTIFACT[method]}.png" for method in METHODS}
     port = pvs.free_port()
     server = subprocess.Popen(
         [pvs.executable("pvserver"), f"--server-port={port}"], env=pvs.environment(),
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
         pvs.wait_for(server, "Accepting connection", 120)
-        output = tmp_path / "client.png"
-        pvs.run(render_command(mesh, output, "--plugin", pvs.plugin_path(),
-                               "--connect", f"localhost:{port}", representation=method))
+        pvs.run(render_command(*[
+            scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
+                            "--connect", f"localhost:{port}", representation=method)
+            for method, output in outputs.items()]))
         # pvserver ends by itself when its client disconnects.
         assert server.wait(timeout=120) == 0
     finally:
         if server.poll() is None:
             server.kill()
             server.wait()
-    pvs.keep(output, f"pvserver_client_{ARTIFACT[method]}.png")
+    for method, output in outputs.items():
+        pvs.keep(output, f"pvserver_client_{ARTIFACT[method]}.png")
+    return outputs
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_pvserver_with_a_pvpython_client_over_loopback(rendered, client_images, method):
+    """The client gets the same image as pvpython on its own."""
+    output = client_images[method]
     report = read_report(output)
     assert report["representation"] == method
     assert report["settings"] == SETTINGS[method]
@@ -224,7 +243,7 @@ def test_installed_plugin_is_found_by_pv_plugin_path(have_x_display, mesh, tmp_p
     python = prefix / os.environ["SPT_PYTHON_SITE_DIR"]
     assert (plugins / "SPT" / "SPT.so").is_file()
     output = tmp_path / "installed.png"
-    pvs.run(render_command(mesh, output),
+    pvs.run(render_command(scene_arguments(mesh, output)),
             env=pvs.environment(PV_PLUGIN_PATH=str(plugins), PYTHONPATH=str(python)))
     report = read_report(output)
     assert report["representation"] == SPT and report["tetrahedra"] == 48000

@@ -418,7 +418,9 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
 
     The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``), the best of
     ``frames`` such renders; a first, untimed render builds the caches (tables, buffers,
-    shaders) that later frames reuse.
+    shaders) that later frames reuse. ``frames=0`` renders once, without that first render,
+    for when only the image is wanted (the project's mappers draw the same image either way);
+    the time is then that of a cold frame.
     """
     reference = is_reference(mapper)
     own_window = window is None or reference
@@ -435,7 +437,7 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
-    seconds = best_frame(window, mapper, frames)
+    seconds = best_frame(window, mapper, frames, warm=frames > 0)
     report = mapper_report(mapper)
     image = read_rgba(window)
     if reference:

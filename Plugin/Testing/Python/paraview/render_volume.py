@@ -9,10 +9,14 @@ and settings rendered once more by a new mapper of the same class in a plain VTK
 comparison.
 
     pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
+
+Several scenes in one process (and one connection): their arguments separated by --then,
+each a full set; the first's --connect and --plugin hold for all.
 """
 
 import argparse
 import json
+import os
 import sys
 
 from paraview import servermanager, simple
@@ -74,6 +78,9 @@ def parse_arguments(argv):
     parser.add_argument("--target-error", type=float, default=0.0,
                         help="SPT's Target Error (default 0: exactly --repetitions)")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--other-seed", type=int,
+                        help="then draw the view again with this seed (every volume's), into "
+                        "OUTPUT with .seedN before its suffix")
     parser.add_argument("--use-data-partitions", action="store_true",
                         help="keep the pieces where they were read (no redistribution)")
     parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
@@ -333,6 +340,20 @@ def render_plain(display, view, args):
     window.Finalize()
 
 
+def save_with_other_seed(displays, view, args):
+    """The view once more, each volume with Seed --other-seed: an image independent of the
+    first, of the same scene."""
+    chosen = method(args)
+    if "seed" not in chosen:
+        raise SystemExit(f"--other-seed: {args.representation} has no seed")
+    for display in displays:
+        set_setting(display, chosen["seed"], args.other_seed)
+    stem, suffix = os.path.splitext(args.output)
+    simple.SaveScreenshot(f"{stem}.seed{args.other_seed}{suffix}", view,
+                          ImageResolution=[args.size, args.size],
+                          TransparentBackground=int(args.transparent))
+
+
 def report(display, defaults, reader, view, args):
     """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
     own file."""
@@ -366,15 +387,8 @@ def report(display, defaults, reader, view, args):
         json.dump(info, stream, indent=1)
 
 
-def main(argv):
-    args = parse_arguments(argv)
-    connected = bool(args.connect)
-    if connected:
-        host, port = args.connect.rsplit(":", 1)
-        simple.Connect(host, int(port))
-    if args.plugin:
-        load_plugin(args.plugin, connected)
-
+def render_scene(args):
+    """Show, screenshot and report one scene, then delete what it made."""
     reader = simple.LegacyVTKReader(FileNames=[args.data])
     view = setup_view(args.size)
     like = None
@@ -393,21 +407,42 @@ def main(argv):
     simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
                           TransparentBackground=int(args.transparent))
     report(display, defaults, reader, view, args)
+    if args.other_seed is not None:
+        save_with_other_seed([display] + ([second[1]] if second else []), view, args)
     if args.plain:
         render_plain(display, view.GetClientSideObject(), args)
 
-    # Leave nothing behind for the exit: the view goes before the data.
-    simple.Hide(reader, view)
-    if second:
-        simple.Hide(second[0], view)
-    if sphere:
-        simple.Hide(sphere, view)
+    # Leave nothing behind for the exit or the next scene: the view goes before the data.
+    sources = [reader] + ([second[0]] if second else []) + ([sphere] if sphere else [])
+    for source in sources:
+        simple.Hide(source, view)
     simple.Delete(view)
-    if second:
-        simple.Delete(second[0])
-    if sphere:
-        simple.Delete(sphere)
-    simple.Delete(reader)
+    for source in sources[1:] + sources[:1]:
+        simple.Delete(source)
+
+
+def scenes_of(argv):
+    """The argument lists of the scenes, separated by --then."""
+    scenes = [[]]
+    for argument in argv:
+        if argument == "--then":
+            scenes.append([])
+        else:
+            scenes[-1].append(argument)
+    return [parse_arguments(scene) for scene in scenes]
+
+
+def main(argv):
+    scenes = scenes_of(argv)
+    first = scenes[0]
+    connected = bool(first.connect)
+    if connected:
+        host, port = first.connect.rsplit(":", 1)
+        simple.Connect(host, int(port))
+    if first.plugin:
+        load_plugin(first.plugin, connected)
+    for args in scenes:
+        render_scene(args)
     if connected:
         simple.Disconnect()
 

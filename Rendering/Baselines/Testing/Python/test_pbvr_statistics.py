@@ -82,7 +82,7 @@ def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display)
         view = render.View(30, 30, zoom=zoom, parallel=parallel)
         reference = render.reference(grid, prop, view, (SIZE, SIZE)).image
         images = [render.render(grid, prop, render.pbvr_mapper(level, seed=seed), view,
-                                (SIZE, SIZE)).image for seed in (1, 2)]
+                                (SIZE, SIZE), frames=0).image for seed in (1, 2)]
         interior = _erode(reference[..., 3] > 0.01, 2)
         difference = (0.5 * (images[0] + images[1]) - reference)[..., 3][interior]
         noise = (0.5 * (images[0] - images[1]))[..., 3][interior]
@@ -116,7 +116,8 @@ def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display)
     for cell_average in (False, True):
         first, second = (render.render(grid, prop, render.pbvr_mapper(level, seed=seed,
                                                                       cell_average=cell_average),
-                                       view, (SIZE, SIZE)).image for seed in (1, 2))
+                                       view, (SIZE, SIZE), frames=0).image
+                         for seed in (1, 2))
         biases[cell_average] = image_statistics.estimate(first, second, reference, level)
     exact, average = biases[False], biases[True]
     assert exact.bias <= 0.012, f"rejection: bias {exact.bias:.4f}"

@@ -8,6 +8,14 @@ camera outside at the same repetitions (within four standard errors of the noise
 from two seeds), that the images are volumes without holes, and that degenerate cameras give
 no NaN and no crash. VTK's projected tetrahedra are measured on the same cameras as a
 baseline.
+
+What the bias check can see: at 16 repetitions and 96 x 96 pixels (2,000 to 9,200 in the
+footprint), the standard error of the squared bias, from the pixels, is 0.6 to 4 x 10^-7 for
+SPT, so a bias of 0.002 RMS (half an 8-bit level) beyond the view from outside fails with
+97.7 % probability (the tolerance is four standard errors, and the excess must pass two more);
+PBVR's noise is 30 times SPT's, and the same check sees a bias of 0.03 RMS. Segments of the
+cells that the near plane cuts drawn 20 % short fail it on Blunt Fin from inside (squared bias
+5.8 x 10^-6 against 1.2 x 10^-6 outside, tolerance 3.3 x 10^-7).
 """
 
 from functools import lru_cache
@@ -28,6 +36,12 @@ REPETITIONS = 16
 CAMERAS = {"outside": 1.0, "zoomed in": 2.0, "near plane cutting": 8.0, "inside": 12.0,
            "deep inside": 30.0}
 SCENES = ("default", "bluntfin")
+#: The cameras other than outside, by scene. Blunt Fin (187,000 tetrahedra, whose exact
+#: references are most of this file's time) is seen from inside; its other cameras would draw
+#: through the same code as the default mesh's (the side planes cutting the mesh, the near
+#: plane cutting it, the camera far inside).
+SCENE_CAMERAS = [(name, camera) for name in SCENES for camera in CAMERAS
+                 if camera != "outside" and (name == "default" or camera == "inside")]
 
 
 def _place(renderer, name, dolly, parallel=False):
@@ -97,8 +111,7 @@ def _error_and_noise(name, dolly, parallel=False, method="spt"):
 
 
 @pytest.mark.parametrize("method", MAPPERS)
-@pytest.mark.parametrize("name", SCENES)
-@pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
+@pytest.mark.parametrize("name, camera", SCENE_CAMERAS)
 def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera, have_display):
     outside, outside_estimate = _error_and_noise(name, CAMERAS["outside"], method=method)
     error, estimate = _error_and_noise(name, CAMERAS[camera], method=method)
@@ -163,9 +176,8 @@ def _havs(name, dolly, parallel=False):
 HAVS_INSIDE_FACTOR = 2.0
 
 
-@pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("parallel", [False, True], ids=["perspective", "parallel"])
-@pytest.mark.parametrize("camera", [c for c in CAMERAS if c != "outside"])
+@pytest.mark.parametrize("name, camera", SCENE_CAMERAS)
 def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, parallel,
                                                              have_display):
     outside = metrics.rmse(_havs(name, CAMERAS["outside"], parallel),

@@ -40,7 +40,7 @@ def _spt(name, level, seed, slabs, estimator="visibility"):
     s = scene(name)
     mapper = render.spt_mapper(level, seed=seed, stratified=False, estimator=estimator,
                                depth_slabs=slabs)
-    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
 
 
 @lru_cache(maxsize=None)

@@ -44,7 +44,7 @@ def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
     s = _scene()
     mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
                                **SAMPLING[sampling])
-    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
 
 
 @pytest.mark.parametrize("sampling", list(SAMPLING))
@@ -68,7 +68,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     s = _scene()
     mapper = render.spt_mapper(12, seed=7)
     mapper.SetSamplingToPaper()
-    paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
     assert paper[..., 3].max() > 0.2, "the image is empty"
     one_by_one = _image(12, 7, False, per_pass=1, sampling="survivor")
     assert np.array_equal(paper, one_by_one)
@@ -79,7 +79,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     assert statistics.GetParallelBytes() == 0
     # The defaults' image is another one: the same expectation, less noise.
     mapper.SetSamplingToDefault()
-    default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
     reference = _reference()
     assert metrics.rmse(default, reference) < metrics.rmse(paper, reference)
 
@@ -156,7 +156,7 @@ def test_progressive_refinement_accumulates_until_something_changes(have_display
     accumulated = render.read_rgba(window)
     s = _scene()
     once = render.render(s.grid, s.property, render.spt_mapper(32, seed=5, stratified=False),
-                         s.view, (SIZE, SIZE)).image
+                         s.view, (SIZE, SIZE), frames=0).image
     assert np.abs(accumulated - once).max() <= 1.0 / 255.0 + 1e-6
     renderer.GetActiveCamera().Azimuth(10.0)
     window.Render()
