@@ -22,7 +22,8 @@
 #               without X
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
-#               (.flake8) and clang-format on every C++ file (.clang-format)
+#               (.flake8), clang-format on every C++ file (.clang-format), and files of at most
+#               600 lines with functions of at most 60 (Utilities/check_lengths.py)
 #   make bench-compare BASE=<git ref>  the race of this tree and of BASE, each built into its
 #               own prefix, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
 #
@@ -216,6 +217,8 @@ CXX_SOURCES = $(shell find Rendering Meshing Plugin Testing \( -name '*.h' -o -n
 lint: deps
 	flake8 .
 	clang-format --dry-run -Werror $(CXX_SOURCES)
+	$(PYTHON) Utilities/check_lengths.py
+	$(PYTHON) -m pytest -q -p no:cacheprovider Utilities/Testing/test_check_lengths.py
 
 # The race of the current tree (the head) against that of BASE, side by side on this machine
 # (Utilities/BenchCompare, Documentation/bench/compare.md): both built alike into prefixes of

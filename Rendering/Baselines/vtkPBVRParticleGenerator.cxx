@@ -355,6 +355,25 @@ private:
   const vtkPBVRParticleGenerator::Settings& Options;
   std::vector<Block>& Blocks;
 };
+
+// Why the settings or the attenuation cannot generate particles, or nothing.
+std::string CheckSettings(
+  const std::vector<double>& attenuation, const vtkPBVRParticleGenerator::Settings& settings)
+{
+  if (!(settings.Footprint > 0.0) || !std::isfinite(settings.Footprint))
+  {
+    return "The particle footprint must be a positive, finite area.";
+  }
+  if (settings.Sets < 1 || settings.Sets > 65536)
+  {
+    return "The number of particle sets must be 1 to 65536.";
+  }
+  if (attenuation.size() < 2)
+  {
+    return "The attenuation needs at least two samples.";
+  }
+  return std::string();
+}
 }
 
 vtkStandardNewMacro(vtkPBVRParticleGenerator);
@@ -384,17 +403,10 @@ bool vtkPBVRParticleGenerator::Generate(
   this->LastError.clear();
   this->NumberOfCandidates = 0;
   this->GenerationTime = 0.0;
-  if (!(settings.Footprint > 0.0) || !std::isfinite(settings.Footprint))
+  const std::string invalid = CheckSettings(attenuation, settings);
+  if (!invalid.empty())
   {
-    return this->Fail("The particle footprint must be a positive, finite area.");
-  }
-  if (settings.Sets < 1 || settings.Sets > 65536)
-  {
-    return this->Fail("The number of particle sets must be 1 to 65536.");
-  }
-  if (attenuation.size() < 2)
-  {
-    return this->Fail("The attenuation needs at least two samples.");
+    return this->Fail(invalid);
   }
   const AttenuationTable table(attenuation);
   const vtkIdType numberOfCells = mesh->GetNumberOfTetrahedra();

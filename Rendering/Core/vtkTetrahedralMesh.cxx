@@ -90,6 +90,18 @@ std::string CheckScalars(vtkDataSet* input, vtkDataArray* scalars, int cellFlag,
   return std::string();
 }
 
+// Why the cell data's GlobalIds cannot number the cells (too few values), or nothing.
+std::string CheckGlobalIds(vtkDataArray* ids, vtkIdType numberOfCells)
+{
+  if (!ids || ids->GetNumberOfTuples() >= numberOfCells)
+  {
+    return std::string();
+  }
+  return "The cell data GlobalIds array '" + std::string(ids->GetName() ? ids->GetName() : "") +
+    "' has " + std::to_string(ids->GetNumberOfTuples()) + " values for " +
+    std::to_string(numberOfCells) + " cells.";
+}
+
 // The points' coordinates, whether each is finite, and the bounds of the finite ones (empty,
 // min > max, if none is).
 std::vector<double> FiniteCoordinates(
@@ -246,12 +258,10 @@ bool vtkTetrahedralMesh::Update(vtkDataSet* input, const ScalarSelection& select
   vtkSmartPointer<vtkDataArray> tetrahedraScalars = scalars;
   vtkSmartPointer<vtkDataArray> ids =
     this->UseGlobalIds ? input->GetCellData()->GetGlobalIds() : nullptr;
-  if (ids && ids->GetNumberOfTuples() < input->GetNumberOfCells())
+  const std::string idsReason = CheckGlobalIds(ids, input->GetNumberOfCells());
+  if (!idsReason.empty())
   {
-    return this->Fail("The cell data GlobalIds array '" +
-      std::string(ids->GetName() ? ids->GetName() : "") + "' has " +
-      std::to_string(ids->GetNumberOfTuples()) + " values for " +
-      std::to_string(input->GetNumberOfCells()) + " cells.");
+    return this->Fail(idsReason);
   }
   vtkSmartPointer<vtkDataSet> tetrahedra =
     this->Tetrahedralize(input, tetrahedraScalars, cellFlag == 1, ids);

@@ -112,7 +112,21 @@ struct vtkHeadlessEGLRenderWindow::vtkInternals
   /// An initialized display on Mesa's surfaceless platform, or EGL_NO_DISPLAY.
   EGLDisplay OpenSurfacelessDisplay();
   bool CreateContext(EGLDisplay display);
+  /// Renderer and Version from the current context.
+  void ReadRendererStrings();
 };
+
+void vtkHeadlessEGLRenderWindow::vtkInternals::ReadRendererStrings()
+{
+  // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
+  // EGL context before any loader ran.
+  using GetStringFunction = const GLubyte* (*)(GLenum);
+  auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
+  const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
+  const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
+  this->Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
+  this->Version = version ? reinterpret_cast<const char*>(version) : "";
+}
 
 EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int deviceIndex)
 {
@@ -294,14 +308,7 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
     this->DestroyContext();
     return false;
   }
-  // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
-  // EGL context before any loader ran.
-  using GetStringFunction = const GLubyte* (*)(GLenum);
-  auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
-  const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
-  const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
-  internals.Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
-  internals.Version = version ? reinterpret_cast<const char*>(version) : "";
+  internals.ReadRendererStrings();
   this->SetIsCurrent(true);
   this->SetReadyForRendering(true);
   return true;

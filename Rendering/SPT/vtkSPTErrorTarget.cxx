@@ -56,7 +56,6 @@ int vtkSPTErrorTarget::StepToTarget(
   {
     return 0; // the image meets the target (or shows nothing)
   }
-  int drawn = 0;
   // Each step aims beyond the target. The first of an image aims with the noise per
   // repetition of the images before it (the noise changes little with the view, and any
   // shortfall takes one more step); the first image's first step aims with an assumed noise
@@ -68,6 +67,13 @@ int vtkSPTErrorTarget::StepToTarget(
       : FirstHalfToTarget(
           FirstImageNoisePerRepetition, target, 1.0, std::max(1, std::min(perPass, count) / 2));
   }
+  return StepInPairs(steps, first, count, coverage, target, state);
+}
+
+int vtkSPTErrorTarget::StepInPairs(
+  const Steps& steps, int first, int count, bool coverage, double target, State& state)
+{
+  int drawn = 0;
   int half = state.HalfCount > 0 ? RepetitionsToTarget(state.HalfCount, state.Estimate, target)
                                  : state.FirstHalf;
   while (count - drawn >= 2)

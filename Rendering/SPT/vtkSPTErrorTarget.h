@@ -64,6 +64,11 @@ public:
    */
   static int StepToTarget(const Steps& steps, int first, int count, int perPass, bool coverage,
     double target, State& state);
+
+private:
+  /// StepToTarget's steps once the first one's size is chosen: pairs of halves, or one alone.
+  static int StepInPairs(
+    const Steps& steps, int first, int count, bool coverage, double target, State& state);
 };
 
 #endif
