@@ -174,11 +174,14 @@ test-vtk-wheel: build-vtk-wheel
 # .ci/vtk-wheel-sdk prepares in VTK_WHEEL_CACHE; test-wheel installs it in a fresh virtual
 # environment and runs Testing/Wheel and the package's own tests there (.ci/wheel). One wheel
 # per CPython of WHEEL_PYTHONS (interpreters, default Debian's), each against the vtk wheel of
-# the same Python and tested in an environment of that interpreter.
+# the same Python and tested in an environment of that interpreter. The wheels for vtk 9.5 go
+# to dist/, those for another vtk release to dist/vtk-<release>/ (the file names are the same);
+# a release after 9.5 is built from VTK's source (SPT_VTK_SOURCE, .ci/wheel).
 WHEEL_CACHE ?= /var/cache/spt/wheel
 WHEEL_PYTHONS ?= $(PYTHON)
+WHEEL_OUTPUT = $(CURDIR)/dist$(if $(filter 9.5.%,$(VTK_WHEEL_VERSION)),,/vtk-$(VTK_WHEEL_VERSION))
 WHEEL_ENV = SPT_VTK_WHEEL_CACHE=$(VTK_WHEEL_CACHE) SPT_WHEEL_CACHE=$(WHEEL_CACHE) \
-	VTK_WHEEL_VERSION=$(VTK_WHEEL_VERSION) JOBS=$(JOBS) SPT_WHEEL_OUTPUT=$(CURDIR)/dist
+	VTK_WHEEL_VERSION=$(VTK_WHEEL_VERSION) JOBS=$(JOBS) SPT_WHEEL_OUTPUT=$(WHEEL_OUTPUT)
 wheel: deps
 	@for python in $(WHEEL_PYTHONS); do \
 	  echo "make wheel: $$python"; SPT_WHEEL_PYTHON=$$python $(WHEEL_ENV) .ci/wheel || exit 1; \
