@@ -269,26 +269,6 @@ int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
   return drawn;
 }
 
-void vtkSPTVolumeMapper::vtkInternals::CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren,
-  vtkOpenGLRenderWindow* renWin, const std::vector<vtkSPTFrame::Volume>& volumes,
-  vtkSPTFrame::Settings& settings)
-{
-  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
-  settings.StratifiedSampling = self->StratifiedSampling != 0;
-  settings.SmallCellSize = self->SmallCellSize;
-  settings.SubpixelLevel = self->SubpixelLevel;
-  settings.Seed = self->Seed;
-  settings.OpaqueScene = HasOpaqueScene(ren);
-  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
-    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
-  settings.Compute = self->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
-      this->Compute->IsWanted(renWin, self->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
-        ensemble->GetPassWidth(), ensemble->GetPassHeight())
-    ? this->Compute.Get()
-    : nullptr;
-  settings.ComputeEveryPoint = self->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
-}
-
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
@@ -336,20 +316,17 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
     return;
   }
   internals.ColorBits = vtkOpenGLLoader::DrawColorBits(); // where the image will be resolved
-  vtkSPTFrame::Settings settings;
+  const bool globalIds = std::all_of(volumes.begin(), volumes.end(),
+    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
+  vtkSPTFrame::Settings settings =
+    internals.FrameSettings(self, renWin, HasOpaqueScene(ren), globalIds);
   const int perPass = internals.ChooseTraversal(self, renWin, settings);
   if (perPass < 1)
   {
     return;
   }
-  const vtkInternals::FramePlan plan = internals.Plan(self, vol, perPass,
-    settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
-  if (plan.Cheapest)
-  {
-    settings.Estimator = SURVIVOR_ESTIMATOR;
-    settings.DepthSlabs = 1;
-  }
-  internals.CompleteSettings(self, ren, renWin, volumes, settings);
+  const vtkInternals::FramePlan plan =
+    internals.Plan(self, vol, perPass, vtkInternals::Signature(ren, mappers, target), settings);
   ostate->PushFramebufferBindings();
   const bool started = plan.First > 0 ||
     internals.StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);

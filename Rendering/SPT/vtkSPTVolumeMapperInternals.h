@@ -22,9 +22,10 @@
 #include "vtkSPTMeshBuffers.h"
 #include "vtkVolumeViewMatrices.h"
 
-#include <string>  // For the errors
-#include <utility> // For the shared volumes
-#include <vector>  // For the volumes
+#include <functional> // For the ranks' agreement
+#include <string>     // For the errors
+#include <utility>    // For the shared volumes
+#include <vector>     // For the volumes
 
 class vtkSPTVolumeMapper::vtkInternals
 {
@@ -65,7 +66,7 @@ public:
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 
-  // What a frame draws (vtkSPTFramePlan.cxx).
+  // What a frame draws (vtkSPTVolumeMapperInternals.cxx).
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
   // repetition) stay within `budget` bytes, and never fewer than 16, or than asked if fewer.
   static int RepetitionsPerTraversal(
@@ -80,7 +81,7 @@ public:
   // The depth slabs, of `asked`, whose sums fit the memory allotted to them.
   static int DepthSlabsThatFit(int asked, const vtkEnsembleBuffer* ensemble);
   // Repetitions per traversal that the context and the image size allow, and the estimator
-  // with them; 0 (with an error) when the frame cannot be drawn.
+  // and depth slabs with them (in `settings`); 0 (with an error) when the frame cannot be drawn.
   int ChooseTraversal(
     vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
   // The error or warning for an image of more samples per side than the 3D textures hold.
@@ -97,8 +98,26 @@ public:
     bool Coverage = false;  // draw the exact coverage in this frame
     bool SameImage = false; // all that shapes the image is as in the last render
   };
-  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs,
-    std::vector<double> signature);
+  // What the ranks of a parallel render agree on before a frame, each the least of any rank's:
+  // a rank's image continues only if all continue it, and every rank draws the fewest
+  // repetitions, and the fewest per traversal, that any rank's time budget allows.
+  struct PlanAgreement
+  {
+    int First = 0;     // repetitions accumulated (0: a new accumulation)
+    int Count = 0;     // repetitions the time budget allows
+    int PerPass = 1;   // repetitions per traversal
+    int SameImage = 0; // 1: all that shapes the image is as in the last render
+    int Pairs = 0;     // 1: a repetition at a time is a pair of traversals, 0: a single pass
+  };
+  // Makes `agreement` the ranks' on every rank; false, on every rank, where they cannot agree.
+  using AgreeOnPlan = std::function<bool(PlanAgreement& agreement)>;
+  // The frame's plan, with `perPass` repetitions per traversal at most: the repetitions that
+  // fit the time allotted, added to what is accumulated when refining progressively, agreed
+  // through `agree` where it is given (a collective call then). The cheapest frame draws with
+  // the survivor estimator and no depth slabs, which `settings` then says.
+  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass,
+    std::vector<double> signature, vtkSPTFrame::Settings& settings,
+    const AgreeOnPlan& agree = nullptr);
   // Whether the plan's frame draws the exact coverage (with the depth slabs' optical depths):
   // once per accumulation, never in the cheapest frame.
   bool DrawsCoverage(vtkSPTVolumeMapper* self, const FramePlan& plan) const;
@@ -113,9 +132,10 @@ public:
   // The image's estimated error for GetEstimatedError(): its noise and its rounding; -1 when
   // the noise is not estimated.
   double ImageError(vtkSPTVolumeMapper* self) const;
-  // The frame's settings that follow from the mapper's, the renderer and the volumes.
-  void CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin,
-    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
+  // The frame's settings from the mapper's, with the estimator and depth slabs asked (as many
+  // slabs as fit their memory): ChooseTraversal() and Plan() fall back from them.
+  vtkSPTFrame::Settings FrameSettings(
+    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, bool opaqueScene, bool globalIds);
   // One process's frame of the volumes that `self` leads: plan, draw and resolve it.
   void DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
