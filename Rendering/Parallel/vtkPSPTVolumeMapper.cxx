@@ -94,11 +94,6 @@ public:
   // composited; false where it cannot start. A collective call.
   bool StartParallelAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target,
     const vtkSPTFrame::Settings& settings, const FramePlan& plan);
-  // What the mappers of the frame report of it (GetFrameStatistics()): the image's
-  // repetitions and error, the bytes exchanged, and the cells drawn as points and those
-  // computed of this rank's pieces (`owners`); none for the others of `all`.
-  void ReportStatistics(vtkSPTVolumeMapper* self, const vtkSPTParallelFrame& frame,
-    const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all);
   // Rank 0: the opaque geometry of every rank, then the volume resolved over it.
   void ResolveOnRoot(vtkSPTVolumeMapper* self, const RenderTarget& target);
   // Makes `agreement` the least of every rank's. A collective call.
@@ -267,22 +262,8 @@ bool vtkPSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* s
   {
     return false;
   }
-  if (!spt.Table->Update(vol->GetProperty(), mesh->GetScalarRange(), agreement.MaxEdgeLength,
-        self->PreIntegrationScalarResolution, self->PreIntegrationThicknessResolution))
-  {
-    vtkErrorWithObjectMacro(self, << spt.Table->GetLastError());
-    return false;
-  }
-  if (!spt.Buffers->Upload(target.Window, mesh))
-  {
-    return false;
-  }
-  out.Buffers = spt.Buffers;
-  out.Table = spt.Table;
-  out.TableTexture = spt.Table->GetTexture(target.Window);
-  out.Matrices = &spt.Matrices;
-  out.MaxThickness = agreement.MaxEdgeLength / mesh->GetScale();
-  return out.TableTexture != nullptr;
+  return spt.Upload(self, vol, target.Window, agreement.MaxEdgeLength,
+    agreement.MaxEdgeLength / mesh->GetScale(), out);
 }
 
 void vtkPSPTVolumeMapper::vtkInternals::RenderParallel(
@@ -497,31 +478,10 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   }
   self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   spt.CoverageDrawn = spt.CoverageDrawn || (plan.Coverage && drawn > 0);
-  this->ReportStatistics(self, frame, owners, all);
+  spt.Report(self, all, owners, frame, static_cast<vtkIdType>(reduction->GetBytes()));
   if (root)
   {
     this->ResolveOnRoot(self, target);
-  }
-}
-
-void vtkPSPTVolumeMapper::vtkInternals::ReportStatistics(vtkSPTVolumeMapper* self,
-  const vtkSPTParallelFrame& frame, const std::vector<vtkSPTVolumeMapper*>& owners,
-  const std::vector<vtkSPTVolumeMapper*>& all)
-{
-  vtkSPTFrameStatistics::Values values;
-  values.RepetitionCount = self->GetAccumulatedRepetitions();
-  values.EstimatedError = Of(self).ImageError(self);
-  values.DepthSlabs = frame.GetDepthSlabs();
-  values.ParallelBytes = static_cast<vtkIdType>(this->Reduction->GetBytes());
-  for (vtkSPTVolumeMapper* mapper : all)
-  {
-    mapper->EstimatedError = values.EstimatedError;
-    mapper->LastRepetitionCount = values.RepetitionCount;
-    const auto owner = std::find(owners.begin(), owners.end(), mapper);
-    const size_t v = static_cast<size_t>(owner - owners.begin());
-    values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
-    values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
-    mapper->FrameStatistics->Record(values);
   }
 }
 

@@ -22,6 +22,7 @@
 #include "vtkSPTMeshBuffers.h"
 #include "vtkVolumeViewMatrices.h"
 
+#include <algorithm>  // For the report
 #include <functional> // For the ranks' agreement
 #include <string>     // For the errors
 #include <utility>    // For the shared volumes
@@ -57,11 +58,37 @@ public:
   // Bring a volume's mesh, table and matrices up to date and onto the GPU.
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, vtkSPTFrame::Volume& out);
+  // Bring the table (over `tableThickness`, in the normalized mesh's units) and the mesh onto
+  // the GPU as `out`, whose cells are at most `maxThickness` thick (in the data's units).
+  bool Upload(vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkOpenGLRenderWindow* window,
+    double tableThickness, double maxThickness, vtkSPTFrame::Volume& out);
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
-  // What the mappers of the frame report of its render.
-  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
-    const vtkSPTFrame& frame) const;
+  // What the mappers of a frame report of its render (GetFrameStatistics()): the image's
+  // repetitions and error, the bytes the ranks exchanged, and the cells of the volumes of
+  // `owners` (those this process drew, in the frame's order) drawn as points and computed;
+  // none for the others of `all`.
+  template <class Frame>
+  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& all,
+    const std::vector<vtkSPTVolumeMapper*>& owners, const Frame& frame,
+    vtkIdType parallelBytes = 0) const
+  {
+    vtkSPTFrameStatistics::Values values;
+    values.RepetitionCount = self->GetAccumulatedRepetitions();
+    values.EstimatedError = this->ImageError(self);
+    values.DepthSlabs = frame.GetDepthSlabs();
+    values.ParallelBytes = parallelBytes;
+    for (vtkSPTVolumeMapper* mapper : all)
+    {
+      mapper->EstimatedError = values.EstimatedError;
+      mapper->LastRepetitionCount = values.RepetitionCount;
+      const auto owner = std::find(owners.begin(), owners.end(), mapper);
+      const size_t v = static_cast<size_t>(owner - owners.begin());
+      values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
+      values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
+      mapper->FrameStatistics->Record(values);
+    }
+  }
   // Prepare every shared volume that can be drawn; false when none can.
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
