@@ -94,18 +94,10 @@ public:
   // composited; false where it cannot start. A collective call.
   bool StartParallelAccumulation(vtkSPTVolumeMapper* self, const RenderTarget& target,
     const vtkSPTFrame::Settings& settings, const FramePlan& plan);
-  // What the mappers of the frame report of it (GetFrameStatistics()): the image's
-  // repetitions and error, the bytes exchanged, and the cells drawn as points and those
-  // computed of this rank's pieces (`owners`); none for the others of `all`.
-  void ReportStatistics(vtkSPTVolumeMapper* self, const vtkSPTParallelFrame& frame,
-    const std::vector<vtkSPTVolumeMapper*>& owners, const std::vector<vtkSPTVolumeMapper*>& all);
   // Rank 0: the opaque geometry of every rank, then the volume resolved over it.
   void ResolveOnRoot(vtkSPTVolumeMapper* self, const RenderTarget& target);
-  // The single-process plan, the same on every rank: rank 0's signature need not match the
-  // others', so the ranks continue an accumulation only if all do, and draw the fewest
-  // repetitions any rank's time budget allows. A collective call.
-  FramePlan PlanParallel(
-    vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature);
+  // Makes `agreement` the least of every rank's. A collective call.
+  bool AgreeOnPlan(SPTInternals::PlanAgreement& agreement);
 };
 
 vtkStandardNewMacro(vtkPSPTVolumeMapper);
@@ -270,22 +262,8 @@ bool vtkPSPTVolumeMapper::vtkInternals::PrepareSharedPiece(vtkSPTVolumeMapper* s
   {
     return false;
   }
-  if (!spt.Table->Update(vol->GetProperty(), mesh->GetScalarRange(), agreement.MaxEdgeLength,
-        self->PreIntegrationScalarResolution, self->PreIntegrationThicknessResolution))
-  {
-    vtkErrorWithObjectMacro(self, << spt.Table->GetLastError());
-    return false;
-  }
-  if (!spt.Buffers->Upload(target.Window, mesh))
-  {
-    return false;
-  }
-  out.Buffers = spt.Buffers;
-  out.Table = spt.Table;
-  out.TableTexture = spt.Table->GetTexture(target.Window);
-  out.Matrices = &spt.Matrices;
-  out.MaxThickness = agreement.MaxEdgeLength / mesh->GetScale();
-  return out.TableTexture != nullptr;
+  return spt.Upload(self, vol, target.Window, agreement.MaxEdgeLength,
+    agreement.MaxEdgeLength / mesh->GetScale(), out);
 }
 
 void vtkPSPTVolumeMapper::vtkInternals::RenderParallel(
@@ -401,39 +379,14 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawPieces(vtkSPTVolumeMapper* self, vtk
   this->DrawParallel(self, ren, shared.front().first, target, volumes, owners, all, frame);
 }
 
-vtkPSPTVolumeMapper::vtkInternals::FramePlan vtkPSPTVolumeMapper::vtkInternals::PlanParallel(
-  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature)
+bool vtkPSPTVolumeMapper::vtkInternals::AgreeOnPlan(SPTInternals::PlanAgreement& agreement)
 {
-  FramePlan plan;
-  plan.PerPass = perPass;
-  // One repetition of the visibility estimator at a time is a pair of traversals here too,
-  // with keys (which the ranks combine) where one process finds the survivor by depth: the
-  // same image.
-  plan.Kind = self->Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
-  const int chosen = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
-  int count = chosen;
-  // The fewest repetitions of any rank's budget come with its repetitions per traversal: a
-  // rank that can afford only single passes chooses fewer than one group, and no pair.
-  const int same = self->IsLastSignature(signature) ? 1 : 0;
-  const int pairs = plan.Kind == Traversal::Single ? 0 : 1;
-  int agreed[5] = { self->ContinueAccumulation(std::move(signature), count), chosen, plan.PerPass,
-    same, pairs };
-  if (!this->Reduction->AllMinimum(agreed, 5))
-  {
-    agreed[0] = agreed[1] = 0; // nothing drawn; the frame's last exchange fails too
-  }
-  plan.First = agreed[0];
-  plan.Count = plan.First > 0
-    ? std::min(agreed[1], self->MaximumProgressiveRepetitions - plan.First)
-    : agreed[1];
-  plan.PerPass = agreed[2];
-  plan.SameImage = agreed[3] != 0; // on every rank
-  plan.Kind = plan.PerPass > 1 ? Traversal::Group
-    : agreed[4] != 0           ? Traversal::Pair
-                               : Traversal::Single;
-  plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
-  plan.Coverage = Of(self).DrawsCoverage(self, plan);
-  return plan;
+  // The terms in the order of the aggregate, for the reduction.
+  int terms[] = { agreement.First, agreement.Count, agreement.PerPass, agreement.SameImage,
+    agreement.Pairs };
+  const bool agreed = this->Reduction->AllMinimum(terms, 5);
+  agreement = { terms[0], terms[1], terms[2], terms[3], terms[4] };
+  return agreed;
 }
 
 void vtkPSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren,
@@ -443,33 +396,15 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallel(vtkSPTVolumeMapper* self, v
 {
   vtkOpenGLClearErrorMacro();
   vtkSavedGLState savedState(target.Window->GetState());
-  vtkSPTFrame::Settings settings;
-  settings.Estimator = self->Estimator;
-  settings.StratifiedSampling = self->StratifiedSampling != 0;
-  settings.SmallCellSize = self->SmallCellSize;
-  settings.SubpixelLevel = self->SubpixelLevel;
-  settings.Seed = self->Seed;
-  settings.OpaqueScene = agreement.OpaqueScene;
-  settings.GlobalIds = agreement.GlobalIds && !volumes.empty();
-  settings.Compute = self->ComputeTraversal != vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_OFF &&
-      Of(self).Compute->IsWanted(target.Window,
-        self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON,
-        self->GetEnsemble()->GetPassWidth(), self->GetEnsemble()->GetPassHeight())
-    ? Of(self).Compute.Get()
-    : nullptr;
-  settings.ComputeEveryPoint = self->ComputeTraversal == vtkSPTVolumeMapper::COMPUTE_TRAVERSAL_ON;
   // Every rank has the same ensemble size, so the same repetitions per traversal; the keys
   // that the ranks exchange stay within the fixed budget.
-  settings.DepthSlabs = SPTInternals::DepthSlabsThatFit(self->DepthSlabs, self->GetEnsemble());
+  vtkSPTFrame::Settings settings = Of(self).FrameSettings(
+    self, target.Window, agreement.OpaqueScene, agreement.GlobalIds && !volumes.empty());
   const int perPass = SPTInternals::RepetitionsPerTraversal(self->RepetitionsPerPass,
     self->GetEnsemble(), settings.DepthSlabs, SPTInternals::FixedKeyBudget);
   const FramePlan plan =
-    this->PlanParallel(self, vol, perPass, SPTInternals::Signature(ren, all, target));
-  if (plan.Cheapest)
-  {
-    settings.Estimator = SURVIVOR_ESTIMATOR; // one repetition per group, with keys
-    settings.DepthSlabs = 1;                 // and no coverage for the slabs
-  }
+    Of(self).Plan(self, vol, perPass, SPTInternals::Signature(ren, all, target), settings,
+      [this](SPTInternals::PlanAgreement& terms) { return this->AgreeOnPlan(terms); });
   this->DrawParallelFrame(self, target, volumes, owners, all, settings, plan);
   vtkOpenGLCheckErrorMacro("failed after Render");
 }
@@ -543,31 +478,10 @@ void vtkPSPTVolumeMapper::vtkInternals::DrawParallelFrame(vtkSPTVolumeMapper* se
   }
   self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   spt.CoverageDrawn = spt.CoverageDrawn || (plan.Coverage && drawn > 0);
-  this->ReportStatistics(self, frame, owners, all);
+  spt.Report(self, all, owners, frame, static_cast<vtkIdType>(reduction->GetBytes()));
   if (root)
   {
     this->ResolveOnRoot(self, target);
-  }
-}
-
-void vtkPSPTVolumeMapper::vtkInternals::ReportStatistics(vtkSPTVolumeMapper* self,
-  const vtkSPTParallelFrame& frame, const std::vector<vtkSPTVolumeMapper*>& owners,
-  const std::vector<vtkSPTVolumeMapper*>& all)
-{
-  vtkSPTFrameStatistics::Values values;
-  values.RepetitionCount = self->GetAccumulatedRepetitions();
-  values.EstimatedError = Of(self).ImageError(self);
-  values.DepthSlabs = frame.GetDepthSlabs();
-  values.ParallelBytes = static_cast<vtkIdType>(this->Reduction->GetBytes());
-  for (vtkSPTVolumeMapper* mapper : all)
-  {
-    mapper->EstimatedError = values.EstimatedError;
-    mapper->LastRepetitionCount = values.RepetitionCount;
-    const auto owner = std::find(owners.begin(), owners.end(), mapper);
-    const size_t v = static_cast<size_t>(owner - owners.begin());
-    values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
-    values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
-    mapper->FrameStatistics->Record(values);
   }
 }
 

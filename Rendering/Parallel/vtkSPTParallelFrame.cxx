@@ -37,17 +37,17 @@ void vtkSPTParallelFrame::Draw(int first, int count, int perPass, bool coverage,
 {
   const int before = this->Exchanges;
   this->Ok = this->Ok && this->Frame.DrawRepetitions(first, count, perPass, coverage, halves);
-  // The exchanges the other ranks make: one per group of `lanes` repetitions, and with depth
-  // slabs, the first group's slab sums with the coverage. A rank whose drawing failed (before
+  // The exchanges the other ranks make: one per group of `passRepetitions` repetitions, and with
+  // depth slabs, the first group's slab sums with the coverage. A rank whose drawing failed (before
   // or within its groups) makes those it missed with nothing kept.
-  const int lanes = std::max(1, std::min(perPass, count));
-  const int groups = (count + lanes - 1) / lanes;
+  const int passRepetitions = std::max(1, std::min(perPass, count));
+  const int groups = (count + passRepetitions - 1) / passRepetitions;
   const int slabs = this->Frame.GetDepthSlabs();
   for (; this->Exchanges - before < groups; ++this->Exchanges)
   {
     const size_t layers = slabs > 1
-      ? size_t(vtkSPTDepthKeyBuffer::GetCompiledLanes(lanes)) * size_t(slabs)
-      : size_t(lanes);
+      ? size_t(vtkSPTDepthKeyBuffer::GetCompiledRepetitions(passRepetitions)) * size_t(slabs)
+      : size_t(passRepetitions);
     this->Reduction->ReduceNothingKept(this->Samples * layers);
     if (slabs > 1 && coverage && this->Exchanges == before)
     {

@@ -40,10 +40,10 @@ bool vtkSPTDepthKeyBuffer::IsSupported(vtkOpenGLRenderWindow* renWin)
 bool vtkSPTDepthKeyBuffer::Prepare(
   vtkOpenGLRenderWindow* renWin, int width, int height, int layers, int slabs)
 {
-  // The texture holds the compiled lanes' layers, a power of two, per slab: the layers a group
-  // uses change with its count, and counts that share their programs share the texture too.
+  // The texture holds the compiled repetitions' layers, a power of two, per slab: the layers a
+  // group uses change with its count, and counts that share their programs share the texture too.
   slabs = std::max(slabs, 1);
-  const int allocated = GetCompiledLanes(layers) * slabs;
+  const int allocated = GetCompiledRepetitions(layers) * slabs;
   if (renWin == this->Context && width == this->Width && height == this->Height &&
     allocated == this->AllocatedLayers && slabs == this->Slabs)
   {
@@ -139,7 +139,7 @@ void vtkSPTDepthKeyBuffer::BindSlabImage(int unit)
     GL_READ_WRITE, GL_R32UI);
 }
 
-int vtkSPTDepthKeyBuffer::GetCompiledLanes(int repetitions)
+int vtkSPTDepthKeyBuffer::GetCompiledRepetitions(int repetitions)
 {
   return vtkMath::NearestPowerOfTwo(repetitions);
 }
@@ -179,18 +179,19 @@ bool vtkSPTDepthKeyBuffer::PrepareSurvivors(
   const int which = sortKeys ? 1 : 0;
   std::unique_ptr<vtkOpenGLQuadHelper>& helper = this->Survivors[which];
   // A slab's layers are the most repetitions a group holds: they size the sort's array.
-  const int lanes = this->AllocatedLayers / this->Slabs;
-  if (!helper || this->SurvivorsLanes[which] != lanes || this->SurvivorsSlabs[which] != this->Slabs)
+  const int passRepetitions = this->AllocatedLayers / this->Slabs;
+  if (!helper || this->SurvivorsRepetitions[which] != passRepetitions ||
+    this->SurvivorsSlabs[which] != this->Slabs)
   {
     std::string source = vtkSPTSurvivorsFS;
     const std::string slabTerms =
       this->Slabs > 1 ? "\n#define SPT_SLAB_TERMS " + std::to_string(SlabTerms) : std::string();
     vtkShaderProgram::Substitute(source, "//SPT::Survivors::Dec",
       std::string(sortKeys ? "#define SPT_SORT_KEYS\n" : "") + "#define SPT_REPETITIONS_PER_PASS " +
-        std::to_string(lanes) + "\n#define SPT_DEPTH_SLABS " + std::to_string(this->Slabs) +
-        slabTerms);
+        std::to_string(passRepetitions) + "\n#define SPT_DEPTH_SLABS " +
+        std::to_string(this->Slabs) + slabTerms);
     helper.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
-    this->SurvivorsLanes[which] = lanes;
+    this->SurvivorsRepetitions[which] = passRepetitions;
     this->SurvivorsSlabs[which] = this->Slabs;
   }
   vtkShaderProgram* program = helper->Program;
@@ -327,7 +328,7 @@ void vtkSPTDepthKeyBuffer::ReleaseGraphicsResources(vtkWindow* window)
   this->SlabsMeanDefines.clear();
   this->Survivors[0].reset();
   this->Survivors[1].reset();
-  this->SurvivorsLanes[0] = this->SurvivorsLanes[1] = 0;
+  this->SurvivorsRepetitions[0] = this->SurvivorsRepetitions[1] = 0;
   this->Context = nullptr;
   this->Width = this->Height = this->Layers = this->AllocatedLayers = 0;
 }

@@ -50,7 +50,7 @@ public:
 
   /**
    * Size the buffer: width x height samples, one layer per repetition of a pass and depth
-   * slab. The texture holds GetCompiledLanes(layers) layers per slab, and reallocates only
+   * slab. The texture holds GetCompiledRepetitions(layers) layers per slab, and reallocates only
    * when that, the size or the context changes; the slabs' optical depths only when the size,
    * the slabs or the context change, so that they last for the frames of one image. Returns
    * false (with an error) when a texture cannot be allocated.
@@ -82,7 +82,7 @@ public:
    * program per count would stall every frame whose count is new (each is compiled on first
    * use), and the error target and the time budget choose counts freely.
    */
-  static int GetCompiledLanes(int repetitions);
+  static int GetCompiledRepetitions(int repetitions);
 
   /**
    * Set the keys of the samples of `footprint` (x, y, width, height) to "nothing kept" (the
@@ -123,7 +123,7 @@ public:
    */
   bool DrawSlabsMeanColor(int unit, const std::string& defines);
 
-  /// The depth slabs of the last Prepare(); each has GetCompiledLanes(layers) layers.
+  /// The depth slabs of the last Prepare(); each has GetCompiledRepetitions(layers) layers.
   int GetSlabs() const { return this->Slabs; }
 
   ///@{
@@ -158,7 +158,7 @@ private:
   int Width = 0;
   int Height = 0;
   int Layers = 0;          // in use: the group's repetitions (all allocated ones with slabs)
-  int AllocatedLayers = 0; // held: GetCompiledLanes(repetitions) per slab
+  int AllocatedLayers = 0; // held: GetCompiledRepetitions(repetitions) per slab
   int Slabs = 1;
   vtkNew<vtkTextureObject> Keys;
   vtkNew<vtkTextureObject> SlabDepths; // (SlabTerms * slab + term, sample): sums, controls
@@ -168,7 +168,7 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> SlabsMean;
   std::string SlabsMeanDefines;                      // what SlabsMean is compiled with
   std::unique_ptr<vtkOpenGLQuadHelper> Survivors[2]; // by sortKeys
-  int SurvivorsLanes[2] = { 0, 0 };                  // what each is compiled for
+  int SurvivorsRepetitions[2] = { 0, 0 };            // what each is compiled for
   int SurvivorsSlabs[2] = { 1, 1 };
   bool PrepareSlabs(vtkOpenGLRenderWindow* renWin, int width, int height, int slabs);
 };

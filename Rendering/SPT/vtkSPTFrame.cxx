@@ -222,14 +222,14 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
     depthSurvivors && (!coverage || count > 1), depthSurvivors && coverage };
   // A render of fewer repetitions than a group draws only those: the fragment loops run over
   // the group's count, and the programs are compiled for the next power of two.
-  const int lanes = std::min(perPass, count);
+  const int passRepetitions = std::min(perPass, count);
   // Active before the frame's uniforms name its unit.
   ScopedTextures sceneDepth({ this->Ensemble->GetSceneDepthTexture() });
-  if (!this->ReadyPrograms(
-        needed, vtkSPTDepthKeyBuffer::GetCompiledLanes(lanes), first, count, halves) ||
+  if (!this->ReadyPrograms(needed, vtkSPTDepthKeyBuffer::GetCompiledRepetitions(passRepetitions),
+        first, count, halves) ||
     (keys &&
       !this->DepthKeys->Prepare(this->Window, this->Ensemble->GetPassWidth(),
-        this->Ensemble->GetPassHeight(), lanes, this->FrameSettings.DepthSlabs)))
+        this->Ensemble->GetPassHeight(), passRepetitions, this->FrameSettings.DepthSlabs)))
   {
     return false;
   }
@@ -242,7 +242,7 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
     return this->DrawDepthSurvivors(first, count, coverage);
   }
   return single ? this->DrawSingles(first, count, coverage, halves)
-                : this->DrawGroups(first, count, lanes, coverage, halves);
+                : this->DrawGroups(first, count, passRepetitions, coverage, halves);
 }
 
 bool vtkSPTFrame::DrawDepthSurvivors(int first, int count, bool coverage)

@@ -150,10 +150,11 @@ private:
   };
 
   // The programs and their uniforms (vtkSPTFramePrograms.cxx).
-  vtkShaderProgram* ReadyProgram(
-    bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves);
+  vtkShaderProgram* ReadyProgram(bool cellScalars, bool clippedCells, bool points, PassKind kind,
+    int passRepetitions, bool halves);
   // The compute traversal's program of a keys or colors pass kind (vtkSPTTetrahedraCS.glsl).
-  vtkShaderProgram* ReadyComputeProgram(bool cellScalars, PassKind kind, int lanes, bool halves);
+  vtkShaderProgram* ReadyComputeProgram(
+    bool cellScalars, PassKind kind, int passRepetitions, bool halves);
   // Whether a traversal of this kind visits the volume's points in a compute pass.
   bool Computes(PassKind kind, size_t volume) const;
   // Whether a traversal of this kind visits some volume's points in a compute pass.
@@ -162,8 +163,8 @@ private:
   bool ComputesMostCells() const;
   // Compile the programs of the pass kinds needed, for the volumes' kinds of scalars. Where a
   // compute program does not build, the rasterizer takes its cells.
-  bool ReadyPrograms(
-    const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves);
+  bool ReadyPrograms(const bool (&needed)[NumberOfPassKinds], int passRepetitions, int first,
+    int count, bool halves);
   // One traversal of every volume with the program of that pass kind.
   void Traverse(PassKind kind, int repetition, int inGroup);
   enum class Primitive;

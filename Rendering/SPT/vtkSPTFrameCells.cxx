@@ -16,8 +16,8 @@
 namespace
 {
 // The compute traversal takes the cells drawn as points that are about this many pixels across
-// or less: a sample's work grows with the group's lanes, and at 256 repetitions per traversal on
-// a 200,000-cell TetGen mesh, computing all its points (up to 8 pixels across) took 1.13 to 1.17
+// or less: a sample's work grows with the group's repetitions, and at 256 repetitions per traversal
+// on a 200,000-cell TetGen mesh, computing all its points (up to 8 pixels across) took 1.13 to 1.17
 // of the frame that computes those up to 4 pixels (0.69 to 0.88 at 2 to 32 repetitions); on the
 // 1M-cell one, 4 pixels take nearly all its points.
 constexpr double ComputedCellSize = 4.0;

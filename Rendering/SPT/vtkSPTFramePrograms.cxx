@@ -64,7 +64,7 @@ vtkShaderProgram*& vtkSPTFrame::ProgramOf(PassKind kind, size_t volume, bool poi
 }
 
 vtkShaderProgram* vtkSPTFrame::ReadyProgram(
-  bool cellScalars, bool clippedCells, bool points, PassKind kind, int lanes, bool halves)
+  bool cellScalars, bool clippedCells, bool points, PassKind kind, int passRepetitions, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS, vtkSPTPassDepthColorsFS,
@@ -87,8 +87,8 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
   vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
 
-  std::string defines =
-    common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes);
+  std::string defines = common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " +
+    std::to_string(passRepetitions);
   if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
   {
     defines += "\n#define SPT_WRITE_COVERAGE";
@@ -119,7 +119,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyProgram(
 }
 
 vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
-  bool cellScalars, PassKind kind, int lanes, bool halves)
+  bool cellScalars, PassKind kind, int passRepetitions, bool halves)
 {
   // The pass's fragment code, with the cell's planes and the sample's position set by the
   // compute pass's main() (vtkSPTTetrahedraCS.glsl) instead of read from the points.
@@ -129,7 +129,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
   defines += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
   defines += this->SlabDefines(kind);
-  defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(lanes) + "\n";
+  defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(passRepetitions) + "\n";
   defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
   defines += colors ? "#define SPT_COMPUTE_COLORS\n" : "";
   defines += colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR
@@ -153,7 +153,7 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
 }
 
 bool vtkSPTFrame::ReadyPrograms(
-  const bool (&needed)[NumberOfPassKinds], int lanes, int first, int count, bool halves)
+  const bool (&needed)[NumberOfPassKinds], int passRepetitions, int first, int count, bool halves)
 {
   // Each call has uniforms of its own (first, count, halves).
   for (auto& byScalars : this->Programs)
@@ -175,14 +175,15 @@ bool vtkSPTFrame::ReadyPrograms(
       const bool cellScalars = this->Volumes[v].Buffers->GetMesh()->GetCellScalars();
       if (needed[k] && this->Computes(kind, v) && !this->ComputePrograms[k][cellScalars ? 1 : 0])
       {
-        vtkShaderProgram* program = this->ReadyComputeProgram(cellScalars, kind, lanes, halves);
+        vtkShaderProgram* program =
+          this->ReadyComputeProgram(cellScalars, kind, passRepetitions, halves);
         if (!program)
         {
           // The traversal warned and will not be asked again in this context. The rasterizer
           // takes its cells from this group on (the same estimate: the sums differ by the fixed
           // point's rounding), so every program is chosen again.
           this->ComputeCellCounts.assign(this->Volumes.size(), 0);
-          return this->ReadyPrograms(needed, lanes, first, count, halves);
+          return this->ReadyPrograms(needed, passRepetitions, first, count, halves);
         }
         this->ComputePrograms[k][cellScalars ? 1 : 0] = program;
         vtkSPTComputeTraversal::Use(this->Window, program);
@@ -197,7 +198,7 @@ bool vtkSPTFrame::ReadyPrograms(
           continue;
         }
         program = this->ReadyProgram(this->Volumes[v].Buffers->GetMesh()->GetCellScalars(),
-          this->NearPlaneCuts, points, kind, lanes, halves);
+          this->NearPlaneCuts, points, kind, passRepetitions, halves);
         if (!program)
         {
           vtkErrorWithObjectMacro(this->Reporter, "Could not compile the SPT shaders.");

@@ -110,21 +110,29 @@ bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper,
   }
   vtkTetrahedralMesh* mesh = mapper->GetMesh();
   const double maxThickness = mesh->GetMaxEdgeLength();
-  if (!internals.Table->Update(vol->GetProperty(), mesh->GetScalarRange(),
-        maxThickness * mesh->GetScale(), mapper->PreIntegrationScalarResolution,
-        mapper->PreIntegrationThicknessResolution))
+  return internals.Upload(
+    mapper, vol, target.Window, maxThickness * mesh->GetScale(), maxThickness, out);
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::Upload(vtkSPTVolumeMapper* mapper, vtkVolume* vol,
+  vtkOpenGLRenderWindow* window, double tableThickness, double maxThickness,
+  vtkSPTFrame::Volume& out)
+{
+  vtkTetrahedralMesh* mesh = mapper->GetMesh();
+  if (!this->Table->Update(vol->GetProperty(), mesh->GetScalarRange(), tableThickness,
+        mapper->PreIntegrationScalarResolution, mapper->PreIntegrationThicknessResolution))
   {
-    vtkErrorWithObjectMacro(mapper, << internals.Table->GetLastError());
+    vtkErrorWithObjectMacro(mapper, << this->Table->GetLastError());
     return false;
   }
-  if (!internals.Buffers->Upload(target.Window, mesh))
+  if (!this->Buffers->Upload(window, mesh))
   {
     return false;
   }
-  out.Buffers = internals.Buffers;
-  out.Table = internals.Table;
-  out.TableTexture = internals.Table->GetTexture(target.Window);
-  out.Matrices = &internals.Matrices;
+  out.Buffers = this->Buffers;
+  out.Table = this->Table;
+  out.TableTexture = this->Table->GetTexture(window);
+  out.Matrices = &this->Matrices;
   out.MaxThickness = maxThickness;
   return out.TableTexture != nullptr;
 }
@@ -150,23 +158,6 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   AppendSceneSignature(ren, viewport, signature);
   signature.push_back(mappers.front()->GetEnsemble()->GetSampleDistance());
   return signature;
-}
-
-void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
-  const std::vector<vtkSPTVolumeMapper*>& mappers, const vtkSPTFrame& frame) const
-{
-  for (size_t v = 0; v < mappers.size(); ++v)
-  {
-    vtkSPTFrameStatistics::Values values;
-    values.RepetitionCount = self->GetAccumulatedRepetitions();
-    values.EstimatedError = this->ImageError(self);
-    values.DepthSlabs = frame.GetDepthSlabs();
-    values.PointCellCount = frame.GetPointCellCount(v);
-    values.ComputedCellCount = frame.GetComputedCellCount(v);
-    mappers[v]->EstimatedError = values.EstimatedError;
-    mappers[v]->LastRepetitionCount = values.RepetitionCount;
-    mappers[v]->FrameStatistics->Record(values);
-  }
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren, const SharedList& shared,
@@ -269,26 +260,6 @@ int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
   return drawn;
 }
 
-void vtkSPTVolumeMapper::vtkInternals::CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren,
-  vtkOpenGLRenderWindow* renWin, const std::vector<vtkSPTFrame::Volume>& volumes,
-  vtkSPTFrame::Settings& settings)
-{
-  vtkEnsembleBuffer* ensemble = self->GetEnsemble();
-  settings.StratifiedSampling = self->StratifiedSampling != 0;
-  settings.SmallCellSize = self->SmallCellSize;
-  settings.SubpixelLevel = self->SubpixelLevel;
-  settings.Seed = self->Seed;
-  settings.OpaqueScene = HasOpaqueScene(ren);
-  settings.GlobalIds = std::all_of(volumes.begin(), volumes.end(),
-    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
-  settings.Compute = self->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
-      this->Compute->IsWanted(renWin, self->ComputeTraversal == COMPUTE_TRAVERSAL_ON,
-        ensemble->GetPassWidth(), ensemble->GetPassHeight())
-    ? this->Compute.Get()
-    : nullptr;
-  settings.ComputeEveryPoint = self->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
-}
-
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // Several SPT volumes in one renderer share one ensemble, so that their segments interleave
@@ -336,20 +307,17 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
     return;
   }
   internals.ColorBits = vtkOpenGLLoader::DrawColorBits(); // where the image will be resolved
-  vtkSPTFrame::Settings settings;
+  const bool globalIds = std::all_of(volumes.begin(), volumes.end(),
+    [](const vtkSPTFrame::Volume& v) { return v.Buffers->GetRandomIdTexture() != nullptr; });
+  vtkSPTFrame::Settings settings =
+    internals.FrameSettings(self, renWin, HasOpaqueScene(ren), globalIds);
   const int perPass = internals.ChooseTraversal(self, renWin, settings);
   if (perPass < 1)
   {
     return;
   }
-  const vtkInternals::FramePlan plan = internals.Plan(self, vol, perPass,
-    settings.Estimator == VISIBILITY_ESTIMATOR, vtkInternals::Signature(ren, mappers, target));
-  if (plan.Cheapest)
-  {
-    settings.Estimator = SURVIVOR_ESTIMATOR;
-    settings.DepthSlabs = 1;
-  }
-  internals.CompleteSettings(self, ren, renWin, volumes, settings);
+  const vtkInternals::FramePlan plan =
+    internals.Plan(self, vol, perPass, vtkInternals::Signature(ren, mappers, target), settings);
   ostate->PushFramebufferBindings();
   const bool started = plan.First > 0 ||
     internals.StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
@@ -360,7 +328,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
   {
     return;
   }
-  internals.Report(self, mappers, frame);
+  internals.Report(self, mappers, mappers, frame);
   ensemble->Resolve(target.X, target.Y, self->GetAccumulatedRepetitions(),
     self->ExactCoverage && internals.CoverageDrawn);
   vtkOpenGLCheckErrorMacro("failed after Render");

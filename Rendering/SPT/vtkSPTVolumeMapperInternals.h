@@ -22,9 +22,11 @@
 #include "vtkSPTMeshBuffers.h"
 #include "vtkVolumeViewMatrices.h"
 
-#include <string>  // For the errors
-#include <utility> // For the shared volumes
-#include <vector>  // For the volumes
+#include <algorithm>  // For the report
+#include <functional> // For the ranks' agreement
+#include <string>     // For the errors
+#include <utility>    // For the shared volumes
+#include <vector>     // For the volumes
 
 class vtkSPTVolumeMapper::vtkInternals
 {
@@ -56,16 +58,42 @@ public:
   // Bring a volume's mesh, table and matrices up to date and onto the GPU.
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
     RenderTarget& target, vtkSPTFrame::Volume& out);
+  // Bring the table (over `tableThickness`, in the normalized mesh's units) and the mesh onto
+  // the GPU as `out`, whose cells are at most `maxThickness` thick (in the data's units).
+  bool Upload(vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkOpenGLRenderWindow* window,
+    double tableThickness, double maxThickness, vtkSPTFrame::Volume& out);
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
-  // What the mappers of the frame report of its render.
-  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& mappers,
-    const vtkSPTFrame& frame) const;
+  // What the mappers of a frame report of its render (GetFrameStatistics()): the image's
+  // repetitions and error, the bytes the ranks exchanged, and the cells of the volumes of
+  // `owners` (those this process drew, in the frame's order) drawn as points and computed;
+  // none for the others of `all`.
+  template <class Frame>
+  void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& all,
+    const std::vector<vtkSPTVolumeMapper*>& owners, const Frame& frame,
+    vtkIdType parallelBytes = 0) const
+  {
+    vtkSPTFrameStatistics::Values values;
+    values.RepetitionCount = self->GetAccumulatedRepetitions();
+    values.EstimatedError = this->ImageError(self);
+    values.DepthSlabs = frame.GetDepthSlabs();
+    values.ParallelBytes = parallelBytes;
+    for (vtkSPTVolumeMapper* mapper : all)
+    {
+      mapper->EstimatedError = values.EstimatedError;
+      mapper->LastRepetitionCount = values.RepetitionCount;
+      const auto owner = std::find(owners.begin(), owners.end(), mapper);
+      const size_t v = static_cast<size_t>(owner - owners.begin());
+      values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
+      values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
+      mapper->FrameStatistics->Record(values);
+    }
+  }
   // Prepare every shared volume that can be drawn; false when none can.
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 
-  // What a frame draws (vtkSPTFramePlan.cxx).
+  // What a frame draws (vtkSPTVolumeMapperInternals.cxx).
   // Repetitions per traversal: as many as asked while the depth keys (4 bytes per sample and
   // repetition) stay within `budget` bytes, and never fewer than 16, or than asked if fewer.
   static int RepetitionsPerTraversal(
@@ -80,7 +108,7 @@ public:
   // The depth slabs, of `asked`, whose sums fit the memory allotted to them.
   static int DepthSlabsThatFit(int asked, const vtkEnsembleBuffer* ensemble);
   // Repetitions per traversal that the context and the image size allow, and the estimator
-  // with them; 0 (with an error) when the frame cannot be drawn.
+  // and depth slabs with them (in `settings`); 0 (with an error) when the frame cannot be drawn.
   int ChooseTraversal(
     vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, vtkSPTFrame::Settings& settings);
   // The error or warning for an image of more samples per side than the 3D textures hold.
@@ -97,8 +125,26 @@ public:
     bool Coverage = false;  // draw the exact coverage in this frame
     bool SameImage = false; // all that shapes the image is as in the last render
   };
-  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs,
-    std::vector<double> signature);
+  // What the ranks of a parallel render agree on before a frame, each the least of any rank's:
+  // a rank's image continues only if all continue it, and every rank draws the fewest
+  // repetitions, and the fewest per traversal, that any rank's time budget allows.
+  struct PlanAgreement
+  {
+    int First = 0;     // repetitions accumulated (0: a new accumulation)
+    int Count = 0;     // repetitions the time budget allows
+    int PerPass = 1;   // repetitions per traversal
+    int SameImage = 0; // 1: all that shapes the image is as in the last render
+    int Pairs = 0;     // 1: a repetition at a time is a pair of traversals, 0: a single pass
+  };
+  // Makes `agreement` the ranks' on every rank; false, on every rank, where they cannot agree.
+  using AgreeOnPlan = std::function<bool(PlanAgreement& agreement)>;
+  // The frame's plan, with `perPass` repetitions per traversal at most: the repetitions that
+  // fit the time allotted, added to what is accumulated when refining progressively, agreed
+  // through `agree` where it is given (a collective call then). The cheapest frame draws with
+  // the survivor estimator and no depth slabs, which `settings` then says.
+  FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass,
+    std::vector<double> signature, vtkSPTFrame::Settings& settings,
+    const AgreeOnPlan& agree = nullptr);
   // Whether the plan's frame draws the exact coverage (with the depth slabs' optical depths):
   // once per accumulation, never in the cheapest frame.
   bool DrawsCoverage(vtkSPTVolumeMapper* self, const FramePlan& plan) const;
@@ -113,9 +159,10 @@ public:
   // The image's estimated error for GetEstimatedError(): its noise and its rounding; -1 when
   // the noise is not estimated.
   double ImageError(vtkSPTVolumeMapper* self) const;
-  // The frame's settings that follow from the mapper's, the renderer and the volumes.
-  void CompleteSettings(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkOpenGLRenderWindow* renWin,
-    const std::vector<vtkSPTFrame::Volume>& volumes, vtkSPTFrame::Settings& settings);
+  // The frame's settings from the mapper's, with the estimator and depth slabs asked (as many
+  // slabs as fit their memory): ChooseTraversal() and Plan() fall back from them.
+  vtkSPTFrame::Settings FrameSettings(
+    vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, bool opaqueScene, bool globalIds);
   // One process's frame of the volumes that `self` leads: plan, draw and resolve it.
   void DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,

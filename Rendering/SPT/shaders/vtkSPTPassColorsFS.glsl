@@ -47,18 +47,18 @@ int survivorsNotInFront(uint key, ivec2 pixel, int begin, int end)
 
 #ifdef SPT_VISIBILITY_WEIGHTED
 // The visibility estimator's counts: of the group's repetitions, how many have their nearest
-// survivor (in the key layers [base, base + lanes) of the segment's slab) not in front of the
-// key (x), and how many of those are in the second half (y). Each half's keys are sorted
-// (vtkSPTSurvivorsFS.glsl): those survivors are the tail of each half.
+// survivor (in the key layers [base, base + passRepetitions) of the segment's slab) not in
+// front of the key (x), and how many of those are in the second half (y). Each half's keys are
+// sorted (vtkSPTSurvivorsFS.glsl): those survivors are the tail of each half.
 //
-//   key layers:  base            base + split          base + lanes
+//   key layers:  base            base + split          base + passRepetitions
 //                | first half    | second half         |
 //   sorted keys: [ . . . k k k k | . . k k k k k k     ]   k: not in front of the key
 //                  counts = (4 + 6, 6)
-ivec2 visibleCounts(uint key, ivec2 pixel, int base, int lanes)
+ivec2 visibleCounts(uint key, ivec2 pixel, int base, int passRepetitions)
 {
-  int split = clamp(secondHalfStart - repetition, 0, lanes);
-  int inSecondHalf = survivorsNotInFront(key, pixel, base + split, base + lanes);
+  int split = clamp(secondHalfStart - repetition, 0, passRepetitions);
+  int inSecondHalf = survivorsNotInFront(key, pixel, base + split, base + passRepetitions);
   int count = survivorsNotInFront(key, pixel, base, base + split) + inSecondHalf;
   return ivec2(count, inSecondHalf);
 }
@@ -75,12 +75,12 @@ vec4 slabWeightedColor(vec4 color, int slab, ivec2 pixel)
 }
 #else
 // Whether the key is the nearest survivor of any of the group's repetitions (in the key layers
-// [base, base + lanes) of the segment's slab): a fragment that holds none adds nothing, and is
-// discarded before its color is looked up.
-bool holdsSurvivor(uint key, ivec2 pixel, int base, int lanes)
+// [base, base + passRepetitions) of the segment's slab): a fragment that holds none adds
+// nothing, and is discarded before its color is looked up.
+bool holdsSurvivor(uint key, ivec2 pixel, int base, int passRepetitions)
 {
   bool holdsOne = false; // the minimum of some repetition is this fragment's key
-  for (int r = 0; r < lanes; ++r)
+  for (int r = 0; r < passRepetitions; ++r)
   {
     holdsOne = holdsOne || imageLoad(depthKeys, ivec3(base + r, pixel)).r == key;
   }
@@ -91,11 +91,11 @@ bool holdsSurvivor(uint key, ivec2 pixel, int base, int lanes)
 // survivor of (x), and how many of those are in the second half (y). The key holds 8 bits of
 // the cell's id: a fragment of another cell at the same depth may share it, so the
 // keep-or-discard decision at the fragment's opacity is checked too.
-ivec2 survivorCounts(uint key, float alpha, ivec2 pixel, int base, int lanes)
+ivec2 survivorCounts(uint key, float alpha, ivec2 pixel, int base, int passRepetitions)
 {
   int count = 0;
   int inSecondHalf = 0;
-  for (int r = 0; r < lanes; ++r)
+  for (int r = 0; r < passRepetitions; ++r)
   {
     int wins = imageLoad(depthKeys, ivec3(base + r, pixel)).r == key &&
         threshold(uint(repetition + r)) < alpha ? 1 : 0;
@@ -129,12 +129,12 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   }
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
-  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+  int passRepetitions = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   // The survivors of the fragment's slab decide, behind the slabs in front of it.
   int slab;
   int base = firstLayerOfSlab(segment, slab);
 #ifdef SPT_VISIBILITY_WEIGHTED
-  ivec2 counts = visibleCounts(key, pixel, base, lanes);
+  ivec2 counts = visibleCounts(key, pixel, base, passRepetitions);
   if (counts.x == 0)
   {
     return false;
@@ -143,12 +143,12 @@ bool colorsAtSample(out vec4 sum, out vec4 secondHalf)
   sum = float(counts.x) * color;
   secondHalf = float(counts.y) * color;
 #else
-  if (!holdsSurvivor(key, pixel, base, lanes))
+  if (!holdsSurvivor(key, pixel, base, passRepetitions))
   {
     return false;
   }
   vec4 color = preIntegrated(segment);
-  ivec2 counts = survivorCounts(key, color.a, pixel, base, lanes);
+  ivec2 counts = survivorCounts(key, color.a, pixel, base, passRepetitions);
   vec4 opaque = slabWeightedOpaque(color, slab, pixel);
   sum = float(counts.x) * opaque;
   secondHalf = float(counts.y) * opaque;

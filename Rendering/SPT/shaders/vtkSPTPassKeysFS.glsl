@@ -6,29 +6,29 @@
 // its keys, and with the coverage it adds its optical depth terms to its slab's.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
 
-// Repetition `lane` of the group keeps the fragment. A kept fragment behind the nearest
-// survivor so far changes nothing: a plain load spares it the atomic read-modify-write.
-void keep(int lane, uint key, ivec2 pixel)
+// Key layer `layer` (a repetition of the pass) keeps the fragment. A kept fragment behind the
+// nearest survivor so far changes nothing: a plain load spares it the atomic read-modify-write.
+void keep(int layer, uint key, ivec2 pixel)
 {
-  if (key < imageLoad(depthKeys, ivec3(lane, pixel)).r)
+  if (key < imageLoad(depthKeys, ivec3(layer, pixel)).r)
   {
-    imageAtomicMin(depthKeys, ivec3(lane, pixel), key);
+    imageAtomicMin(depthKeys, ivec3(layer, pixel), key);
   }
 }
 
 // The group's repetitions that keep the fragment, found from the strata below its opacity:
 // the same repetitions as testing each one, at a cost that follows alpha, not the group.
-void keepByStrata(float alpha, uint key, ivec2 pixel, int base, int lanes)
+void keepByStrata(float alpha, uint key, ivec2 pixel, int base, int passRepetitions)
 {
   uint first = uint(repetition);
   uint n = uint(stratumCount);
   uint local = first - uint(stratumOrigin);
-  for (uint block = local / n; block * n < local + uint(lanes); ++block)
+  for (uint block = local / n; block * n < local + uint(passRepetitions); ++block)
   {
     for (uint stratum = 0u; strataBelow(stratum, alpha); ++stratum)
     {
       uint r;
-      if (keptRepetition(block, stratum, alpha, r) && r - first < uint(lanes))
+      if (keptRepetition(block, stratum, alpha, r) && r - first < uint(passRepetitions))
       {
         keep(base + int(r - first), key, pixel);
       }
@@ -49,16 +49,16 @@ bool keysAtSample(out vec4 coverageTerms)
   vec4 color = preIntegrated(segment);
   uint key = depthKey(segment);
   ivec2 pixel = ivec2(samplePosition);
-  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+  int passRepetitions = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   int slab;
   int base = firstLayerOfSlab(segment, slab);
-  if (fewStrataKeep(color.a, repetition, lanes))
+  if (fewStrataKeep(color.a, repetition, passRepetitions))
   {
-    keepByStrata(color.a, key, pixel, base, lanes);
+    keepByStrata(color.a, key, pixel, base, passRepetitions);
   }
   else
   {
-    for (int r = 0; r < lanes; ++r)
+    for (int r = 0; r < passRepetitions; ++r)
     {
       if (threshold(uint(repetition + r)) < color.a)
       {

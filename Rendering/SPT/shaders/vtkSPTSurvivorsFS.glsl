@@ -78,13 +78,13 @@ int sortKeys(int begin, int end)
 //
 //   read:     [ 7 - 3 - 5 | - 9 - 2 - - ]    -: nothing kept (0xFFFFFFFF)
 //   written:  [ 3 5 7 - - | 2 9 - - - - ]    kept = (3, 2)
-void storeSortedKeys(int base, ivec2 pixel, int lanes, int split, int kept[2])
+void storeSortedKeys(int base, ivec2 pixel, int passRepetitions, int split, int kept[2])
 {
   if (kept[0] + kept[1] > 0)
   {
     int firstHalf = sortKeys(0, kept[0]) * N;
     int secondHalf = sortKeys(split, split + kept[1]) * N;
-    for (int r = 0; r < lanes; ++r)
+    for (int r = 0; r < passRepetitions; ++r)
     {
       bool second = r >= split;
       bool isKept = r - (second ? split : 0) < kept[second ? 1 : 0];
@@ -115,14 +115,14 @@ int lastSlabWithSegments(ivec2 pixel)
 // the slab is lastSlab. With SPT_SORT_KEYS, sorts the slab's kept keys in place. Only the kept
 // keys are sorted: where few repetitions keep anything (thin parts of the volume, and outside
 // its footprint, where none does) that is far less work than sorting every repetition's key.
-uint readSlabSurvivors(int slab, int lastSlab, ivec2 pixel, int lanes, uint farthest)
+uint readSlabSurvivors(int slab, int lastSlab, ivec2 pixel, int passRepetitions, uint farthest)
 {
   int base = slab * SPT_REPETITIONS_PER_PASS;
 #ifdef SPT_SORT_KEYS
-  int split = clamp(secondHalfFrom, 0, lanes);
+  int split = clamp(secondHalfFrom, 0, passRepetitions);
   int kept[2] = int[2](0, 0);
 #endif
-  for (int r = 0; r < lanes; ++r)
+  for (int r = 0; r < passRepetitions; ++r)
   {
     uint key = imageLoad(depthKeys, ivec3(base + r, pixel)).r;
     farthest = slab == lastSlab ? max(farthest, key) : farthest;
@@ -136,7 +136,7 @@ uint readSlabSurvivors(int slab, int lastSlab, ivec2 pixel, int lanes, uint fart
 #endif
   }
 #ifdef SPT_SORT_KEYS
-  storeSortedKeys(base, pixel, lanes, split, kept);
+  storeSortedKeys(base, pixel, passRepetitions, split, kept);
 #endif
   return farthest;
 }
@@ -155,12 +155,12 @@ float windowDepthBehindKey(uint key)
 void main()
 {
   ivec2 pixel = ivec2(floor(texCoord * passSize));
-  int lanes = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
+  int passRepetitions = min(repetitionsInGroup, SPT_REPETITIONS_PER_PASS);
   uint farthest = 0u;
   int lastSlab = lastSlabWithSegments(pixel);
   for (int slab = 0; slab < SPT_DEPTH_SLABS; ++slab)
   {
-    farthest = readSlabSurvivors(slab, lastSlab, pixel, lanes, farthest);
+    farthest = readSlabSurvivors(slab, lastSlab, pixel, passRepetitions, farthest);
   }
   gl_FragDepth = windowDepthBehindKey(farthest);
   gl_FragData[0] = vec4(0.0);

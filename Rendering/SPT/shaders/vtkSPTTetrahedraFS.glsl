@@ -496,7 +496,7 @@ float threshold(uint r)
 // stratum by stratum (keptRepetition()) than by testing every repetition: with stratified
 // thresholds, only the strata below alpha can keep it, about alpha * stratumCount per block
 // the group touches.
-bool fewStrataKeep(float alpha, int first, int lanes)
+bool fewStrataKeep(float alpha, int first, int passRepetitions)
 {
   if (stratumCount <= 0)
   {
@@ -504,8 +504,8 @@ bool fewStrataKeep(float alpha, int first, int lanes)
   }
   int n = stratumCount;
   int local = first - stratumOrigin;
-  int blocks = (local + lanes - 1) / n - local / n + 1;
-  return 2.0 * alpha * float(n * blocks) < float(lanes);
+  int blocks = (local + passRepetitions - 1) / n - local / n + 1;
+  return 2.0 * alpha * float(n * blocks) < float(passRepetitions);
 }
 
 // Whether a stratum may keep a fragment of this opacity. Strata are visited from 0 up; none

@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 
+#include "SPTTestBlock.h"
 #include "SPTTestChecks.h"
 
 #include <glm/glm.hpp>
@@ -33,57 +34,20 @@
 
 namespace
 {
-// A block of nx x ny x nz unit cubes, each split into 5 tetrahedra (alternating so that faces
-// match), with a point scalar. With `invert`, every other tetrahedron is listed inverted.
+// A block of nx x ny x nz unit cubes of 5 tetrahedra each, with a point scalar. With
+// `invert`, every other tetrahedron is listed inverted.
 vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, bool invert)
 {
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> scalars;
-  scalars->SetName("s");
-  for (int k = 0; k <= nz; ++k)
-  {
-    for (int j = 0; j <= ny; ++j)
+  const int n[3] = { nx, ny, nz };
+  auto grid = SPTTestBlock::Make(
+    n,
+    [](int i, int j, int k, vtkPoints* points, vtkFloatArray* scalars)
     {
-      for (int i = 0; i <= nx; ++i)
-      {
-        points->InsertNextPoint(i, j, k);
-        scalars->InsertNextValue(static_cast<float>(i + 2 * j + 3 * k));
-      }
-    }
-  }
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(points);
-  grid->GetPointData()->SetScalars(scalars);
-  auto id = [=](int i, int j, int k) { return vtkIdType(i + (nx + 1) * (j + (ny + 1) * k)); };
-  int count = 0;
-  for (int k = 0; k < nz; ++k)
-  {
-    for (int j = 0; j < ny; ++j)
-    {
-      for (int i = 0; i < nx; ++i)
-      {
-        vtkIdType c[8];
-        for (int corner = 0; corner < 8; ++corner)
-        {
-          c[corner] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
-        }
-        // Corners 0, 3, 5, 6 (or 1, 2, 4, 7 in odd cubes) form the central tetrahedron.
-        const bool odd = (i + j + k) % 2 == 1;
-        const int tets[2][5][4] = { { { 0, 1, 3, 5 }, { 0, 2, 6, 3 }, { 0, 4, 5, 6 },
-                                      { 3, 5, 6, 7 }, { 0, 3, 6, 5 } },
-          { { 1, 0, 2, 4 }, { 1, 3, 7, 2 }, { 1, 5, 4, 7 }, { 2, 4, 7, 6 }, { 1, 2, 7, 4 } } };
-        for (const auto& tet : tets[odd ? 1 : 0])
-        {
-          vtkIdType ids[4] = { c[tet[0]], c[tet[1]], c[tet[2]], c[tet[3]] };
-          if (invert && (count++ % 2 == 1))
-          {
-            std::swap(ids[0], ids[1]);
-          }
-          grid->InsertNextCell(VTK_TETRA, 4, ids);
-        }
-      }
-    }
-  }
+      points->InsertNextPoint(i, j, k);
+      scalars->InsertNextValue(static_cast<float>(i + 2 * j + 3 * k));
+    },
+    [](int, int, int) { return true; }, invert);
+  grid->GetPointData()->GetScalars()->SetName("s");
   return grid;
 }
 

@@ -44,6 +44,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "SPTTestBlock.h"
 #include "SPTTestWindow.h"
 
 #include <glm/glm.hpp>
@@ -99,51 +100,14 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeSlottedBlock()
   const int n[3] = { 5, 5, 3 };
   std::mt19937 random(11);
   std::uniform_real_distribution<double> jitter(-0.2, 0.2);
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkFloatArray> scalars;
-  for (int k = 0; k <= n[2]; ++k)
-  {
-    for (int j = 0; j <= n[1]; ++j)
+  return SPTTestBlock::Make(
+    n,
+    [&](int i, int j, int k, vtkPoints* points, vtkFloatArray* scalars)
     {
-      for (int i = 0; i <= n[0]; ++i)
-      {
-        points->InsertNextPoint(i + jitter(random), j + jitter(random), k + jitter(random));
-        scalars->InsertNextValue(
-          static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
-      }
-    }
-  }
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  grid->SetPoints(points);
-  grid->GetPointData()->SetScalars(scalars);
-  auto id = [&](int i, int j, int k) { return vtkIdType(i + (n[0] + 1) * (j + (n[1] + 1) * k)); };
-  const int tets[2][5][4] = { { { 0, 1, 3, 5 }, { 0, 2, 6, 3 }, { 0, 4, 5, 6 }, { 3, 5, 6, 7 },
-                                { 0, 3, 6, 5 } },
-    { { 1, 0, 2, 4 }, { 1, 3, 7, 2 }, { 1, 5, 4, 7 }, { 2, 4, 7, 6 }, { 1, 2, 7, 4 } } };
-  for (int k = 0; k < n[2]; ++k)
-  {
-    for (int j = 0; j < n[1]; ++j)
-    {
-      for (int i = 0; i < n[0]; ++i)
-      {
-        if (i == 2 && k > 0)
-        {
-          continue; // the slot
-        }
-        vtkIdType c[8];
-        for (int corner = 0; corner < 8; ++corner)
-        {
-          c[corner] = id(i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1));
-        }
-        for (const auto& tet : tets[(i + j + k) % 2])
-        {
-          const vtkIdType ids[4] = { c[tet[0]], c[tet[1]], c[tet[2]], c[tet[3]] };
-          grid->InsertNextCell(VTK_TETRA, 4, ids);
-        }
-      }
-    }
-  }
-  return grid;
+      points->InsertNextPoint(i + jitter(random), j + jitter(random), k + jitter(random));
+      scalars->InsertNextValue(static_cast<float>(std::sin(0.9 * i) * std::cos(0.7 * j) + 0.3 * k));
+    },
+    [](int i, int, int k) { return i != 2 || k == 0; }, false); // the slot
 }
 
 vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double unitDistance)

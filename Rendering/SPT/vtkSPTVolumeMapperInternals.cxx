@@ -1,10 +1,10 @@
-// What a frame of vtkSPTVolumeMapper draws: its repetitions per traversal and depth slabs, as
-// the context, the image size and the depth keys' memory allow; how many repetitions, from the
-// time budget, the progressive accumulation and the error target's cap; and whether it draws
-// the exact coverage. The parallel render (vtkPSPTVolumeMapper) plans with these too, and its
-// ranks then agree on the fewest (PlanParallel()).
-#include "vtkSPTVolumeMapper.h"
+// vtkSPTVolumeMapper::vtkInternals, what a frame draws: its settings; its repetitions per
+// traversal and depth slabs, as the context, the image size and the depth keys' memory allow;
+// how many repetitions, from the time budget, the progressive accumulation and the error
+// target's cap; and whether it draws the exact coverage. The parallel render
+// (vtkPSPTVolumeMapper) plans with these too, its ranks agreeing on the fewest.
 #include "vtkSPTVolumeMapperInternals.h"
+#include "vtkSPTVolumeMapper.h"
 
 #include "vtkOpenGLLoader.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -78,8 +78,6 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
 {
   // The survivors of several repetitions per traversal, and every repetition of the visibility
   // estimator, are found with image atomics; without them, one survivor per traversal.
-  settings.Estimator = self->Estimator;
-  settings.DepthSlabs = 1;
   if ((self->RepetitionsPerPass > 1 || self->Estimator != SURVIVOR_ESTIMATOR ||
         self->DepthSlabs > 1) &&
     !vtkSPTDepthKeyBuffer::IsSupported(renWin))
@@ -98,6 +96,7 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
       this->WarnedNoSlabs = true;
     }
     settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.DepthSlabs = 1;
     return 1;
   }
   // The depth keys are a 3D texture of (repetition, sample): for a larger pass, the depth test
@@ -115,7 +114,7 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
   {
     return 0;
   }
-  settings.DepthSlabs = keysFit ? DepthSlabsThatFit(self->DepthSlabs, ensemble) : 1;
+  settings.DepthSlabs = keysFit ? settings.DepthSlabs : 1;
   return keysFit ? RepetitionsPerTraversal(self->RepetitionsPerPass, ensemble, settings.DepthSlabs,
                      this->DepthKeyBudget(renWin))
                  : 1;
@@ -148,27 +147,72 @@ void vtkSPTVolumeMapper::vtkInternals::ReportLargeImage(vtkSPTVolumeMapper* self
 }
 
 vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Plan(
-  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, bool pairs, std::vector<double> signature)
+  vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass, std::vector<double> signature,
+  vtkSPTFrame::Settings& settings, const AgreeOnPlan& agree)
 {
-  // What to draw: the repetitions that fit the time allotted, added to what is accumulated
-  // when refining progressively.
+  // When not even one group of repetitions fits, the visibility estimator one repetition at a
+  // time (a pair of traversals each, the coverage drawn with the colors; across ranks with
+  // keys, which the ranks combine, where one process finds the survivor by depth: the same
+  // image). When not even one pair fits, the cheapest frame: the paper's single passes, one
+  // traversal each, unbiased too; the exact coverage waits for a later frame.
   FramePlan plan;
   plan.PerPass = perPass;
-  plan.Kind = pairs ? Traversal::Pair : Traversal::Single;
-  plan.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
-  // When not even one group of repetitions fits, the visibility estimator one repetition at a
-  // time (a pair of traversals each, the coverage drawn with the colors). When not even one
-  // pair fits, the cheapest frame: the paper's single passes, one traversal each, unbiased too;
-  // the exact coverage waits for a later frame.
+  plan.Kind = settings.Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
+  PlanAgreement terms;
+  terms.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
+  terms.PerPass = plan.PerPass;
+  terms.SameImage = self->IsLastSignature(signature) ? 1 : 0;
+  terms.Pairs = plan.Kind == Traversal::Single ? 0 : 1;
+  int continued = terms.Count;
+  terms.First = self->ContinueAccumulation(std::move(signature), continued);
+  if (agree && !agree(terms))
+  {
+    terms.First = terms.Count = 0; // nothing drawn; a parallel frame's last exchange fails too
+  }
+  plan.First = terms.First;
+  plan.Count = plan.First > 0
+    ? std::min(terms.Count, self->MaximumProgressiveRepetitions - plan.First)
+    : terms.Count;
+  plan.PerPass = terms.PerPass;
+  plan.SameImage = terms.SameImage != 0;
+  plan.Kind = plan.PerPass > 1 ? Traversal::Group
+    : terms.Pairs != 0         ? Traversal::Pair
+                               : Traversal::Single;
   plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
-  plan.SameImage = self->IsLastSignature(signature);
-  plan.First = self->ContinueAccumulation(std::move(signature), plan.Count);
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
-  // it, and a new accumulation starts without it.
-  // Depth slabs weight their colors by the slabs' optical depths, which the coverage
-  // traversal adds up: drawn for them even without the exact coverage.
+  // it, and a new accumulation starts without it. Depth slabs weight their colors by the
+  // slabs' optical depths, which the coverage traversal adds up: drawn for them even without
+  // the exact coverage.
   plan.Coverage = this->DrawsCoverage(self, plan);
+  if (plan.Cheapest)
+  {
+    settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.DepthSlabs = 1;
+  }
   return plan;
+}
+
+vtkSPTFrame::Settings vtkSPTVolumeMapper::vtkInternals::FrameSettings(
+  vtkSPTVolumeMapper* self, vtkOpenGLRenderWindow* renWin, bool opaqueScene, bool globalIds)
+{
+  const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  vtkSPTFrame::Settings settings;
+  settings.Estimator = self->Estimator;
+  settings.DepthSlabs = DepthSlabsThatFit(self->DepthSlabs, ensemble);
+  settings.StratifiedSampling = self->StratifiedSampling != 0;
+  settings.SmallCellSize = self->SmallCellSize;
+  settings.SubpixelLevel = self->SubpixelLevel;
+  settings.Seed = self->Seed;
+  settings.OpaqueScene = opaqueScene;
+  settings.GlobalIds = globalIds;
+  const bool everyPoint = self->ComputeTraversal == COMPUTE_TRAVERSAL_ON;
+  settings.Compute = self->ComputeTraversal != COMPUTE_TRAVERSAL_OFF &&
+      this->Compute->IsWanted(
+        renWin, everyPoint, ensemble->GetPassWidth(), ensemble->GetPassHeight())
+    ? this->Compute.Get()
+    : nullptr;
+  settings.ComputeEveryPoint = everyPoint;
+  return settings;
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::DrawsCoverage(
