@@ -191,7 +191,7 @@ def test_notebook_shows_spt_and_turns_with_the_camera(notebook_page):
     iframe = _wait(lambda: driver.find_elements("css selector", ".jp-OutputArea-output iframe"),
                    "the output cell's frame", timeout=600)[0]
     source, first = _frame(driver, iframe)
-    cell = driver.find_element("css selector", ".jp-Cell:nth-child(2) .jp-OutputArea")
+    cell = iframe  # the output cell's view, as the page shows it (trame's menu included)
     cell.screenshot(str(OUTPUT / "notebook.png"))
     Image.fromarray(first).save(OUTPUT / "frame.png")
     before = json.loads(_kernel(driver, STATE))
