@@ -20,6 +20,10 @@
 #   make test-wheel  the wheels, then pip install of each (with vtk and pyvista from PyPI) in a
 #               fresh virtual environment of its Python without Debian's VTK, and its tests there
 #               without X
+#   make test-jupyter  SPT in a JupyterLab notebook in headless Chromium (.ci/jupyter): the wheel
+#               of dist/ (built by make wheel if missing) with pyvista[jupyter] in a fresh virtual
+#               environment (kept in JUPYTER_CACHE, default /var/cache/spt/jupyter), its image
+#               against the exact reference before and after a drag; screenshots in out/jupyter
 #   make sanitize  the C++ tests built with AddressSanitizer and UndefinedBehaviorSanitizer
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8), clang-format on every C++ file (.clang-format), and files of at most
@@ -74,7 +78,7 @@ PACKAGES = cmake ninja-build g++ make \
 
 .PHONY: all deps debian-root-deps configure build install demo pictures test test-egl test-debian13 \
 	test-debian-unstable \
-	build-vtk-wheel test-vtk-wheel wheel test-wheel sanitize lint bench-compare clean
+	build-vtk-wheel test-vtk-wheel wheel test-wheel jupyter-deps test-jupyter sanitize lint bench-compare clean
 
 all: build
 
@@ -192,6 +196,20 @@ test-wheel: deps
 	  echo "make test-wheel: $$python"; \
 	  SPT_WHEEL_PYTHON=$$python $(WHEEL_ENV) .ci/wheel --test || exit 1; \
 	done
+
+# The notebook test's browser: Debian's Chromium and its WebDriver (Selenium comes from PyPI).
+JUPYTER_PACKAGES = chromium chromium-driver
+JUPYTER_CACHE ?= /var/cache/spt/jupyter
+jupyter-deps:
+	$(call install_missing,$(JUPYTER_PACKAGES))
+
+# The wheel of Debian's Python from dist/ (make wheel builds it where it is missing; after a
+# change, make wheel first) in a notebook: .ci/jupyter.
+test-jupyter: deps jupyter-deps
+	@tag=$$($(PYTHON) -c 'import sys; print("cp%d%d" % sys.version_info[:2])'); \
+	  ls dist/spt_volume-*-$$tag-$$tag-*.whl >/dev/null 2>&1 || $(MAKE) wheel WHEEL_PYTHONS=$(PYTHON)
+	SPT_WHEEL_PYTHON=$(PYTHON) SPT_JUPYTER_CACHE=$(JUPYTER_CACHE) SPT_WHEEL_OUTPUT=$(CURDIR)/dist \
+	  .ci/jupyter
 
 # The C++ tests (the Python tests would need a sanitized interpreter) under ASan and UBSan.
 # Reports inside Mesa, X11 and VTK's own libraries are suppressed in Testing/Sanitizers;

@@ -18,11 +18,17 @@ Colour maps (any name PyVista knows, or a ``pyvista.LookupTable``), the opacity 
 ``flip_scalars``, ``log_scale`` and the scalar bar work as in PyVista. The mesh given is never
 modified: the mapper draws a copy, with the scalars on the points, split into tetrahedra
 where it has other cells.
+
+In a notebook, SPT draws in the kernel's VTK: PyVista's trame backends that render on the server
+(``'trame'``, the default, and ``'server'``) show its image and re-render it as the camera turns.
+The client-side ones (``'client'``, ``'html'``) send the scene to vtk.js in the browser, which
+has no SPT mapper; :func:`add_volume` warns when one of them is chosen (:func:`check_backend`).
 """
 
 from __future__ import annotations
 
 import sys
+import warnings
 from typing import Any, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -34,6 +40,40 @@ from .render import DEFAULT_TARGET_ERROR
 
 #: The mappers :func:`add_volume` can draw with (``method=``).
 METHODS = ("spt", "havs", "pbvr")
+
+
+#: PyVista's notebook backends that render in the browser (vtk.js), without SPT.
+CLIENT_SIDE_BACKENDS = ("client", "html")
+
+
+class ClientSideRenderingWarning(UserWarning):
+    """A notebook backend that renders in the browser, where SPT's mapper does not exist."""
+
+
+def check_backend(plotter: pyvista.Plotter) -> Optional[str]:
+    """Warn (:class:`ClientSideRenderingWarning`) where ``plotter``, in a notebook, would show
+    its scene through vtk.js in the browser: its theme's Jupyter backend is ``'client'`` or
+    ``'html'``, or trame's default view mode is ``'client'``. vtk.js has no SPT mapper, so the
+    volume would be drawn by something else or not at all; the warning names the backend that
+    shows SPT's image, ``'server'``. Returns the warning's text, or None (outside a notebook,
+    where no backend is used, too)."""
+    if not getattr(plotter, "notebook", False):
+        return None
+    theme = plotter.theme
+    backend = str(theme.jupyter_backend or "").lower()
+    mode = str(getattr(theme.trame, "default_mode", "") or "").lower()
+    if backend in CLIENT_SIDE_BACKENDS:
+        what = f"the Jupyter backend '{backend}'"
+    elif backend in ("trame", "server") and mode == "client":
+        what = "trame's default view mode 'client' (pyvista.global_theme.trame.default_mode)"
+    else:
+        return None
+    text = (f"SPT draws its volume in the kernel's VTK, but {what} renders in the browser "
+            "with vtk.js, which has no SPT mapper: the notebook would show another image or "
+            "none. Use pv.set_jupyter_backend('server') (or plotter.show(jupyter_backend="
+            "'server')) to see SPT's image, re-rendered by SPT as the camera turns.")
+    warnings.warn(text, ClientSideRenderingWarning, stacklevel=3)
+    return text
 
 
 def default_opacity_unit_distance(mesh: pyvista.DataSet) -> float:
@@ -177,6 +217,7 @@ def add_volume(plotter: pyvista.Plotter, mesh: Any, scalars: Any = None, clim=No
     unknown = set(property_args) - {"ambient", "diffuse", "specular", "specular_power", "shade"}
     if unknown:
         raise TypeError(f"unexpected arguments: {', '.join(sorted(unknown))}")
+    check_backend(plotter)
     mesh = as_dataset(mesh)
     # The unit distance of the mesh's own cells (an image's: PyVista's), before the split.
     unit = opacity_unit_distance or default_opacity_unit_distance(mesh)
