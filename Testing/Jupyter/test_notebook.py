@@ -17,6 +17,7 @@ import pytest
 from PIL import Image
 
 import lab
+from camera_state import vtk_camera
 
 TARGET_ERROR = 0.005
 QUALITY = 98  # trame's still-image JPEG quality (trame_vtk's VtkRemoteView still_quality)
@@ -107,17 +108,11 @@ def _reference(state):
     import pyvista as pv
     import spt.pyvista
     from spt import data, raycast
-    from vtkmodules.vtkRenderingCore import vtkCamera
     plotter = pv.Plotter(off_screen=True, window_size=state["size"])
     actor = spt.pyvista.add_volume(plotter, pv.wrap(data.make_default_mesh()), cmap="viridis",
                                    show_scalar_bar=False)
-    camera = vtkCamera()
-    camera.SetPosition(state["position"])
-    camera.SetFocalPoint(state["focal_point"])
-    camera.SetViewUp(state["view_up"])
-    camera.SetViewAngle(state["view_angle"])
-    camera.SetClippingRange(state["clipping_range"])
-    exact = raycast.render(actor.mapper.GetInput(), actor.prop, camera, tuple(state["size"]))
+    exact = raycast.render(actor.mapper.GetInput(), actor.prop, vtk_camera(state),
+                           tuple(state["size"]))
     plotter.close()
     return exact
 

@@ -10,6 +10,7 @@ import sys
 
 import numpy as np
 
+from camera_state import vtk_camera
 from spt import metrics, opengl_window, raycast
 
 SIZE = (120, 120)
@@ -47,17 +48,6 @@ def _run(tmp_path, **environment):
     return json.loads(result.stdout), result.stderr, np.load(tmp_path / "image.npy")
 
 
-def _camera(state):
-    from vtkmodules.vtkRenderingCore import vtkCamera
-    camera = vtkCamera()
-    camera.SetPosition(state["position"])
-    camera.SetFocalPoint(state["focal_point"])
-    camera.SetViewUp(state["view_up"])
-    camera.SetViewAngle(state["view_angle"])
-    camera.SetClippingRange(state["clipping_range"])
-    return camera
-
-
 def test_off_screen_plot_without_display_prints_nothing_about_x(tmp_path):
     state, stderr, image = _run(tmp_path)
     assert "X server" not in stderr and "vtkXOpenGLRenderWindow" not in stderr, stderr
@@ -71,7 +61,7 @@ def test_off_screen_plot_without_display_prints_nothing_about_x(tmp_path):
     mesh = pv.wrap(data.make_default_mesh())
     plotter = pv.Plotter(off_screen=True, window_size=SIZE)
     actor = spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False)
-    exact = raycast.render(actor.mapper.GetInput(), actor.prop, _camera(state), SIZE)
+    exact = raycast.render(actor.mapper.GetInput(), actor.prop, vtk_camera(state), SIZE)
     plotter.close()
     assert exact[..., 3].max() > 0.5
     assert metrics.rmse(image / 255.0, exact) <= 0.005 + 1.0 / 255.0 / np.sqrt(12.0)
