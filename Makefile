@@ -242,10 +242,10 @@ lint: deps
 	$(PYTHON) -m pytest -q -p no:cacheprovider Utilities/Testing/test_check_lengths.py
 
 # The race of the current tree (the head) against that of BASE, side by side on this machine
-# (Utilities/BenchCompare, Documentation/bench/compare.md): both built alike into prefixes of
+# (Utilities/BenchCompare): both built alike into prefixes of
 # their own under out/bench-compare, then RUNS races of each, alternately, of the scenes SCENES
 # (which must exist in both) at SIZE x SIZE; compare.json and a table of SPT's time to VTK PT's
-# error, head over base.
+# error, head over base. Scenes other than the generated drill-* read SPT_DATA_DIR.
 BASE ?=
 SCENES ?= spx,bluntfin
 RUNS ?= 2

@@ -205,8 +205,20 @@ def parse(argv: Optional[Sequence[str]] = None) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
+def check_data(scenes: Sequence[str]) -> None:
+    """A ValueError before anything is built if a scene reads the real data sets (all but
+    the generated ``drill-*`` meshes) and ``SPT_DATA_DIR`` names no folder."""
+    folder = os.environ.get("SPT_DATA_DIR", "")
+    needing = [name for name in scenes if not name.startswith("drill-")]
+    if needing and not os.path.isdir(folder):
+        raise ValueError(f"the scenes {', '.join(needing)} read the real data sets, and "
+                         f"SPT_DATA_DIR={folder!r} names no folder: "
+                         "make bench-compare SPT_DATA_DIR=<folder of the data sets> ...")
+
+
 def compare(arguments: argparse.Namespace) -> comparison.Record:
     """Build both sides, race them alternately and write compare.json; returns it."""
+    check_data(arguments.scenes)
     output = arguments.output = arguments.output.resolve()
     base_commit = commit_of(arguments.base)
     commits = {"head": git("rev-parse", "HEAD"), "base": base_commit,
