@@ -257,7 +257,7 @@ def test_input_changes_release_windows_and_resizes(have_display):
 
 def test_an_image_wider_than_3d_textures_draws_the_same_image(have_display):
     """The depth keys of several repetitions and the compute traversal's sums are 3D textures
-    of (lane, sample), at most GL_MAX_3D_TEXTURE_SIZE per side (2048 on llvmpipe). A wider
+    of (repetition, sample), at most GL_MAX_3D_TEXTURE_SIZE per side (2048 on llvmpipe). A wider
     image draws one repetition per traversal pair, with the depth test, and rasterizes every
     cell: the image of RepetitionsPerPass 1, with a warning. The error target needs the keys:
     a clear error there."""

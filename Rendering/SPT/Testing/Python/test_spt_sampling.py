@@ -280,7 +280,7 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
 def test_depth_keys_follow_the_device_memory(have_display):
     """On a software rasterizer the depth keys' budget is an eighth of the host's memory (at
     most 1 GiB): at 1024 x 1024, 64 repetitions are one group, where a fixed 128 MiB would
-    hold 32. The GPU memory counts the keys of the lanes drawn per traversal."""
+    hold 32. The GPU memory counts the keys of the repetitions drawn per traversal."""
     size, level = 1024, 64
     s = _scene()
     memory = {}
