@@ -28,8 +28,8 @@
 #   make lint   the same set-up, then the format and lint checks: flake8 on the Python
 #               (.flake8), clang-format on every C++ file (.clang-format), and files of at most
 #               600 lines with functions of at most 60 (Utilities/check_lengths.py)
-#   make bench-compare BASE=<git ref>  the race of this tree and of BASE, each built into its
-#               own prefix, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
+#   make bench-compare BASE=<git ref>  the race of this tree and of BASE, each built in its
+#               own tree, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
 # build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
@@ -242,8 +242,8 @@ lint: deps
 	$(PYTHON) -m pytest -q -p no:cacheprovider Utilities/Testing/test_check_lengths.py
 
 # The race of the current tree (the head) against that of BASE, side by side on this machine
-# (Utilities/BenchCompare): both built alike into prefixes of
-# their own under out/bench-compare, then RUNS races of each, alternately, of the scenes SCENES
+# (Utilities/BenchCompare): both built alike, each in a build tree of its own under
+# out/bench-compare and run from it, then RUNS races of each, alternately, of the scenes SCENES
 # (which must exist in both) at SIZE x SIZE; compare.json and a table of SPT's time to VTK PT's
 # error, head over base. Scenes other than the generated drill-* read SPT_DATA_DIR.
 BASE ?=

@@ -1,15 +1,15 @@
 """Compare the race of the current tree (the head) with that of a base commit, side by side on
 this machine: ``make bench-compare BASE=<git ref> SCENES=<race scenes>``.
 
-Both are built alike, each in a build folder and an install prefix of its own under OUTPUT
-(the base from its own source tree, ``git archive`` of BASE). Then the race
-(``python3 -m spt bench --sections race``) runs RUNS times for each, alternately (head, base,
-head, base, ...), each run in a process of its own whose PYTHONPATH and LD_LIBRARY_PATH name
-only its own prefix; each run records the package and the libraries its process loaded, and
-the comparison stops if any lies outside that prefix. Each side runs its own benchmark code,
-so the scenes (and options) asked for must exist in both. The runs' figures, the medians and
-the head's ratio over the base's (comparison.py) go to OUTPUT/compare.json, and the table is
-printed.
+Both are built alike, each in a build folder of its own under OUTPUT (the base from its own
+source tree, ``git archive`` of BASE). Then the race (``python3 -m spt bench --sections race``)
+runs RUNS times for each, alternately (head, base, head, base, ...), each run in a process of
+its own whose PYTHONPATH and LD_LIBRARY_PATH name only its own build tree (which holds the
+package and its libraries as an install would); each run records the package and the
+libraries its process loaded, and the comparison stops if any lies outside that tree. Each
+side runs its own benchmark code, so the scenes (and options) asked for must exist in both. The
+runs' figures, the medians and the head's ratio over the base's (comparison.py) go to
+OUTPUT/compare.json, and the table is printed.
 """
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ BUILD_OPTIONS = ("-DCMAKE_BUILD_TYPE=Release", "-DBUILD_SHARED_LIBS=ON", "-DBUIL
 
 @dataclasses.dataclass
 class Side:
-    """One of the two builds compared: its sources, build folder and install prefix."""
+    """One of the two builds compared: its sources and its build folder."""
 
     name: str
     source: pathlib.Path
@@ -45,10 +45,6 @@ class Side:
     @property
     def build(self) -> pathlib.Path:
         return self.folder / "build"
-
-    @property
-    def prefix(self) -> pathlib.Path:
-        return self.folder / "prefix"
 
 
 def git(*arguments: str) -> str:
@@ -93,7 +89,7 @@ def logged(command: Sequence[str], log: pathlib.Path, **options) -> None:
 
 
 def build(side: Side, vtk_dir: str, python: str, jobs: int) -> None:
-    """Configure, build (niced) and install one side into its own prefix."""
+    """Configure and build (niced) one side in its own build folder."""
     side.folder.mkdir(parents=True, exist_ok=True)
     launcher = (["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache", "-DCMAKE_C_COMPILER_LAUNCHER=ccache"]
                 if shutil.which("ccache") else [])
@@ -103,21 +99,20 @@ def build(side: Side, vtk_dir: str, python: str, jobs: int) -> None:
           flush=True)
     logged(["cmake", "-S", str(side.source), "-B", str(side.build), "-G", "Ninja",
             f"-DVTK_DIR={vtk_dir}", f"-DPython3_EXECUTABLE={python}",
-            f"-DCMAKE_INSTALL_PREFIX={side.prefix}", *BUILD_OPTIONS, *launcher],
+            *BUILD_OPTIONS, *launcher],
            side.folder / "configure.log", env=environment)
     logged(["nice", "-n", "5", "cmake", "--build", str(side.build), "-j", str(jobs)],
            side.folder / "build.log", env=environment)
-    logged(["cmake", "--install", str(side.build)], side.folder / "install.log")
 
 
 def site_folder(side: Side) -> pathlib.Path:
-    """Where the side's install put the package spt (SPT_PYTHON_SITE_DIR of its build)."""
+    """Where the side's build tree holds the package spt (SPT_PYTHON_SITE_DIR of its build)."""
     for line in (side.build / "CMakeCache.txt").read_text(encoding="utf-8").splitlines():
         if line.startswith("SPT_PYTHON_SITE_DIR:"):
-            folder = side.prefix / line.split("=", 1)[1]
+            folder = side.build / line.split("=", 1)[1]
             if (folder / "spt" / "__init__.py").exists():
                 return folder
-    raise RuntimeError(f"no package spt installed in {side.prefix}")
+    raise RuntimeError(f"no package spt built in {side.build}")
 
 
 def run_environment(side: Side) -> Dict[str, str]:
@@ -125,14 +120,14 @@ def run_environment(side: Side) -> Dict[str, str]:
     environment = {key: value for key, value in os.environ.items()
                    if key not in ("PYTHONPATH", "LD_LIBRARY_PATH", "PYTHONHOME")}
     environment.update(PYTHONPATH=str(site_folder(side)),
-                       LD_LIBRARY_PATH=str(side.prefix / "lib"),
+                       LD_LIBRARY_PATH=str(side.build / "lib"),
                        SPT_CACHE_DIR=str(side.folder / "meshes"), PYTHONDONTWRITEBYTECODE="1")
     return environment
 
 
-def foreign(loaded: Dict[str, object], prefix: pathlib.Path) -> List[str]:
-    """The package folder and libraries of a run's record that are not in ``prefix``."""
-    root = str(prefix.resolve()) + os.sep
+def foreign(loaded: Dict[str, object], tree: pathlib.Path) -> List[str]:
+    """The package folder and libraries of a run's record that are not in ``tree``."""
+    root = str(tree.resolve()) + os.sep
     paths = [str(loaded["package"])] + [str(path) for path in loaded["libraries"]]
     return [path for path in paths if not path.startswith(root)]
 
@@ -159,10 +154,10 @@ def race_run(side: Side, index: int, arguments: argparse.Namespace, python: str
     print(f"bench-compare: race {index} of the {side.name} (load {load[0]:.1f})", flush=True)
     logged(command, folder / "race.log", env=run_environment(side), cwd=folder)
     loaded = json.loads((folder / "loaded.json").read_text(encoding="utf-8"))
-    outside = foreign(loaded, side.prefix)
+    outside = foreign(loaded, side.build)
     if outside or not loaded["libraries"]:
         raise RuntimeError(f"the {side.name}'s race loaded {outside or 'no SPT library'}, "
-                           f"not only its own prefix {side.prefix}")
+                           f"not only its own build tree {side.build}")
     bench = json.loads((folder / "bench.json").read_text(encoding="utf-8"))
     race = comparison.race_of(bench, arguments.scenes, arguments.size)
     return {"side": side.name, "index": index, "folder": str(folder), "loaded": loaded,

@@ -7,7 +7,7 @@ runs ``spt``'s own command line with the arguments after LOADED.json, exactly as
 ``python3 -m spt`` would, then writes LOADED.json: the package's folder, and every mapped
 file of this process that is one of the project's libraries (``libSPT*``) or lies in the
 package's folder (its wrapped extension modules). The comparison checks those against the
-prefix it built, so that a run cannot silently measure another build's libraries.
+build tree it built, so that a run cannot silently measure another build's libraries.
 """
 
 from __future__ import annotations
