@@ -1,8 +1,9 @@
 # Quick start on a fresh Debian 12 machine (as root, or with sudo):
-#   make demo   install what is missing, build, install, and run the demo (out/demo): SPT,
-#               VTK's projected tetrahedra and HAVS-like against the exact reference on
-#               interpenetrating volumes and on a drill of 10^6 tetrahedra
-#   make pictures  the README's pictures (Documentation/images), from the installed package
+#   make demo   install what is missing, build, install, and run the demo (out/demo) from the
+#               build tree (build/bin/spt-python): SPT, VTK's projected tetrahedra and HAVS-like
+#               against the exact reference on interpenetrating volumes and on a drill of 10^6
+#               tetrahedra
+#   make pictures  the README's pictures (Documentation/images), from the build tree
 #   make test   the same set-up, then every test (ctest, which also runs the Python tests)
 #   make test-egl  without X (no Xvfb, no DISPLAY): the tests of what differs there (ctest label
 #               egl: the EGL window, and each mapper against the exact reference in it);
@@ -115,11 +116,15 @@ install: build
 	$(SUDO) cmake --install $(BUILD)
 	$(SUDO) ldconfig
 
+# The demo and the pictures are experiments, which the build tree holds and an install does not:
+# its interpreter runs them (the package and libraries of the build tree).
+SPT_PYTHON = $(abspath $(BUILD))/bin/spt-python
+
 demo: install
-	cd /tmp && $(XVFB) $(PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
+	cd /tmp && $(XVFB) $(SPT_PYTHON) -m spt demo --output $(abspath $(DEMO_OUTPUT))
 
 pictures: install
-	cd /tmp && $(XVFB) $(PYTHON) -m spt figures readme --output $(CURDIR)/Documentation/images \
+	cd /tmp && $(XVFB) $(SPT_PYTHON) -m spt figures readme --output $(CURDIR)/Documentation/images \
 	  --bench $(CURDIR)/Documentation/bench/bench.json
 
 test: install

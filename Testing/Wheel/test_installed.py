@@ -97,8 +97,8 @@ def test_command_line_without_meshing_names_the_module(tmp_path):
     # An empty mesh cache: a drill meshed earlier (by a build with TetGen) would be read back.
     environment = dict(os.environ, SPT_CACHE_DIR=str(tmp_path / "cache"))
     result = subprocess.run(
-        [sys.executable, "-m", "spt", "demo", "--dataset", "drill", "--size", "32",
-         "--output", str(tmp_path)], capture_output=True, text=True, timeout=600,
+        [sys.executable, "-m", "spt", "mesh", "--shape", "drill", "--cells", "20000",
+         "--output", str(tmp_path / "drill.vtk")], capture_output=True, text=True, timeout=600,
         env=environment)
     assert result.returncode != 0
     assert "TetGen" in result.stderr and "Traceback" not in result.stderr, result.stderr

@@ -2,6 +2,7 @@
 
 import os
 import subprocess
+import sys
 
 import pytest
 import vtk
@@ -110,6 +111,37 @@ def test_installed_package_imports_from_any_directory(tmp_path):
         ["/usr/bin/python3", "-c", "import spt; print(spt.__file__)"], cwd=tmp_path, env=env,
         capture_output=True, text=True, check=True).stdout
     assert "dist-packages" in location and "/build/" not in location, location
+
+
+def installed_python():
+    """The interpreter and environment of the installed package: the wheel's virtual
+    environment (SPT_WHEEL_VTK_VERSION), or Debian's python3 after `make install`
+    (SPT_TEST_INSTALLED=1), without the build tree on PYTHONPATH; else the test is skipped."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    if os.environ.get("SPT_WHEEL_VTK_VERSION"):
+        return sys.executable, env
+    if os.environ.get("SPT_TEST_INSTALLED") == "1":
+        return "/usr/bin/python3", env
+    pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+
+
+def test_installed_package_is_the_library_without_the_experiments(tmp_path):
+    """An install and the wheel ship the library: no spt.experiments, and the experiments'
+    commands say where they run instead of failing on an import; the library's command runs."""
+    python, env = installed_python()
+    found = subprocess.run(
+        [python, "-c", "import importlib.util as u; print(u.find_spec('spt.experiments'))"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, check=True).stdout
+    assert found.strip() == "None", found
+    for command in ("demo", "bench", "figures"):
+        result = subprocess.run([python, "-m", "spt", command, "--output", str(tmp_path)],
+                                cwd=tmp_path, env=env, capture_output=True, text=True)
+        assert result.returncode == 2, result.stderr
+        assert f"spt-python -m spt {command}" in result.stderr, result.stderr
+        assert "Traceback" not in result.stderr, result.stderr
+    mesh = subprocess.run([python, "-m", "spt", "mesh", "--help"], cwd=tmp_path, env=env,
+                          capture_output=True, text=True)
+    assert mesh.returncode == 0 and "--cells" in mesh.stdout, mesh.stderr
 
 
 CONSUMER_CMAKE = """

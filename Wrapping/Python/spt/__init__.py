@@ -14,7 +14,8 @@ generated drill and torus meshes at any size, cached on disk), ``spt.scenes`` (n
 ``spt.render`` (rendering helpers and the reference), ``spt.raycast`` (the exact ray caster)
 and ``spt.metrics`` (image error); ``spt.opengl_window`` names the window VTK makes without an X
 display. ``python3 -m spt`` is the command line. Apart from the
-library, ``spt.experiments`` holds the demo, the benchmark and the paper's figures.
+library, ``spt.experiments`` holds the demo, the benchmark and the paper's figures: in the source
+and build trees only (``build/bin/spt-python -m spt demo``), not in an install or the wheel.
 """
 
 # A wheel loads the vtk installed beside it: first, that it is one the wheel was built for.

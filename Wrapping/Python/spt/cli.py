@@ -1,12 +1,15 @@
 """``python3 -m spt``: the demo, the paper's figures and the benchmark from the command line.
 
 The commands' work is in the library (``mesh``) and in :mod:`spt.experiments` (``demo``,
-``bench``, ``figures``), imported only when its command runs.
+``bench``, ``report``, ``figures``), imported only when its command runs. The experiments live
+in the source and build trees only (``build/bin/spt-python -m spt demo``): an install and the
+wheel ship the library.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import os
 import pathlib
 import sys
@@ -468,8 +471,26 @@ _FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
             "sorting": _sorting, "accuracy": _accuracy, "readme": _readme}
 
 
+def _without_experiments(argv: Sequence[str]) -> Optional[str]:
+    """Why the command of ``argv`` cannot run here: it is one of the experiments' and this
+    package (an install, a wheel) has none; None where it can run."""
+    command = next((word for word in argv if not word.startswith("-")), None)
+    if command not in ("demo", "bench", "report", "figures"):
+        return None
+    if importlib.util.find_spec(f"{__package__}.experiments") is not None:
+        return None
+    return (f"'{command}' is one of the experiments (the demo, the benchmark, the paper's "
+            f"figures), which an installed package does not hold: run it from a build of the "
+            f"source tree, as build/bin/spt-python -m spt {command}")
+
+
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; returns the exit status."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    missing = _without_experiments(argv)
+    if missing:
+        print(f"python3 -m spt: error: {missing}", file=sys.stderr)
+        return 2
     arguments = _parser().parse_args(argv)
     if getattr(arguments, "data_dir", None) is not None:
         # Through the environment, so that the processes a command starts (the benchmark's
