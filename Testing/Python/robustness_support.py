@@ -46,6 +46,24 @@ def check_clamped_setting(obj, name: str, default, low, high) -> None:
     assert get() == high, name
 
 
+def named_array(values, name: str):
+    """A VTK array of ``values`` (one tuple per row), deep-copied, named ``name``."""
+    array = numpy_to_vtk(np.asarray(values), deep=True)
+    array.SetName(name)
+    return array
+
+
+def with_point_scalars(grid, values, name: str):
+    """``grid`` with ``values`` as its point scalars, named ``name``."""
+    grid.GetPointData().SetScalars(named_array(values, name))
+    return grid
+
+
+def with_constant_scalars(grid, value: float = 0.25):
+    """``grid`` with the point scalars "constant", ``value`` everywhere (a zero range)."""
+    return with_point_scalars(grid, np.full(grid.GetNumberOfPoints(), value), "constant")
+
+
 def tetrahedra(points, cells, scalars=None, name="s", cell_type=vtk.VTK_TETRA):
     """An unstructured grid of tetrahedra (or of `cell_type`) from point and cell lists."""
     grid = vtk.vtkUnstructuredGrid()
@@ -56,9 +74,7 @@ def tetrahedra(points, cells, scalars=None, name="s", cell_type=vtk.VTK_TETRA):
     for cell in cells:
         grid.InsertNextCell(cell_type, len(cell), list(cell))
     if scalars is not None:
-        array = numpy_to_vtk(np.asarray(scalars, dtype=np.float64), deep=True)
-        array.SetName(name)
-        grid.GetPointData().SetScalars(array)
+        with_point_scalars(grid, np.asarray(scalars, dtype=np.float64), name)
     return grid
 
 
@@ -73,6 +89,19 @@ def split_image(image: vtk.vtkImageData) -> vtk.vtkUnstructuredGrid:
     return grid
 
 
+def watched_render(mapper, grid, prop=None, size: Sequence[int] = (96, 96),
+                   view: Optional[render.View] = None):
+    """Render ``grid`` through ``mapper`` (with ``prop``, property_for() by default, from
+    ``view``, azimuth and elevation 30 by default): the rendering and the mapper's errors and
+    warnings. The input must be exactly as it was (assert_unchanged)."""
+    messages = watch(mapper)
+    before = snapshot(grid)
+    rendering = render.render(grid, prop or property_for(), mapper, view or render.View(30, 30),
+                              size)
+    assert_unchanged(grid, before)
+    return rendering, messages
+
+
 def check_second_window(volume: vtk.vtkVolume, size: Sequence[int], messages) -> None:
     """The volume's mapper draws in a second window too, without an error."""
     other, other_renderer = render.make_window(*size)
@@ -83,19 +112,26 @@ def check_second_window(volume: vtk.vtkVolume, size: Sequence[int], messages) ->
     assert not messages.errors
 
 
-def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
-    """Blue to orange over [low, high], constant opacity, the given unit distance."""
+def volume_property(colors, opacities, unit: float = 1.0) -> vtk.vtkVolumeProperty:
+    """A volume property of the color points (x, r, g, b), the opacity points (x, a) and the
+    unit distance."""
     color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(low, 0.2, 0.4, 1.0)
-    color.AddRGBPoint(high, 1.0, 0.6, 0.2)
-    alpha = vtk.vtkPiecewiseFunction()
-    alpha.AddPoint(low, opacity)
-    alpha.AddPoint(high, opacity)
+    for point in colors:
+        color.AddRGBPoint(*point)
+    opacity = vtk.vtkPiecewiseFunction()
+    for point in opacities:
+        opacity.AddPoint(*point)
     prop = vtk.vtkVolumeProperty()
     prop.SetColor(color)
-    prop.SetScalarOpacity(alpha)
+    prop.SetScalarOpacity(opacity)
     prop.SetScalarOpacityUnitDistance(unit)
     return prop
+
+
+def property_for(low=0.0, high=1.0, unit=1.0, opacity=0.8):
+    """Blue to orange over [low, high], constant opacity, the given unit distance."""
+    return volume_property([(low, 0.2, 0.4, 1.0), (high, 1.0, 0.6, 0.2)],
+                           [(low, opacity), (high, opacity)], unit)
 
 
 UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
@@ -105,15 +141,7 @@ ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 def property_with_points(points: int) -> vtk.vtkVolumeProperty:
     """A volume property whose color and opacity functions have no point (``points`` 0) or
     one point (``points`` 1)."""
-    prop = vtk.vtkVolumeProperty()
-    color = vtk.vtkColorTransferFunction()
-    opacity = vtk.vtkPiecewiseFunction()
-    if points:
-        color.AddRGBPoint(0.5, 1.0, 0.5, 0.0)
-        opacity.AddPoint(0.5, 0.7)
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    return prop
+    return volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
 
 
 def snapshot(grid: vtk.vtkDataSet) -> Dict[str, object]:

@@ -2,6 +2,7 @@
 
 from functools import lru_cache
 
+import numpy as np
 import vtk
 
 from spt import data, render, scenes
@@ -50,29 +51,45 @@ def opaque_plane(grid):
     return actor
 
 
-def with_moved_copy(grid, offset):
-    """``grid`` and a copy of it moved by ``offset``, appended into one grid: the union that
-    two volumes of ``grid`` show when the second's vtkVolume is moved by ``offset``."""
+def moved_copy(grid, offset):
+    """A copy of ``grid`` with its points moved by ``offset``."""
     transform = vtk.vtkTransform()
     transform.Translate(*offset)
     moved = vtk.vtkTransformFilter()
     moved.SetInputData(grid)
     moved.SetTransform(transform)
+    moved.Update()
+    return moved.GetOutput()
+
+
+def with_moved_copy(grid, offset):
+    """``grid`` and a copy of it moved by ``offset``, appended into one grid: the union that
+    two volumes of ``grid`` show when the second's vtkVolume is moved by ``offset``."""
     union = vtk.vtkAppendFilter()
     union.AddInputData(grid)
-    union.AddInputConnection(moved.GetOutputPort())
+    union.AddInputData(moved_copy(grid, offset))
     union.Update()
     return union.GetOutput()
 
 
-def window_with(mapper, size: int, name: str = "default"):
-    """A window showing the named scene through ``mapper``, with a property of its own (the
-    tests change it)."""
+def window_with(mapper, size: int, name: str = "default", prop=None, view=None):
+    """A size x size window showing the named scene through ``mapper`` from its view (or
+    ``view``), with ``prop`` or else a property of its own (the tests change it)."""
     s = scene(name)
     window, renderer = render.make_window(size, size)
-    render.add_volume(renderer, s.grid, data.default_transfer_function(s.grid), mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    if prop is None:
+        prop = data.default_transfer_function(s.grid)
+    render.add_volume(renderer, s.grid, prop, mapper)
+    render.place_camera(renderer, s.grid.GetBounds(), view or s.view)
     return window, renderer
+
+
+def draw_once(window):
+    """Render ``window`` once and return its image; the window is finalized."""
+    window.Render()
+    image = render.read_rgba(window)
+    window.Finalize()
+    return image
 
 
 def render_at_still_rate(window) -> None:
@@ -81,3 +98,23 @@ def render_at_still_rate(window) -> None:
     interactor = vtk.vtkRenderWindowInteractor()  # Not attached: the window may have no X.
     window.SetDesiredUpdateRate(interactor.GetStillUpdateRate())
     window.Render()
+
+
+def bilinear_upsampled(image, factor: int):
+    """Bilinear interpolation of an image to ``factor`` times its size, as the mappers' resolve
+    does: each pixel center of the larger image placed in the smaller one, its four neighbors
+    mixed, the indices clamped at the borders."""
+    height, width = image.shape[:2]
+
+    def axis(n):
+        position = (np.arange(n * factor) + 0.5) / factor - 0.5
+        low = np.floor(position).astype(int)
+        weight = position - low
+        return np.clip(low, 0, n - 1), np.clip(low + 1, 0, n - 1), weight
+
+    y0, y1, wy = axis(height)
+    x0, x1, wx = axis(width)
+    wx = wx[None, :, None]
+    top = image[y0][:, x0] * (1 - wx) + image[y0][:, x1] * wx
+    bottom = image[y1][:, x0] * (1 - wx) + image[y1][:, x1] * wx
+    return top * (1 - wy[:, None, None]) + bottom * wy[:, None, None]

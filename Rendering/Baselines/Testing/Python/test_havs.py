@@ -13,13 +13,13 @@ from functools import lru_cache
 import numpy as np
 import pytest
 import vtk
-from vtkmodules.util.numpy_support import numpy_to_vtk
 
 import spt
 from spt import data, metrics, render
 
 from robustness_support import (ONE, check_clamped_setting, check_second_window, opaque_plane,
-                                property_for, split_image, watch)
+                                property_for, split_image, watch, watched_render,
+                                with_point_scalars)
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -34,10 +34,7 @@ def block(cells=(6, 6, 6), origin=(0.0, 0.0, 0.0)):
     center = np.asarray(origin) + 0.5 * np.asarray(cells)
     field = np.exp(-np.sum(((points - center) / (0.35 * np.asarray(cells))) ** 2, axis=1))
     field += 0.3 * np.sin(0.7 * points[:, 0])
-    array = numpy_to_vtk(field.astype(np.float32), deep=True)
-    array.SetName("f")
-    image.GetPointData().SetScalars(array)
-    return split_image(image)
+    return split_image(with_point_scalars(image, field.astype(np.float32), "f"))
 
 
 @lru_cache(maxsize=None)
@@ -188,12 +185,8 @@ def test_automatic_synchronization_and_time_split(have_display):
 def draw(grid, prop=None, mapper=None):
     """Render with a HAVS mapper; returns (image, mapper, messages). The input must not change."""
     mapper = mapper or render.havs_mapper()
-    messages = watch(mapper)
-    before = grid.GetMTime()
-    image = render.render(grid, prop or property_for(), mapper, render.View(30, 30),
-                          (96, 96)).image
-    assert grid.GetMTime() == before, "the input was modified"
-    return image, mapper, messages
+    rendering, messages = watched_render(mapper, grid, prop)
+    return rendering.image, mapper, messages
 
 
 def test_one_tetrahedron_renders(have_display):

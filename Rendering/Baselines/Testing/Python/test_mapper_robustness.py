@@ -15,14 +15,16 @@ import math
 import numpy as np
 import pytest
 import vtk
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import metrics, render
 
 import image_statistics
-from robustness_support import (ONE, UNIT_TETRAHEDRON, assert_unchanged, property_for,
-                                property_with_points, render_scaled, scaled_copy, snapshot,
-                                split_image, tetrahedra, watch)
+from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for,
+                                property_with_points, render_scaled, scaled_copy, split_image,
+                                tetrahedra, watch, watched_render, with_constant_scalars,
+                                with_point_scalars)
+from scene_support import draw_once
 
 SIZE = (64, 64)
 VIEW = render.View(30, 30)
@@ -42,12 +44,9 @@ def draw(kind, grid, prop=None, mapper=None, seed=1, size=SIZE):
     """Render with a fresh mapper of `kind` (or `mapper`); returns (image, mapper, messages).
     The input must be unchanged afterwards."""
     mapper = mapper or make_mapper(kind, seed)
-    messages = watch(mapper)
-    before = snapshot(grid)
-    image = render.render(grid, prop or property_for(), mapper, VIEW, size).image
-    assert_unchanged(grid, before)
-    assert np.isfinite(image).all()
-    return image, mapper, messages
+    rendering, messages = watched_render(mapper, grid, prop, size, VIEW)
+    assert np.isfinite(rendering.image).all()
+    return rendering.image, mapper, messages
 
 
 def assert_matches_reference(kind, grid, prop, havs_rmse, pbvr_bias):
@@ -91,14 +90,8 @@ def field_grid(cells=(3, 3, 3), array_name="f"):
     image.SetDimensions(*(n + 1 for n in cells))
     points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
     values = 0.5 + 0.5 * np.sin(points[:, 0] + 0.7 * points[:, 1] - 0.4 * points[:, 2])
-    field = numpy_to_vtk(values, deep=True)
-    field.SetName(array_name)
-    image.GetPointData().SetScalars(field)
-    grid = split_image(image)
-    centers = np.arange(grid.GetNumberOfCells()) % 5 / 4.0
-    cell_field = numpy_to_vtk(centers, deep=True)
-    cell_field.SetName("c")
-    grid.GetCellData().AddArray(cell_field)
+    grid = split_image(with_point_scalars(image, values, array_name))
+    grid.GetCellData().AddArray(named_array(np.arange(grid.GetNumberOfCells()) % 5 / 4.0, "c"))
     return grid
 
 
@@ -125,9 +118,7 @@ def test_empty_grid_draws_nothing_without_error(kind, points, have_display):
 def test_cells_without_points_are_a_clear_error(kind, have_display):
     grid = vtk.vtkUnstructuredGrid()
     grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
-    values = numpy_to_vtk(np.array([0.5]), deep=True)
-    values.SetName("c")
-    grid.GetCellData().SetScalars(values)
+    grid.GetCellData().SetScalars(named_array(np.array([0.5]), "c"))
     image, _, messages = draw(kind, grid)
     assert messages.errors and "point id 0" in messages.errors[0]
     assert "0 points" in messages.errors[0]
@@ -186,9 +177,7 @@ def test_arrays_shorter_than_the_grid_are_a_clear_error(kind, where, have_displa
     into tetrahedra would read out of bounds) does not matter."""
     grid = mixed_cells()
     attributes = grid.GetPointData() if where == "point" else grid.GetCellData()
-    short = numpy_to_vtk(np.zeros(2), deep=True)
-    short.SetName("short")
-    attributes.AddArray(short)
+    attributes.AddArray(named_array(np.zeros(2), "short"))
     image, _, messages = draw(kind, grid)  # the point scalars "s" are fine
     assert not messages.errors and image[..., 3].max() > 0.1
     mapper = make_mapper(kind)
@@ -207,10 +196,7 @@ def test_arrays_of_many_components(kind, have_display):
     """Nine components (a tensor): its magnitude, as a one-component array of it. (VTK 9.2's
     vtkVolume::GetRedrawMTime() crashes on more than four; SPT used to call it.)"""
     tensors = np.outer([0.2, 0.5, 0.8, 1.0], np.full(9, 1.0 / 3.0))
-    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)])
-    array = numpy_to_vtk(tensors, deep=True)
-    array.SetName("t")
-    grid.GetPointData().SetScalars(array)
+    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), tensors, "t")
     image, _, messages = draw(kind, grid)
     expected, _, _ = draw(kind, tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)],
                                            [0.2, 0.5, 0.8, 1.0]))
@@ -267,10 +253,7 @@ def test_only_non_finite_scalars_draw_nothing_with_a_warning(kind, have_display)
 def test_constant_field_matches_the_reference(kind, have_display):
     """A zero scalar range. Measured: HAVS RMSE 0.0011; PBVR bias 0.0063 (squared: 4.0e-5
     +- 3.1e-5)."""
-    grid = field_grid()
-    array = numpy_to_vtk(np.full(grid.GetNumberOfPoints(), 0.25), deep=True)
-    array.SetName("constant")
-    grid.GetPointData().SetScalars(array)
+    grid = with_constant_scalars(field_grid())
     assert_matches_reference(kind, grid, property_for(0.0, 1.0, unit=1.0, opacity=0.5),
                              havs_rmse=0.005, pbvr_bias=0.012)
 
@@ -281,10 +264,7 @@ def test_constant_field_matches_the_reference(kind, have_display):
 def test_multi_component_arrays(kind, mode, component, expected, have_display):
     """The magnitude, or one component, is rendered: the same image as that single array."""
     vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * np.array([[0.2], [0.5], [0.8], [1.0]])
-    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)])
-    array = numpy_to_vtk(vectors, deep=True)
-    array.SetName("v")
-    grid.GetPointData().SetScalars(array)
+    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), vectors, "v")
     mapper = make_mapper(kind)
     if mode == "component":
         mapper.SetVectorModeToComponent()
@@ -335,21 +315,14 @@ def mixed_cells(with_2d=False):
     points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
               (0, 1, 1), (0.5, 0.5, 1.8), (2, 0, 0), (2, 1, 0), (2, 0, 1), (2, 1, 1),
               (2.8, 0.5, 0.5)]
-    grid = vtk.vtkUnstructuredGrid()
-    vtk_points = vtk.vtkPoints()
-    for p in points:
-        vtk_points.InsertNextPoint(p)
-    grid.SetPoints(vtk_points)
+    x = np.array(points)
+    grid = tetrahedra(points, [], 0.5 + 0.5 * np.sin(1.3 * x[:, 0] + x[:, 2]))
     grid.InsertNextCell(vtk.VTK_HEXAHEDRON, 8, list(range(8)))
     grid.InsertNextCell(vtk.VTK_PYRAMID, 5, [4, 5, 6, 7, 8])
     grid.InsertNextCell(vtk.VTK_WEDGE, 6, [1, 9, 5, 2, 10, 6])
     grid.InsertNextCell(vtk.VTK_TETRA, 4, [9, 10, 11, 13])
     if with_2d:
         grid.InsertNextCell(vtk.VTK_TRIANGLE, 3, [0, 1, 2])
-    x = np.array(points)
-    scalars = numpy_to_vtk(0.5 + 0.5 * np.sin(1.3 * x[:, 0] + x[:, 2]), deep=True)
-    scalars.SetName("s")
-    grid.GetPointData().SetScalars(scalars)
     return grid
 
 
@@ -396,11 +369,7 @@ def polyhedron_cube():
     points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
               (0, 1, 1)]
     faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
-    grid = vtk.vtkUnstructuredGrid()
-    vtk_points = vtk.vtkPoints()
-    for p in points:
-        vtk_points.InsertNextPoint(p)
-    grid.SetPoints(vtk_points)
+    grid = tetrahedra(points, [], np.array(points, dtype=float) @ np.array([0.2, 0.3, 0.5]))
     stream = [len(faces)]
     for face in faces:
         stream += [len(face), *face]
@@ -408,9 +377,6 @@ def polyhedron_cube():
     for i in stream:
         ids.InsertNextId(i)
     grid.InsertNextCell(vtk.VTK_POLYHEDRON, ids)
-    scalars = numpy_to_vtk(np.array(points, dtype=float) @ np.array([0.2, 0.3, 0.5]), deep=True)
-    scalars.SetName("s")
-    grid.GetPointData().SetScalars(scalars)
     return grid
 
 
@@ -519,10 +485,7 @@ class Scene:
         window, renderer = render.make_window(*self.window.GetSize())
         render.add_volume(renderer, copy, self.prop, make_mapper(self.kind))
         renderer.SetActiveCamera(self.renderer.GetActiveCamera())
-        window.Render()
-        image = render.read_rgba(window)
-        window.Finalize()
-        return image
+        return draw_once(window)
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -554,9 +517,7 @@ def test_input_changes_between_renders(kind, have_display):
     assert scene.mapper.GetNumberOfTetrahedra() == len(cells) + 1
     assert np.array_equal(image, scene.fresh())
     # Another array as the scalars.
-    other = numpy_to_vtk(np.linspace(0.0, 1.0, scene.grid.GetNumberOfPoints()), deep=True)
-    other.SetName("ramp")
-    scene.grid.GetPointData().SetScalars(other)
+    with_point_scalars(scene.grid, np.linspace(0.0, 1.0, scene.grid.GetNumberOfPoints()), "ramp")
     image = scene.draw()
     assert np.array_equal(image, scene.fresh())
 

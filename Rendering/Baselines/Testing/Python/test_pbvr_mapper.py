@@ -12,19 +12,17 @@ import vtk
 import spt
 from spt import data, render, scenes
 
-from robustness_support import ONE, check_clamped_setting, property_for, watch
+from robustness_support import (ONE, check_clamped_setting, check_second_window, watch,
+                                watched_render)
+from scene_support import bilinear_upsampled, draw_once, window_with
 
 SIZE = (96, 96)
 
 
 def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
-    """Render and return (image, mapper, messages); the input's MTime must not change."""
+    """Render and return (rendering, mapper, messages); the input must not change."""
     mapper = mapper or render.pbvr_mapper(repetitions, seed=1)
-    messages = watch(mapper)
-    prop = prop or property_for()
-    before = grid.GetMTime()
-    rendering = render.render(grid, prop, mapper, render.View(30, 30), size)
-    assert grid.GetMTime() == before, "the input was modified"
+    rendering, messages = watched_render(mapper, grid, prop, size)
     return rendering, mapper, messages
 
 
@@ -205,12 +203,7 @@ def test_release_resize_and_a_second_window(have_display):
     assert scene.draw().shape[:2] == (SIZE[1] + 5, SIZE[0] + 17)
     scene.renderer.SetViewport(0.2, 0.2, 0.2, 0.2)
     scene.draw()
-    other, other_renderer = render.make_window(*SIZE)
-    other_renderer.AddVolume(scene.renderer.GetVolumes().GetLastProp())
-    other_renderer.ResetCamera()
-    other.Render()
-    assert render.read_rgba(other)[..., 3].max() > 0.1
-    assert not scene.messages.errors
+    check_second_window(scene.renderer.GetVolumes().GetLastProp(), SIZE, scene.messages)
 
 
 def test_time_budget_and_progressive_refinement_complete_the_image(have_display):
@@ -219,13 +212,11 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     the image of one render of all of them, bit for bit. A change of the camera starts anew."""
     s = scenes.scene("default")
     level = 16
-    window, renderer = render.make_window(*SIZE)
     mapper = render.pbvr_mapper(level, seed=1)
     mapper.AutoAdjustRepetitionsOn()
     mapper.AutoAdjustSampleDistancesOff()  # every pixel: the image of one render of them all
     mapper.ProgressiveRefinementOn()
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window, renderer = window_with(mapper, SIZE[0], prop=s.property)
     window.Render()  # measures the time of a set
     assert mapper.GetLastRepetitionCount() == level
     assert mapper.GetTimePerRepetition() > 0.0
@@ -253,15 +244,8 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     full_window.Finalize()
 
 
-def _pbvr_image(mapper, size, interactive_renders=0):
-    s = scenes.scene("default")
-    window, renderer = render.make_window(size, size)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
-    return image
+def _pbvr_image(mapper, size):
+    return draw_once(window_with(mapper, size)[0])
 
 
 def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated(have_display):
@@ -274,24 +258,13 @@ def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated
     fine = _pbvr_image(fine_mapper, 2 * SIZE[0])
     coarse = _pbvr_image(render.pbvr_mapper(8, seed=3), SIZE[0])
     assert coarse[..., 3].max() > 0.2, "an empty image"
-    height, width = coarse.shape[:2]
-    position = (np.arange(2 * width) + 0.5) / 2 - 0.5
-    low = np.floor(position).astype(int)
-    weight = (position - low)[None, :, None]
-    low, high = np.clip(low, 0, width - 1), np.clip(low + 1, 0, width - 1)
-    rows = coarse[:, low] * (1 - weight) + coarse[:, high] * weight
-    interpolated = (rows[low] * (1 - weight.transpose(1, 0, 2)) +
-                    rows[high] * weight.transpose(1, 0, 2))
-    assert np.abs(fine - interpolated).max() <= 1.0 / 255.0 + 1e-6
+    assert np.abs(fine - bilinear_upsampled(coarse, 2)).max() <= 1.0 / 255.0 + 1e-6
 
 
 def test_with_the_time_budget_interactive_sets_have_fewer_pixels(have_display):
-    s = scenes.scene("default")
-    window, renderer = render.make_window(*SIZE)
     mapper = render.pbvr_mapper(4, seed=1)
     mapper.AutoAdjustRepetitionsOn()
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window, _ = window_with(mapper, SIZE[0])
     window.Render()
     assert mapper.GetImageSampleDistance() == 1.0
     window.SetDesiredUpdateRate(1.0e6)  # 1 us: not even one set, at any sample distance

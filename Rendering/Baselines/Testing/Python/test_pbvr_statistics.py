@@ -18,12 +18,11 @@ import math
 
 import numpy as np
 import pytest
-import vtk
-from vtkmodules.util.numpy_support import numpy_to_vtk
 
 from spt import data, render, scenes
 
 import image_statistics
+from robustness_support import property_for, with_constant_scalars
 from spt_pytest_fixtures import load_or_skip
 from statistics_checks import (SCENE_CHECKS, Z, SceneRenders,
                                check_opaque_geometry_hides_and_cuts_the_volume,
@@ -52,31 +51,14 @@ def _erode(mask, iterations):
     return mask
 
 
-def _constant_field():
-    grid = data.make_default_mesh()
-    array = numpy_to_vtk(np.full(grid.GetNumberOfPoints(), 0.25), deep=True)
-    array.SetName("constant")
-    grid.GetPointData().SetScalars(array)
-    color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(0.0, 0.2, 0.4, 1.0)
-    color.AddRGBPoint(1.0, 1.0, 0.6, 0.2)
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(0.0, 0.5)
-    opacity.AddPoint(1.0, 0.5)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(0.3)
-    return grid, prop
-
-
 @pytest.mark.parametrize("parallel", [False, True])
 def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display):
     """alpha = 1 - exp(-tau d) along every ray. Away from the silhouettes (where a particle
     averages the optical depth over its pixel and the reference samples the pixel centre),
     the mean alpha of PBVR equals the reference's within its standard error, also with the
     camera close (perspective thinning over a wide range of depths)."""
-    grid, prop = _constant_field()
+    grid = with_constant_scalars(data.make_default_mesh())
+    prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
     level = 64
     for zoom in (1.0, 1.8):
         view = render.View(30, 30, zoom=zoom, parallel=parallel)

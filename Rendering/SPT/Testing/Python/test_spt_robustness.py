@@ -6,26 +6,22 @@ import math
 import numpy as np
 import pytest
 import vtk
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (ONE, assert_unchanged, check_second_window, property_for,
-                                property_with_points, render_scaled, scaled_copy, snapshot,
-                                tetrahedra, watch)
+from robustness_support import (ONE, UNIT_TETRAHEDRON, check_second_window, property_for,
+                                property_with_points, render_scaled, scaled_copy, tetrahedra,
+                                watch, watched_render, with_constant_scalars, with_point_scalars)
 
 SIZE = (96, 96)
 
 
 def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
-    """Render and return (image, mapper, messages); the input's MTime must not change."""
+    """Render and return (image, mapper, messages); the input must not change."""
     mapper = mapper or render.spt_mapper(repetitions, seed=1)
-    messages = watch(mapper)
-    prop = prop or property_for()
-    before = snapshot(grid)
-    image = render.render(grid, prop, mapper, render.View(30, 30), size).image
-    assert_unchanged(grid, before)
-    return image, mapper, messages
+    rendering, messages = watched_render(mapper, grid, prop, size)
+    return rendering.image, mapper, messages
 
 
 def test_one_tetrahedron_renders(have_display):
@@ -42,7 +38,7 @@ def test_empty_grid_draws_nothing_without_error(have_display):
 
 
 def test_no_scalars_is_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
+    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)])
     image, _, messages = draw(grid)
     assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
     assert image.max() == 0.0
@@ -57,16 +53,15 @@ def test_missing_array_is_named(have_display):
 
 
 def test_point_ids_out_of_range_are_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 7)],
-                      [0.0, 0.3, 0.6, 1.0])
+    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 7)], [0.0, 0.3, 0.6, 1.0])
     image, _, messages = draw(grid)
     assert messages.errors and "point id 7" in messages.errors[0]
     assert image.max() == 0.0
 
 
 def test_short_global_ids_are_a_clear_error(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)],
-                      [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, 0.5])
+    grid = tetrahedra(UNIT_TETRAHEDRON + [(1, 1, 1)], [(0, 1, 2, 3), (1, 2, 3, 4)],
+                      [0.0, 0.3, 0.6, 1.0, 0.5])
     ids = vtk.vtkIdTypeArray()
     ids.SetName("ids")
     ids.InsertNextValue(7)
@@ -78,7 +73,7 @@ def test_short_global_ids_are_a_clear_error(have_display):
 
 
 def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
-    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (1, 1, 1)]
+    points = UNIT_TETRAHEDRON + [(1, 1, 1)]
     for bad in (math.nan, math.inf):
         grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, bad])
         image, mapper, messages = draw(grid)
@@ -89,11 +84,7 @@ def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
 
 
 def test_constant_field_matches_the_reference(have_display):
-    grid = data.make_default_mesh()
-    values = np.full(grid.GetNumberOfPoints(), 0.25)
-    array = numpy_to_vtk(values, deep=True)
-    array.SetName("constant")
-    grid.GetPointData().SetScalars(array)
+    grid = with_constant_scalars(data.make_default_mesh())
     prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
     image, _, messages = draw(grid, prop, repetitions=64)
     reference = render.reference(grid, prop, render.View(30, 30), SIZE).image
@@ -106,17 +97,14 @@ def test_constant_field_matches_the_reference(have_display):
 def test_multi_component_arrays(mode, component, expected, have_display):
     """The magnitude, or one component, is rendered: the same image as that single array."""
     vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * np.array([[0.2], [0.5], [0.8], [1.0]])
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)])
-    array = numpy_to_vtk(vectors, deep=True)
-    array.SetName("v")
-    grid.GetPointData().SetScalars(array)
+    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), vectors, "v")
     mapper = render.spt_mapper(16, seed=1)
     if mode == "component":
         mapper.SetVectorModeToComponent()
         mapper.SetVectorComponent(component)
     prop = property_for(0.0, 5.0, opacity=0.9)
     image, _, messages = draw(grid, prop, mapper)
-    single = tetrahedra([(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)], [(0, 1, 2, 3)],
+    single = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)],
                         expected * np.array([0.2, 0.5, 0.8, 1.0]))
     expected_image, _, _ = draw(single, prop, render.spt_mapper(16, seed=1))
     assert not messages.errors
@@ -132,18 +120,11 @@ def test_component_out_of_range_is_a_clear_error(have_display):
 
 
 def test_mixed_and_quadratic_cells_are_split(have_display):
-    grid = vtk.vtkUnstructuredGrid()
-    points = vtk.vtkPoints()
-    for p in [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
-              (0, 1, 1), (0.5, 0.5, 2)]:
-        points.InsertNextPoint(p)
-    grid.SetPoints(points)
+    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1),
+                       (1, 1, 1), (0, 1, 1), (0.5, 0.5, 2)], [], np.linspace(0.0, 1.0, 9))
     grid.InsertNextCell(vtk.VTK_HEXAHEDRON, 8, list(range(8)))
     grid.InsertNextCell(vtk.VTK_PYRAMID, 5, [4, 5, 6, 7, 8])
     grid.InsertNextCell(vtk.VTK_TRIANGLE, 3, [0, 1, 2])  # 2D cells are not volumes
-    scalars = numpy_to_vtk(np.linspace(0.0, 1.0, 9), deep=True)
-    scalars.SetName("s")
-    grid.GetPointData().SetScalars(scalars)
     image, mapper, messages = draw(grid)
     assert not messages.errors
     assert mapper.GetNumberOfTetrahedra() >= 7
@@ -151,7 +132,7 @@ def test_mixed_and_quadratic_cells_are_split(have_display):
 
 
 def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
-    points = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0.5, 0)]
+    points = UNIT_TETRAHEDRON + [(0.5, 0.5, 0)]
     cells = [(0, 1, 2, 3), (0, 2, 1, 3), (0, 1, 2, 4), (3, 3, 3, 3), (0, 1, 2, 3)]
     grid = tetrahedra(points, cells, [0.0, 0.3, 0.6, 1.0, 0.5])
     image, mapper, messages = draw(grid)
@@ -212,12 +193,9 @@ def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
     (the renderer's scissor box must not keep the clear from reaching it)."""
     window, renderer = render.make_window(2 * SIZE[0], SIZE[1])
     renderer.SetViewport(0.5, 0.0, 1.0, 1.0)
-    mapper = render.spt_mapper(8, seed=1)
-    mapper.SetInputData(data.make_default_mesh())
-    volume = vtk.vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(data.default_transfer_function(mapper.GetInput()))
-    renderer.AddVolume(volume)
+    grid = data.make_default_mesh()
+    render.add_volume(renderer, grid, data.default_transfer_function(grid),
+                      render.spt_mapper(8, seed=1))
     window.Render()
     first = render.read_rgba(window)
     for _ in range(3):
