@@ -27,7 +27,7 @@ import vtk
 from spt import metrics, raycast, render
 
 import image_statistics
-from scene_support import scene
+from scene_support import draw_once, scene
 
 SIZE = 96
 REPETITIONS = 16
@@ -216,8 +216,6 @@ def test_camera_exactly_on_the_mesh_gives_no_nan(method, where, have_display):
     render.add_volume(renderer, s.grid, s.property, mapper)
     renderer.SetActiveCamera(_camera_on(spot, direction))
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
+    image = draw_once(window)
     assert np.isfinite(image).all()
     assert image[..., 3].max() > 0.0, "the volume around the camera should show"

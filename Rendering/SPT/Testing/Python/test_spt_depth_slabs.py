@@ -23,7 +23,7 @@ import pytest
 from spt import render
 
 import image_statistics
-from scene_support import reference, scene
+from scene_support import reference, scene, window_with
 from statistics_checks import (check_noise_falls_as_one_over_repetitions,
                                check_opaque_geometry_hides_and_cuts_the_volume)
 
@@ -103,12 +103,9 @@ def test_one_repetition_at_a_time_with_slabs(have_display):
     each is a group of one with keys; the first render draws the slabs' sums with the
     coverage, the later ones use them, and the image is as close to the reference as a render
     of all its repetitions at once."""
-    s = scene("default")
-    window, renderer = render.make_window(SIZE, SIZE)
     mapper = render.spt_mapper(1, seed=1, estimator="survivor", depth_slabs=SLABS)
     mapper.SetProgressiveRefinement(True)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window, _ = window_with(mapper, SIZE, prop=scene("default").property)
     for _ in range(16):
         window.Render()
     progressive = render.read_rgba(window)

@@ -20,7 +20,7 @@ import vtk
 
 from spt import render
 
-from scene_support import opaque_plane, scene, with_cell_scalars
+from scene_support import draw_once, opaque_plane, scene, window_with, with_cell_scalars
 
 SIZE = 128
 #: Most cells of the test scenes are at most 64 pixels across at 128 x 128.
@@ -93,14 +93,10 @@ def test_points_need_the_mesh_in_front_of_the_near_plane(have_display):
     s = scene("default")
     mapper = render.spt_mapper(4)
     mapper.SetSmallCellSize(ALL_SMALL)
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window, renderer = window_with(mapper, SIZE, prop=s.property)
     renderer.GetActiveCamera().Dolly(12.0)
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
+    image = draw_once(window)
     assert image[..., 3].mean() > 0.05, "the view from inside is empty"
     assert mapper.GetFrameStatistics().GetPointCellCount() == 0
     _, small, tetrahedra = _render("default", 1.0)

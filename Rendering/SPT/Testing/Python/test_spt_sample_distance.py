@@ -12,14 +12,15 @@ import pytest
 
 from spt import metrics, render
 
-from scene_support import opaque_plane, render_at_still_rate, scene
+from scene_support import (bilinear_upsampled, opaque_plane, render_at_still_rate, scene,
+                           window_with)
 
 SIZE = 128
 
 
 def _window(mapper, size, plane=False):
     s = scene("default")
-    window, renderer = render.make_window(size, size)
+    window, renderer = window_with(mapper, size, prop=s.property)
     if plane:
         # Black and unlit, over a black background: the image is the volume's alone, where
         # the plane does not hide it.
@@ -27,8 +28,6 @@ def _window(mapper, size, plane=False):
         actor.GetProperty().SetColor(0.0, 0.0, 0.0)
         actor.GetProperty().LightingOff()
         renderer.AddActor(actor)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
     return window
 
 
@@ -38,26 +37,6 @@ def _still_image(mapper, size, plane=False):
     image = render.read_rgba(window)
     window.Finalize()
     return image
-
-
-def _interpolated(image, factor):
-    """Bilinear interpolation of an image to `factor` times its size, as the resolve does:
-    each pixel center of the larger image placed in the smaller one, its four neighbors mixed,
-    the indices clamped at the borders."""
-    height, width = image.shape[:2]
-
-    def axis(n):
-        position = (np.arange(n * factor) + 0.5) / factor - 0.5
-        low = np.floor(position).astype(int)
-        weight = position - low
-        return np.clip(low, 0, n - 1), np.clip(low + 1, 0, n - 1), weight
-
-    y0, y1, wy = axis(height)
-    x0, x1, wx = axis(width)
-    wx = wx[None, :, None]
-    top = image[y0][:, x0] * (1 - wx) + image[y0][:, x1] * wx
-    bottom = image[y1][:, x0] * (1 - wx) + image[y1][:, x1] * wx
-    return top * (1 - wy[:, None, None]) + bottom * wy[:, None, None]
 
 
 def _fixed_distance(mapper, distance):
@@ -70,7 +49,7 @@ def test_a_sample_distance_of_two_draws_the_image_of_half_the_pixels_interpolate
     fine = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE)
     coarse = _still_image(render.spt_mapper(16, seed=2), SIZE)
     assert coarse[..., 3].max() > 0.2, "an empty image"
-    difference = np.abs(fine - _interpolated(coarse, 2))
+    difference = np.abs(fine - bilinear_upsampled(coarse, 2))
     # Each image is rounded to 8 bits: the interpolated rounding and the fine image's own.
     assert difference.max() <= 1.0 / 255.0 + 1e-6, f"{difference.max() * 255:.2f} / 255"
 
@@ -81,7 +60,7 @@ def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers(have_display):
     the plane cuts the volume (there the depth is read half a pixel of the smaller image
     apart)."""
     fine = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE, True)
-    coarse = _interpolated(_still_image(render.spt_mapper(16, seed=2), SIZE, True), 2)
+    coarse = bilinear_upsampled(_still_image(render.spt_mapper(16, seed=2), SIZE, True), 2)
     without = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE)
     hidden = np.abs(fine[..., :3] - without[..., :3]).max(axis=-1) > 0.05
     assert hidden.mean() > 0.05, "the plane hides nothing"

@@ -15,23 +15,12 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from spt import metrics, render, scenes
+from spt import metrics, render
 
 import image_statistics
-from scene_support import render_at_still_rate, window_with
+from scene_support import reference, render_at_still_rate, scene, window_with
 
 SIZE = 128
-
-
-@lru_cache(maxsize=None)
-def _scene():
-    return scenes.scene("default")
-
-
-@lru_cache(maxsize=None)
-def _reference():
-    s = _scene()
-    return render.reference(s.grid, s.property, s.view, (SIZE, SIZE)).image
 
 
 #: The survivor estimator without exact coverage (whose stratification these tests measure),
@@ -41,7 +30,7 @@ SAMPLING = {"survivor": {"estimator": "survivor", "exact_coverage": False}, "def
 
 @lru_cache(maxsize=None)
 def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
-    s = _scene()
+    s = scene("default")
     mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
                                **SAMPLING[sampling])
     return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
@@ -65,7 +54,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     """SetSamplingToPaper() is the paper's method: the image of the survivor estimator with
     independent thresholds, no exact coverage and one repetition per pass, set one by one; the
     frame statistics report what the render drew."""
-    s = _scene()
+    s = scene("default")
     mapper = render.spt_mapper(12, seed=7)
     mapper.SetSamplingToPaper()
     paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
@@ -80,16 +69,14 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     # The defaults' image is another one: the same expectation, less noise.
     mapper.SetSamplingToDefault()
     default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
-    reference = _reference()
-    assert metrics.rmse(default, reference) < metrics.rmse(paper, reference)
+    exact = reference("default", SIZE)
+    assert metrics.rmse(default, exact) < metrics.rmse(paper, exact)
 
 
 def test_depth_keys_are_reported_and_released(have_display):
-    s = _scene()
-    window, renderer = render.make_window(SIZE, SIZE)
+    s = scene("default")
     mapper = render.spt_mapper(12, per_pass=1, **SAMPLING["survivor"])
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
+    window, _ = window_with(mapper, SIZE, prop=s.property)
     window.Render()
     single = mapper.GetGPUMemorySize()
     mapper.SetRepetitionsPerPass(8)
@@ -128,18 +115,18 @@ def test_stratified_thresholds_keep_the_expectation_and_lower_the_error(have_dis
     """Same bias floor as independent thresholds, a clearly lower RMSE at 64 repetitions, and
     the issue's target: stratified at 128 repetitions is at least as close to the reference
     as independent at 256."""
-    reference = _reference()
+    exact = reference("default", SIZE)
     estimates = {}
     for stratified in (False, True):
         first, second = _image(64, 1, stratified), _image(64, 2, stratified)
-        estimates[stratified] = image_statistics.estimate(first, second, reference, 64)
+        estimates[stratified] = image_statistics.estimate(first, second, exact, 64)
     independent, stratified = estimates[False], estimates[True]
     assert stratified.bias <= independent.bias + 0.004, (
         f"bias: stratified {stratified.bias:.4f}, independent {independent.bias:.4f}")
     assert stratified.rmse < 0.8 * independent.rmse, (
         f"RMSE at 64: stratified {stratified.rmse:.4f}, independent {independent.rmse:.4f}")
-    at_128 = metrics.rmse(_image(128, 3, True), reference)
-    at_256 = metrics.rmse(_image(256, 3, False), reference)
+    at_128 = metrics.rmse(_image(128, 3, True), exact)
+    at_256 = metrics.rmse(_image(256, 3, False), exact)
     assert at_128 <= at_256, f"stratified at 128 {at_128:.4f}, independent at 256 {at_256:.4f}"
 
 
@@ -154,7 +141,7 @@ def test_progressive_refinement_accumulates_until_something_changes(have_display
         window.Render()
         assert mapper.GetLastRepetitionCount() == expected
     accumulated = render.read_rgba(window)
-    s = _scene()
+    s = scene("default")
     once = render.render(s.grid, s.property, render.spt_mapper(32, seed=5, stratified=False),
                          s.view, (SIZE, SIZE), frames=0).image
     assert np.abs(accumulated - once).max() <= 1.0 / 255.0 + 1e-6
@@ -181,11 +168,11 @@ def test_stratified_progressive_refinement_converges(have_display):
     mapper.ProgressiveRefinementOn()
     window, renderer = window_with(mapper, SIZE)
     window.Render()
-    first = metrics.rmse(render.read_rgba(window), _reference())
+    first = metrics.rmse(render.read_rgba(window), reference("default", SIZE))
     for _ in range(7):
         window.Render()
     assert mapper.GetLastRepetitionCount() == 128
-    refined = metrics.rmse(render.read_rgba(window), _reference())
+    refined = metrics.rmse(render.read_rgba(window), reference("default", SIZE))
     assert refined < 0.5 * first, f"RMSE {first:.4f} after 16, {refined:.4f} after 128"
     window.Finalize()
 
@@ -272,8 +259,8 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
     one_single = _budget_frame(render.spt_mapper(1, seed=1, per_pass=16, **SAMPLING["survivor"]))
     assert np.abs(pair - one_pair).max() <= 1.0 / 255.0 + 1e-6
     assert np.abs(single - one_single).max() <= 1.0 / 255.0 + 1e-6
-    pair_error = metrics.rmse(pair, _reference())
-    single_error = metrics.rmse(single, _reference())
+    pair_error = metrics.rmse(pair, reference("default", SIZE))
+    single_error = metrics.rmse(single, reference("default", SIZE))
     assert pair_error < 0.25 * single_error, f"pair {pair_error:.4f}, single {single_error:.4f}"
 
 
@@ -282,13 +269,11 @@ def test_depth_keys_follow_the_device_memory(have_display):
     most 1 GiB): at 1024 x 1024, 64 repetitions are one group, where a fixed 128 MiB would
     hold 32. The GPU memory counts the keys of the repetitions drawn per traversal."""
     size, level = 1024, 64
-    s = _scene()
+    s = scene("default")
     memory = {}
     for per_pass in (16, 256):
         mapper = render.spt_mapper(level, per_pass=per_pass)
-        window, renderer = render.make_window(size, size)
-        render.add_volume(renderer, s.grid, s.property, mapper)
-        render.place_camera(renderer, s.grid.GetBounds(), s.view)
+        window, _ = window_with(mapper, size, prop=s.property)
         window.Render()
         capabilities = window.ReportCapabilities()
         memory[per_pass] = mapper.GetGPUMemorySize()

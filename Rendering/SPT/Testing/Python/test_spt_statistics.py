@@ -32,20 +32,12 @@ LEVELS = {"default": (4, 16, 64), "spx": (4, 16, 64, 256), "bluntfin": (4, 16), 
 SCENES = list(LEVELS)
 
 
-def _scene(name):
-    return scene(name)
-
-
-def _reference(name):
-    return reference(name, SIZE)
-
-
 @lru_cache(maxsize=None)
 def _projected_tetrahedra_rmse(name):
-    s = _scene(name)
+    s = scene(name)
     pt = render.render(s.grid, s.property, render.projected_tetrahedra_mapper(), s.view,
                        (SIZE, SIZE)).image
-    return metrics.rmse(pt, _reference(name))
+    return metrics.rmse(pt, reference(name, SIZE))
 
 
 #: "paper": the paper's sampling, whose noise model the tests check; "default": the mapper
@@ -106,7 +98,7 @@ def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_dis
     survivor estimator alone, stratified, did not get there on the Oxygen Post: 0.0056
     against VTK PT's 0.0044, many thin layers per pixel making the nearest survivor random.)"""
     pt_rmse = _projected_tetrahedra_rmse(name)
-    measured = metrics.rmse(_spt(name, 1024, 3, "default"), _reference(name))
+    measured = metrics.rmse(_spt(name, 1024, 3, "default"), reference(name, SIZE))
     assert measured <= pt_rmse, f"SPT at 1024 {measured:.4f}, VTK PT {pt_rmse:.4f}"
     paper = _estimate(name, LEVELS[name][-1]).predicted_rmse(1024)
     assert measured < paper, (

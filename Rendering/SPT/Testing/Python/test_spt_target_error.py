@@ -34,14 +34,6 @@ SCENES = list(TARGETS)
 ROUNDING_8_BITS = 1.0 / (255.0 * np.sqrt(12.0))
 
 
-def _scene(name):
-    return scene(name)
-
-
-def _reference(name):
-    return reference(name, SIZE)
-
-
 #: Repetitions per traversal for the tests of the estimate. A first image's first step is at
 #: most one traversal pair, so with 4 the first estimate comes from at most two repetitions
 #: per half and each later step aims at the target: a render stops near it, above the 8-bit
@@ -60,7 +52,7 @@ def _mapper(level, seed, target, per_pass=PER_PASS):
 @lru_cache(maxsize=None)
 def _stopped(name, seed):
     """The image at the scene's target, the estimate and the repetitions it took."""
-    s = _scene(name)
+    s = scene(name)
     mapper = _mapper(CAP, seed, TARGETS[name])
     image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
     return image, mapper.GetEstimatedError(), mapper.GetLastRepetitionCount()
@@ -68,7 +60,7 @@ def _stopped(name, seed):
 
 @lru_cache(maxsize=None)
 def _fixed(name, level, seed):
-    s = _scene(name)
+    s = scene(name)
     return render.render(s.grid, s.property, render.spt_mapper(level, seed=seed), s.view,
                          (SIZE, SIZE)).image
 
@@ -80,13 +72,13 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert 2 <= level < CAP, f"stopped at {level} repetitions"
     assert 0.0 < estimated <= TARGETS[name]
-    measured = metrics.rmse(image, _reference(name))
+    measured = metrics.rmse(image, reference(name, SIZE))
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
     # The noise, from two seeds at the same count (half their mean squared difference), and
     # the rounding to 8 bits, which the estimate counts too.
     noise = np.sqrt(image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
-                                              _reference(name), level).noise)
+                                              reference(name, SIZE), level).noise)
     shown = np.hypot(noise, ROUNDING_8_BITS)
     assert shown / 1.5 <= estimated <= 1.5 * shown, (
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f} with the rounding {shown:.4f}")
@@ -103,7 +95,7 @@ def _render_to_target(s, mapper, name, target=None):
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert level < CAP, f"drew the cap of {CAP} repetitions"
     assert 0.0 < estimated <= target
-    return image, level, estimated, metrics.rmse(image, _reference(name))
+    return image, level, estimated, metrics.rmse(image, reference(name, SIZE))
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
@@ -112,7 +104,7 @@ def test_default_group_stops_at_or_below_the_target(name, have_display):
     repetition above these meshes' own: the render stops at the first estimate that meets the
     target, and its error against the reference (the 8-bit read-back's floor included) meets
     it too."""
-    s = _scene(name)
+    s = scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
     assert mapper.GetRepetitionsPerPass() == 256
     _, level, _, measured = _render_to_target(s, mapper, name)
@@ -124,7 +116,7 @@ def test_a_first_image_steps_by_its_target(have_display):
     """A mapper's first image has no noise measured before it: its first step aims with an
     assumed noise per repetition, so a lower target draws more repetitions in that one step,
     and each image meets its own target."""
-    s = _scene("spx")
+    s = scene("spx")
     counts = []
     for target in (0.02, 0.006, 0.003):
         mapper = _mapper(CAP, 1, target, per_pass=None)
@@ -140,7 +132,7 @@ def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_d
     meshes' own. A new image (the same view with another seed) draws at once as many as the
     last image's noise per repetition predicts for the target: fewer here, and its estimate
     still meets the target and the error measured against the reference."""
-    s = _scene(name)
+    s = scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
     render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE))
     first_level = mapper.GetLastRepetitionCount()
@@ -192,9 +184,10 @@ def test_stopped_images_are_unbiased(name, have_display):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""
     first, _, level = _stopped(name, 1)
     second, _, second_level = _stopped(name, 2)
-    stopped = image_statistics.estimate(first, second, _reference(name), min(level, second_level))
+    stopped = image_statistics.estimate(first, second, reference(name, SIZE),
+                                        min(level, second_level))
     fixed = image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
-                                      _reference(name), level)
+                                      reference(name, SIZE), level)
     tolerance = Z * np.hypot(stopped.bias2_error, fixed.bias2_error)
     assert stopped.bias2 <= fixed.bias2 + tolerance, (
         f"bias^2 {stopped.bias2:.2e} stopped, {fixed.bias2:.2e} fixed, tolerance "
@@ -222,7 +215,7 @@ def test_a_target_near_the_rounding_is_met_against_the_reference(name, have_disp
     Counting the noise alone would stop where the measured error is sqrt(target^2 + 0.00113^2),
     a quarter above the target here."""
     target = 0.0015
-    s = _scene(name)
+    s = scene(name)
     _, level, estimated, measured = _render_to_target(s, _mapper(CAP, 1, target), name, target)
     assert measured <= 1.1 * target, (
         f"measured {measured:.5f} for the target {target} at {level} repetitions")

@@ -16,23 +16,16 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-import scene_support
-from spt import metrics, render, scenes
-from vtkmodules.vtkRenderingCore import vtkVolume, vtkVolumeProperty
+from spt import metrics, render
+from vtkmodules.vtkRenderingCore import vtkVolumeProperty
 
 import image_statistics
-from spt_pytest_fixtures import load_or_skip
+from robustness_support import watch
+from scene_support import draw_once, scene, with_moved_copy
 
 SIZE = 128
 REPETITIONS = 32
 SCENES = ("default", "spx")
-
-
-@lru_cache(maxsize=None)
-def _scene(name):
-    if name != "default":
-        load_or_skip(name)
-    return scenes.scene(name)
 
 
 def _offset(grid):
@@ -42,56 +35,54 @@ def _offset(grid):
 
 @lru_cache(maxsize=None)
 def _union(name):
-    s = _scene(name)
-    return scene_support.with_moved_copy(s.grid, _offset(s.grid))
+    s = scene(name)
+    return with_moved_copy(s.grid, _offset(s.grid))
 
 
 @lru_cache(maxsize=None)
 def _reference(name):
-    s = _scene(name)
+    s = scene(name)
     return render.reference(_union(name), s.property, s.view, (SIZE, SIZE)).image
 
 
 def _two_volumes(name, make, second_property=None, second_first=False):
     """The scene's mesh twice: as it is, and moved by the second volume's own transform."""
-    s = _scene(name)
+    s = scene(name)
     window, renderer = render.make_window(SIZE, SIZE)
-    first = vtkVolume()
-    first.SetMapper(make())
-    first.GetMapper().SetInputData(s.grid)
-    first.SetProperty(s.property)
-    second = vtkVolume()
-    second.SetMapper(make())
-    second.GetMapper().SetInputData(s.grid)
-    second.SetProperty(second_property or s.property)
-    second.SetPosition(*_offset(s.grid))
-    for volume in ((second, first) if second_first else (first, second)):
-        renderer.AddVolume(volume)
+    properties = [s.property, second_property or s.property]
+    volumes = {index: render.add_volume(renderer, s.grid, properties[index], make())
+               for index in ((1, 0) if second_first else (0, 1))}
+    volumes[1].SetPosition(*_offset(s.grid))
     render.place_camera(renderer, _union(name).GetBounds(), s.view)
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
-    return image
+    return draw_once(window)
 
 
 def _spt():
     return render.spt_mapper(REPETITIONS, seed=1)
 
 
-@pytest.mark.parametrize("name", SCENES)
-def test_two_volumes_composite_as_their_union(name, have_display):
+def _check_as_close_as_the_union(name, make):
+    """Two volumes through mappers of ``make(seed)`` against their union drawn as one grid
+    through the same: no farther from the reference, within 4 x the noise of one render at
+    this count (from two seeds of the union). Returns the two volumes' error."""
     reference = _reference(name)
-    two = _two_volumes(name, _spt)
+    two = _two_volumes(name, lambda: make(1))
     assert two[..., 3].max() > 0.2, "the image is (almost) empty"
-    s = _scene(name)
-    one = render.render(_union(name), s.property, _spt(), s.view, (SIZE, SIZE)).image
-    # The noise of one render at this count, from two seeds of the union drawn as one grid.
-    second_seed = render.render(_union(name), s.property, render.spt_mapper(REPETITIONS, seed=2),
-                                s.view, (SIZE, SIZE)).image
+    s = scene(name)
+    one, second_seed = (render.render(_union(name), s.property, make(seed), s.view,
+                                      (SIZE, SIZE)).image for seed in (1, 2))
     noise = image_statistics.estimate(one, second_seed, reference, REPETITIONS)
     one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
     assert two_error <= one_error + 4.0 * np.sqrt(noise.noise), (
         f"two volumes {two_error:.4f}, one grid {one_error:.4f}")
+    return two_error
+
+
+@pytest.mark.parametrize("name", SCENES)
+def test_two_volumes_composite_as_their_union(name, have_display):
+    two_error = _check_as_close_as_the_union(
+        name, lambda seed: render.spt_mapper(REPETITIONS, seed=seed))
+    reference = _reference(name)
     sorted_one_by_one = metrics.rmse(
         _two_volumes(name, render.projected_tetrahedra_mapper), reference)
     assert two_error < 0.5 * sorted_one_by_one, (
@@ -101,21 +92,8 @@ def test_two_volumes_composite_as_their_union(name, have_display):
 def test_two_volumes_with_depth_slabs_composite_as_their_union(have_display):
     """The slabs split the depth range of both volumes' bounds: two volumes with slabs draw
     the image of their union drawn as one grid with slabs, to within the noise."""
-    name = "default"
-    reference = _reference(name)
-
-    def slabs(seed=1):
-        return render.spt_mapper(REPETITIONS, seed=seed, depth_slabs=8)
-
-    two = _two_volumes(name, slabs)
-    s = _scene(name)
-    one = render.render(_union(name), s.property, slabs(), s.view, (SIZE, SIZE)).image
-    second_seed = render.render(_union(name), s.property, slabs(2), s.view, (SIZE, SIZE)).image
-    noise = image_statistics.estimate(one, second_seed, reference, REPETITIONS)
-    one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
-    assert two[..., 3].max() > 0.2, "the image is (almost) empty"
-    assert two_error <= one_error + 4.0 * np.sqrt(noise.noise), (
-        f"two volumes {two_error:.4f}, one grid {one_error:.4f}")
+    _check_as_close_as_the_union(
+        "default", lambda seed: render.spt_mapper(REPETITIONS, seed=seed, depth_slabs=8))
 
 
 def test_one_repetition_per_pass_draws_the_groups_image(have_display):
@@ -129,7 +107,7 @@ def test_one_repetition_per_pass_draws_the_groups_image(have_display):
 
 
 def test_each_volume_keeps_its_transfer_function(have_display):
-    s = _scene("default")
+    s = scene("default")
     transparent = vtkVolumeProperty()
     transparent.DeepCopy(s.property)
     transparent.GetScalarOpacity().RemoveAllPoints()
@@ -140,9 +118,7 @@ def test_each_volume_keeps_its_transfer_function(have_display):
     render.add_volume(renderer, s.grid, s.property, _spt())
     render.add_volume(renderer, s.grid, transparent, _spt())
     render.place_camera(renderer, s.grid.GetBounds(), s.view)
-    window.Render()
-    both = render.read_rgba(window)
-    window.Finalize()
+    both = draw_once(window)
     assert alone[..., 3].max() > 0.2
     assert np.abs(both - alone).max() <= 1.0 / 255.0 + 1e-6
 
@@ -159,8 +135,7 @@ def test_one_mapper_drawn_by_two_volumes_draws_each_once(have_display):
     """A mapper holds one mesh, table and set of matrices: two vtkVolumes that share it are
     drawn one frame each, side by side here, each exactly as when it is the only one shown,
     with one warning."""
-    from robustness_support import watch
-    s = _scene("default")
+    s = scene("default")
     b = s.grid.GetBounds()
     mapper = _spt()
     messages = watch(mapper)
