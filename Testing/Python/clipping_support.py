@@ -2,6 +2,7 @@
 plane, or by two planes with the volume moved, rotated and scaled by its matrix, and the exact
 reference of the clipped volume (spt.raycast with the same planes and matrix)."""
 
+import math
 import os
 import pathlib
 from dataclasses import dataclass
@@ -14,8 +15,10 @@ from vtkmodules.util.numpy_support import numpy_to_vtk
 
 from spt import metrics, raycast, render
 
-from robustness_support import ONE, property_for, split_image, watch
+from image_statistics import Estimate, estimate
+from robustness_support import ONE, property_for, split_image, volume_property, watch
 from scene_support import scene
+from statistics_checks import Z
 
 
 def plane(origin, normal) -> vtk.vtkPlane:
@@ -50,18 +53,9 @@ def coarse():
     array = numpy_to_vtk(field.astype(np.float32), deep=True)
     array.SetName("f")
     image.GetPointData().SetScalars(array)
-    grid = split_image(image)
-    color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(0.0, 0.1, 0.3, 1.0)
-    color.AddRGBPoint(1.0, 1.0, 0.7, 0.1)
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(0.0, 0.0)
-    opacity.AddPoint(1.0, 1.0)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(1.5)
-    return grid, prop
+    prop = volume_property([(0.0, 0.1, 0.3, 1.0), (1.0, 1.0, 0.7, 0.1)], [(0.0, 0.0), (1.0, 1.0)],
+                           1.5)
+    return split_image(image), prop
 
 
 def _scene(mesh: str):
@@ -205,6 +199,31 @@ def check_bad_planes(mapper, size: int) -> None:
     assert messages.errors and "not finite" in messages.errors[0], messages.errors
     assert drawn[..., 3].max() == 0.0, "an image from a plane that is not finite"
     w.window.Finalize()
+
+
+def estimate_case(mappers, name: str, size: int, level: int, dolly: float = 1.0):
+    """The estimate of two renders of the case of CASES, one through each of ``mappers`` (of
+    two seeds at ``level`` repetitions), against its reference; and the two images."""
+    first, second = (image(mapper, CASES[name], size, dolly) for mapper in mappers)
+    return estimate(first, second, reference(name, size, dolly), level), (first, second)
+
+
+def check_clipped_is_unbiased(label: str, make, name: str, size: int, level: int,
+                              bias_floor: float = 0.012) -> Estimate:
+    """The case's bias (mappers ``make(seed)`` of seeds 1 and 2) is the unclipped case's to
+    within Z standard errors and at most ``bias_floor``; against the unclipped reference it is
+    many times larger (the planes are honoured). Keeps a render and the reference."""
+    clipped, images = estimate_case([make(1), make(2)], name, size, level)
+    unclipped, _ = estimate_case([make(1), make(2)], unclipped_name(name), size, level)
+    keep_images(f"{label} clipping {name}", [images[0], reference(name, size)])
+    tolerance = Z * math.hypot(clipped.bias2_error, unclipped.bias2_error)
+    assert clipped.bias2 <= unclipped.bias2 + tolerance, (
+        f"{name}: bias {clipped.bias:.4f}, unclipped {unclipped.bias:.4f}")
+    assert clipped.bias <= bias_floor, f"{name}: bias {clipped.bias:.4f}"
+    ignored = estimate(*images, reference(unclipped_name(name), size), level)
+    assert ignored.bias > 5.0 * max(clipped.bias, 0.005), (
+        f"{name}: bias {clipped.bias:.4f}, against the unclipped volume {ignored.bias:.4f}")
+    return clipped
 
 
 def keep_images(name: str, images: Sequence[np.ndarray]) -> None:

@@ -10,16 +10,13 @@ the unclipped scene to within four standard errors, measured from two seeds. Sev
 plane that is not finite, give an error and nothing drawn.
 """
 
-import math
-
 import pytest
 
 from spt import metrics, render
 
-from clipping_support import (CASES, check_clipping_changes_the_image, check_bad_planes,
-                              image, keep_images, reference, unclipped_name)
-from image_statistics import estimate
-from statistics_checks import Z
+from clipping_support import (CASES, check_bad_planes, check_clipped_is_unbiased,
+                              check_clipping_changes_the_image, image, keep_images, reference,
+                              unclipped_name)
 
 SIZE = 128
 PBVR_LEVEL = 64
@@ -61,24 +58,10 @@ def test_havs_clipped_is_as_close_as_unclipped(name, parallel, have_display):
     assert ignored > 5.0 * error, f"{name}: the planes changed too little ({ignored:.4f})"
 
 
-def _pbvr_estimate(name):
-    first, second = (image(render.pbvr_mapper(PBVR_LEVEL, seed=seed), CASES[name], SIZE)
-                     for seed in (1, 2))
-    return estimate(first, second, reference(name, SIZE), PBVR_LEVEL), (first, second)
-
-
 @pytest.mark.parametrize("name", CLIPPED)
 def test_pbvr_clipped_is_unbiased(name, have_display):
-    clipped, images = _pbvr_estimate(name)
-    unclipped, _ = _pbvr_estimate(unclipped_name(name))
-    keep_images(f"pbvr clipping {name}", [images[0], reference(name, SIZE)])
-    tolerance = Z * math.hypot(clipped.bias2_error, unclipped.bias2_error)
-    assert clipped.bias2 <= unclipped.bias2 + tolerance, (
-        f"{name}: bias {clipped.bias:.4f}, unclipped {unclipped.bias:.4f}")
-    assert clipped.bias <= 0.012, f"{name}: bias {clipped.bias:.4f}"
-    ignored = estimate(*images, reference(unclipped_name(name), SIZE), PBVR_LEVEL)
-    assert ignored.bias > 5.0 * max(clipped.bias, 0.005), (
-        f"{name}: bias {clipped.bias:.4f}, against the unclipped volume {ignored.bias:.4f}")
+    check_clipped_is_unbiased("pbvr", lambda seed: render.pbvr_mapper(PBVR_LEVEL, seed=seed),
+                              name, SIZE, PBVR_LEVEL)
 
 
 @pytest.mark.parametrize("mapper", ["havs", "pbvr"])
