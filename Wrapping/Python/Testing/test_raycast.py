@@ -9,26 +9,21 @@ import numpy as np
 import pytest
 import vtk
 from scipy import ndimage
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import data, metrics, raycast, render
+
+from robustness_support import (UNIT_TETRAHEDRON, split_image, tetrahedra, volume_property,
+                                with_point_scalars)
+from scene_support import draw_once, moved_copy, with_moved_copy
 
 SIZE = 96
 
 
 def _linear_property(low, high, unit):
     """Opacity rising linearly over [low, high] (so the attenuation is linear in the scalar)."""
-    prop = vtk.vtkVolumeProperty()
-    color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(low, 0.2, 0.4, 1.0)
-    color.AddRGBPoint(high, 1.0, 0.6, 0.2)
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(low, 0.05)
-    opacity.AddPoint(high, 0.6)
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(unit)
-    return prop
+    return volume_property([(low, 0.2, 0.4, 1.0), (high, 1.0, 0.6, 0.2)],
+                           [(low, 0.05), (high, 0.6)], unit)
 
 
 def _parallel_camera(grid, size):
@@ -78,15 +73,7 @@ def test_optical_depth_integrates_the_attenuation_over_the_volume(have_display):
 def test_single_tetrahedron_chord():
     """A ray through a corner tetrahedron, straight down the z axis at (x, y), crosses a chord
     of length 1 - x - y: alpha = 1 - exp(-tau (1 - x - y))."""
-    grid = vtk.vtkUnstructuredGrid()
-    points = vtk.vtkPoints()
-    for p in [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]:
-        points.InsertNextPoint(p)
-    grid.SetPoints(points)
-    grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
-    scalars = numpy_to_vtk(np.full(4, 0.5), deep=True)
-    scalars.SetName("s")
-    grid.GetPointData().SetScalars(scalars)
+    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], np.full(4, 0.5))
     prop = _linear_property(0.0, 1.0, unit=0.5)
     camera = vtk.vtkCamera()
     camera.ParallelProjectionOn()
@@ -110,16 +97,8 @@ def test_single_tetrahedron_chord():
 def _tetrahedron_around_the_eye():
     """A regular-ish tetrahedron around the origin, a constant field, and a perspective camera
     at the origin looking down -z with its near plane at 0.05."""
-    grid = vtk.vtkUnstructuredGrid()
-    points = vtk.vtkPoints()
     corners = np.array([(1.0, 1.0, 1.0), (1.0, -1.0, -1.0), (-1.0, 1.0, -1.0), (-1.0, -1.0, 1.0)])
-    for p in corners * 2.0:
-        points.InsertNextPoint(*p)
-    grid.SetPoints(points)
-    grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
-    scalars = numpy_to_vtk(np.full(4, 0.5), deep=True)
-    scalars.SetName("s")
-    grid.GetPointData().SetScalars(scalars)
+    grid = tetrahedra(corners * 2.0, [(0, 1, 2, 3)], np.full(4, 0.5))
     camera = vtk.vtkCamera()
     camera.SetPosition(0.0, 0.0, 0.0)
     camera.SetFocalPoint(0.0, 0.0, -1.0)
@@ -168,9 +147,7 @@ def test_spt_inside_one_tetrahedron_is_the_chord(have_display):
     window, renderer = render.make_window(size, size)
     render.add_volume(renderer, grid, prop, render.spt_mapper(4, seed=1))
     renderer.GetActiveCamera().DeepCopy(camera)
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
+    image = draw_once(window)
     chord = _chords_from_the_near_plane(camera, corners, size)
     tau = prop.GetScalarOpacity().GetValue(0.5) / 2.0
     expected = -np.expm1(-tau * chord)
@@ -186,13 +163,7 @@ def _box_mesh():
     image.SetSpacing(0.3, 0.35, 0.4)
     x, y, z = np.meshgrid(*(np.arange(n) for n in (8, 7, 6)), indexing="ij")
     field = np.sin(0.6 * x) * np.cos(0.5 * y) + 0.2 * z
-    array = numpy_to_vtk(field.ravel(order="F"), deep=True)
-    array.SetName("field")
-    image.GetPointData().SetScalars(array)
-    split = vtk.vtkDataSetTriangleFilter()
-    split.SetInputData(image)
-    split.Update()
-    return split.GetOutput()
+    return split_image(with_point_scalars(image, field.ravel(order="F"), "field"))
 
 
 def test_agrees_with_vtk_ray_caster_inside_the_silhouette(have_display):
@@ -240,27 +211,16 @@ def test_several_volumes_are_the_image_of_their_union(have_display):
     grid = data.make_default_mesh()
     b = grid.GetBounds()
     offset = (0.3 * (b[1] - b[0]), 0.2 * (b[3] - b[2]), 0.1 * (b[5] - b[4]))
-    transform = vtk.vtkTransform()
-    transform.Translate(*offset)
-    moved = vtk.vtkTransformFilter()
-    moved.SetInputData(grid)
-    moved.SetTransform(transform)
-    moved.Update()
-    union = vtk.vtkAppendFilter()
-    union.AddInputData(grid)
-    union.AddInputData(moved.GetOutput())
-    union.Update()
+    moved, union = moved_copy(grid, offset), with_moved_copy(grid, offset)
     prop = data.default_transfer_function(grid)
-    camera = _parallel_camera(union.GetOutput(), SIZE)
-    both = raycast.render_volumes([(grid, prop), (moved.GetOutput(), prop)], camera,
-                                  (SIZE, SIZE))
-    whole = raycast.render(union.GetOutput(), prop, camera, (SIZE, SIZE))
+    camera = _parallel_camera(union, SIZE)
+    both = raycast.render_volumes([(grid, prop), (moved, prop)], camera, (SIZE, SIZE))
+    whole = raycast.render(union, prop, camera, (SIZE, SIZE))
     assert both[..., 3].max() > 0.2
     np.testing.assert_allclose(both, whole, atol=1e-9)
     clear = data.default_transfer_function(grid)
     clear.GetScalarOpacity().RemoveAllPoints()
     clear.GetScalarOpacity().AddPoint(0.0, 0.0)
     alone = raycast.render(grid, prop, camera, (SIZE, SIZE))
-    with_clear = raycast.render_volumes([(grid, prop), (moved.GetOutput(), clear)], camera,
-                                        (SIZE, SIZE))
+    with_clear = raycast.render_volumes([(grid, prop), (moved, clear)], camera, (SIZE, SIZE))
     np.testing.assert_allclose(with_clear, alone, atol=1e-9)

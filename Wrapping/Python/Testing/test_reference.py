@@ -8,6 +8,9 @@ import vtk
 
 from spt import data, metrics, render
 
+from robustness_support import tetrahedra, volume_property
+from scene_support import draw_once
+
 
 def _integrate(prop: vtk.vtkVolumeProperty, scalar: float, length: float) -> list:
     """VTK's linear ray integrator on one homogeneous segment."""
@@ -28,17 +31,10 @@ def _integrate(prop: vtk.vtkVolumeProperty, scalar: float, length: float) -> lis
 
 
 def test_reference_property_makes_vtk_integrator_exact():
-    color = vtk.vtkColorTransferFunction()
-    color.AddRGBPoint(0.0, 1.0, 0.5, 0.25)
-    color.AddRGBPoint(10.0, 1.0, 0.5, 0.25)
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(0.0, 0.0)
-    opacity.AddPoint(5.0, 1.0)  # an opacity bend with no color point
-    opacity.AddPoint(10.0, 0.0)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(2.0)
+    # An opacity bend at 5 with no color point.
+    prop = volume_property([(0.0, 1.0, 0.5, 0.25), (10.0, 1.0, 0.5, 0.25)],
+                           [(0.0, 0.0), (5.0, 1.0), (10.0, 0.0)], 2.0)
+    color, opacity = prop.GetRGBTransferFunction(), prop.GetScalarOpacity()
     fixed = render.reference_property(prop)
     for scalar in (2.5, 5.0, 7.0):
         alpha = 1.0 - math.exp(-opacity.GetValue(scalar) / 2.0 * 1.5)
@@ -66,18 +62,7 @@ def test_reference_rays_pass_through_pixel_centres(have_display):
 
 
 def _tetrahedra(points, cells):
-    grid = vtk.vtkUnstructuredGrid()
-    vtk_points = vtk.vtkPoints()
-    for point in points:
-        vtk_points.InsertNextPoint(point)
-    grid.SetPoints(vtk_points)
-    for cell in cells:
-        grid.InsertNextCell(vtk.VTK_TETRA, 4, cell)
-    scalars = vtk.vtkFloatArray()
-    for i in range(len(points)):
-        scalars.InsertNextValue(float(i))
-    grid.GetPointData().SetScalars(scalars)
-    return grid
+    return tetrahedra(points, cells, range(len(points)))
 
 
 def test_reference_grid_orients_tetrahedra_and_drops_flat_ones():
@@ -114,8 +99,6 @@ def test_reference_of_the_torus_has_no_holes(have_display):
     window, renderer = render.make_window(256, 256)
     render.add_volume(renderer, torus, render.reference_property(prop), render.reference_mapper())
     render.place_camera(renderer, torus.GetBounds(), view)
-    window.Render()
-    as_stored = np.ascontiguousarray(render.read_rgba(window)[0::2, 1::2])
-    window.Finalize()
+    as_stored = np.ascontiguousarray(draw_once(window)[0::2, 1::2])
     assert metrics.rmse(as_stored, pt) > 0.05
     assert metrics.rmse(repaired, pt) < 0.025
