@@ -20,6 +20,7 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 from .. import tables
 from .methods import METHODS
 from .models import Fit
+from .plots import plot_results
 from .report import race_runs, write_report
 from .results_views import attach, views_section
 
@@ -559,9 +560,7 @@ def write_results(source: pathlib.Path, output: pathlib.Path,
     plain = json.loads(json.dumps(results, default=lambda v: v.as_dict()))
     write_report(_with_fits(plain), source.parent)
     if figures:
-        from .runner import plot
-
-        plot(_with_fits(plain), source.parent)
+        plot_results(_with_fits(plain), source.parent)
     folder = _relative(source.parent, output.parent)
     folder = "" if folder == "." else folder + "/"
     command = REPORT_COMMAND.format(input=_relative(source, pathlib.Path.cwd()),
