@@ -12,6 +12,7 @@ import shutil
 import pytest
 
 from spt.experiments.bench import results as report
+from spt.experiments.bench.sections import race as race_section
 
 from test_cli import run
 
@@ -32,7 +33,7 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
                  "--output", str(tmp_path / "results.md"), "--figures")
     assert result.returncode == 0, result.stderr
     text = (tmp_path / "results.md").read_text()
-    assert headings(text) == list(report.SECTIONS)
+    assert headings(text) == list(report.HEADINGS)
     machine = json.loads(BENCH.read_text())["machine"]
     assert re.search(r"Measured in runs up to \d{4}-\d\d-\d\d on " + re.escape(machine)
                      + ": a software rasterizer, no GPU", text)
@@ -76,7 +77,7 @@ def test_the_race_findings_follow_its_rows():
     race = {"size": 64, "azimuth": 35.0, "elevation": 25.0, "frames": 2,
             "max_repetitions": 256, "rows": small + large + missed,
             "summary": small_summary + large_summary + missed_summary}
-    text = "\n".join(report.race_section({"race": race}, "bench/"))
+    text = "\n".join(race_section.summary({"race": race}, "bench/"))
     assert "at most one VTK PT frame on: large (0.6 at L=64)." in text
     assert "longer than VTK PT's frame on small (2.5 at L=4)" in text
     assert "does not reach VTK PT's error by L = 256 on missed" in text
@@ -92,7 +93,7 @@ def test_a_run_that_measured_nothing_says_how_to_measure_each_section(tmp_path):
                                   "settings": {}, "shape": "drill", "frames": 1,
                                   "date": "2000-01-02"}))
     text = report.write_results(source, tmp_path / "results.md")
-    assert headings(text) == list(report.SECTIONS)
+    assert headings(text) == list(report.HEADINGS)
     assert "Measured in runs up to 2000-01-02 on a test machine. Times vary" in text
     for section in ("race", "camera", "cells", "quality", "host", "large", "parallel"):
         assert f"`python3 -m spt bench --sections {section} --output out/bench`" in text

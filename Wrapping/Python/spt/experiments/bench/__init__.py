@@ -27,7 +27,8 @@ VTK's projected tetrahedra.
 
 Sweep times are the median of several frames after one untimed warm-up frame, taken with the
 pipeline finished (``WaitForCompletion``); the race keeps the best of two. The results go to
-``bench.json``, PNG plots and one Markdown report, ``bench.md`` (:mod:`.report`). Nothing here
+``bench.json``, PNG plots and two Markdown reports, ``bench.md`` with every table and
+``results.md`` the summary for readers (:mod:`.results`, :mod:`.sections`). Nothing here
 is part of ``make test``: these are measurements, not assertions.
 """
 
