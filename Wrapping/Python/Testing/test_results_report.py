@@ -1,8 +1,8 @@
-"""The results page for readers (``python3 -m spt report``): generated from the committed
-benchmark results it has every section and every figure with its command, the figures are
-drawn again from them, the committed page is what the generator writes from them, a run that
-measured nothing says how to measure each section, the race's findings follow its rows, and
-bad input is refused."""
+"""The results page for readers (``build/bin/spt-python -m spt report``): generated from the
+committed benchmark results it has every section and every figure with its command, the
+figures are drawn again from them, the committed page is what the generator writes from them,
+a run that measured nothing says how to measure each section, the race's findings follow its
+rows, and bad input is refused."""
 
 import json
 import pathlib
@@ -41,14 +41,15 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
         picture = f"![{caption}]({path})"
         assert picture in text, name
         after = text.split(picture, 1)[1][:400]
-        assert f"`python3 -m spt bench --sections {sections} --output out/bench`" in after
+        command = f"build/bin/spt-python -m spt bench --sections {sections} --output out/bench"
+        assert f"`{command}`" in after
         assert (BENCH.parent / path).exists(), f"{path} is referenced but not committed"
         assert (tmp_path / path).stat().st_size > 10_000, f"{path} not drawn from bench.json"
     assert not re.search(r"\bnan\b|\binf\b", text)
     assert "not measured" not in text and "did not measure" not in text.split("## Cell")[1]
     # the appendix is the benchmark's own table dump, written from the same file
     assert (tmp_path / "bench.md").read_text() == (BENCH.parent / "bench.md").read_text(), \
-        "regenerate it: python3 -m spt report"
+        "regenerate it: build/bin/spt-python -m spt report"
 
 
 @needs_committed
@@ -96,7 +97,8 @@ def test_a_run_that_measured_nothing_says_how_to_measure_each_section(tmp_path):
     assert headings(text) == list(report.HEADINGS)
     assert "Measured in runs up to 2000-01-02 on a test machine. Times vary" in text
     for section in ("race", "camera", "cells", "quality", "host", "large", "parallel"):
-        assert f"`python3 -m spt bench --sections {section} --output out/bench`" in text
+        command = f"build/bin/spt-python -m spt bench --sections {section} --output out/bench"
+        assert f"`{command}`" in text
     assert "![" not in text
 
 

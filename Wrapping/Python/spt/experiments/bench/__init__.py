@@ -1,7 +1,7 @@
 """Benchmarks: the race to quality, and the time and GPU memory of SPT, HAVS-like, PBVR and
 VTK's projected tetrahedra.
 
-``python3 -m spt bench`` measures, on this machine and in one process:
+``build/bin/spt-python -m spt bench`` measures, on this machine and in one process:
 
 - the race (:mod:`.race`): every method's error against the exact reference and its frame
   time on real and generated scenes, each stochastic method's time to reach VTK PT's error,

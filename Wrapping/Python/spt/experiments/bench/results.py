@@ -3,9 +3,9 @@ readers, dated and naming the machine, each figure with the command that measure
 ``bench.md``, its appendix, every table of the run. The sections' own text is in
 :mod:`.sections`.
 
-``python3 -m spt report --input out/bench/bench.json --output out/results.md`` writes them
-without measuring anything (``bench.md`` next to the input); ``--figures`` draws the figures
-there again too. A benchmark run writes all of them.
+``build/bin/spt-python -m spt report --input out/bench/bench.json --output out/results.md``
+writes them without measuring anything (``bench.md`` next to the input); ``--figures`` draws
+the figures there again too. A benchmark run writes all of them.
 """
 
 from __future__ import annotations

@@ -14,8 +14,8 @@ Results = Dict[str, object]
 #: A figure: its file, its caption and the sections whose run draws it again.
 Figure = Tuple[str, str, str]
 
-#: The experiments' command line.
-SPT = "python3 -m spt"
+#: The experiments' command line: they run from a build tree (an install does not hold them).
+SPT = "build/bin/spt-python -m spt"
 BENCH_COMMAND = SPT + " bench --sections {sections} --output out/bench"
 
 
