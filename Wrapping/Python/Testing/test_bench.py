@@ -256,7 +256,8 @@ def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, have_displa
     table per size in results.md and each method's growth from the rows' own frames; a later
     run at one size keeps the other."""
     from spt import cli
-    from spt.experiments.bench import host, results_views
+    from spt.experiments.bench import host
+    from spt.experiments.bench.sections import views
 
     monkeypatch.setattr(host, "perf_available", lambda: False)  # thread time: quicker
     arguments = cli._parser().parse_args(["bench", "--size", "24,16"])
@@ -286,7 +287,7 @@ def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, have_displa
     again = race.races(dataclasses.replace(settings, race_sizes=(16,)), None, tmp_path,
                        [small, large])
     assert [r["size"] for r in again] == [16, 24] == [
-        r["size"] for r in results_views.races({"race": again[0], "race_sizes": again[1:]})]
+        r["size"] for r in views.races({"race": again[0], "race_sizes": again[1:]})]
     assert again[0]["rows"] == [] and again[1]["rows"] == large["rows"]
 
 

@@ -8,7 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from spt.experiments.bench import race, report
+from spt.experiments.bench import race
+from spt.experiments.bench.sections import race as race_section
 from spt.experiments.bench.settings import Settings
 from spt.progress import Progress
 
@@ -57,12 +58,12 @@ def test_summary_as_multiples_of_vtk_pt():
 def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
     result = _race(["spx", "torus"], [_row("pt", 1, 0.01, 0.1, False, floor=0.0011),
                                       _row("spt", 1, 0.005, 0.2, floor=0.0011)])
-    text = "\n".join(report.race_section(result))
+    text = "\n".join(race_section.race_full(result))
     assert "rounded to 8 bits: spx 0.0011, torus 0.0011." in text
     # rows of a race measured before the floor was recorded
     for row in result["rows"]:
         del row["read_back_floor"]
-    assert "rounded to 8 bits" not in "\n".join(report.race_section(result))
+    assert "rounded to 8 bits" not in "\n".join(race_section.race_full(result))
 
 
 def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():

@@ -1,8 +1,8 @@
-"""The results page for readers (``python3 -m spt report``): generated from the committed
-benchmark results it has every section and every figure with its command, the figures are
-drawn again from them, the committed page is what the generator writes from them, a run that
-measured nothing says how to measure each section, the race's findings follow its rows, and
-bad input is refused."""
+"""The results page for readers (``build/bin/spt-python -m spt report``): generated from the
+committed benchmark results it has every section and every figure with its command, the
+figures are drawn again from them, the committed page is what the generator writes from them,
+a run that measured nothing says how to measure each section, the race's findings follow its
+rows, and bad input is refused."""
 
 import json
 import pathlib
@@ -12,6 +12,7 @@ import shutil
 import pytest
 
 from spt.experiments.bench import results as report
+from spt.experiments.bench.sections import race as race_section
 
 from test_cli import run
 
@@ -32,7 +33,7 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
                  "--output", str(tmp_path / "results.md"), "--figures")
     assert result.returncode == 0, result.stderr
     text = (tmp_path / "results.md").read_text()
-    assert headings(text) == list(report.SECTIONS)
+    assert headings(text) == list(report.HEADINGS)
     machine = json.loads(BENCH.read_text())["machine"]
     assert re.search(r"Measured in runs up to \d{4}-\d\d-\d\d on " + re.escape(machine)
                      + ": a software rasterizer, no GPU", text)
@@ -40,14 +41,15 @@ def test_the_report_of_the_committed_run_has_every_section_and_figure(tmp_path):
         picture = f"![{caption}]({path})"
         assert picture in text, name
         after = text.split(picture, 1)[1][:400]
-        assert f"`python3 -m spt bench --sections {sections} --output out/bench`" in after
+        command = f"build/bin/spt-python -m spt bench --sections {sections} --output out/bench"
+        assert f"`{command}`" in after
         assert (BENCH.parent / path).exists(), f"{path} is referenced but not committed"
         assert (tmp_path / path).stat().st_size > 10_000, f"{path} not drawn from bench.json"
     assert not re.search(r"\bnan\b|\binf\b", text)
     assert "not measured" not in text and "did not measure" not in text.split("## Cell")[1]
     # the appendix is the benchmark's own table dump, written from the same file
     assert (tmp_path / "bench.md").read_text() == (BENCH.parent / "bench.md").read_text(), \
-        "regenerate it: python3 -m spt report"
+        "regenerate it: build/bin/spt-python -m spt report"
 
 
 @needs_committed
@@ -76,7 +78,7 @@ def test_the_race_findings_follow_its_rows():
     race = {"size": 64, "azimuth": 35.0, "elevation": 25.0, "frames": 2,
             "max_repetitions": 256, "rows": small + large + missed,
             "summary": small_summary + large_summary + missed_summary}
-    text = "\n".join(report.race_section({"race": race}, "bench/"))
+    text = "\n".join(race_section.summary({"race": race}, "bench/"))
     assert "at most one VTK PT frame on: large (0.6 at L=64)." in text
     assert "longer than VTK PT's frame on small (2.5 at L=4)" in text
     assert "does not reach VTK PT's error by L = 256 on missed" in text
@@ -92,10 +94,11 @@ def test_a_run_that_measured_nothing_says_how_to_measure_each_section(tmp_path):
                                   "settings": {}, "shape": "drill", "frames": 1,
                                   "date": "2000-01-02"}))
     text = report.write_results(source, tmp_path / "results.md")
-    assert headings(text) == list(report.SECTIONS)
+    assert headings(text) == list(report.HEADINGS)
     assert "Measured in runs up to 2000-01-02 on a test machine. Times vary" in text
     for section in ("race", "camera", "cells", "quality", "host", "large", "parallel"):
-        assert f"`python3 -m spt bench --sections {section} --output out/bench`" in text
+        command = f"build/bin/spt-python -m spt bench --sections {section} --output out/bench"
+        assert f"`{command}`" in text
     assert "![" not in text
 
 

@@ -1,7 +1,7 @@
 """Benchmarks: the race to quality, and the time and GPU memory of SPT, HAVS-like, PBVR and
 VTK's projected tetrahedra.
 
-``python3 -m spt bench`` measures, on this machine and in one process:
+``build/bin/spt-python -m spt bench`` measures, on this machine and in one process:
 
 - the race (:mod:`.race`): every method's error against the exact reference and its frame
   time on real and generated scenes, each stochastic method's time to reach VTK PT's error,
@@ -27,7 +27,8 @@ VTK's projected tetrahedra.
 
 Sweep times are the median of several frames after one untimed warm-up frame, taken with the
 pipeline finished (``WaitForCompletion``); the race keeps the best of two. The results go to
-``bench.json``, PNG plots and one Markdown report, ``bench.md`` (:mod:`.report`). Nothing here
+``bench.json``, PNG plots and two Markdown reports, ``bench.md`` with every table and
+``results.md`` the summary for readers (:mod:`.results`, :mod:`.sections`). Nothing here
 is part of ``make test``: these are measurements, not assertions.
 """
 

@@ -11,6 +11,7 @@ import numpy as np
 from .. import plots
 from .methods import METHODS
 from .models import Fit, time_key
+from .race import STOCHASTIC_METHODS
 
 Entry = Dict[str, object]
 
@@ -106,3 +107,22 @@ def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
     figure.legend(handles, labels, loc="lower center", ncol=4, fontsize=plots.LEGEND_FONT_SIZE)
     figure.tight_layout(rect=(0.0, 0.12, 1.0, 1.0))
     figure.savefig(str(path), dpi=plots.DPI)
+
+
+def plot_results(results: Dict[str, object], output: pathlib.Path) -> None:
+    """Draw the benchmark's figures from its results into ``output``."""
+    entries = results["entries"]
+    plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
+    plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
+               output / "repetitions.png")
+    plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
+    plot_sweep(entries, "image", "width", "pixels", output / "image.png")
+    plot_residuals(results["time_models"], output / "time_residuals.png", "ms")
+    plot_residuals(results["cpu_time_models"], output / "cpu_time_residuals.png", "ms")
+    plot_residuals(results["memory_models"], output / "memory_residuals.png", "bytes")
+    plot_error_against_time(
+        [e for e in entries if e.get("sweep") == "quality" and "rmse" in e],
+        output / "quality.png", ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"))
+    if results.get("race"):
+        plot_error_against_time(results["race"]["rows"], output / "race.png",
+                                [m.name for m in STOCHASTIC_METHODS], key="seconds")

@@ -16,7 +16,7 @@ from . import camera, host, parallel, paraview_view, quality, race, sweeps
 from .crossovers import crossovers, floor_ratios
 from .methods import METHODS, generated_scene
 from .models import memory_models, predict_large, time_models
-from .plots import plot_error_against_time, plot_residuals, plot_sweep
+from .plots import plot_results
 from .results import write_results
 from .settings import SECTIONS, Settings
 from .timing import record, time_method
@@ -104,25 +104,6 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
     return measured
 
 
-def plot(results: Dict[str, object], output: pathlib.Path) -> None:
-    """Draw the benchmark's figures from its results into ``output``."""
-    entries = results["entries"]
-    plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
-    plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
-               output / "repetitions.png")
-    plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
-    plot_sweep(entries, "image", "width", "pixels", output / "image.png")
-    plot_residuals(results["time_models"], output / "time_residuals.png", "ms")
-    plot_residuals(results["cpu_time_models"], output / "cpu_time_residuals.png", "ms")
-    plot_residuals(results["memory_models"], output / "memory_residuals.png", "bytes")
-    plot_error_against_time(
-        [e for e in entries if e.get("sweep") == "quality" and "rmse" in e],
-        output / "quality.png", ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"))
-    if results.get("race"):
-        plot_error_against_time(results["race"]["rows"], output / "race.png",
-                                [m.name for m in race.STOCHASTIC_METHODS], key="seconds")
-
-
 def _write_json(results: Dict[str, object], output: pathlib.Path) -> None:
     serializable = dict(results)
     for key in ("time_models", "cpu_time_models", "memory_models"):
@@ -158,7 +139,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
                       results["memory_models"])
     results["crossovers"] = crossovers(entries, results["memory_models"])
     results["floor_ratios"] = floor_ratios(entries)
-    plot(results, output)
+    plot_results(results, output)
     _write_json(results, output)
     write_results(output / "bench.json", output / "results.md", results)
     return results
