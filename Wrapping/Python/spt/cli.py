@@ -267,7 +267,7 @@ def _add_report(commands) -> None:
                        "from a benchmark's bench.json, without measuring")
     report.add_argument("--input", type=pathlib.Path,
                         default=pathlib.Path("Documentation/bench/bench.json"),
-                        help="a bench.json written by `python3 -m spt bench`")
+                        help="a bench.json written by `spt-python -m spt bench`")
     report.add_argument("--output", type=pathlib.Path,
                         default=pathlib.Path("Documentation/results.md"),
                         help="the Markdown file to write")
