@@ -344,22 +344,16 @@ def _bench(arguments: argparse.Namespace) -> None:
     if arguments.max_cells is not None:
         changes["cells"] = tuple(c for c in settings.cells if c < arguments.max_cells) + (
             arguments.max_cells,)
-    if arguments.large_cells is not None:
-        changes["large_cells"] = arguments.large_cells
-    if arguments.frames is not None:
-        changes["frames"] = arguments.frames
-    if arguments.methods is not None:
-        changes["only_methods"] = tuple(arguments.methods)
-    if arguments.scenes is not None:
-        changes["race_scenes"] = tuple(arguments.scenes)
-    if arguments.max_repetitions is not None:
-        changes["race_max_repetitions"] = arguments.max_repetitions
-    if arguments.race_size is not None:
-        changes["race_size"] = arguments.race_size
-    if arguments.race_sizes is not None:
-        changes["race_sizes"] = tuple(arguments.race_sizes)
-    if arguments.paraview_scenes is not None:
-        changes["paraview_scenes"] = tuple(arguments.paraview_scenes)
+    # Each option given replaces its setting: (option, setting, a tuple of values).
+    for option, setting, many in (
+            ("large_cells", "large_cells", False), ("frames", "frames", False),
+            ("methods", "only_methods", True), ("scenes", "race_scenes", True),
+            ("max_repetitions", "race_max_repetitions", False),
+            ("race_size", "race_size", False), ("race_sizes", "race_sizes", True),
+            ("paraview_scenes", "paraview_scenes", True)):
+        value = getattr(arguments, option)
+        if value is not None:
+            changes[setting] = tuple(value) if many else value
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)
