@@ -101,6 +101,22 @@ def test_generated_mesh_has_the_size_and_fills_the_surface(shape):
     assert np.percentile(values, 90) - np.percentile(values, 10) > 0.2
 
 
+def test_an_interrupted_cache_write_leaves_no_file(tmp_path):
+    """A run stopped while it writes a cache file (the mesh, an exact reference) leaves neither
+    a partial file, which every later run would fail to read, nor a temporary one."""
+    path = tmp_path / "cache" / "reference.npy"
+
+    def interrupted(stream):
+        stream.write(b"\x93NUMPY partial")
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        meshes.save_atomically(path, interrupted)
+    assert not list(path.parent.iterdir())
+    meshes.save_atomically(path, lambda stream: np.save(stream, np.arange(3.0)))
+    assert np.array_equal(np.load(path), np.arange(3.0)) and len(list(path.parent.iterdir())) == 1
+
+
 def test_cache_round_trip_gives_the_same_mesh(cache_folder, monkeypatch):
     first = meshes.generate_arrays("torus", 10_000, seed=3)
     path = meshes.cache_path("torus", 10_000, seed=3)

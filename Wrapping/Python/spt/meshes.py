@@ -29,7 +29,7 @@ import tempfile
 import warnings
 import zipfile
 from dataclasses import dataclass
-from typing import Callable, List, Optional, Tuple
+from typing import BinaryIO, Callable, List, Optional, Tuple
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
@@ -397,18 +397,24 @@ def tetrahedralize(shape: str, cells: int) -> Tuple[np.ndarray, np.ndarray]:
     return points, tetrahedra.astype(np.int32)
 
 
-def _save(path: pathlib.Path, mesh: MeshArrays) -> None:
-    """Write atomically: a temporary file in the same directory, renamed over ``path``."""
+def save_atomically(path: pathlib.Path, write: Callable[[BinaryIO], None]) -> None:
+    """Write a cache file with ``write`` into a temporary file in the same directory, renamed
+    over ``path``: a reader sees the whole file or none, and an interrupted run leaves none."""
     path.parent.mkdir(parents=True, exist_ok=True)
     handle, temporary = tempfile.mkstemp(prefix=path.stem, suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(handle, "wb") as stream:
-            np.savez(stream, points=mesh.points, tetrahedra=mesh.tetrahedra, field=mesh.field,
-                     format_version=np.array(FORMAT_VERSION))
+            write(stream)
         os.replace(temporary, path)
     except BaseException:
         pathlib.Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def _save(path: pathlib.Path, mesh: MeshArrays) -> None:
+    save_atomically(path, lambda stream: np.savez(
+        stream, points=mesh.points, tetrahedra=mesh.tetrahedra, field=mesh.field,
+        format_version=np.array(FORMAT_VERSION)))
 
 
 def load_cached(path: pathlib.Path) -> Optional[MeshArrays]:

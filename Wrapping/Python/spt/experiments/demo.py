@@ -101,8 +101,7 @@ def cached_reference(s: volumes.VolumesScene, size: int,
         return render.Rendering(image=np.load(path), seconds=0.0, mapper=None)
     rendering = volumes.reference(s, (size, size))
     try:
-        directory.mkdir(parents=True, exist_ok=True)
-        np.save(path, rendering.image)
+        meshes.save_atomically(path, lambda stream: np.save(stream, rendering.image))
     except OSError:
         pass  # the cache only spares the next run the ray casting
     return rendering

@@ -27,7 +27,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
-from ... import metrics, render, scenes
+from ... import meshes, metrics, render, scenes
 from ...progress import Progress
 from ... import vtkSPTVolumeMapper
 from . import host
@@ -181,9 +181,8 @@ def cached_reference(s: scenes.Scene, size: int, directory: pathlib.Path) -> np.
     path = directory / f"{key}.npy"
     if path.exists():
         return np.load(path)
-    directory.mkdir(parents=True, exist_ok=True)
     image = render.reference(s.grid, s.property, view, (size, size)).image
-    np.save(path, image)
+    meshes.save_atomically(path, lambda stream: np.save(stream, image))
     return image
 
 
