@@ -33,7 +33,7 @@
 #               own tree, raced alternately (SCENES, RUNS, SIZE): out/bench-compare/compare.json
 #
 # Variables: PREFIX (install prefix, default /usr/local), BUILD (build directory, default
-# build), JOBS (parallel build jobs, default: number of cores), DEMO_OUTPUT (where the demo
+# build), JOBS (parallel build jobs and tests, default: number of cores), DEMO_OUTPUT (where the demo
 # writes its images and tables, default out/demo), TESTS (a regular expression: test,
 # test-egl and test-debian13 run only the tests whose names match, e.g. TESTS=paraview_mpi),
 # WHEEL_PYTHONS (the CPython interpreters that make wheel and test-wheel build and test a wheel
@@ -47,7 +47,7 @@ BUILD ?= build
 DEMO_OUTPUT ?= $(CURDIR)/out/demo
 JOBS ?= $(shell nproc)
 TESTS ?=
-CTEST = ctest --output-on-failure --timeout 1500 $(if $(TESTS),-R '$(TESTS)')
+CTEST = ctest -j$(JOBS) --output-on-failure --timeout 1500 $(if $(TESTS),-R '$(TESTS)')
 PYTHON := /usr/bin/python3
 # The VTK inside Debian's ParaView (5.11 on Debian 12, 5.13 on Debian 13), found once paraview-dev
 # is installed (a recursive variable: evaluated when a recipe runs, after deps); where ParaView
