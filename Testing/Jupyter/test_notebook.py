@@ -122,7 +122,7 @@ def _jpeg_error(rgb8: np.ndarray, mask: np.ndarray) -> float:
     (VTK's vtkJPEGWriter, through vtkWebApplication) and decoded."""
     from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
     from vtkmodules.vtkCommonDataModel import vtkImageData
-    from vtkmodules.vtkIOImage import vtkJPEGReader, vtkJPEGWriter
+    from vtkmodules.vtkIOImage import vtkJPEGWriter
     height, width = rgb8.shape[:2]
     image = vtkImageData()
     image.SetDimensions(width, height, 1)
@@ -132,12 +132,8 @@ def _jpeg_error(rgb8: np.ndarray, mask: np.ndarray) -> float:
     writer.SetQuality(QUALITY)
     writer.WriteToMemoryOn()
     writer.Write()
-    reader = vtkJPEGReader()
-    reader.SetMemoryBuffer(writer.GetResult())
-    reader.SetMemoryBufferLength(writer.GetResult().GetNumberOfTuples())
-    reader.Update()
-    decoded = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-    decoded = decoded.reshape(height, width, -1)[::-1, :, :3]
+    encoded = vtk_to_numpy(writer.GetResult()).tobytes()
+    decoded = np.asarray(Image.open(io.BytesIO(encoded)).convert("RGB"))
     return _rmse(decoded / 255.0, rgb8 / 255.0, mask)
 
 
