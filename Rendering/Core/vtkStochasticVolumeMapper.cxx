@@ -95,11 +95,15 @@ public:
       return std::max(1, static_cast<int>(allotted / time));
     }
 
-    // The time of the best frame of one repetition measured, or 0: a pair of traversals
-    // where the mapper draws them (far less noise than a single pass), else a single pass.
+    // The time of the best frame of one repetition measured: a pair of traversals where the
+    // mapper draws them (far less noise than a single pass), else a single pass; before either
+    // was timed, a group's (which draws more, so the first frame below groups is not planned
+    // too fine); 0 before anything was.
     double OneRepetition() const
     {
-      return this->TimePerPair > 0.0 ? this->TimePerPair : this->TimePerSinglePass;
+      return this->TimePerPair > 0.0    ? this->TimePerPair
+        : this->TimePerSinglePass > 0.0 ? this->TimePerSinglePass
+                                        : this->TimePerGroup;
     }
 
     // The times predicted when the image's pixels change by `factor`: a repetition's time is
