@@ -95,15 +95,16 @@ public:
       return std::max(1, static_cast<int>(allotted / time));
     }
 
-    // The time of the best frame of one repetition measured: a pair of traversals where the
-    // mapper draws them (far less noise than a single pass), else a single pass; before either
-    // was timed, a group's (which draws more, so the first frame below groups is not planned
-    // too fine); 0 before anything was.
+    // The time of the best frame of one repetition measured, or 0: a pair of traversals
+    // where the mapper draws them (far less noise than a single pass), else a single pass.
     double OneRepetition() const
     {
-      return this->TimePerPair > 0.0    ? this->TimePerPair
-        : this->TimePerSinglePass > 0.0 ? this->TimePerSinglePass
-                                        : this->TimePerGroup;
+      return this->TimePerPair > 0.0 ? this->TimePerPair : this->TimePerSinglePass;
+    }
+
+    bool TimedOneRepetition() const
+    {
+      return this->TimePerPair > 0.0 || this->TimePerSinglePass > 0.0;
     }
 
     // The times predicted when the image's pixels change by `factor`: a repetition's time is
@@ -181,7 +182,11 @@ double vtkStochasticVolumeMapper::ChooseSampleDistance(vtkVolume* vol)
   // Predicted at every pixel, one repetition takes the time measured at the current distance
   // times the pixels' ratio; the distance that fits the allotted time is its square root. A
   // coarser image of the best single repetition comes before a noisier way of drawing it.
-  const double atEveryPixel = budget.OneRepetition() * current * current;
+  // Before one repetition was timed (the first interactive render after still ones, which
+  // draw every pixel), a group of the still renders stands for it: it draws more, so that
+  // first image is planned no finer than it can afford, not drawn at every pixel blind.
+  const double atEveryPixel =
+    budget.TimedOneRepetition() ? budget.OneRepetition() * current * current : budget.TimePerGroup;
   const double allotted = vol->GetAllocatedRenderTime();
   double distance = 1.0;
   if (atEveryPixel > 0.0 && allotted > 0.0 && atEveryPixel > allotted)
@@ -194,8 +199,13 @@ double vtkStochasticVolumeMapper::ChooseSampleDistance(vtkVolume* vol)
   if (distance != current)
   {
     // The next render sizes its buffers anew, which its time would count: it keeps the
-    // predicted times, and the render after it measures.
-    budget.Scale((current * current) / (distance * distance));
+    // predicted times, and the render after it measures. A group's time that stands for a
+    // repetition's stays that of every pixel: scaled, it would let the coarser image draw
+    // whole groups.
+    if (budget.TimedOneRepetition())
+    {
+      budget.Scale((current * current) / (distance * distance));
+    }
     this->ImageSampleDistance = float(distance);
     this->Schedule->Resized = true;
   }
