@@ -35,20 +35,17 @@ def _positive_int(limit: int):
     return parse
 
 
-def _levels(text: str) -> List[int]:
-    parse = _positive_int(65536)
-    levels = [parse(part) for part in text.split(",") if part.strip()]
-    if not levels:
-        raise argparse.ArgumentTypeError("give at least one repetition level")
-    return levels
+def _positive_ints(limit: int, what: str):
+    """A comma-separated list of at least one whole number in 1..limit."""
+    def parse(text: str) -> List[int]:
+        values = [_positive_int(limit)(part) for part in text.split(",") if part.strip()]
+        if not values:
+            raise argparse.ArgumentTypeError(f"give at least one {what}")
+        return values
+    return parse
 
 
-def _sizes(text: str) -> List[int]:
-    parse = _positive_int(MAX_IMAGE_SIZE)
-    sizes = [parse(part) for part in text.split(",") if part.strip()]
-    if not sizes:
-        raise argparse.ArgumentTypeError("give at least one image size")
-    return sizes
+_levels = _positive_ints(65536, "repetition level")
 
 
 def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
@@ -68,11 +65,14 @@ def _datasets(text: str) -> List[str]:
     return _names(text, list(SCENES), "data set")
 
 
-def _dataset(text: str) -> str:
-    names = _datasets(text)
+def _one(names: List[str]) -> str:
     if len(names) != 1:
         raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
     return names[0]
+
+
+def _dataset(text: str) -> str:
+    return _one(_datasets(text))
 
 
 def _data_directory(text: str) -> pathlib.Path:
@@ -102,13 +102,17 @@ def _steep_datasets(text: str) -> List[str]:
     return _names(text, list(STEEP_SCENES), "data set")
 
 
-def _cell_count(text: str) -> int:
-    from .meshes import MAX_CELLS, MIN_CELLS
+def _cells(pieces: int):
+    """A cell count of the generated meshes, of ``pieces`` meshes in all (``_`` allowed)."""
+    def parse(text: str) -> int:
+        from .meshes import MAX_CELLS, MIN_CELLS
 
-    value = _convert(text.replace("_", ""), int, "a whole number")
-    if not MIN_CELLS <= value <= MAX_CELLS:
-        raise argparse.ArgumentTypeError(f"{value} is outside {MIN_CELLS}..{MAX_CELLS}")
-    return value
+        value = _convert(text.replace("_", ""), int, "a whole number")
+        if not pieces * MIN_CELLS <= value <= MAX_CELLS:
+            raise argparse.ArgumentTypeError(
+                f"{value} is outside {pieces * MIN_CELLS}..{MAX_CELLS}")
+        return value
+    return parse
 
 
 def _target_error(text: str) -> float:
@@ -128,19 +132,7 @@ def _seed(text: str) -> int:
 def _demo_scene(text: str) -> str:
     from .experiments.bench.race import scene_names
 
-    names = _names(text, scene_names(), "data set")
-    if len(names) != 1:
-        raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
-    return names[0]
-
-
-def _pair_cells(text: str) -> int:
-    from .meshes import MAX_CELLS, MIN_CELLS
-
-    value = _convert(text.replace("_", ""), int, "a whole number")
-    if not 2 * MIN_CELLS <= value <= MAX_CELLS:
-        raise argparse.ArgumentTypeError(f"{value} is outside {2 * MIN_CELLS}..{MAX_CELLS}")
-    return value
+    return _one(_names(text, scene_names(), "data set"))
 
 
 def _add_demo(commands) -> None:
@@ -159,7 +151,7 @@ def _add_demo(commands) -> None:
                       help="the large scene (default: ironprot_full, 1.5M tetrahedra, where "
                            "the data sets are, else drill-1M, the generated drill of 10^6; "
                            "'default' is the embedded helix mesh)")
-    demo.add_argument("--pair-cells", type=_pair_cells, default=200_000,
+    demo.add_argument("--pair-cells", type=_cells(2), default=200_000,
                       help="tetrahedra of the interpenetrating drill and ring, in all "
                            "(default 200000)")
     _add_data_dir(demo)
@@ -250,7 +242,8 @@ def _add_bench(commands) -> None:
                        help="the race's largest repetition level (default 256)")
     bench.add_argument("--race-size", type=_positive_int(MAX_IMAGE_SIZE), default=None,
                        help="the race's image width and height (default 256)")
-    bench.add_argument("--size", type=_sizes, default=None, dest="race_sizes",
+    bench.add_argument("--size", type=_positive_ints(MAX_IMAGE_SIZE, "image size"), default=None,
+                       dest="race_sizes",
                        help="comma-separated image sizes of the race, each width and height, "
                             "e.g. 256,1024 (default 256); the races at other sizes in "
                             "OUTPUT/bench.json are kept")
@@ -279,7 +272,7 @@ def _add_mesh(commands) -> None:
     mesh = commands.add_parser(
         "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
     mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
-    mesh.add_argument("--cells", type=_cell_count, default=1_000_000,
+    mesh.add_argument("--cells", type=_cells(1), default=1_000_000,
                       help="number of tetrahedra, within 25 %% (default 1000000)")
     mesh.add_argument("--seed", type=_seed, default=0, help="places the field's maxima")
     mesh.add_argument("--output", type=pathlib.Path, required=True,

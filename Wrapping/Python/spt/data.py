@@ -1,19 +1,18 @@
-"""Data sets for the SPT volume mapper: real meshes, an embedded default mesh
-and transfer-function presets.
+"""Data sets for the SPT volume mapper: real meshes, an embedded default mesh and
+transfer-function presets.
 
-Every loader returns a ``vtkUnstructuredGrid`` whose point data holds exactly
-one array, the scalar to render, set as the active point scalars. By default
-meshes are converted to tetrahedra with ``vtkDataSetTriangleFilter``
-(TetrahedraOnly on), which is what the SPT mapper consumes.
+Every loader returns a ``vtkUnstructuredGrid`` whose point data holds exactly one array, the
+scalar to render, set as the active point scalars. By default meshes are converted to tetrahedra
+with ``vtkDataSetTriangleFilter`` (TetrahedraOnly on), which is what the SPT mapper consumes.
 
-The real data sets are not part of the repository. They are read from the
-directory that the environment variable ``SPT_DATA_DIR`` names (the command
-line's ``--data-dir`` sets it), and from nowhere else: no folder is guessed
-(see :func:`data_dir`).
+The real data sets are not part of the repository. They are read from the directory that the
+environment variable ``SPT_DATA_DIR`` names (the command line's ``--data-dir`` sets it), and
+from nowhere else: no folder is guessed (see :func:`data_dir`).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import pathlib
@@ -55,22 +54,19 @@ DEFAULT_FIELD_NAME = "field"
 #: name -> (description, point scalar array). Treat as read-only.
 DATASETS: Dict[str, Tuple[str, str]] = {
     "spx": ("SPX, Super Phoenix reactor coolant (spx.vtk)", "scalars"),
-    "bluntfin": ("NASA Blunt Fin, PLOT3D 40x32x32 (bluntfin*.bin)",
-                 "Density"),
-    "post": ("NASA Liquid Oxygen Post, PLOT3D 38x76x38 with IBLANK "
-             "(post*.bin)", "VelocityMagnitude"),
+    "bluntfin": ("NASA Blunt Fin, PLOT3D 40x32x32 (bluntfin*.bin)", "Density"),
+    "post": ("NASA Liquid Oxygen Post, PLOT3D 38x76x38 with IBLANK (post*.bin)",
+             "VelocityMagnitude"),
     "torus": ("torus tet mesh, many inverted tets (torus.vtk)", "scalars"),
     "tetramesh": ("tiny tet mesh, 160 tets (tetraMesh.vtk)", "scalars"),
     "postvtk": ("tet mesh of a post, VTK test data (post.vtk)", "Pressure"),
-    "office": ("office air flow, structured grid 21x20x20 "
-               "(office.binary.vtk)", "scalars"),
+    "office": ("office air flow, structured grid 21x20x20 (office.binary.vtk)", "scalars"),
     "fire": ("room fire CFD, hexahedra (fire_ug.vtu)", "t"),
     "hexa": ("AMR-like hexahedral mesh (hexa.vtk)", "scalars"),
     "disk": ("ParaView disk example, Exodus II (disk_out_ref.ex2)", "Temp"),
-    "ironprot": ("iron protein 68^3 image thresholded to 80..255, as in "
-                 "VTK's projected tetrahedra test (ironProt.vtk)", "scalars"),
-    "ironprot_full": ("iron protein 68^3 image in full, 1.5 M tets "
-                      "(ironProt.vtk)", "scalars"),
+    "ironprot": ("iron protein 68^3 image thresholded to 80..255, as in VTK's projected "
+                 "tetrahedra test (ironProt.vtk)", "scalars"),
+    "ironprot_full": ("iron protein 68^3 image in full, 1.5 M tets (ironProt.vtk)", "scalars"),
 }
 
 # Marks a helper cell array that flags cells to drop (blanked in PLOT3D).
@@ -82,21 +78,14 @@ _HIDDEN_ARRAY = "spt_hidden"
 # --------------------------------------------------------------------------
 
 def data_dir() -> pathlib.Path:
-    """Return the directory holding the real data sets: ``$SPT_DATA_DIR``.
-
-    Only where the user says: the working directory and its parents are not
-    searched, so the same command finds the same data sets wherever it runs.
-
-    Raises:
-        FileNotFoundError: if ``$SPT_DATA_DIR`` is unset, empty or not a
-            directory.
-    """
+    """The directory holding the real data sets: ``$SPT_DATA_DIR``, and only that (the working
+    directory and its parents are not searched, so the same command finds the same data sets
+    wherever it runs). FileNotFoundError if it is unset, empty or not a directory."""
     env = os.environ.get(DATA_DIR_ENV)
     if not env:
         raise FileNotFoundError(
-            f"no data directory: set the environment variable {DATA_DIR_ENV} "
-            "(or the command line's --data-dir) to the folder holding the "
-            "data sets")
+            f"no data directory: set the environment variable {DATA_DIR_ENV} (or the command "
+            "line's --data-dir) to the folder holding the data sets")
     path = pathlib.Path(env).expanduser()
     if not path.is_dir():
         raise FileNotFoundError(f"{DATA_DIR_ENV}={env!r} is not a directory")
@@ -133,18 +122,6 @@ def _read_legacy(reader, filename: str, all_scalars: bool = True) -> vtkDataSet:
             f"VTK's legacy reader read no cells from {path}: the file is damaged, truncated, "
             "or not the data set itself (a Git LFS pointer, for one)")
     return output
-
-
-def _read_legacy_ug(filename: str) -> vtkDataSet:
-    return _read_legacy(vtkUnstructuredGridReader(), filename)
-
-
-def _read_legacy_sg(filename: str) -> vtkDataSet:
-    return _read_legacy(vtkStructuredGridReader(), filename)
-
-
-def _read_legacy_image(filename: str) -> vtkDataSet:
-    return _read_legacy(vtkStructuredPointsReader(), filename, all_scalars=False)
 
 
 def _read_xml_ug(filename: str) -> vtkDataSet:
@@ -186,15 +163,10 @@ def _read_exodus(filename: str, array: str) -> vtkDataSet:
     return append.GetOutput()
 
 
-def _read_plot3d(stem: str, function: Optional[int],
-                 iblanking: bool) -> vtkDataSet:
-    """Read block 0 of a single-grid big-endian binary PLOT3D pair.
-
-    ``function`` is a PLOT3D derived-scalar number (e.g. 153 for
-    VelocityMagnitude); ``None`` keeps the reader's default scalar
-    (100, Density). With ``iblanking`` the returned grid carries a cell
-    array flagging blanked cells (see :func:`flag_hidden_cells`).
-    """
+def _read_plot3d(stem: str, function: Optional[int], iblanking: bool) -> vtkDataSet:
+    """Block 0 of a single-grid big-endian binary PLOT3D pair, with the cell array of
+    :func:`flag_hidden_cells`. ``function`` is a PLOT3D derived-scalar number (153:
+    VelocityMagnitude); None keeps the reader's default (100, Density)."""
     reader = vtkMultiBlockPLOT3DReader()
     reader.SetXYZFileName(_data_file(stem + "xyz.bin"))
     reader.SetQFileName(_data_file(stem + "q.bin"))
@@ -209,15 +181,15 @@ def _read_plot3d(stem: str, function: Optional[int],
     grid = reader.GetOutput().GetBlock(0)
     if grid is None or grid.GetNumberOfCells() == 0:
         raise UnreadableDataError(f"VTK's PLOT3D reader read no grid from "
-                                  f"{_data_file(stem + 'xyz.bin')} and its q file")
+                                  f"{reader.GetXYZFileName()} and its q file")
     flag_hidden_cells(grid)
     return grid
 
 
 def _read_iron_protein(threshold: bool) -> vtkDataSet:
-    """ironProt.vtk; with ``threshold`` keep voxels with all values in
-    80..255, like VTK's own projected-tetrahedra test."""
-    image = _read_legacy_image("ironProt.vtk")
+    """ironProt.vtk; with ``threshold`` keep voxels with all values in 80..255, like VTK's own
+    projected-tetrahedra test."""
+    image = _read_legacy(vtkStructuredPointsReader(), "ironProt.vtk", all_scalars=False)
     if not threshold:
         return image
     thresh = vtkThreshold()
@@ -232,15 +204,15 @@ def _read_iron_protein(threshold: bool) -> vtkDataSet:
 
 # name -> function reading the (not yet converted) data set.
 _READERS: Dict[str, Callable[[], vtkDataSet]] = {
-    "spx": lambda: _read_legacy_ug("spx.vtk"),
+    "spx": lambda: _read_legacy(vtkUnstructuredGridReader(), "spx.vtk"),
     "bluntfin": lambda: _read_plot3d("bluntfin", None, False),
     "post": lambda: _read_plot3d("post", 153, True),
-    "torus": lambda: _read_legacy_ug("torus.vtk"),
-    "tetramesh": lambda: _read_legacy_ug("tetraMesh.vtk"),
-    "postvtk": lambda: _read_legacy_ug("post.vtk"),
-    "office": lambda: _read_legacy_sg("office.binary.vtk"),
+    "torus": lambda: _read_legacy(vtkUnstructuredGridReader(), "torus.vtk"),
+    "tetramesh": lambda: _read_legacy(vtkUnstructuredGridReader(), "tetraMesh.vtk"),
+    "postvtk": lambda: _read_legacy(vtkUnstructuredGridReader(), "post.vtk"),
+    "office": lambda: _read_legacy(vtkStructuredGridReader(), "office.binary.vtk"),
     "fire": lambda: _read_xml_ug("fire_ug.vtu"),
-    "hexa": lambda: _read_legacy_ug("hexa.vtk"),
+    "hexa": lambda: _read_legacy(vtkUnstructuredGridReader(), "hexa.vtk"),
     "disk": lambda: _read_exodus("disk_out_ref.ex2", "Temp"),
     "ironprot": lambda: _read_iron_protein(threshold=True),
     "ironprot_full": lambda: _read_iron_protein(threshold=False),
@@ -252,15 +224,11 @@ _READERS: Dict[str, Callable[[], vtkDataSet]] = {
 # --------------------------------------------------------------------------
 
 def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
-    """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``.
-
-    A cell is hidden when the ghost array marks it HIDDENCELL, or when any
-    of its corners has IBLANK 0 (blanked point). Negative IBLANK values
-    (overset interface points) are kept, as VTK's reader does.
-    """
+    """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``: a cell is hidden when
+    the ghost array marks it HIDDENCELL, or when any of its corners has IBLANK 0. Negative
+    IBLANK values (overset interface points) are kept, as VTK's reader does."""
     hidden = np.zeros(grid.GetNumberOfCells(), dtype=np.uint8)
-    ghosts = grid.GetCellData().GetArray(
-        vtkDataSetAttributes.GhostArrayName())
+    ghosts = grid.GetCellData().GetArray(vtkDataSetAttributes.GhostArrayName())
     if ghosts is not None:
         bits = vtk_to_numpy(ghosts) & vtkDataSetAttributes.HIDDENCELL
         hidden |= (bits != 0).astype(np.uint8)
@@ -269,14 +237,9 @@ def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
         dims = [0, 0, 0]
         grid.GetDimensions(dims)
         blank = vtk_to_numpy(iblank).reshape(dims[2], dims[1], dims[0]) == 0
-        corners = np.zeros(
-            (dims[2] - 1, dims[1] - 1, dims[0] - 1), dtype=bool)
-        for dk in (0, 1):
-            for dj in (0, 1):
-                for di in (0, 1):
-                    corners |= blank[dk:dk + dims[2] - 1,
-                                     dj:dj + dims[1] - 1,
-                                     di:di + dims[0] - 1]
+        corners = np.zeros((dims[2] - 1, dims[1] - 1, dims[0] - 1), dtype=bool)
+        for dk, dj, di in itertools.product((0, 1), repeat=3):
+            corners |= blank[dk:dk + dims[2] - 1, dj:dj + dims[1] - 1, di:di + dims[0] - 1]
         hidden |= corners.ravel().astype(np.uint8)
     array = numpy_to_vtk(hidden, deep=True)
     array.SetName(_HIDDEN_ARRAY)
@@ -284,8 +247,8 @@ def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
 
 
 def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
-    """Shallow copy of ``dataset`` keeping only point array ``array_name``
-    (set as active scalars) and the ``spt_hidden`` cell array, if any."""
+    """Shallow copy of ``dataset`` keeping only point array ``array_name`` (set as active
+    scalars) and the ``spt_hidden`` cell array, if any."""
     scalars = dataset.GetPointData().GetArray(array_name)
     if scalars is None:
         raise UnreadableDataError(f"the data set has no point array {array_name!r}")
@@ -300,8 +263,7 @@ def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
 
 
 def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
-    """Drop the cells flagged by the ``spt_hidden`` cell array and the
-    array itself."""
+    """Drop the cells flagged by the ``spt_hidden`` cell array and the array itself."""
     flags = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
     if flags is None:
         return grid
@@ -323,9 +285,8 @@ def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
 
 def to_unstructured(dataset: vtkDataSet, array_name: str,
                     tetrahedralize: bool) -> vtkUnstructuredGrid:
-    """Convert a data set to an unstructured grid (tetrahedra when
-    ``tetrahedralize``) whose only array is point scalar ``array_name``;
-    cells flagged as hidden are removed."""
+    """Convert a data set to an unstructured grid (tetrahedra when ``tetrahedralize``) whose
+    only array is point scalar ``array_name``; cells flagged as hidden are removed."""
     dataset = _strip_arrays(dataset, array_name)
     if tetrahedralize:
         converter = vtkDataSetTriangleFilter()
@@ -343,17 +304,9 @@ def to_unstructured(dataset: vtkDataSet, array_name: str,
 
 
 def load(name: str, tetrahedralize: bool = True) -> vtkUnstructuredGrid:
-    """Load a real data set by name (see :data:`DATASETS`).
-
-    Args:
-        name: data set name, case-insensitive, e.g. ``"spx"``.
-        tetrahedralize: convert to tetrahedra with vtkDataSetTriangleFilter
-            (TetrahedraOnly on). Otherwise the original cells are kept.
-
-    Returns:
-        An unstructured grid whose only point array is the data set's
-        scalar, set active. PLOT3D blanked cells are removed.
-    """
+    """A real data set by name (case-insensitive; see :data:`DATASETS`, or "default"): an
+    unstructured grid whose only point array is its scalar, set active, without PLOT3D's
+    blanked cells; split into tetrahedra if ``tetrahedralize``, else of its own cells."""
     key = name.lower()
     if key == "default":
         return make_default_mesh()
@@ -377,8 +330,7 @@ _SEGMENTS_ALONG = 150    # per unit resolution
 _SEGMENTS_ACROSS = 8     # per unit resolution, each of u and v
 
 
-def _square_to_disk(u: np.ndarray, v: np.ndarray
-                    ) -> Tuple[np.ndarray, np.ndarray]:
+def _square_to_disk(u: np.ndarray, v: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """Elliptical grid mapping of [-1, 1]^2 onto the unit disk."""
     x = u * np.sqrt(1.0 - 0.5 * v * v)
     y = v * np.sqrt(1.0 - 0.5 * u * u)
@@ -386,8 +338,8 @@ def _square_to_disk(u: np.ndarray, v: np.ndarray
 
 
 def helix_center(theta: np.ndarray) -> np.ndarray:
-    """Points of the default mesh's centre line at helix angles ``theta``
-    (radians, 0 .. 2*pi*turns), shape (..., 3)."""
+    """Points of the default mesh's centre line at helix angles ``theta`` (radians,
+    0 .. 2*pi*turns), shape (..., 3)."""
     c = _HELIX_PITCH / (2.0 * math.pi)
     z0 = 0.5 * _HELIX_PITCH * _HELIX_TURNS
     theta = np.asarray(theta, dtype=float)
@@ -396,13 +348,10 @@ def helix_center(theta: np.ndarray) -> np.ndarray:
                      c * theta - z0], axis=-1)
 
 
-def _helix_frame(theta: np.ndarray
-                 ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Frenet frame (T, N, B) of the helix, each of shape (n, 3).
-
-    N points towards the helix axis and (N, B, T) is right-handed, so a
-    grid indexed (u along N, v along B, t along T) has positive cells.
-    """
+def _helix_frame(theta: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Frenet frame (T, N, B) of the helix, each of shape (n, 3). N points towards the helix
+    axis and (N, B, T) is right-handed, so a grid indexed (u along N, v along B, t along T) has
+    positive cells."""
     r, c = _HELIX_RADIUS, _HELIX_PITCH / (2.0 * math.pi)
     norm = math.hypot(r, c)
     cos, sin = np.cos(theta), np.sin(theta)
@@ -414,8 +363,8 @@ def _helix_frame(theta: np.ndarray
 
 
 def _helix_points(n_along: int, n_across: int) -> np.ndarray:
-    """Point coordinates of the tube, shape (n_along, n_across, n_across, 3)
-    in VTK structured order (u fastest, then v, then along)."""
+    """Point coordinates of the tube, shape (n_along, n_across, n_across, 3) in VTK structured
+    order (u fastest, then v, then along)."""
     theta = np.linspace(0.0, 2.0 * math.pi * _HELIX_TURNS, n_along)
     s = np.linspace(-1.0, 1.0, n_across)
     v, u = np.meshgrid(s, s, indexing="ij")
@@ -428,15 +377,11 @@ def _helix_points(n_along: int, n_across: int) -> np.ndarray:
 
 
 def default_field(points: np.ndarray) -> np.ndarray:
-    """Smooth analytic scalar of the default mesh, roughly in 0..1.
-
-    Gaussian blobs centred on the helix centre line plus a gentle
-    sinusoid; a function of position only, so it does not depend on the
-    mesh resolution.
-    """
+    """Smooth analytic scalar of the default mesh, roughly in 0..1: Gaussian blobs centred on
+    the helix centre line plus a gentle sinusoid, a function of position only (so of no mesh
+    resolution)."""
     points = np.asarray(points, dtype=float)
-    blob_angles = 2.0 * math.pi * _HELIX_TURNS * np.array(
-        [0.1, 0.3, 0.5, 0.7, 0.9])
+    blob_angles = 2.0 * math.pi * _HELIX_TURNS * np.array([0.1, 0.3, 0.5, 0.7, 0.9])
     amplitudes = np.array([1.0, 0.6, 0.9, 0.5, 0.8])
     sigma = 0.22
     field = np.zeros(points.shape[:-1])
@@ -448,17 +393,12 @@ def default_field(points: np.ndarray) -> np.ndarray:
 
 
 def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
-    """Build the project's embedded default data set.
-
-    A solid tube of radius 0.3 swept along a 2-turn helix (radius 1,
-    pitch 1): a non-convex tetrahedral mesh that view rays cross several
-    times with empty gaps between the turns. Its cross-section is a disk
-    parameterised by the elliptical grid mapping of a square, so there is
-    no singular axis. The grid has 150*r x 8*r x 8*r hexahedra (r =
-    ``resolution``), each split into 5 tetrahedra: 48,000 * r**3 tets.
-    The point scalar ``"field"`` (active) is given by
-    :func:`default_field`. The result is deterministic.
-    """
+    """The project's embedded default data set: a solid tube of radius 0.3 swept along a
+    2-turn helix (radius 1, pitch 1), a non-convex tetrahedral mesh that view rays cross
+    several times with empty gaps between the turns. Its cross-section is a disk parameterised
+    by the elliptical grid mapping of a square, so there is no singular axis. The grid has
+    150*r x 8*r x 8*r hexahedra (r = ``resolution``), each split into 5 tetrahedra:
+    48,000 * r**3 tets. The point scalar ``"field"`` (active) is :func:`default_field`."""
     if resolution < 1:
         raise ValueError("resolution must be >= 1")
     n_along = _SEGMENTS_ALONG * resolution + 1
@@ -472,8 +412,7 @@ def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
     field = numpy_to_vtk(default_field(coords).astype(np.float32), deep=True)
     field.SetName(DEFAULT_FIELD_NAME)
     structured.GetPointData().AddArray(field)
-    return to_unstructured(structured, DEFAULT_FIELD_NAME,
-                           tetrahedralize=True)
+    return to_unstructured(structured, DEFAULT_FIELD_NAME, tetrahedralize=True)
 
 
 # --------------------------------------------------------------------------
@@ -501,9 +440,8 @@ def _make_property(grid: vtkDataSet,
                    colors: Sequence[Tuple[float, float, float, float]],
                    opacities: Sequence[Tuple[float, float]],
                    unit_fraction: float) -> vtkVolumeProperty:
-    """Volume property from (t, r, g, b) and (t, opacity) control points,
-    t in 0..1 of the active scalar range; unit distance is
-    ``unit_fraction`` of the bounding diagonal."""
+    """Volume property from (t, r, g, b) and (t, opacity) control points, t in 0..1 of the
+    active scalar range; unit distance is ``unit_fraction`` of the bounding diagonal."""
     low, high = _scalar_range(grid)
     color = vtkColorTransferFunction()
     for t, red, green, blue in colors:
@@ -521,9 +459,8 @@ def _make_property(grid: vtkDataSet,
 
 
 def default_transfer_function(grid: vtkDataSet) -> vtkVolumeProperty:
-    """A clearly visible, colourful volume property for the default mesh:
-    blue through teal and yellow to red, opacity rising to 0.7,
-    unit distance 1/20 of the bounding diagonal."""
+    """A clearly visible, colourful volume property for the default mesh: blue through teal
+    and yellow to red, opacity rising to 0.7, unit distance 1/20 of the bounding diagonal."""
     colors = [(0.0, 0.15, 0.35, 0.85), (0.3, 0.10, 0.75, 0.80),
               (0.6, 0.98, 0.85, 0.25), (1.0, 0.95, 0.20, 0.10)]
     opacities = [(0.0, 0.02), (0.15, 0.08), (0.5, 0.3), (1.0, 0.7)]
@@ -538,29 +475,19 @@ _COOL_TO_WARM = [(0.0, 0.230, 0.299, 0.754), (0.5, 0.865, 0.865, 0.865),
 def transfer_function(grid: vtkDataSet, preset: str = "default",
                       opacity_scale: float = 1.0,
                       steep_center: float = 0.65) -> vtkVolumeProperty:
-    """Generic volume property over the active scalar range.
-
-    Presets:
-        ``"default"``: cool-to-warm colours, opacity linear from 0 to
-        0.8 * opacity_scale.
-        ``"steep"``: cool-to-warm colours, opacity 0 up to 5 % of the
-        range below ``steep_center`` (a fraction of the range, default
-        0.65), rising to 0.9 * opacity_scale at it and back to 0 at 5 %
-        above it (a thin, sharp feature that stresses pre-integration).
-
-    The unit distance is the bounding diagonal / 40. Opacities are clamped
-    to 1.
-    """
+    """Cool-to-warm volume property over the active scalar range, unit distance the bounding
+    diagonal / 40, opacities clamped to 1. ``"default"``: opacity linear from 0 to
+    0.8 * opacity_scale. ``"steep"``: opacity 0 up to 5 % of the range below ``steep_center``
+    (a fraction of the range), rising to 0.9 * opacity_scale at it and back to 0 at 5 % above
+    it (a thin, sharp feature that stresses pre-integration)."""
     if preset == "default":
         opacities = [(0.0, 0.0), (1.0, 0.8 * opacity_scale)]
     elif preset == "steep":
         if not 0.05 <= steep_center <= 0.95:
-            raise ValueError(
-                f"steep_center {steep_center} is outside 0.05..0.95")
+            raise ValueError(f"steep_center {steep_center} is outside 0.05..0.95")
         peak = 0.9 * opacity_scale
-        opacities = [(0.0, 0.0), (steep_center - 0.05, 0.0),
-                     (steep_center, peak), (steep_center + 0.05, 0.0),
-                     (1.0, 0.0)]
+        opacities = [(0.0, 0.0), (steep_center - 0.05, 0.0), (steep_center, peak),
+                     (steep_center + 0.05, 0.0), (1.0, 0.0)]
     else:
         raise ValueError(f"unknown preset {preset!r} (default, steep)")
     return _make_property(grid, _COOL_TO_WARM, opacities, 1.0 / 40.0)

@@ -1,8 +1,7 @@
 """Image error measures and small image utilities for comparing renderings.
 
-Images are numpy arrays of shape (h, w, 4) holding premultiplied RGBA, as
-float in [0, 1] or as uint8 (converted to float by dividing by 255). Row 0
-is the top row of the image.
+Images are numpy arrays of shape (h, w, 4) holding premultiplied RGBA, as float in [0, 1] or as
+uint8 (converted to float by dividing by 255). Row 0 is the top row of the image.
 """
 
 from __future__ import annotations
@@ -28,35 +27,29 @@ def as_float(image: np.ndarray) -> np.ndarray:
 
 
 def to_uint8(image: np.ndarray) -> np.ndarray:
-    """Convert a float image in [0, 1] to uint8 (rounded, clipped); uint8
-    input is returned unchanged."""
+    """Convert a float image in [0, 1] to uint8 (rounded, clipped); uint8 input is returned
+    unchanged."""
     image = np.asarray(image)
     if image.dtype == np.uint8:
         return image
     return np.clip(np.rint(as_float(image) * 255.0), 0, 255).astype(np.uint8)
 
 
-def _check_pair(a: np.ndarray, b: np.ndarray
-                ) -> Tuple[np.ndarray, np.ndarray]:
+def _check_pair(a: np.ndarray, b: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     """Float copies of two same-shaped RGBA images."""
     a, b = as_float(a), as_float(b)
     if a.shape != b.shape or a.ndim != 3 or a.shape[2] != 4:
-        raise ValueError(
-            f"expected two RGBA images of equal shape, got {a.shape} and "
-            f"{b.shape}")
+        raise ValueError(f"expected two RGBA images of equal shape, got {a.shape} and {b.shape}")
     return a, b
 
 
-def footprint(a: np.ndarray, b: np.ndarray,
-              threshold: float = 1.0 / 255.0) -> np.ndarray:
-    """Boolean (h, w) mask of pixels where either image's alpha exceeds
-    ``threshold``."""
+def footprint(a: np.ndarray, b: np.ndarray, threshold: float = 1.0 / 255.0) -> np.ndarray:
+    """Boolean (h, w) mask of pixels where either image's alpha exceeds ``threshold``."""
     a, b = _check_pair(a, b)
     return (a[..., 3] > threshold) | (b[..., 3] > threshold)
 
 
-def _masked_diff(a: np.ndarray, b: np.ndarray,
-                 mask: Optional[np.ndarray]) -> np.ndarray:
+def _masked_diff(a: np.ndarray, b: np.ndarray, mask: Optional[np.ndarray]) -> np.ndarray:
     """Differences a - b of the masked pixels, shape (n, 4)."""
     a, b = _check_pair(a, b)
     if mask is None:
@@ -67,10 +60,9 @@ def _masked_diff(a: np.ndarray, b: np.ndarray,
     return (a - b)[mask]
 
 
-def rmse(a: np.ndarray, b: np.ndarray,
-         mask: Optional[np.ndarray] = None) -> float:
-    """Root mean square error over all four channels of the pixels in
-    ``mask`` (default: :func:`footprint`). 0.0 for an empty mask."""
+def rmse(a: np.ndarray, b: np.ndarray, mask: Optional[np.ndarray] = None) -> float:
+    """Root mean square error over all four channels of the pixels in ``mask`` (default:
+    :func:`footprint`). 0.0 for an empty mask."""
     diff = _masked_diff(a, b, mask)
     if diff.size == 0:
         return 0.0
@@ -85,10 +77,9 @@ def read_back_floor(reference: np.ndarray) -> float:
     return rmse(as_float(to_uint8(reference)), reference)
 
 
-def psnr(a: np.ndarray, b: np.ndarray,
-         mask: Optional[np.ndarray] = None) -> float:
-    """Peak signal-to-noise ratio in dB with peak 1.0; ``inf`` when the
-    images agree exactly on the mask."""
+def psnr(a: np.ndarray, b: np.ndarray, mask: Optional[np.ndarray] = None) -> float:
+    """Peak signal-to-noise ratio in dB with peak 1.0; ``inf`` when the images agree exactly
+    on the mask."""
     error = rmse(a, b, mask)
     if error == 0.0:
         return math.inf
@@ -97,8 +88,8 @@ def psnr(a: np.ndarray, b: np.ndarray,
 
 def fraction_off(a: np.ndarray, b: np.ndarray, threshold: float = 0.05,
                  mask: Optional[np.ndarray] = None) -> float:
-    """Fraction of masked pixels whose largest absolute channel
-    difference exceeds ``threshold``. 0.0 for an empty mask."""
+    """Fraction of masked pixels whose largest absolute channel difference exceeds
+    ``threshold``. 0.0 for an empty mask."""
     diff = _masked_diff(a, b, mask)
     if diff.shape[0] == 0:
         return 0.0
@@ -106,8 +97,7 @@ def fraction_off(a: np.ndarray, b: np.ndarray, threshold: float = 0.05,
 
 
 def _colormap(values: np.ndarray, name: str) -> np.ndarray:
-    """Map values in [0, 1] to uint8 RGB with a matplotlib colour map,
-    or to grey if matplotlib is not available."""
+    """Values in [0, 1] as uint8 RGB by a matplotlib colour map (grey without matplotlib)."""
     try:
         from matplotlib import colormaps
         rgb = colormaps[name](values)[..., :3]
@@ -118,18 +108,17 @@ def _colormap(values: np.ndarray, name: str) -> np.ndarray:
 
 def difference_image(a: np.ndarray, b: np.ndarray, gain: float = 4.0,
                      cmap: str = "inferno") -> np.ndarray:
-    """Heat map (h, w, 3) uint8 of the largest absolute RGBA difference
-    per pixel, multiplied by ``gain`` and clipped to 1."""
+    """Heat map (h, w, 3) uint8 of the largest absolute RGBA difference per pixel, multiplied
+    by ``gain`` and clipped to 1."""
     a, b = _check_pair(a, b)
     values = np.clip(np.max(np.abs(a - b), axis=-1) * gain, 0.0, 1.0)
     return _colormap(values, cmap)
 
 
-def composite_over(image: np.ndarray,
-                   background: Sequence[float] = (0.0, 0.0, 0.0)
+def composite_over(image: np.ndarray, background: Sequence[float] = (0.0, 0.0, 0.0)
                    ) -> np.ndarray:
-    """Composite a premultiplied RGBA image over an opaque background
-    colour; returns float RGB (h, w, 3). RGB input is returned as float."""
+    """Composite a premultiplied RGBA image over an opaque background colour; returns float
+    RGB (h, w, 3). RGB input is returned as float."""
     image = as_float(image)
     if image.shape[-1] == 3:
         return image
@@ -137,29 +126,23 @@ def composite_over(image: np.ndarray,
     return image[..., :3] + (1.0 - image[..., 3:4]) * back
 
 
-def from_vtk_image(image: vtkImageData, as_float_rgba: bool = False
-                   ) -> np.ndarray:
-    """Convert a 2-D vtkImageData (e.g. from vtkWindowToImageFilter) to an
-    array of shape (h, w, components), row 0 at the top.
-
-    The data type is kept (uint8 for window captures) unless
-    ``as_float_rgba`` is true, which returns float64 in [0, 1].
-    """
+def from_vtk_image(image: vtkImageData, as_float_rgba: bool = False) -> np.ndarray:
+    """Convert a 2-D vtkImageData (e.g. from vtkWindowToImageFilter) to an array of shape
+    (h, w, components), row 0 at the top: of the image's type (uint8 for window captures), or
+    float64 in [0, 1] with ``as_float_rgba``."""
     dims = [0, 0, 0]
     image.GetDimensions(dims)
     scalars = image.GetPointData().GetScalars()
     if scalars is None:
         raise ValueError("image has no point scalars")
-    width, height = dims[0], dims[1]
-    pixels = vtk_to_numpy(scalars).reshape(
-        height, width, scalars.GetNumberOfComponents())
+    pixels = vtk_to_numpy(scalars).reshape(dims[1], dims[0], scalars.GetNumberOfComponents())
     pixels = np.ascontiguousarray(pixels[::-1])
     return as_float(pixels) if as_float_rgba else pixels
 
 
 def to_vtk_image(array: np.ndarray) -> vtkImageData:
-    """Convert an (h, w), (h, w, 3) or (h, w, 4) array (row 0 at the top)
-    to a uint8 vtkImageData (row 0 at the bottom, VTK convention)."""
+    """Convert an (h, w), (h, w, 3) or (h, w, 4) array (row 0 at the top) to a uint8
+    vtkImageData (row 0 at the bottom, VTK convention)."""
     pixels = to_uint8(array)
     if pixels.ndim == 2:
         pixels = pixels[..., None]
@@ -176,9 +159,8 @@ def to_vtk_image(array: np.ndarray) -> vtkImageData:
 
 
 def write_png(path: PathLike, array: np.ndarray) -> None:
-    """Write a grey, RGB or RGBA image (uint8 or float in [0, 1], row 0 at
-    the top) to a PNG file with vtkPNGWriter. RGBA is written as stored
-    (premultiplied data is not un-premultiplied; see
+    """Write a grey, RGB or RGBA image (uint8 or float in [0, 1], row 0 at the top) to a PNG
+    file. RGBA is written as stored (premultiplied data is not un-premultiplied; see
     :func:`composite_over`)."""
     writer = vtkPNGWriter()
     writer.SetFileName(str(path))
@@ -188,10 +170,9 @@ def write_png(path: PathLike, array: np.ndarray) -> None:
         raise OSError(f"could not write PNG {path}")
 
 
-def _label_strip(text: str, width: int, height: int,
-                 background: float) -> np.ndarray:
-    """Render ``text`` centred in a (height, width, 3) uint8 strip with
-    matplotlib's Agg canvas; a plain strip if matplotlib is missing."""
+def _label_strip(text: str, width: int, height: int, background: float) -> np.ndarray:
+    """``text`` centred in a (height, width, 3) uint8 strip drawn by matplotlib's Agg canvas;
+    a plain strip without matplotlib."""
     shade = to_uint8(np.full((height, width, 3), background))
     try:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -213,8 +194,7 @@ def _label_strip(text: str, width: int, height: int,
 
 
 def _to_rgb8(image: np.ndarray, background: float) -> np.ndarray:
-    """Grey, RGB or premultiplied RGBA image -> uint8 RGB over a grey
-    background."""
+    """Grey, RGB or premultiplied RGBA image -> uint8 RGB over a grey background."""
     image = as_float(image)
     if image.ndim == 2:
         image = image[..., None]
@@ -223,13 +203,10 @@ def _to_rgb8(image: np.ndarray, background: float) -> np.ndarray:
     return to_uint8(composite_over(image, (background,) * 3))
 
 
-def side_by_side(images: Sequence[np.ndarray],
-                 labels: Optional[Sequence[str]] = None, gap: int = 8,
-                 label_height: int = 28,
-                 background: float = 0.12) -> np.ndarray:
-    """Compose images left to right on a dark background, each with an
-    optional label above it. RGBA images are composited over the
-    background. Returns a uint8 RGB array."""
+def side_by_side(images: Sequence[np.ndarray], labels: Optional[Sequence[str]] = None,
+                 gap: int = 8, label_height: int = 28, background: float = 0.12) -> np.ndarray:
+    """Compose images left to right on a dark background, each with an optional label above
+    it. RGBA images are composited over the background. Returns a uint8 RGB array."""
     if not images:
         raise ValueError("no images given")
     if labels is not None and len(labels) != len(images):
@@ -243,8 +220,7 @@ def side_by_side(images: Sequence[np.ndarray],
     for index, img in enumerate(rgb):
         h, w = img.shape[:2]
         if labels is not None:
-            canvas[gap:gap + top, x:x + w] = _label_strip(
-                labels[index], w, top, background)
+            canvas[gap:gap + top, x:x + w] = _label_strip(labels[index], w, top, background)
         canvas[gap + top:gap + top + h, x:x + w] = img
         x += w + gap
     return canvas
