@@ -108,8 +108,9 @@ def _tetrahedron_around_the_eye():
     return grid, camera, corners * 2.0
 
 
-def _chords_from_the_near_plane(camera, corners, size):
-    """Per pixel centre, the length of the ray inside the tetrahedron from the near plane on."""
+def _alpha_from_the_near_plane(camera, corners, prop, size):
+    """Per pixel centre, 1 - exp(-tau chord) of the ray's chord inside the tetrahedron from
+    the near plane on (the field is constant, of attenuation tau)."""
     _, origin, direction = raycast._camera_rays(camera, size, size)
     leave = np.full(len(origin), np.inf)
     for k in range(4):
@@ -120,8 +121,10 @@ def _chords_from_the_near_plane(camera, corners, size):
         approach = direction @ normal
         t = (a - origin) @ normal / np.where(approach > 0, approach, 1.0)
         leave = np.where(approach > 0, np.minimum(leave, t), leave)
-    length = np.clip(leave, 0.0, 1.0) * np.linalg.norm(direction, axis=1)
-    return length.reshape(size, size)[::-1]
+    chord = (np.clip(leave, 0.0, 1.0) * np.linalg.norm(direction, axis=1)).reshape(size, size)
+    assert chord.min() > 0.5, "every ray should cross the cell"
+    tau = prop.GetScalarOpacity().GetValue(0.5) / prop.GetScalarOpacityUnitDistance()
+    return -np.expm1(-tau * chord[::-1])
 
 
 def test_chord_from_the_near_plane_inside_one_tetrahedron():
@@ -131,10 +134,7 @@ def test_chord_from_the_near_plane_inside_one_tetrahedron():
     prop = _linear_property(0.0, 1.0, unit=2.0)
     size = 48
     image = raycast.render(grid, prop, camera, (size, size))
-    chord = _chords_from_the_near_plane(camera, corners, size)
-    assert chord.min() > 0.5, "every ray should cross the cell"
-    tau = prop.GetScalarOpacity().GetValue(0.5) / 2.0
-    expected = -np.expm1(-tau * chord)
+    expected = _alpha_from_the_near_plane(camera, corners, prop, size)
     assert np.abs(image[..., 3] - expected).max() < 1e-6
 
 
@@ -148,9 +148,7 @@ def test_spt_inside_one_tetrahedron_is_the_chord(have_display):
     render.add_volume(renderer, grid, prop, render.spt_mapper(4, seed=1))
     renderer.GetActiveCamera().DeepCopy(camera)
     image = draw_once(window)
-    chord = _chords_from_the_near_plane(camera, corners, size)
-    tau = prop.GetScalarOpacity().GetValue(0.5) / 2.0
-    expected = -np.expm1(-tau * chord)
+    expected = _alpha_from_the_near_plane(camera, corners, prop, size)
     assert not np.isnan(image).any()
     assert np.abs(image[..., 3] - expected).max() < 3.0 / 255.0, (
         f"alpha off by {np.abs(image[..., 3] - expected).max():.4f}")

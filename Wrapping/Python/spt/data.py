@@ -430,16 +430,9 @@ def _scalar_range(grid: vtkDataSet) -> Tuple[float, float]:
     return float(low), float(high)
 
 
-def _diagonal(grid: vtkDataSet) -> float:
-    """Length of the bounding-box diagonal (1.0 if degenerate)."""
-    length = grid.GetLength()
-    return length if length > 0.0 else 1.0
-
-
-def _make_property(grid: vtkDataSet,
-                   colors: Sequence[Tuple[float, float, float, float]],
-                   opacities: Sequence[Tuple[float, float]],
-                   unit_fraction: float) -> vtkVolumeProperty:
+def property_from_points(grid: vtkDataSet, colors: Sequence[Tuple[float, float, float, float]],
+                         opacities: Sequence[Tuple[float, float]],
+                         unit_fraction: float) -> vtkVolumeProperty:
     """Volume property from (t, r, g, b) and (t, opacity) control points, t in 0..1 of the
     active scalar range; unit distance is ``unit_fraction`` of the bounding diagonal."""
     low, high = _scalar_range(grid)
@@ -452,7 +445,8 @@ def _make_property(grid: vtkDataSet,
     prop = vtkVolumeProperty()
     prop.SetColor(color)
     prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(unit_fraction * _diagonal(grid))
+    diagonal = grid.GetLength()  # of the bounding box; 1 where that is degenerate
+    prop.SetScalarOpacityUnitDistance(unit_fraction * (diagonal if diagonal > 0.0 else 1.0))
     prop.ShadeOff()
     prop.SetInterpolationTypeToLinear()
     return prop
@@ -464,7 +458,7 @@ def default_transfer_function(grid: vtkDataSet) -> vtkVolumeProperty:
     colors = [(0.0, 0.15, 0.35, 0.85), (0.3, 0.10, 0.75, 0.80),
               (0.6, 0.98, 0.85, 0.25), (1.0, 0.95, 0.20, 0.10)]
     opacities = [(0.0, 0.02), (0.15, 0.08), (0.5, 0.3), (1.0, 0.7)]
-    return _make_property(grid, colors, opacities, 1.0 / 20.0)
+    return property_from_points(grid, colors, opacities, 1.0 / 20.0)
 
 
 # Paraview-like "cool to warm" diverging colour map.
@@ -490,4 +484,4 @@ def transfer_function(grid: vtkDataSet, preset: str = "default",
                      (steep_center + 0.05, 0.0), (1.0, 0.0)]
     else:
         raise ValueError(f"unknown preset {preset!r} (default, steep)")
-    return _make_property(grid, _COOL_TO_WARM, opacities, 1.0 / 40.0)
+    return property_from_points(grid, _COOL_TO_WARM, opacities, 1.0 / 40.0)

@@ -183,9 +183,10 @@ def _smoothstep(t: np.ndarray) -> np.ndarray:
     return t * t * (3.0 - 2.0 * t)
 
 
-def _drill_twist(z: float) -> float:
+def _drill_twist(z):
+    """The flutes' angle at height z (a number or an array)."""
     length = BODY_END + TIP_LENGTH - SHANK_LENGTH
-    return 2.0 * math.pi * FLUTE_TURNS * max(0.0, z - SHANK_LENGTH) / length
+    return 2.0 * math.pi * FLUTE_TURNS * np.maximum(0.0, z - SHANK_LENGTH) / length
 
 
 def _drill_profile(z: float, radius: float) -> Callable[[np.ndarray], np.ndarray]:
@@ -239,6 +240,8 @@ def _torus_rings(spacing: float) -> Tuple[List[Ring], bool]:
 
 
 _RINGS = {"drill": _drill_rings, "torus": _torus_rings}
+# The radius of the widest circumference, which a surface's resolution divides.
+_WIDEST = {"drill": BODY_RADIUS, "torus": TUBE_RADIUS * (1.0 + BUMP_HEIGHT)}
 # Enclosed volumes, for the resolution a cell count needs (from a fine surface; within 0.1 %).
 _VOLUMES = {"drill": 2.0160, "torus": 1.8785}
 
@@ -256,8 +259,7 @@ def surface_arrays(shape: str, resolution: int) -> Tuple[np.ndarray, np.ndarray]
         raise ValueError(f"resolution must be a whole number, not {resolution!r}")
     if not 8 <= resolution <= 100_000:
         raise ValueError(f"resolution {resolution} is outside 8..100000")
-    widest = BODY_RADIUS if shape == "drill" else TUBE_RADIUS * (1.0 + BUMP_HEIGHT)
-    rings, closed = _RINGS[shape](2.0 * math.pi * widest / resolution)
+    rings, closed = _RINGS[shape](2.0 * math.pi * _WIDEST[shape] / resolution)
     return _sweep(rings, closed)
 
 
@@ -288,8 +290,7 @@ def mesh_parameters(shape: str, cells: int) -> Tuple[int, float]:
     _check_shape(shape)
     mean_volume = _VOLUMES[shape] / _nominal_cells(shape, cells)
     regular_edge = (6.0 * math.sqrt(2.0) * mean_volume) ** (1.0 / 3.0)
-    widest = BODY_RADIUS if shape == "drill" else TUBE_RADIUS * (1.0 + BUMP_HEIGHT)
-    resolution = 2.0 * math.pi * widest / (SURFACE_EDGE_FACTOR * regular_edge)
+    resolution = 2.0 * math.pi * _WIDEST[shape] / (SURFACE_EDGE_FACTOR * regular_edge)
     return max(8, int(round(resolution))), MEAN_VOLUME_FACTOR * mean_volume
 
 
@@ -321,9 +322,7 @@ def field(shape: str, points: np.ndarray, seed: int = 0) -> np.ndarray:
         blobs += np.exp(-np.sum((points - centre) ** 2, axis=1) / (2.0 * width ** 2))
     x, y, z = points[:, 0], points[:, 1], points[:, 2]
     if shape == "drill":
-        twist = 2.0 * math.pi * FLUTE_TURNS * np.maximum(z - SHANK_LENGTH, 0.0) / (
-            BODY_END + TIP_LENGTH - SHANK_LENGTH)
-        wave = np.cos(2.0 * (np.arctan2(y, x) - twist)) * np.hypot(x, y) / BODY_RADIUS
+        wave = np.cos(2.0 * (np.arctan2(y, x) - _drill_twist(z))) * np.hypot(x, y) / BODY_RADIUS
     else:
         radial = np.hypot(x, y) - RING_RADIUS
         wave = np.sin(3.0 * np.arctan2(y, x)) * np.cos(np.arctan2(z, radial))
@@ -411,12 +410,6 @@ def save_atomically(path: pathlib.Path, write: Callable[[BinaryIO], None]) -> No
         raise
 
 
-def _save(path: pathlib.Path, mesh: MeshArrays) -> None:
-    save_atomically(path, lambda stream: np.savez(
-        stream, points=mesh.points, tetrahedra=mesh.tetrahedra, field=mesh.field,
-        format_version=np.array(FORMAT_VERSION)))
-
-
 def load_cached(path: pathlib.Path) -> Optional[MeshArrays]:
     """The cached mesh, or None when the file is missing, unreadable or of another format."""
     try:
@@ -446,7 +439,9 @@ def generate_arrays(shape: str, cells: int, seed: int = 0, cache: bool = True) -
     mesh = MeshArrays(points, tetrahedra, field(shape, points, seed))
     if cache:
         try:
-            _save(path, mesh)
+            save_atomically(path, lambda stream: np.savez(
+                stream, points=mesh.points, tetrahedra=mesh.tetrahedra, field=mesh.field,
+                format_version=np.array(FORMAT_VERSION)))
         except OSError as error:
             # The cache only spares the next run the meshing; this mesh is still good.
             warnings.warn(f"the mesh could not be cached at {path}: {error}", stacklevel=2)

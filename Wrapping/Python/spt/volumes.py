@@ -16,14 +16,10 @@ import dataclasses
 import time
 from typing import Callable, Iterator, List, Sequence, Tuple
 
-from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction, vtkUnstructuredGrid
+from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
-from vtkmodules.vtkRenderingCore import (
-    vtkAbstractVolumeMapper,
-    vtkColorTransferFunction,
-    vtkVolumeProperty,
-)
+from vtkmodules.vtkRenderingCore import vtkAbstractVolumeMapper, vtkVolumeProperty
 
 from . import data, raycast, render
 
@@ -52,24 +48,6 @@ class VolumesScene:
         return sum(grid.GetNumberOfCells() for grid, _ in self.volumes)
 
 
-def _ring_property(grid: vtkUnstructuredGrid) -> vtkVolumeProperty:
-    """The ring's own transfer functions: other colors than the drill's, and more opaque."""
-    low, high = grid.GetPointData().GetScalars().GetRange()
-    color = vtkColorTransferFunction()
-    for t, red, green, blue in RING_COLORS:
-        color.AddRGBPoint(low + t * (high - low), red, green, blue)
-    opacity = vtkPiecewiseFunction()
-    opacity.AddPoint(low, 0.05)
-    opacity.AddPoint(high, 1.0)
-    prop = vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(grid.GetLength() / 40.0)
-    prop.ShadeOff()
-    prop.SetInterpolationTypeToLinear()
-    return prop
-
-
 def _through_the_drill(ring: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
     """The ring stood up (its plane through the drill's axis) around the drill's body, so
     that its tube passes through the drill twice."""
@@ -93,9 +71,11 @@ def interpenetrating(cells: int = 200_000) -> VolumesScene:
 
     drill = meshes.generate("drill", cells // 2)
     ring = _through_the_drill(meshes.generate("torus", cells // 2, seed=1))
+    # The ring's own transfer functions: other colors than the drill's, and more opaque.
+    ring_property = data.property_from_points(ring, RING_COLORS, [(0.0, 0.05), (1.0, 1.0)],
+                                              1.0 / 40.0)
     return VolumesScene("interpenetrating", [(drill, data.transfer_function(drill)),
-                                             (ring, _ring_property(ring))],
-                        INTERPENETRATING_VIEW)
+                                             (ring, ring_property)], INTERPENETRATING_VIEW)
 
 
 def _open(s: VolumesScene, mappers: Sequence[vtkAbstractVolumeMapper],
