@@ -94,21 +94,18 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
     mapper.SetSubpixelLevel(subpixels)
     mapper.SetSeed(seed)
     mapper.SetAutoAdjustRepetitions(False)
-    if stratified is not None:
-        mapper.SetStratifiedSampling(stratified)
-    if per_pass is not None:
-        mapper.SetRepetitionsPerPass(per_pass)
     if estimator is not None:
         if estimator not in _ESTIMATORS:
             raise ValueError(f"unknown estimator {estimator!r}; choose from "
                              f"{', '.join(_ESTIMATORS)}")
         mapper.SetEstimator(_ESTIMATORS[estimator])
-    if exact_coverage is not None:
-        mapper.SetExactCoverage(exact_coverage)
-    if target_error is not None:
-        mapper.SetTargetError(target_error)
-    if depth_slabs is not None:
-        mapper.SetDepthSlabs(depth_slabs)
+    for setter, value in ((mapper.SetStratifiedSampling, stratified),
+                          (mapper.SetRepetitionsPerPass, per_pass),
+                          (mapper.SetExactCoverage, exact_coverage),
+                          (mapper.SetTargetError, target_error),
+                          (mapper.SetDepthSlabs, depth_slabs)):
+        if value is not None:
+            setter(value)
     return mapper
 
 
