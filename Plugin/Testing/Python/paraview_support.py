@@ -124,6 +124,22 @@ def free_port() -> int:
         return probe.getsockname()[1]
 
 
+def run_client_of_server(server: Sequence[str], client: Sequence[str], env: Dict[str, str],
+                         seconds: float) -> None:
+    """Start a pvserver (``server``, which names its port), run the pvpython ``client`` that
+    connects to it once it accepts connections, and check the server ends with its client."""
+    process = subprocess.Popen(server, env=env, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, text=True)
+    try:
+        wait_for(process, "Accepting connection", seconds)
+        run(client, env=env)
+        assert process.wait(timeout=seconds) == 0
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+
+
 # --------------------------------------------------------------------------------------------
 # Data: legacy VTK files, which VTK 9.2 reads without expat (see test_paraview_mpi.py)
 # --------------------------------------------------------------------------------------------

@@ -424,22 +424,15 @@ def client_images(have_x_display, pieces, preload, tmp_path_factory):
     outputs = {SPT: directory / "client.png", HAVS: directory / "havs_client.png"}
     port = pvs.free_port()
     plugins = str(pvs.plugin_path().parents[1])
-    command = pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload)
-    server = subprocess.Popen(command, env=pvs.environment(PV_PLUGIN_PATH=plugins),
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     scenes = [["--data", pieces, "--output", output, "--report", output.with_suffix(""),
                "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
                "--representation", method, "--connect", f"localhost:{port}"]
               for method, output in outputs.items()]
-    try:
-        pvs.wait_for(server, "Accepting connection", 180)
-        pvs.run([pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
-                 *scenes[0], "--then", *scenes[1]], env=pvs.environment(PV_PLUGIN_PATH=plugins))
-        assert server.wait(timeout=180) == 0  # the servers end with their client
-    finally:
-        if server.poll() is None:
-            server.kill()
-            server.wait()
+    pvs.run_client_of_server(
+        pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload),
+        [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
+         *scenes[0], "--then", *scenes[1]],
+        pvs.environment(PV_PLUGIN_PATH=plugins), 180)
     for method, output in outputs.items():
         pvs.keep(output, f"mpi_{output.stem.replace('client', 'pvserver_client')}.png")
     return {method: (pvs.read_png(output),

@@ -8,7 +8,6 @@ installed plugin found by PV_PLUGIN_PATH.
 import json
 import os
 import pathlib
-import subprocess
 
 import numpy as np
 import pytest
@@ -199,21 +198,12 @@ def client_images(have_x_display, mesh, tmp_path_factory):
     directory = tmp_path_factory.mktemp("client")
     outputs = {method: directory / f"client_{ARTIFACT[method]}.png" for method in METHODS}
     port = pvs.free_port()
-    server = subprocess.Popen(
-        [pvs.executable("pvserver"), f"--server-port={port}"], env=pvs.environment(),
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    try:
-        pvs.wait_for(server, "Accepting connection", 120)
-        pvs.run(render_command(*[
-            scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
-                            "--connect", f"localhost:{port}", representation=method)
-            for method, output in outputs.items()]))
-        # pvserver ends by itself when its client disconnects.
-        assert server.wait(timeout=120) == 0
-    finally:
-        if server.poll() is None:
-            server.kill()
-            server.wait()
+    pvs.run_client_of_server(
+        [pvs.executable("pvserver"), f"--server-port={port}"],
+        render_command(*[scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
+                                         "--connect", f"localhost:{port}", representation=method)
+                         for method, output in outputs.items()]),
+        pvs.environment(), 120)
     for method, output in outputs.items():
         pvs.keep(output, f"pvserver_client_{ARTIFACT[method]}.png")
     return outputs

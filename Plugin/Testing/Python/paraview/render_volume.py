@@ -21,45 +21,15 @@ import sys
 
 from paraview import servermanager, simple
 
-# Each representation type of the plugin: its mapper class, and its settings as the
-# representation exposes them (exposed name: the mapper's own name). Names that two mappers
-# share are exposed with a prefix.
+# Each representation type of the plugin: the group of its settings in the Properties panel, the
+# prefix of the settings whose names two mappers share (the mapper's own name is without it), and
+# the settings that this script's options set.
 METHODS = {
-    "Volume (SPT)": {
-        "mapper": "vtkPSPTVolumeMapper",
-        "settings": {name: name for name in (
-            "TargetError", "RepetitionLevel", "SubpixelLevel", "Seed",
-            "PreIntegrationScalarResolution",
-            "PreIntegrationThicknessResolution", "RepetitionsPerPass", "ComputeTraversal",
-            "StratifiedSampling",
-            "ReuseNoiseEstimate", "Estimator", "ExactCoverage", "DepthSlabs",
-            "ProgressiveRefinement",
-            "AutoAdjustRepetitions", "AutoAdjustSampleDistances", "MaximumImageSampleDistance")},
-        "repetitions": "RepetitionLevel",
-        "seed": "Seed",
-        "target": "TargetError",
-    },
-    "Volume (HAVS-like)": {
-        "mapper": "vtkHAVSVolumeMapper",
-        "settings": {
-            "KBufferSize": "KBufferSize",
-            "KBufferSynchronization": "KBufferSynchronization",
-            "HAVSPreIntegrationScalarResolution": "PreIntegrationScalarResolution",
-            "HAVSPreIntegrationThicknessResolution": "PreIntegrationThicknessResolution",
-        },
-    },
-    "Volume (PBVR)": {
-        "mapper": "vtkPBVRVolumeMapper",
-        "settings": {
-            "PBVRRepetitionLevel": "RepetitionLevel",
-            "PBVRSubpixelLevel": "SubpixelLevel",
-            "PBVRSeed": "Seed",
-            "SamplingMode": "SamplingMode",
-            "MaximumParticleMemory": "MaximumParticleMemory",
-        },
-        "repetitions": "PBVRRepetitionLevel",
-        "seed": "PBVRSeed",
-    },
+    "Volume (SPT)": {"group": "SPT Volume Rendering", "prefix": "",
+                     "repetitions": "RepetitionLevel", "seed": "Seed", "target": "TargetError"},
+    "Volume (HAVS-like)": {"group": "HAVS-like Volume Rendering", "prefix": "HAVS"},
+    "Volume (PBVR)": {"group": "PBVR Volume Rendering", "prefix": "PBVR",
+                      "repetitions": "PBVRRepetitionLevel", "seed": "PBVRSeed"},
 }
 
 
@@ -155,12 +125,20 @@ def settings_to_set(args):
 
 
 def method(args):
-    return METHODS.get(args.representation, {"settings": {}})
+    return METHODS.get(args.representation, {})
 
 
-def setting_names(args):
+def mapper_settings(display, args):
+    """Exposed name: the mapper's own name, of every setting in the representation's group."""
+    chosen = method(args)
+    prefix = chosen.get("prefix", "")
+    return {name: name[len(prefix):] if prefix and name.startswith(prefix) else name
+            for name in property_groups(display).get(chosen.get("group"), [])}
+
+
+def setting_names(display, args):
     """Exposed name: the mapper's name, of every setting to report."""
-    names = dict(method(args)["settings"])
+    names = mapper_settings(display, args)
     for name in settings_to_set(args):
         names.setdefault(name, name)
     return names
@@ -194,7 +172,7 @@ def show_volume(reader, view, args, like):
         display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(args.representation)
     # What the representation starts with: the defaults the plugin's XML declares.
-    defaults = {name: get_setting(display, name) for name in setting_names(args)}
+    defaults = {name: get_setting(display, name) for name in setting_names(display, args)}
     chosen = method(args)
     if "target" in chosen:
         set_setting(display, chosen["target"], args.target_error)
@@ -310,7 +288,7 @@ def render_plain(display, view, args):
     representation = display.GetClientSideObject().GetActiveRepresentation()
     drawn = representation.GetActiveVolumeMapper()
     mapper = getattr(spt, drawn.GetClassName())()
-    for own in method(args)["settings"].values():
+    for own in mapper_settings(display, args).values():
         getattr(mapper, "Set" + own)(getattr(drawn, "Get" + own)())
     mapper.SetInputData(drawn.GetInput())
     volume = vtkVolume()
@@ -361,7 +339,7 @@ def report(display, defaults, reader, view, args):
     info = {"rank": rank, "ranks": ranks}
     info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
     info["representation_types"] = list(display.GetProperty("Representation").Available)
-    names = setting_names(args)
+    names = setting_names(display, args)
     info["settings"] = {name: get_setting(display, name) for name in names}
     info["defaults"] = defaults
     info["documentation"] = {name: documentation(display, name) for name in names}
