@@ -59,20 +59,28 @@ def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
     return names
 
 
-def _datasets(text: str) -> List[str]:
-    from .scenes import SCENES
+def _names_in(module: str, attribute: str, what: str, one: bool = False):
+    """A parser of comma-separated names, each one of ``module.attribute`` (a collection of
+    names or a function that returns one, imported when the option is parsed); with ``one``,
+    of exactly one name, returned alone."""
+    def parse(text: str):
+        choices = getattr(importlib.import_module(module, __package__), attribute)
+        names = _names(text, list(choices() if callable(choices) else choices), what)
+        if one and len(names) != 1:
+            raise argparse.ArgumentTypeError(f"give one {what}, not {len(names)}")
+        return names[0] if one else names
+    return parse
 
-    return _names(text, list(SCENES), "data set")
 
-
-def _one(names: List[str]) -> str:
-    if len(names) != 1:
-        raise argparse.ArgumentTypeError(f"give one data set, not {len(names)}")
-    return names[0]
-
-
-def _dataset(text: str) -> str:
-    return _one(_datasets(text))
+# The options' lists of names, each checked against what the library or the experiments name.
+_datasets = _names_in(".scenes", "SCENES", "data set")
+_dataset = _names_in(".scenes", "SCENES", "data set", one=True)
+_steep_datasets = _names_in(".experiments.figures", "STEEP_SCENES", "data set")
+_demo_scene = _names_in(".experiments.bench.race", "scene_names", "data set", one=True)
+_sections = _names_in(".experiments.bench", "SECTIONS", "section")
+_methods = _names_in(".experiments.bench", "METHODS", "method")
+_race_scenes = _names_in(".experiments.bench.race", "scene_names", "scene")
+_paraview_scenes = _names_in(".experiments.bench.paraview_view", "scene_names", "scene")
 
 
 def _data_directory(text: str) -> pathlib.Path:
@@ -94,12 +102,6 @@ def _output_directory(text: str) -> pathlib.Path:
     if path.exists() and not path.is_dir():
         raise argparse.ArgumentTypeError(f"'{text}' exists and is not a directory")
     return path
-
-
-def _steep_datasets(text: str) -> List[str]:
-    from .experiments.figures import STEEP_SCENES
-
-    return _names(text, list(STEEP_SCENES), "data set")
 
 
 def _cells(pieces: int):
@@ -127,12 +129,6 @@ def _seed(text: str) -> int:
     if value < 0:
         raise argparse.ArgumentTypeError(f"{value} is negative")
     return value
-
-
-def _demo_scene(text: str) -> str:
-    from .experiments.bench.race import scene_names
-
-    return _one(_names(text, scene_names(), "data set"))
 
 
 def _add_demo(commands) -> None:
@@ -295,30 +291,6 @@ def _parser() -> argparse.ArgumentParser:
     _add_report(commands)
     _add_mesh(commands)
     return parser
-
-
-def _sections(text: str) -> List[str]:
-    from .experiments.bench import SECTIONS
-
-    return _names(text, SECTIONS, "section")
-
-
-def _methods(text: str) -> List[str]:
-    from .experiments.bench import METHODS
-
-    return _names(text, tuple(METHODS), "method")
-
-
-def _race_scenes(text: str) -> List[str]:
-    from .experiments.bench.race import scene_names
-
-    return _names(text, scene_names(), "scene")
-
-
-def _paraview_scenes(text: str) -> List[str]:
-    from .experiments.bench.paraview_view import scene_names
-
-    return _names(text, scene_names(), "scene")
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:

@@ -96,23 +96,17 @@ def fraction_off(a: np.ndarray, b: np.ndarray, threshold: float = 0.05,
     return float(np.mean(np.max(np.abs(diff), axis=1) > threshold))
 
 
-def _colormap(values: np.ndarray, name: str) -> np.ndarray:
-    """Values in [0, 1] as uint8 RGB by a matplotlib colour map (grey without matplotlib)."""
-    try:
-        from matplotlib import colormaps
-        rgb = colormaps[name](values)[..., :3]
-    except ImportError:
-        rgb = np.repeat(values[..., None], 3, axis=-1)
-    return to_uint8(rgb)
-
-
 def difference_image(a: np.ndarray, b: np.ndarray, gain: float = 4.0,
                      cmap: str = "inferno") -> np.ndarray:
     """Heat map (h, w, 3) uint8 of the largest absolute RGBA difference per pixel, multiplied
     by ``gain`` and clipped to 1."""
     a, b = _check_pair(a, b)
     values = np.clip(np.max(np.abs(a - b), axis=-1) * gain, 0.0, 1.0)
-    return _colormap(values, cmap)
+    try:
+        from matplotlib import colormaps
+        return to_uint8(colormaps[cmap](values)[..., :3])
+    except ImportError:  # grey without matplotlib
+        return to_uint8(np.repeat(values[..., None], 3, axis=-1))
 
 
 def composite_over(image: np.ndarray, background: Sequence[float] = (0.0, 0.0, 0.0)
