@@ -28,8 +28,9 @@ from typing import Dict, List
 
 import numpy as np
 
-from ...meshes import interleaved_piece
+from ...meshes import interleaved_piece, write_legacy
 from ...progress import Progress
+from .race import race_scene
 from .settings import Settings
 
 Row = Dict[str, object]
@@ -98,19 +99,11 @@ def summarize(report: Row, one_rank_image: np.ndarray) -> Row:
 
 def write_pieces(scene: str, ranks: int, directory: pathlib.Path) -> pathlib.Path:
     """The scene's mesh as ``ranks`` interleaved legacy pieces and their .pvtk index."""
-    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
-
-    from .race import race_scene
-
     grid = race_scene(scene).grid
     entries = []
     for rank in range(ranks):
         path = directory / f"{scene}-{ranks}.{rank}.vtk"
-        writer = vtkUnstructuredGridWriter()
-        writer.SetFileName(str(path))
-        writer.SetInputData(interleaved_piece(grid, rank, ranks))
-        writer.SetFileTypeToBinary()
-        writer.Write()
+        write_legacy(interleaved_piece(grid, rank, ranks), path)
         entries.append(f'  <Piece fileName="{path.name}" />')
     index = directory / f"{scene}-{ranks}.pvtk"
     index.write_text('<File version="pvtk-1.0" dataType="vtkUnstructuredGrid" '

@@ -23,8 +23,9 @@ import shutil
 import subprocess
 from typing import Dict, List, Optional, Tuple
 
-from ... import data
+from ... import data, meshes
 from ...progress import Progress
+from . import race
 from .race import AZIMUTH, ELEVATION
 from .settings import Settings
 
@@ -59,9 +60,7 @@ def plugin_arguments() -> List[str]:
 
 def scene_names() -> List[str]:
     """The scenes the section can show: the data files ParaView reads, and the race's."""
-    from .race import scene_names as race_scenes
-
-    return list(DATA_FILES) + [name for name in race_scenes() if name not in DATA_FILES]
+    return list(DATA_FILES) + [name for name in race.scene_names() if name not in DATA_FILES]
 
 
 def scene_file(scene: str, directory: pathlib.Path) -> Tuple[pathlib.Path, str]:
@@ -74,23 +73,14 @@ def scene_file(scene: str, directory: pathlib.Path) -> Tuple[pathlib.Path, str]:
             raise FileNotFoundError(f"{path} is missing: the paraview section reads {name} "
                                     f"from SPT_DATA_DIR")
         return path, array
-    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
-
-    from .race import race_scene
-
-    grid = race_scene(scene).grid
+    grid = race.race_scene(scene).grid
     scalars = grid.GetPointData().GetScalars()
     if scalars is None or not scalars.GetName():
         raise ValueError(f"the scene {scene} has no named point scalars to color by")
     path = directory / f"{scene}.vtk"
     if not path.exists():
         directory.mkdir(parents=True, exist_ok=True)
-        writer = vtkUnstructuredGridWriter()
-        writer.SetFileName(str(path))
-        writer.SetInputData(grid)
-        writer.SetFileTypeToBinary()
-        if writer.Write() != 1:
-            raise RuntimeError(f"cannot write {path}")
+        meshes.write_legacy(grid, path)
     return path, scalars.GetName()
 
 

@@ -266,35 +266,27 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
         rows += _run_stochastic(lap, method, settings.race_max_repetitions, goal, progress)
     if has_error_target():
         pt_error = rows[0]["rmse"]
-        target = Method("spt-target", "SPT at VTK PT's error (error target)",
-                        lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True)
-        row = measure(lap, target, settings.race_max_repetitions, target_error=pt_error)
-        # the repetitions it drew before its noise estimate reached the target
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error")
-        # The same after an image from another view: the target's first step aims with the
-        # noise per repetition measured there, as while a user turns the camera.
         size = (settings.race_size, settings.race_size)
-        turned = Method(
-            "spt-target-turned", "SPT at VTK PT's error, after another view (error target)",
-            lambda r, sp: render.after_another_view(
-                render.spt_mapper(r, sp, target_error=pt_error), s.grid, s.property, s.view,
-                size), True)
-        row = measure(lap, turned, settings.race_max_repetitions, target_error=pt_error)
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error after another view")
-        # With depth slabs, from scratch.
-        slabs = Method(
-            "spt-slabs-target",
-            f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
-            lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
-                                            depth_slabs=RACE_DEPTH_SLABS), True)
-        row = measure(lap, slabs, settings.race_max_repetitions, target_error=pt_error)
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error with depth slabs")
+        # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
+        # another view, whose first step aims with the noise per repetition measured there (as
+        # while a user turns the camera); and a new mapper with depth slabs.
+        for method in (
+                Method("spt-target", "SPT at VTK PT's error (error target)",
+                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
+                Method("spt-target-turned",
+                       "SPT at VTK PT's error, after another view (error target)",
+                       lambda r, sp: render.after_another_view(
+                           render.spt_mapper(r, sp, target_error=pt_error), s.grid,
+                           s.property, s.view, size), True),
+                Method("spt-slabs-target",
+                       f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
+                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
+                                                       depth_slabs=RACE_DEPTH_SLABS), True)):
+            row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
+            # the repetitions it drew before its noise estimate reached the target
+            row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
+            rows.append(row)
+            progress.step(f"{name} {method.label}")
     return rows
 
 
