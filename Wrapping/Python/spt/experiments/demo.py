@@ -109,9 +109,7 @@ def cached_reference(s: volumes.VolumesScene, size: int,
 
 def levels(cap: int) -> List[int]:
     """1, 4, 16, ... up to ``cap``, and ``cap`` itself."""
-    result = [1]
-    while result[-1] * LADDER_FACTOR <= cap:
-        result.append(result[-1] * LADDER_FACTOR)
+    result = race.levels(cap, LADDER_FACTOR)
     return result + ([cap] if result[-1] < cap else [])
 
 

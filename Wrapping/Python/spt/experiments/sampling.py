@@ -69,10 +69,8 @@ def _plot(curves: List[Dict[str, object]], path: pathlib.Path, title: str) -> No
 
 
 def _repetitions_to_match(curve: Dict[str, object], target: float) -> object:
-    for point in curve["points"]:
-        if point["rmse"] <= target:
-            return point["repetitions"]
-    return None
+    """The fewest repetitions of ``curve`` whose error is at most ``target``, else None."""
+    return next((p["repetitions"] for p in curve["points"] if p["rmse"] <= target), None)
 
 
 def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: pathlib.Path,

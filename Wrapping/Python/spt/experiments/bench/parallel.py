@@ -52,6 +52,13 @@ def mpiexec(ranks: int) -> List[str]:
     return command
 
 
+def _run(command: List[str]) -> None:
+    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
+                            check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+
+
 def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Path) -> Row:
     """One run of ``ranks`` ranks: its report and rank 0's image."""
     output = directory / f"{scene}-{ranks}"
@@ -60,10 +67,7 @@ def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Pat
         "--output", str(output), "--size", str(settings.parallel_size),
         "--repetitions", str(settings.parallel_repetitions),
         "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
-                            check=False)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+    _run(command)
     report = json.loads(output.with_suffix(".json").read_text())
     report["image"] = np.load(output.with_suffix(".npy"))
     return report
@@ -127,10 +131,7 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
                 "--frames", str(settings.frames),
                 "--repetitions", str(settings.parallel_repetitions),
                 "--target-error", str(settings.parallel_target_error)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
-                            check=False)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+    _run(command)
     report = json.loads(output.read_text())
     return {"scene": scene, "ranks": ranks, "representation": representation,
             "read_wall_seconds": report["read_seconds"],

@@ -77,11 +77,11 @@ def race_scene(name: str) -> scenes.Scene:
     return made
 
 
-def levels(cap: int) -> List[int]:
-    """1, 2, 4, ... up to ``cap``."""
+def levels(cap: int, factor: int = 2) -> List[int]:
+    """1, ``factor``, ``factor``^2, ... up to ``cap``."""
     result = [1]
-    while result[-1] * 2 <= cap:
-        result.append(result[-1] * 2)
+    while result[-1] * factor <= cap:
+        result.append(result[-1] * factor)
     return result
 
 

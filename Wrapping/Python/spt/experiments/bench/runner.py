@@ -24,14 +24,19 @@ from .timing import record, time_method
 Entry = Dict[str, object]
 
 
+def renderer_name(window) -> str:
+    """The OpenGL renderer that draws ``window``."""
+    for line in (window.ReportCapabilities() or "").splitlines():
+        if line.startswith("OpenGL renderer string:"):
+            return line.split(":", 1)[1].strip()
+    return "unknown OpenGL renderer"
+
+
 def machine() -> str:
     """The cores and the OpenGL renderer that draws this process's windows."""
     window, _ = render.make_window(8, 8)
     window.Render()
-    renderer = "unknown OpenGL renderer"
-    for line in (window.ReportCapabilities() or "").splitlines():
-        if line.startswith("OpenGL renderer string:"):
-            renderer = line.split(":", 1)[1].strip()
+    renderer = renderer_name(window)
     window.Finalize()
     return f"{os.cpu_count()} cores, {renderer}"
 
