@@ -20,7 +20,7 @@ sys.path.insert(0, str(TOOL))
 
 import bench_compare  # noqa: E402
 import comparison  # noqa: E402
-from test_race import _row as race_row  # noqa: E402
+from test_race import race_row  # noqa: E402
 
 PT_SECONDS = 0.1
 PT_RMSE = 0.01

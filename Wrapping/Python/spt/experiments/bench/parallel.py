@@ -1,18 +1,10 @@
-"""The ``parallel`` section: SPT on 1, 2 and 4 MPI ranks with no redistribution.
-
-Each rank renders an interleaved piece of the scene (cells by id modulo the number of ranks:
-every piece spans the whole mesh, so a sorted method could not composite the ranks' images
-without moving cells first) through vtkSPTVolumeMapper with a vtkMPIController; the ranks
-combine their depth keys by a global minimum and their sums by a global sum (see
-:mod:`.parallel_rank`). Per scene and rank count: the first frame and the later frames in
-process CPU time (all threads, the rasterizer's too) and wall time, the largest over the
-ranks; the bytes each rank puts into the reductions per frame; memory per rank (the peak
-resident size, which includes making the whole scene before keeping the piece, the piece's
-own size, and the mapper's GPU bytes); and the largest difference from the 1-rank image, in
-8-bit levels.
-
-The ranks share this machine's cores: on fewer cores than ranks, the times show the cost of
-the reductions and of oversubscription, not a speed-up.
+"""The ``parallel`` section: SPT on 1, 2 and 4 MPI ranks with no redistribution, each rank
+with an interleaved piece of the scene (cells by id modulo the number of ranks: every piece
+spans the whole mesh, so a sorted method could not composite the ranks' images without moving
+cells first), run by :mod:`.parallel_rank`; then pvbatch with the plugin (:mod:`.pvbatch_frames`)
+against the representations ParaView redistributes. The ranks share this machine's cores: on
+fewer cores than ranks, the times show the cost of the reductions and of oversubscription, not
+a speed-up.
 """
 
 from __future__ import annotations

@@ -1,17 +1,11 @@
 """The ``paraview`` section: the view people look at, in ParaView.
 
-pvpython with the SPT plugin shows each scene in a render view of ``Settings.paraview_size``
-(1280 x 800 by default) with ParaView's default transfer functions, and renders it as
-"Volume" (VTK's projected tetrahedra), "Volume (HAVS-like)" and "Volume (SPT)", each at its
-defaults, one after the other in one process (:mod:`.pvpython_stills`): the second still
-render is timed, the error of each image is taken against the exact reference of the same
-camera and size (spt.raycast, at the full size of the view), and two interactive renders
-show how SPT's time compares with the time ParaView asks for (the render window's desired
-update rate). The scenes: ``disk`` (ParaView's disk_out_ref.ex2 colored by Temp, read by
-ParaView's Exodus reader, from SPT_DATA_DIR), the race's generated drills, and ``default``
-(the embedded mesh, for a quick run).
-
-The plugin comes from SPT_PARAVIEW_PLUGIN (the SPT.so to load) or PV_PLUGIN_PATH.
+Each scene in its own pvpython with the SPT plugin (from SPT_PARAVIEW_PLUGIN, the SPT.so to
+load, or PV_PLUGIN_PATH), in a render view of ``Settings.paraview_size`` (1280 x 800 by
+default), as "Volume", "Volume (HAVS-like)" and "Volume (SPT)" at their defaults: what is
+measured is :mod:`.pvpython_stills`'s. The scenes: ``disk`` (ParaView's disk_out_ref.ex2
+colored by Temp, read by ParaView's Exodus reader, from SPT_DATA_DIR), the race's generated
+drills, and ``default`` (the embedded mesh, for a quick run).
 """
 
 from __future__ import annotations

@@ -146,18 +146,6 @@ def summarize(rows: Sequence[Entry]) -> List[Entry]:
 # Reference cache
 # --------------------------------------------------------------------------------------------
 
-def _transfer_function_values(s: scenes.Scene) -> np.ndarray:
-    opacity = s.property.GetScalarOpacity()
-    color = s.property.GetRGBTransferFunction()
-    values = [s.property.GetScalarOpacityUnitDistance()]
-    for function, width in ((opacity, 4), (color, 6)):
-        for index in range(function.GetSize()):
-            node = [0.0] * width
-            function.GetNodeValue(index, node)
-            values += node
-    return np.asarray(values)
-
-
 def scene_digest(s: scenes.Scene) -> str:
     """A digest of a scene's mesh, scalars and transfer functions."""
     digest = hashlib.sha1()
@@ -167,7 +155,15 @@ def scene_digest(s: scenes.Scene) -> str:
     scalars = grid.GetPointData().GetScalars() or grid.GetCellData().GetScalars()
     if scalars is not None:
         digest.update(vtk_to_numpy(scalars).tobytes())
-    digest.update(_transfer_function_values(s).tobytes())
+    # the transfer functions' nodes: opacity (x, y, midpoint, sharpness), color (x, r, g, b, ...)
+    values = [s.property.GetScalarOpacityUnitDistance()]
+    for function, width in ((s.property.GetScalarOpacity(), 4),
+                            (s.property.GetRGBTransferFunction(), 6)):
+        for index in range(function.GetSize()):
+            node = [0.0] * width
+            function.GetNodeValue(index, node)
+            values += node
+    digest.update(np.asarray(values).tobytes())
     return digest.hexdigest()[:16]
 
 
