@@ -39,7 +39,7 @@ def _frames(s: scenes.Scene, method: Method, dolly: float, size: int, repetition
     renderer.GetActiveCamera().Dolly(dolly)
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
     render.warm_up(window, mapper)
-    best = timed_frames(window, FRAMES).best
+    best = min(timed_frames(window, FRAMES).seconds)
     image = render.read_rgba(window)
     camera = renderer.GetActiveCamera()
     copied = type(camera)()

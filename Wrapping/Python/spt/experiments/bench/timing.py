@@ -34,10 +34,6 @@ class Timing:
         return float(np.median(self.seconds))
 
     @property
-    def best(self) -> float:
-        return float(np.min(self.seconds))
-
-    @property
     def cpu_median(self) -> float:
         return float(np.median(self.cpu_seconds)) if self.cpu_seconds else float("nan")
 
