@@ -329,10 +329,8 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
     rows = [row for result in results for row in _pbvr_rows(result)]
     tables.write_table(output / "pbvr.md", PBVR_TABLE_HEADER, rows)
     _plot_pbvr_convergence(results, output / "pbvr_convergence.png")
-    curves = []
-    for result in results:
-        for label, entries in result["methods"].items():
-            curves.append([result["dataset"], label] + [e["rmse"] for e in entries])
+    curves = [[result["dataset"], label] + [e["rmse"] for e in entries]
+              for result in results for label, entries in result["methods"].items()]
     level_list = [e["repetitions"] for e in results[0]["methods"]["SPT"]] if results else []
     tables.write_table(output / "pbvr_convergence.md",
                        ["data set", "method"] + [f"L={level}" for level in level_list], curves)
