@@ -1,6 +1,7 @@
 """The benchmark's machinery: model fits recover known coefficients, the crossovers follow
-from them, the floor draws every face, a small run writes its report, and bad arguments are
-refused. No timing is asserted: speed is what the benchmark reports, not what tests check."""
+from them, the floor draws every face, and a small run writes its report (bad arguments are
+refused: test_cli.py). No timing is asserted: speed is what the benchmark reports, not what
+tests check."""
 
 import dataclasses
 import io
@@ -16,8 +17,6 @@ import pytest
 from spt.experiments import bench
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_TETRA, vtkUnstructuredGrid
-
-from test_cli import environment
 
 
 def test_fit_recovers_known_coefficients():
@@ -53,6 +52,11 @@ def entry(method, cells, size, repetitions, seconds, memory=None, particles=None
     return e
 
 
+def quality(method, level, seconds, rmse):
+    """An entry of the quality section on the scene "x" (1000 cells, 64 x 64)."""
+    return entry(method, 1000, 64, level, seconds, rmse=rmse, sweep="quality", scene="x")
+
+
 def test_models_and_memory_crossover_from_synthetic_runs():
     entries = []
     for cells in (1e4, 1e5, 1e6, 3e6):
@@ -83,10 +87,9 @@ def test_models_and_memory_crossover_from_synthetic_runs():
 
 
 def test_time_at_equal_error_interpolates_the_spt_curve():
-    entries = [dict(entry("spt", 1000, 64, level, 0.01 * level, rmse=0.2 / math.sqrt(level)),
-                    sweep="quality", scene="x") for level in (4, 16, 64, 256)]
-    entries.append(dict(entry("havs6", 1000, 64, 1, 0.5, rmse=0.025), sweep="quality",
-                        scene="x"))
+    entries = [quality("spt", level, 0.01 * level, 0.2 / math.sqrt(level))
+               for level in (4, 16, 64, 256)]
+    entries.append(quality("havs6", 1, 0.5, 0.025))
     result = bench.crossovers(entries, {})["time_at_equal_error"]
     assert len(result) == 1
     assert result[0]["spt_repetitions"] == pytest.approx(64.0, rel=1e-6)
@@ -155,29 +158,13 @@ def test_the_camera_section_compares_inside_with_outside(tmp_path, have_display)
     assert "## The camera anywhere" in (tmp_path / "bench.md").read_text()
 
 
-@pytest.mark.parametrize("arguments, message", [
-    (("bench", "--sections", "cells,nosuch"), "unknown section"),
-    (("bench", "--sections", ","), "unknown section"),
-    (("bench", "--frames", "0"), "outside"),
-    (("bench", "--max-cells", "many"), "not a whole number"),
-    (("bench", "--shape", "cube"), "invalid choice"),
-])
-def test_bad_bench_arguments_are_refused(arguments, message):
-    result = subprocess.run([sys.executable, "-m", "spt", *arguments], capture_output=True,
-                            text=True, env=environment(), check=False)
-    assert result.returncode != 0
-    assert message in result.stderr
-
-
 def test_sampling_gains_from_synthetic_curves():
     entries = []
     for level in (4, 16, 64):
-        entries.append(dict(entry("spt-independent", 1000, 64, level, 0.1 * level / 16,
-                                  rmse=0.2 / math.sqrt(level)), sweep="quality", scene="x"))
-        entries.append(dict(entry("spt", 1000, 64, level, 0.1 * level / 16,
-                                  rmse=0.2 / level), sweep="quality", scene="x"))
-    entries.append(dict(entry("spt-paper", 1000, 64, 4, 0.1, rmse=0.1), sweep="quality",
-                        scene="x"))
+        entries.append(quality("spt-independent", level, 0.1 * level / 16,
+                               0.2 / math.sqrt(level)))
+        entries.append(quality("spt", level, 0.1 * level / 16, 0.2 / level))
+    entries.append(quality("spt-paper", 4, 0.1, 0.1))
     (gain,) = bench.sampling_gains(entries)
     assert gain["per_pass_repetitions"] == 4
     assert gain["per_pass_speedup"] == pytest.approx(4.0)
@@ -189,11 +176,9 @@ def test_sampling_gains_from_synthetic_curves():
 def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
     """An SPT curve already below HAVS-like's error at its lowest level: that level and its
     measured time, marked as an upper bound."""
-    entries = [dict(entry("spt-visibility", 1000, 64, level, 0.01 * level,
-                          rmse=0.002 / math.sqrt(level)), sweep="quality", scene="x")
+    entries = [quality("spt-visibility", level, 0.01 * level, 0.002 / math.sqrt(level))
                for level in (4, 16, 64)]
-    entries.append(dict(entry("havs6", 1000, 64, 1, 0.5, rmse=0.025), sweep="quality",
-                        scene="x"))
+    entries.append(quality("havs6", 1, 0.5, 0.025))
     [result] = bench.crossovers(entries, {})["time_at_equal_error"]
     assert result["at_most"] and result["spt"] == "spt-visibility"
     assert result["spt_repetitions"] == 4
@@ -289,13 +274,6 @@ def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, have_displa
     assert [r["size"] for r in again] == [16, 24] == [
         r["size"] for r in views.races({"race": again[0], "race_sizes": again[1:]})]
     assert again[0]["rows"] == [] and again[1]["rows"] == large["rows"]
-
-
-@pytest.mark.parametrize("text", ["256,x", "0", ","])
-def test_bad_race_sizes_are_refused(text):
-    result = subprocess.run([sys.executable, "-m", "spt", "bench", "--size", text],
-                            capture_output=True, text=True, env=environment(), check=False)
-    assert result.returncode == 2 and "--size" in result.stderr
 
 
 def test_the_paraview_section_compares_the_three_volumes_with_the_exact_image(

@@ -20,15 +20,14 @@ sys.path.insert(0, str(TOOL))
 
 import bench_compare  # noqa: E402
 import comparison  # noqa: E402
+from test_race import race_row  # noqa: E402
 
 PT_SECONDS = 0.1
 PT_RMSE = 0.01
 
 
-def _row(scene, method, level, rmse, seconds, stochastic=True):
-    return {"scene": scene, "method": method, "label": method, "stochastic": stochastic,
-            "repetitions": level, "rmse": rmse, "seconds": seconds, "cpu_seconds": seconds,
-            "host_seconds": 1e-3}
+def _row(scene, *arguments, **options):
+    return dict(race_row(*arguments, **options), scene=scene)
 
 
 def bench_json(ratios, size=256):

@@ -36,15 +36,15 @@ def test_levels_double_up_to_the_cap():
     assert race.levels(64)[-1] == 64
 
 
-def _row(method, level, rmse, seconds, stochastic=True, floor=0.00113):
+def race_row(method, level, rmse, seconds, stochastic=True, floor=0.00113):
     return {"scene": "s", "method": method, "label": method, "stochastic": stochastic,
             "repetitions": level, "rmse": rmse, "seconds": seconds, "cpu_seconds": seconds,
             "host_seconds": level * 1e-3, "read_back_floor": floor}
 
 
 def test_summary_as_multiples_of_vtk_pt():
-    rows = [_row("pt", 1, 0.011, 0.05, False), _row("havs6", 1, 0.004, 0.5, False)]
-    rows += [_row("spt", level, rmse, seconds) for level, rmse, seconds in ROWS]
+    rows = [race_row("pt", 1, 0.011, 0.05, False), race_row("havs6", 1, 0.004, 0.5, False)]
+    rows += [race_row("spt", level, rmse, seconds) for level, rmse, seconds in ROWS]
     (summary,) = race.summarize(rows)
     reached = summary["reached"]
     assert reached["VTK PT's error"] == {"repetitions": 4, "ratio": pytest.approx(3.0)}
@@ -56,8 +56,8 @@ def test_summary_as_multiples_of_vtk_pt():
 
 
 def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
-    result = _race(["spx", "torus"], [_row("pt", 1, 0.01, 0.1, False, floor=0.0011),
-                                      _row("spt", 1, 0.005, 0.2, floor=0.0011)])
+    result = _race(["spx", "torus"], [race_row("pt", 1, 0.01, 0.1, False, floor=0.0011),
+                                      race_row("spt", 1, 0.005, 0.2, floor=0.0011)])
     text = "\n".join(race_section.race_full(result))
     assert "rounded to 8 bits: spx 0.0011, torus 0.0011." in text
     # rows of a race measured before the floor was recorded
@@ -67,8 +67,8 @@ def test_the_report_gives_each_scenes_read_back_floor_where_it_was_recorded():
 
 
 def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():
-    rows = [_row("pt", 1, 0.001, 0.05, False)] + [_row("pbvr", 1, 0.1, 0.1),
-                                                  _row("pbvr", 2, 0.08, 0.2)]
+    rows = [race_row("pt", 1, 0.001, 0.05, False), race_row("pbvr", 1, 0.1, 0.1),
+            race_row("pbvr", 2, 0.08, 0.2)]
     (summary,) = race.summarize(rows)
     assert summary["reached"]["VTK PT's error"] is None
     assert summary["host_repetitions"] == 2
@@ -77,7 +77,8 @@ def test_summary_when_vtk_pt_is_never_reached_reports_the_largest_level():
 def _race(scenes, rows_per_scene=None, **changes):
     rows = []
     for scene in scenes:
-        for row in rows_per_scene or [_row("pt", 1, 0.01, 0.1, False), _row("spt", 1, 0.005, 0.2)]:
+        for row in rows_per_scene or [race_row("pt", 1, 0.01, 0.1, False),
+                                      race_row("spt", 1, 0.005, 0.2)]:
             rows.append(dict(row, scene=scene))
     result = {"size": 256, "azimuth": race.AZIMUTH, "elevation": race.ELEVATION,
               "frames": race.FRAMES, "max_repetitions": 256, "host_source": "perf",
@@ -88,8 +89,8 @@ def _race(scenes, rows_per_scene=None, **changes):
 
 def test_a_race_of_some_scenes_keeps_the_other_scenes_of_the_earlier_race():
     earlier = _race(["spx", "torus", "drill-1M"])
-    later = _race(["drill-3M", "torus"], [_row("pt", 1, 0.02, 0.3, False),
-                                          _row("spt", 1, 0.01, 0.6)])
+    later = _race(["drill-3M", "torus"], [race_row("pt", 1, 0.02, 0.3, False),
+                                          race_row("spt", 1, 0.01, 0.6)])
     merged = race.merge_runs(later, earlier)
     # the race's order of scenes; torus's rows are the later run's only
     assert [row["scene"] for row in merged["rows"]] == [

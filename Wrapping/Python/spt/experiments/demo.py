@@ -76,12 +76,6 @@ def default_large_scene() -> str:
     return LARGE_SCENE if HAVE_MESHING else "default"
 
 
-def _large_scene(name: str) -> volumes.VolumesScene:
-    """A scene of the race (:func:`spt.experiments.bench.race.race_scene`) as one volume."""
-    s = race.race_scene(name)
-    return volumes.single(s.grid, s.property, s.name, s.view)
-
-
 def _digest(s: volumes.VolumesScene, size: int) -> str:
     parts = [race.scene_digest(scenes.Scene(s.name, grid, prop, s.view))
              for grid, prop in s.volumes]
@@ -109,9 +103,7 @@ def cached_reference(s: volumes.VolumesScene, size: int,
 
 def levels(cap: int) -> List[int]:
     """1, 4, 16, ... up to ``cap``, and ``cap`` itself."""
-    result = [1]
-    while result[-1] * LADDER_FACTOR <= cap:
-        result.append(result[-1] * LADDER_FACTOR)
+    result = race.levels(cap, LADDER_FACTOR)
     return result + ([cap] if result[-1] < cap else [])
 
 
@@ -209,11 +201,6 @@ def comparison(results: Sequence[Entry]) -> np.ndarray:
     return np.concatenate(padded, axis=0)
 
 
-def _json_ready(results: Sequence[Entry]) -> List[Entry]:
-    return [{key: value for key, value in result.items() if key != "images"}
-            for result in results]
-
-
 def demo(output: PathLike, size: int = 256, repetitions: int = 256,
          large: Optional[str] = None, pair_cells: int = PAIR_CELLS,
          target_error: float = render.DEFAULT_TARGET_ERROR) -> List[Entry]:
@@ -229,7 +216,9 @@ def demo(output: PathLike, size: int = 256, repetitions: int = 256,
     count = 2 if HAVE_MESHING else 1
     progress = Progress(count + count * (3 + len(levels(repetitions))), "demo")
     large = large or default_large_scene()
-    big = _large_scene(large)  # first: a missing data set fails before anything is drawn
+    # The race's scene as one volume, first: a missing data set fails before anything is drawn.
+    s = race.race_scene(large)
+    big = volumes.single(s.grid, s.property, s.name, s.view)
     progress.step(f"{large}: {big.cells():,} tetrahedra")
     chosen = [big]
     if HAVE_MESHING:
@@ -246,6 +235,7 @@ def demo(output: PathLike, size: int = 256, repetitions: int = 256,
                 "load_average": {"start": load_at_start, "end": os.getloadavg()[0]},
                 "size": size, "frames": FRAMES, "max_repetitions": repetitions,
                 "target_error": target_error, "where_spt_loses": WHERE_SPT_LOSES,
-                "scenes": _json_ready(results)}
+                "scenes": [{key: value for key, value in result.items() if key != "images"}
+                           for result in results]}
     (output / "results.json").write_text(json.dumps(document, indent=1), encoding="utf-8")
     return results

@@ -121,13 +121,6 @@ def _sorting_methods(repetitions: int, seed: int) -> List[tuple]:
     ]
 
 
-def _stack(rows: Sequence[np.ndarray], gap: int = 4) -> np.ndarray:
-    """uint8 RGB images of equal width, top to bottom."""
-    width = max(row.shape[1] for row in rows)
-    padded = [np.pad(row, ((0, gap), (0, width - row.shape[1]), (0, 0))) for row in rows]
-    return np.concatenate(padded, axis=0)
-
-
 def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
                   seed: int = 0, progress: Optional[Progress] = None) -> Dict[str, object]:
     """One scene of the sorting figure: the reference, SPT, HAVS-like with k = 2 and 6 and
@@ -160,7 +153,9 @@ def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
     top = metrics.side_by_side(images, labels)
     bottom = metrics.side_by_side([np.zeros_like(differences[0])] + differences,
                                   [""] + [f"|{label} - ref| x4" for label in labels[1:]])
-    metrics.write_png(output / f"{s.name}_comparison.png", _stack([top, bottom]))
+    width = max(top.shape[1], bottom.shape[1])  # the two rows, 4 pixels apart
+    metrics.write_png(output / f"{s.name}_comparison.png", np.concatenate(
+        [np.pad(row, ((0, 4), (0, width - row.shape[1]), (0, 0))) for row in (top, bottom)]))
     return result
 
 
@@ -334,10 +329,8 @@ def pbvr_figure(datasets: Sequence[str], repetitions: int, levels: Sequence[int]
     rows = [row for result in results for row in _pbvr_rows(result)]
     tables.write_table(output / "pbvr.md", PBVR_TABLE_HEADER, rows)
     _plot_pbvr_convergence(results, output / "pbvr_convergence.png")
-    curves = []
-    for result in results:
-        for label, entries in result["methods"].items():
-            curves.append([result["dataset"], label] + [e["rmse"] for e in entries])
+    curves = [[result["dataset"], label] + [e["rmse"] for e in entries]
+              for result in results for label, entries in result["methods"].items()]
     level_list = [e["repetitions"] for e in results[0]["methods"]["SPT"]] if results else []
     tables.write_table(output / "pbvr_convergence.md",
                        ["data set", "method"] + [f"L={level}" for level in level_list], curves)

@@ -25,19 +25,10 @@ import pyvista as pv
 import spt.pyvista
 from .. import data, metrics, raycast
 from ..render import DEFAULT_TARGET_ERROR
+from .bench.runner import renderer_name
 
 #: Frames timed after the first (which builds the caches); the best is reported.
 FRAMES = 3
-
-
-def _time_frames(plotter: pv.Plotter, frames: int) -> float:
-    best = float("inf")
-    for _ in range(frames):
-        start = time.perf_counter()
-        plotter.render()
-        plotter.ren_win.WaitForCompletion()
-        best = min(best, time.perf_counter() - start)
-    return best
 
 
 def _measure(label: str, add, mesh: pv.DataSet, size: int, frames: int) -> Dict:
@@ -49,7 +40,12 @@ def _measure(label: str, add, mesh: pv.DataSet, size: int, frames: int) -> Dict:
     start = time.perf_counter()
     image = plotter.screenshot(transparent_background=True, return_img=True)
     first = time.perf_counter() - start
-    seconds = _time_frames(plotter, frames)
+    seconds = float("inf")  # the best of the frames
+    for _ in range(frames):
+        start = time.perf_counter()
+        plotter.render()
+        plotter.ren_win.WaitForCompletion()
+        seconds = min(seconds, time.perf_counter() - start)
     image = plotter.screenshot(transparent_background=True, return_img=True)
     image = image.astype(np.float64) / 255.0
     exact = raycast.render(actor.mapper.GetInput(), actor.prop,
@@ -57,18 +53,11 @@ def _measure(label: str, add, mesh: pv.DataSet, size: int, frames: int) -> Dict:
     mapper = actor.mapper.GetClassName()
     repetitions = (actor.mapper.GetLastRepetitionCount()
                    if hasattr(actor.mapper, "GetLastRepetitionCount") else None)
-    renderer = _gl_renderer(plotter.ren_win)
+    renderer = renderer_name(plotter.ren_win)
     plotter.close()
     return {"label": label, "mapper": mapper, "first": first, "seconds": seconds,
             "rmse": metrics.rmse(image, exact), "image": image, "exact": exact,
             "renderer": renderer, "repetitions": repetitions}
-
-
-def _gl_renderer(window) -> str:
-    for line in window.ReportCapabilities().splitlines():
-        if line.startswith("OpenGL renderer string:"):
-            return line.split(":", 1)[1].strip()
-    return "unknown OpenGL renderer"
 
 
 def compare(mesh: pv.DataSet, size: int = 200, cmap: str = "viridis", opacity: str = "linear",

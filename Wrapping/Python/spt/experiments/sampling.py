@@ -69,10 +69,8 @@ def _plot(curves: List[Dict[str, object]], path: pathlib.Path, title: str) -> No
 
 
 def _repetitions_to_match(curve: Dict[str, object], target: float) -> object:
-    for point in curve["points"]:
-        if point["rmse"] <= target:
-            return point["repetitions"]
-    return None
+    """The fewest repetitions of ``curve`` whose error is at most ``target``, else None."""
+    return next((p["repetitions"] for p in curve["points"] if p["rmse"] <= target), None)
 
 
 def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: pathlib.Path,
@@ -102,11 +100,9 @@ def sampling_figure(dataset: str, levels: Sequence[int], size: int, output: path
         "stratified_repetitions_to_match": _repetitions_to_match(stratified, target),
         "default_repetitions_to_match": _repetitions_to_match(default, target),
     }
-    rows = []
-    for curve in curves:
-        for paper_point, point in zip(paper["points"], curve["points"]):
-            rows.append([curve["mode"], point["repetitions"], point["rmse"], point["seconds"],
-                         paper_point["seconds"] / point["seconds"]])
+    rows = [[curve["mode"], point["repetitions"], point["rmse"], point["seconds"],
+             paper_point["seconds"] / point["seconds"]]
+            for curve in curves for paper_point, point in zip(paper["points"], curve["points"])]
     tables.write_table(output / "sampling.md", ["mode", "repetitions", "RMSE", "time [s]",
                                                 "speed-up over the paper's mode"], rows)
     _plot(curves, output / "sampling.png", f"{dataset}, {size} x {size}")

@@ -21,11 +21,9 @@ def markdown(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
 
 
 def write_table(path: pathlib.Path, header: Sequence[str],
-                rows: Iterable[Sequence[object]]) -> str:
-    """Write ``rows`` under ``header`` as a Markdown table to ``path``; returns the text."""
-    text = markdown(header, rows)
-    path.write_text(text)
-    return text
+                rows: Iterable[Sequence[object]]) -> None:
+    """Write ``rows`` under ``header`` as a Markdown table to ``path``."""
+    path.write_text(markdown(header, rows))
 
 
 def print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:

@@ -9,7 +9,6 @@ the same camera (spt.raycast, rays from the near plane).
 
 from __future__ import annotations
 
-import time
 from typing import Dict, List
 
 import numpy as np
@@ -18,6 +17,7 @@ from ... import metrics, raycast, render, scenes
 from ...progress import Progress
 from .methods import METHODS, Method, havs_method
 from .settings import Settings
+from .timing import timed_frames
 
 Entry = Dict[str, object]
 
@@ -39,19 +39,14 @@ def _frames(s: scenes.Scene, method: Method, dolly: float, size: int, repetition
     renderer.GetActiveCamera().Dolly(dolly)
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
     render.warm_up(window, mapper)
-    seconds = []
-    for _ in range(FRAMES):
-        start = time.perf_counter()
-        window.Render()
-        window.WaitForCompletion()
-        seconds.append(time.perf_counter() - start)
+    best = min(timed_frames(window, FRAMES).seconds)
     image = render.read_rgba(window)
     camera = renderer.GetActiveCamera()
     copied = type(camera)()
     copied.DeepCopy(camera)
     renderer.RemoveAllViewProps()
     window.Finalize()
-    return min(seconds), image, copied
+    return best, image, copied
 
 
 def camera_rows(name: str, settings: Settings, progress: Progress) -> List[Entry]:

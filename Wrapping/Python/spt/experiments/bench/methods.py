@@ -9,7 +9,7 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkUnstructuredGrid
 
-from ... import data, render
+from ... import data, meshes, render
 from ...scenes import Scene
 
 #: The camera of the generated scenes.
@@ -65,13 +65,17 @@ METHODS: Dict[str, Method] = {m.name: m for m in (
 )}
 
 
+def label(name: str) -> str:
+    """The label of the method ``name``, or the name where it is none of METHODS."""
+    return METHODS[name].label if name in METHODS else name
+
+
 def generated_mesh(shape: str, cells: int) -> vtkUnstructuredGrid:
     """A generated mesh of about ``cells`` tetrahedra: TetGen's drill or torus
     (:mod:`spt.meshes`, cached on disk), or ``helix``, the embedded default mesh at the
     nearest resolution (48,000 r^3 cells)."""
     if shape == "helix":
         return data.make_default_mesh(max(1, round((cells / 48000.0) ** (1.0 / 3.0))))
-    from ... import meshes
     return meshes.generate(shape, cells)
 
 

@@ -78,34 +78,35 @@ def _select(entries: Sequence[Entry], name: str, key: str) -> List[Entry]:
             and np.isfinite(e.get(key, float("nan")))]
 
 
-def _paper_models(entries: Sequence[Entry], key: str) -> Dict[str, Fit]:
+def _fitted(models: Dict[str, Optional[Fit]]) -> Dict[str, Fit]:
+    """The models that had enough points to be fitted."""
+    return {name: model for name, model in models.items() if model}
+
+
+def _paper_models(entries: Sequence[Entry], key: str) -> Dict[str, Optional[Fit]]:
     """The paper's form, and SPT with N repetitions per pass: the mesh is traversed twice
     per pass (keys, colors) and every fragment works for each of the pass's repetitions."""
-    models: Dict[str, Fit] = {}
+    models: Dict[str, Optional[Fit]] = {}
     for name in ("spt-paper", "spt"):
         chosen = _select(entries, name, key)
         rows = [(e["repetitions"] * e["cells"], e["repetitions"] * pixels(e)) for e in chosen]
-        model = fit(f"{name}: T = L_r (a n_c + b w h L_s^2)", ["a", "b"], rows,
-                    [1000.0 * e[key] for e in chosen])
-        if model:
-            models[name] = model
+        models[name] = fit(f"{name}: T = L_r (a n_c + b w h L_s^2)", ["a", "b"], rows,
+                           [1000.0 * e[key] for e in chosen])
     spt = _select(entries, "spt", key)
     rows = [(math.ceil(e["repetitions"] / PER_PASS) * e["cells"],
              math.ceil(e["repetitions"] / PER_PASS) * pixels(e),
              e["repetitions"] * pixels(e)) for e in spt]
-    model = fit("spt: T = P a n_c + (P b + L_r c) w h L_s^2, P = ceil(L_r / 16)",
-                ["a", "b", "c"], rows, [1000.0 * e[key] for e in spt])
-    if model:
-        models["spt-passes"] = model
+    models["spt-passes"] = fit("spt: T = P a n_c + (P b + L_r c) w h L_s^2, P = ceil(L_r / 16)",
+                               ["a", "b", "c"], rows, [1000.0 * e[key] for e in spt])
     return models
 
 
-def _fragment_models(entries: Sequence[Entry], key: str) -> Dict[str, Fit]:
+def _fragment_models(entries: Sequence[Entry], key: str) -> Dict[str, Optional[Fit]]:
     """On a software rasterizer the cost is the fragments': a traversal covers the footprint
     about as many times as a ray crosses cells, which grows as n_c^(1/3), not as n_c. The
     default (visibility estimator, exact coverage) adds one traversal per image: half a pass
     of two traversals."""
-    models: Dict[str, Fit] = {}
+    models: Dict[str, Optional[Fit]] = {}
     for name, per_pass, extra in (("spt-paper", 1, 0.0), ("spt", PER_PASS, 0.0),
                                   ("spt-visibility", PER_PASS, 0.5)):
         chosen = _select(entries, name, key)
@@ -113,30 +114,23 @@ def _fragment_models(entries: Sequence[Entry], key: str) -> Dict[str, Fit]:
         rows = [(p * e["cells"], p * pixels(e) * e["cells"] ** (1 / 3),
                  e["repetitions"] * pixels(e)) for p, e in zip(passes, chosen)]
         label = f"ceil(L_r / {per_pass})" + (f" + {extra:g}" if extra else "")
-        model = fit(f"{name}: T = P (a n_c + b w h L_s^2 n_c^(1/3)) + L_r c w h L_s^2, "
-                    f"P = {label}", ["a", "b", "c"], rows,
-                    [1000.0 * e[key] for e in chosen])
-        if model:
-            models[f"{name}-fragments"] = model
+        models[f"{name}-fragments"] = fit(
+            f"{name}: T = P (a n_c + b w h L_s^2 n_c^(1/3)) + L_r c w h L_s^2, P = {label}",
+            ["a", "b", "c"], rows, [1000.0 * e[key] for e in chosen])
     return models
 
 
-def _linear_models(entries: Sequence[Entry], key: str) -> Dict[str, Fit]:
+def _linear_models(entries: Sequence[Entry], key: str) -> Dict[str, Optional[Fit]]:
     """PBVR in particles; HAVS-like, VTK's projected tetrahedra and the floor linear."""
-    models: Dict[str, Fit] = {}
     pbvr = [e for e in _select(entries, "pbvr", key) if e.get("particles")]
     rows = [(e["particles"], e["repetitions"] * pixels(e)) for e in pbvr]  # particles: n_p L_r
-    model = fit("pbvr: T = L_r (a n_p + b w h L_s^2), n_p particles per repetition",
-                ["a", "b"], rows, [1000.0 * e[key] for e in pbvr])
-    if model:
-        models["pbvr"] = model
+    models = {"pbvr": fit("pbvr: T = L_r (a n_p + b w h L_s^2), n_p particles per repetition",
+                          ["a", "b"], rows, [1000.0 * e[key] for e in pbvr])}
     for name in ("havs2", "havs6", "pt", "floor"):
         chosen = _select(entries, name, key)
-        rows = [(e["cells"], pixels(e)) for e in chosen]
-        model = fit(f"{name}: T = a n_c + b w h", ["a", "b"], rows,
-                    [1000.0 * e[key] for e in chosen])
-        if model:
-            models[name] = model
+        models[name] = fit(f"{name}: T = a n_c + b w h", ["a", "b"],
+                           [(e["cells"], pixels(e)) for e in chosen],
+                           [1000.0 * e[key] for e in chosen])
     return models
 
 
@@ -144,31 +138,25 @@ def time_models(entries: Sequence[Entry], key: str = "seconds") -> Dict[str, Fit
     """Time in milliseconds, per method, in the paper's form where it has one. ``key`` is
     ``seconds`` (wall time of the frame) or ``cpu_seconds`` (CPU time of all the process's
     threads, llvmpipe's included: the work done, whatever else the machine runs)."""
-    models = _paper_models(entries, key)
-    models.update(_fragment_models(entries, key))
-    models.update(_linear_models(entries, key))
-    return models
+    return _fitted({**_paper_models(entries, key), **_fragment_models(entries, key),
+                    **_linear_models(entries, key)})
 
 
 def memory_models(entries: Sequence[Dict[str, object]]) -> Dict[str, Fit]:
     """GPU bytes each mapper reports, in the paper's form ``M = c n + d w h L_s^2``."""
-    models: Dict[str, Fit] = {}
+    models: Dict[str, Optional[Fit]] = {}
     with_memory = [e for e in entries if e.get("gpu_memory")]
     for name in ("spt", "spt-visibility", "spt-paper", "havs2", "havs6"):
         chosen = [e for e in with_memory if e["method"] == name]
-        rows = [(e["cells"], pixels(e)) for e in chosen]
-        model = fit(f"{name}: M = c n_c + d w h L_s^2", ["c", "d"], rows,
-                    [e["gpu_memory"] for e in chosen])
-        if model:
-            models[name] = model
+        models[name] = fit(f"{name}: M = c n_c + d w h L_s^2", ["c", "d"],
+                           [(e["cells"], pixels(e)) for e in chosen],
+                           [e["gpu_memory"] for e in chosen])
     chosen = [e for e in with_memory if e["method"] == "pbvr" and e.get("particles")]
     # PBVR reports the particles of all its sets: n_p L_r.
-    rows = [(e["particles"], pixels(e)) for e in chosen]
-    model = fit("pbvr: M = c n_p L_r + d w h L_s^2", ["c", "d"], rows,
-                [e["gpu_memory"] for e in chosen])
-    if model:
-        models["pbvr"] = model
-    return models
+    models["pbvr"] = fit("pbvr: M = c n_p L_r + d w h L_s^2", ["c", "d"],
+                         [(e["particles"], pixels(e)) for e in chosen],
+                         [e["gpu_memory"] for e in chosen])
+    return _fitted(models)
 
 
 def predict_large(entry: Entry, time_fits: Dict[str, Fit], cpu_fits: Dict[str, Fit],

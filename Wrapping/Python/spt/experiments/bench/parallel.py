@@ -1,18 +1,10 @@
-"""The ``parallel`` section: SPT on 1, 2 and 4 MPI ranks with no redistribution.
-
-Each rank renders an interleaved piece of the scene (cells by id modulo the number of ranks:
-every piece spans the whole mesh, so a sorted method could not composite the ranks' images
-without moving cells first) through vtkSPTVolumeMapper with a vtkMPIController; the ranks
-combine their depth keys by a global minimum and their sums by a global sum (see
-:mod:`.parallel_rank`). Per scene and rank count: the first frame and the later frames in
-process CPU time (all threads, the rasterizer's too) and wall time, the largest over the
-ranks; the bytes each rank puts into the reductions per frame; memory per rank (the peak
-resident size, which includes making the whole scene before keeping the piece, the piece's
-own size, and the mapper's GPU bytes); and the largest difference from the 1-rank image, in
-8-bit levels.
-
-The ranks share this machine's cores: on fewer cores than ranks, the times show the cost of
-the reductions and of oversubscription, not a speed-up.
+"""The ``parallel`` section: SPT on 1, 2 and 4 MPI ranks with no redistribution, each rank
+with an interleaved piece of the scene (cells by id modulo the number of ranks: every piece
+spans the whole mesh, so a sorted method could not composite the ranks' images without moving
+cells first), run by :mod:`.parallel_rank`; then pvbatch with the plugin (:mod:`.pvbatch_frames`)
+against the representations ParaView redistributes. The ranks share this machine's cores: on
+fewer cores than ranks, the times show the cost of the reductions and of oversubscription, not
+a speed-up.
 """
 
 from __future__ import annotations
@@ -28,8 +20,9 @@ from typing import Dict, List
 
 import numpy as np
 
-from ...meshes import interleaved_piece
+from ...meshes import interleaved_piece, write_legacy
 from ...progress import Progress
+from .race import race_scene
 from .settings import Settings
 
 Row = Dict[str, object]
@@ -51,6 +44,13 @@ def mpiexec(ranks: int) -> List[str]:
     return command
 
 
+def _run(command: List[str]) -> None:
+    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
+                            check=False)
+    if result.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+
+
 def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Path) -> Row:
     """One run of ``ranks`` ranks: its report and rank 0's image."""
     output = directory / f"{scene}-{ranks}"
@@ -59,10 +59,7 @@ def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Pat
         "--output", str(output), "--size", str(settings.parallel_size),
         "--repetitions", str(settings.parallel_repetitions),
         "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
-                            check=False)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+    _run(command)
     report = json.loads(output.with_suffix(".json").read_text())
     report["image"] = np.load(output.with_suffix(".npy"))
     return report
@@ -98,19 +95,11 @@ def summarize(report: Row, one_rank_image: np.ndarray) -> Row:
 
 def write_pieces(scene: str, ranks: int, directory: pathlib.Path) -> pathlib.Path:
     """The scene's mesh as ``ranks`` interleaved legacy pieces and their .pvtk index."""
-    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
-
-    from .race import race_scene
-
     grid = race_scene(scene).grid
     entries = []
     for rank in range(ranks):
         path = directory / f"{scene}-{ranks}.{rank}.vtk"
-        writer = vtkUnstructuredGridWriter()
-        writer.SetFileName(str(path))
-        writer.SetInputData(interleaved_piece(grid, rank, ranks))
-        writer.SetFileTypeToBinary()
-        writer.Write()
+        write_legacy(interleaved_piece(grid, rank, ranks), path)
         entries.append(f'  <Piece fileName="{path.name}" />')
     index = directory / f"{scene}-{ranks}.pvtk"
     index.write_text('<File version="pvtk-1.0" dataType="vtkUnstructuredGrid" '
@@ -134,10 +123,7 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
                 "--frames", str(settings.frames),
                 "--repetitions", str(settings.parallel_repetitions),
                 "--target-error", str(settings.parallel_target_error)]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
-                            check=False)
-    if result.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{result.stderr[-4000:]}")
+    _run(command)
     report = json.loads(output.read_text())
     return {"scene": scene, "ranks": ranks, "representation": representation,
             "read_wall_seconds": report["read_seconds"],

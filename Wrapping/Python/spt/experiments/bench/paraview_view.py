@@ -1,17 +1,11 @@
 """The ``paraview`` section: the view people look at, in ParaView.
 
-pvpython with the SPT plugin shows each scene in a render view of ``Settings.paraview_size``
-(1280 x 800 by default) with ParaView's default transfer functions, and renders it as
-"Volume" (VTK's projected tetrahedra), "Volume (HAVS-like)" and "Volume (SPT)", each at its
-defaults, one after the other in one process (:mod:`.pvpython_stills`): the second still
-render is timed, the error of each image is taken against the exact reference of the same
-camera and size (spt.raycast, at the full size of the view), and two interactive renders
-show how SPT's time compares with the time ParaView asks for (the render window's desired
-update rate). The scenes: ``disk`` (ParaView's disk_out_ref.ex2 colored by Temp, read by
-ParaView's Exodus reader, from SPT_DATA_DIR), the race's generated drills, and ``default``
-(the embedded mesh, for a quick run).
-
-The plugin comes from SPT_PARAVIEW_PLUGIN (the SPT.so to load) or PV_PLUGIN_PATH.
+Each scene in its own pvpython with the SPT plugin (from SPT_PARAVIEW_PLUGIN, the SPT.so to
+load, or PV_PLUGIN_PATH), in a render view of ``Settings.paraview_size`` (1280 x 800 by
+default), as "Volume", "Volume (HAVS-like)" and "Volume (SPT)" at their defaults: what is
+measured is :mod:`.pvpython_stills`'s. The scenes: ``disk`` (ParaView's disk_out_ref.ex2
+colored by Temp, read by ParaView's Exodus reader, from SPT_DATA_DIR), the race's generated
+drills, and ``default`` (the embedded mesh, for a quick run).
 """
 
 from __future__ import annotations
@@ -23,8 +17,9 @@ import shutil
 import subprocess
 from typing import Dict, List, Optional, Tuple
 
-from ... import data
+from ... import data, meshes
 from ...progress import Progress
+from . import race
 from .race import AZIMUTH, ELEVATION
 from .settings import Settings
 
@@ -59,9 +54,7 @@ def plugin_arguments() -> List[str]:
 
 def scene_names() -> List[str]:
     """The scenes the section can show: the data files ParaView reads, and the race's."""
-    from .race import scene_names as race_scenes
-
-    return list(DATA_FILES) + [name for name in race_scenes() if name not in DATA_FILES]
+    return list(DATA_FILES) + [name for name in race.scene_names() if name not in DATA_FILES]
 
 
 def scene_file(scene: str, directory: pathlib.Path) -> Tuple[pathlib.Path, str]:
@@ -74,23 +67,14 @@ def scene_file(scene: str, directory: pathlib.Path) -> Tuple[pathlib.Path, str]:
             raise FileNotFoundError(f"{path} is missing: the paraview section reads {name} "
                                     f"from SPT_DATA_DIR")
         return path, array
-    from vtkmodules.vtkIOLegacy import vtkUnstructuredGridWriter
-
-    from .race import race_scene
-
-    grid = race_scene(scene).grid
+    grid = race.race_scene(scene).grid
     scalars = grid.GetPointData().GetScalars()
     if scalars is None or not scalars.GetName():
         raise ValueError(f"the scene {scene} has no named point scalars to color by")
     path = directory / f"{scene}.vtk"
     if not path.exists():
         directory.mkdir(parents=True, exist_ok=True)
-        writer = vtkUnstructuredGridWriter()
-        writer.SetFileName(str(path))
-        writer.SetInputData(grid)
-        writer.SetFileTypeToBinary()
-        if writer.Write() != 1:
-            raise RuntimeError(f"cannot write {path}")
+        meshes.write_legacy(grid, path)
     return path, scalars.GetName()
 
 

@@ -9,15 +9,11 @@ from typing import Dict, Sequence
 import numpy as np
 
 from .. import plots
-from .methods import METHODS
+from .methods import METHODS, label
 from .models import Fit, time_key
 from .race import STOCHASTIC_METHODS
 
 Entry = Dict[str, object]
-
-
-def _label(name: str) -> str:
-    return METHODS[name].label if name in METHODS else name
 
 
 def plot_sweep(entries: Sequence[Entry], sweep: str, x_key: str, xlabel: str,
@@ -35,10 +31,10 @@ def plot_sweep(entries: Sequence[Entry], sweep: str, x_key: str, xlabel: str,
             continue
         x = [e[x_key] if x_key != "width" else e["width"] * e["height"] for e in points]
         style = plots.line_style(index)
-        axes_time.loglog(x, [e[key] for e in points], style, label=_label(name))
+        axes_time.loglog(x, [e[key] for e in points], style, label=label(name))
         memory = [(xx, e["gpu_memory"]) for xx, e in zip(x, points) if e.get("gpu_memory")]
         if memory:
-            axes_memory.loglog(*zip(*memory), style, label=_label(name))
+            axes_memory.loglog(*zip(*memory), style, label=label(name))
     unit = "CPU seconds (all threads)" if key == "cpu_seconds" else "seconds"
     plots.finish_axes(axes_time, xlabel, f"{unit} per frame")
     plots.finish_axes(axes_memory, xlabel, "GPU bytes the mapper reports", legend=False)
@@ -72,12 +68,12 @@ def _error_against_time(axes, points: Sequence[Entry], methods: Sequence[str],
             index = methods.index(name)
             axes.loglog([e[key] for e in curve], [e["rmse"] for e in curve],
                         plots.line_style(index), color=f"C{index % 10}", markersize=4,
-                        label=curve[0].get("label", _label(name)))
+                        label=curve[0].get("label", label(name)))
     for e in points:
         if e["method"] not in stochastic:
             index = methods.index(e["method"])
             axes.loglog([e[key]], [e["rmse"]], "s", color=f"C{index % 10}", markersize=6,
-                        label=e.get("label", _label(e["method"])))
+                        label=e.get("label", label(e["method"])))
 
 
 def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
@@ -101,10 +97,10 @@ def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
     # One legend under the panels (inside them it hid the lowest curves), of every method.
     legend = {}
     for axes in figure.axes:
-        for handle, label in zip(*axes.get_legend_handles_labels()):
-            legend.setdefault(label, handle)
-    handles, labels = list(legend.values()), list(legend)
-    figure.legend(handles, labels, loc="lower center", ncol=4, fontsize=plots.LEGEND_FONT_SIZE)
+        for handle, text in zip(*axes.get_legend_handles_labels()):
+            legend.setdefault(text, handle)
+    figure.legend(list(legend.values()), list(legend), loc="lower center", ncol=4,
+                  fontsize=plots.LEGEND_FONT_SIZE)
     figure.tight_layout(rect=(0.0, 0.12, 1.0, 1.0))
     figure.savefig(str(path), dpi=plots.DPI)
 

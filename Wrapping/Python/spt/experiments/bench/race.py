@@ -77,11 +77,11 @@ def race_scene(name: str) -> scenes.Scene:
     return made
 
 
-def levels(cap: int) -> List[int]:
-    """1, 2, 4, ... up to ``cap``."""
+def levels(cap: int, factor: int = 2) -> List[int]:
+    """1, ``factor``, ``factor``^2, ... up to ``cap``."""
     result = [1]
-    while result[-1] * 2 <= cap:
-        result.append(result[-1] * 2)
+    while result[-1] * factor <= cap:
+        result.append(result[-1] * factor)
     return result
 
 
@@ -146,18 +146,6 @@ def summarize(rows: Sequence[Entry]) -> List[Entry]:
 # Reference cache
 # --------------------------------------------------------------------------------------------
 
-def _transfer_function_values(s: scenes.Scene) -> np.ndarray:
-    opacity = s.property.GetScalarOpacity()
-    color = s.property.GetRGBTransferFunction()
-    values = [s.property.GetScalarOpacityUnitDistance()]
-    for function, width in ((opacity, 4), (color, 6)):
-        for index in range(function.GetSize()):
-            node = [0.0] * width
-            function.GetNodeValue(index, node)
-            values += node
-    return np.asarray(values)
-
-
 def scene_digest(s: scenes.Scene) -> str:
     """A digest of a scene's mesh, scalars and transfer functions."""
     digest = hashlib.sha1()
@@ -167,7 +155,15 @@ def scene_digest(s: scenes.Scene) -> str:
     scalars = grid.GetPointData().GetScalars() or grid.GetCellData().GetScalars()
     if scalars is not None:
         digest.update(vtk_to_numpy(scalars).tobytes())
-    digest.update(_transfer_function_values(s).tobytes())
+    # the transfer functions' nodes: opacity (x, y, midpoint, sharpness), color (x, r, g, b, ...)
+    values = [s.property.GetScalarOpacityUnitDistance()]
+    for function, width in ((s.property.GetScalarOpacity(), 4),
+                            (s.property.GetRGBTransferFunction(), 6)):
+        for index in range(function.GetSize()):
+            node = [0.0] * width
+            function.GetNodeValue(index, node)
+            values += node
+    digest.update(np.asarray(values).tobytes())
     return digest.hexdigest()[:16]
 
 
@@ -266,35 +262,27 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
         rows += _run_stochastic(lap, method, settings.race_max_repetitions, goal, progress)
     if has_error_target():
         pt_error = rows[0]["rmse"]
-        target = Method("spt-target", "SPT at VTK PT's error (error target)",
-                        lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True)
-        row = measure(lap, target, settings.race_max_repetitions, target_error=pt_error)
-        # the repetitions it drew before its noise estimate reached the target
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error")
-        # The same after an image from another view: the target's first step aims with the
-        # noise per repetition measured there, as while a user turns the camera.
         size = (settings.race_size, settings.race_size)
-        turned = Method(
-            "spt-target-turned", "SPT at VTK PT's error, after another view (error target)",
-            lambda r, sp: render.after_another_view(
-                render.spt_mapper(r, sp, target_error=pt_error), s.grid, s.property, s.view,
-                size), True)
-        row = measure(lap, turned, settings.race_max_repetitions, target_error=pt_error)
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error after another view")
-        # With depth slabs, from scratch.
-        slabs = Method(
-            "spt-slabs-target",
-            f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
-            lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
-                                            depth_slabs=RACE_DEPTH_SLABS), True)
-        row = measure(lap, slabs, settings.race_max_repetitions, target_error=pt_error)
-        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-        rows.append(row)
-        progress.step(f"{name} SPT at VTK PT's error with depth slabs")
+        # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
+        # another view, whose first step aims with the noise per repetition measured there (as
+        # while a user turns the camera); and a new mapper with depth slabs.
+        for method in (
+                Method("spt-target", "SPT at VTK PT's error (error target)",
+                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
+                Method("spt-target-turned",
+                       "SPT at VTK PT's error, after another view (error target)",
+                       lambda r, sp: render.after_another_view(
+                           render.spt_mapper(r, sp, target_error=pt_error), s.grid,
+                           s.property, s.view, size), True),
+                Method("spt-slabs-target",
+                       f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
+                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
+                                                       depth_slabs=RACE_DEPTH_SLABS), True)):
+            row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
+            # the repetitions it drew before its noise estimate reached the target
+            row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
+            rows.append(row)
+            progress.step(f"{name} {method.label}")
     return rows
 
 

@@ -83,7 +83,7 @@ def compose(results: Results, date: str, command: str, folder: str, appendix: st
     lines = header(results, date, command)
     for section in SECTIONS:
         lines += [f"## {section.heading}", ""] + (
-            section.summary(results, folder)
+            section.lines(results, folder)
             or ["This run did not measure it. Measure it with "
                 f"`{BENCH_COMMAND.format(sections=section.measure)}`.", ""])
     lines += [f"## {OTHER}", "",
@@ -105,7 +105,7 @@ def compose_full(results: Results) -> str:
              "one run of its section (of its scene in the race). Generated meshes: "
              + results["shape"] + ".", ""]
     for section in SECTIONS:
-        lines += section.full(results)
+        lines += section.lines(results)
     return "\n".join(lines)
 
 

@@ -24,14 +24,19 @@ from .timing import record, time_method
 Entry = Dict[str, object]
 
 
+def renderer_name(window) -> str:
+    """The OpenGL renderer that draws ``window``."""
+    for line in (window.ReportCapabilities() or "").splitlines():
+        if line.startswith("OpenGL renderer string:"):
+            return line.split(":", 1)[1].strip()
+    return "unknown OpenGL renderer"
+
+
 def machine() -> str:
     """The cores and the OpenGL renderer that draws this process's windows."""
     window, _ = render.make_window(8, 8)
     window.Render()
-    renderer = "unknown OpenGL renderer"
-    for line in (window.ReportCapabilities() or "").splitlines():
-        if line.startswith("OpenGL renderer string:"):
-            renderer = line.split(":", 1)[1].strip()
+    renderer = renderer_name(window)
     window.Finalize()
     return f"{os.cpu_count()} cores, {renderer}"
 
@@ -104,13 +109,6 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
     return measured
 
 
-def _write_json(results: Dict[str, object], output: pathlib.Path) -> None:
-    serializable = dict(results)
-    for key in ("time_models", "cpu_time_models", "memory_models"):
-        serializable[key] = {k: v.as_dict() for k, v in results[key].items()}
-    (output / "bench.json").write_text(json.dumps(serializable, indent=1))
-
-
 def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
         settings: Optional[Settings] = None) -> Dict[str, object]:
     """Run the chosen sections and write ``bench.json``, the plots, ``bench.md`` and
@@ -140,6 +138,7 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
     results["crossovers"] = crossovers(entries, results["memory_models"])
     results["floor_ratios"] = floor_ratios(entries)
     plot_results(results, output)
-    _write_json(results, output)
+    (output / "bench.json").write_text(json.dumps(results, indent=1,
+                                                  default=lambda fit: fit.as_dict()))
     write_results(output / "bench.json", output / "results.md", results)
     return results

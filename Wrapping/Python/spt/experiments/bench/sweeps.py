@@ -5,8 +5,8 @@ from __future__ import annotations
 from typing import Dict, List, Sequence
 
 from ...progress import Progress
-from .methods import METHODS
-from .methods import generated_scene
+from ...scenes import Scene
+from .methods import METHODS, generated_scene
 from .settings import Settings
 from .timing import record, time_method
 
@@ -24,6 +24,13 @@ def sweep_level(settings: Settings, name: str) -> int:
     return settings.paper_sweep_repetitions if name == "spt-paper" else settings.sweep_repetitions
 
 
+def _entry(s: Scene, name: str, size: int, level: int, subpixels: int, settings: Settings,
+           sweep: str) -> Dict[str, object]:
+    """One point of a sweep: ``name``'s frames timed and recorded."""
+    timing = time_method(s, METHODS[name], size, level, subpixels, settings.frames)
+    return record(s, METHODS[name], size, level, subpixels, timing, sweep=sweep)
+
+
 def sweep_cells(settings: Settings, progress: Progress) -> List[Dict[str, object]]:
     """Every method at every cell count, the floor next to each; a method whose frame took
     longer than ``frame_limit`` stops there."""
@@ -35,14 +42,11 @@ def sweep_cells(settings: Settings, progress: Progress) -> List[Dict[str, object
             if name in stopped:
                 progress.step(f"{name} skipped")
                 continue
-            repetitions = sweep_level(settings, name)
-            timing = time_method(s, METHODS[name], settings.size, repetitions, 1,
-                                 settings.frames)
-            results.append(record(s, METHODS[name], settings.size, repetitions, 1, timing,
-                                  sweep="cells"))
-            if timing.median > settings.frame_limit:
+            results.append(_entry(s, name, settings.size, sweep_level(settings, name), 1,
+                                  settings, "cells"))
+            if results[-1]["seconds"] > settings.frame_limit:
                 stopped.add(name)
-            progress.step(f"{name} {s.grid.GetNumberOfCells()} cells {timing.median:.2f} s")
+            progress.step(f"{name} {results[-1]['cells']} cells {results[-1]['seconds']:.2f} s")
     return results
 
 
@@ -55,25 +59,20 @@ def sweep_repetitions(settings: Settings, progress: Progress) -> List[Dict[str, 
             if name == "spt-paper" and level > settings.paper_repetitions:
                 progress.step(f"{name} L={level} skipped")
                 continue
-            timing = time_method(s, METHODS[name], settings.size, level, 1, settings.frames)
-            results.append(record(s, METHODS[name], settings.size, level, 1, timing,
-                                  sweep="repetitions"))
-            progress.step(f"{name} L={level} {timing.median:.2f} s")
+            results.append(_entry(s, name, settings.size, level, 1, settings, "repetitions"))
+            progress.step(f"{name} L={level} {results[-1]['seconds']:.2f} s")
     return results
 
 
 def sweep_subpixels(settings: Settings, progress: Progress) -> List[Dict[str, object]]:
     """SPT's modes and PBVR at every subpixel level, at the smallest image size."""
     s = generated_scene(settings.shape, settings.sweep_cells)
-    size = min(settings.sizes)
     results = []
     for name in wanted(settings, REPETITION_METHODS):
-        level = sweep_level(settings, name)
         for subpixels in settings.subpixels:
-            timing = time_method(s, METHODS[name], size, level, subpixels, settings.frames)
-            results.append(record(s, METHODS[name], size, level, subpixels, timing,
-                                  sweep="subpixels"))
-            progress.step(f"{name} Ls={subpixels} {timing.median:.2f} s")
+            results.append(_entry(s, name, min(settings.sizes), sweep_level(settings, name),
+                                  subpixels, settings, "subpixels"))
+            progress.step(f"{name} Ls={subpixels} {results[-1]['seconds']:.2f} s")
     return results
 
 
@@ -83,8 +82,7 @@ def sweep_image(settings: Settings, progress: Progress) -> List[Dict[str, object
     results = []
     for size in settings.sizes:
         for name in wanted(settings, settings.methods):
-            level = sweep_level(settings, name)
-            timing = time_method(s, METHODS[name], size, level, 1, settings.frames)
-            results.append(record(s, METHODS[name], size, level, 1, timing, sweep="image"))
-            progress.step(f"{name} {size}^2 {timing.median:.2f} s")
+            results.append(_entry(s, name, size, sweep_level(settings, name), 1, settings,
+                                  "image"))
+            progress.step(f"{name} {size}^2 {results[-1]['seconds']:.2f} s")
     return results

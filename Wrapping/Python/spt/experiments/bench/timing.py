@@ -34,10 +34,6 @@ class Timing:
         return float(np.median(self.seconds))
 
     @property
-    def best(self) -> float:
-        return float(np.min(self.seconds))
-
-    @property
     def cpu_median(self) -> float:
         return float(np.median(self.cpu_seconds)) if self.cpu_seconds else float("nan")
 
@@ -55,7 +51,8 @@ def _add_floor(renderer, s: Scene) -> None:
     renderer.AddActor(actor)
 
 
-def _timed_frames(window, frames: int) -> Timing:
+def timed_frames(window, frames: int) -> Timing:
+    """``frames`` frames, each finished, timed in wall, process and thread time."""
     seconds, cpu_seconds, thread_seconds = [], [], []
     for _ in range(frames):
         start, cpu_start = time.perf_counter(), time.process_time()
@@ -89,7 +86,7 @@ def time_method(s: Scene, method: Method, size: int, repetitions: int = 16,
         window.Render()
         window.WaitForCompletion()
     finish = on_frames() if on_frames is not None else None
-    timing = _timed_frames(window, frames)
+    timing = timed_frames(window, frames)
     if finish is not None:
         finish()
     if volume_mapper is not None:

@@ -10,9 +10,7 @@ from .markdown import Results, Section, short_table
 
 
 def summary(results: Results, folder: str) -> List[str]:
-    host = results.get("host") or []
-    if not host:
-        return []
+    host = results["host"]
     return ["Where an SPT frame's CPU time goes (`perf`): *host* is this project's library, "
             "VTK and Python on the application thread, the part a GPU would leave on the "
             "CPU; the rest is the software rasterizer.", "",
@@ -25,9 +23,7 @@ def summary(results: Results, folder: str) -> List[str]:
 
 
 def full(results: Results) -> List[str]:
-    host = results.get("host") or []
-    if not host:
-        return []
+    host = results["host"]
     return ["## Host time per frame", "",
             "CPU seconds per SPT frame (16 repetitions), from `perf` samples of the timed "
             "frames, by thread and shared object. Host: this project's library, VTK and "
@@ -43,4 +39,4 @@ def full(results: Results) -> List[str]:
                        h["worker_seconds_per_frame"]] for h in host])]
 
 
-HOST = Section("Host time per frame", "host", summary, full)
+HOST = Section("Host time per frame", "host", summary, full, key="host")

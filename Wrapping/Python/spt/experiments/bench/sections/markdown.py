@@ -1,13 +1,12 @@
 """What the sections' text shares: a section's description, numbers and tables as the
-summaries print them, a method's label, a sweep's entries, and a figure with its commands."""
+summaries print them, a sweep's entries, and a figure with its commands."""
 
 from __future__ import annotations
 
 import math
-from typing import Callable, Dict, List, NamedTuple, Sequence, Tuple
+from typing import Callable, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 from ...tables import format_value, markdown
-from ..methods import METHODS
 
 Entry = Dict[str, object]
 Results = Dict[str, object]
@@ -22,13 +21,21 @@ BENCH_COMMAND = SPT + " bench --sections {sections} --output out/bench"
 class Section(NamedTuple):
     """A benchmark section in the two documents: the heading of its summary in
     ``results.md`` and the sections that measure it, the summary (no lines where the run did
-    not measure it), its full tables in ``bench.md``, and its figures by name."""
+    not measure it), its full tables in ``bench.md``, its figures by name, and the key of
+    ``bench.json`` without which neither document has lines of it."""
 
     heading: str
     measure: str
     summary: Callable[[Results, str], List[str]]
     full: Callable[[Results], List[str]]
     figures: Dict[str, Figure] = {}
+    key: str = ""
+
+    def lines(self, results: Results, folder: Optional[str] = None) -> List[str]:
+        """The summary (with ``folder``, where the figures are) or else the full tables."""
+        if self.key and not results.get(self.key):
+            return []
+        return self.full(results) if folder is None else self.summary(results, folder)
 
 
 def short(value: object) -> str:
@@ -41,10 +48,6 @@ def short(value: object) -> str:
 def short_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> str:
     """A summary's Markdown table, its numbers as :func:`short` prints them."""
     return markdown(header, [[short(v) for v in row] for row in rows])
-
-
-def label(name: str) -> str:
-    return METHODS[name].label if name in METHODS else name
 
 
 def swept(results: Results, sweep: str) -> List[Entry]:

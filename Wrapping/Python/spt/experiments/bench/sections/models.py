@@ -6,7 +6,8 @@ from __future__ import annotations
 from typing import Dict, List
 
 from ...tables import format_value, markdown
-from .markdown import Entry, Results, Section, figure, label, short, short_table
+from ..methods import label
+from .markdown import Entry, Results, Section, figure, short, short_table
 
 #: The paper's figures that this report stands next to: only the memory per tetrahedron is
 #: comparable (the paper's time coefficients were measured on a 2009 GPU).
@@ -151,9 +152,7 @@ CROSSOVERS = Section("Crossovers", "cells,repetitions,subpixels,image,quality",
 
 
 def large_summary(results: Results, folder: str) -> List[str]:
-    large = results.get("large")
-    if not large:
-        return []
+    large = results["large"]
     return [f"{large['cells']:,} tetrahedra at {large['width']} x {large['height']} with "
             f"{large['repetitions']} repetitions, as in the paper: {large['seconds']:.0f} s per "
             f"frame, {large.get('gpu_memory', 0) / 2 ** 20:.0f} MiB on the GPU. The fitted "
@@ -162,9 +161,7 @@ def large_summary(results: Results, folder: str) -> List[str]:
 
 
 def large_full(results: Results) -> List[str]:
-    large = results.get("large")
-    if not large:
-        return []
+    large = results["large"]
     return ["## The paper's large case", "",
             f"{large['cells']} tetrahedra, {large['width']} x {large['height']}, "
             f"{large['repetitions']} repetitions: {large['seconds']:.1f} s per frame "
@@ -178,4 +175,4 @@ def large_full(results: Results) -> List[str]:
             f"{large.get('predicted_memory', NAN) / 2 ** 20:.0f} MiB.", ""]
 
 
-LARGE = Section("The paper's large case", "large", large_summary, large_full)
+LARGE = Section("The paper's large case", "large", large_summary, large_full, key="large")

@@ -85,8 +85,6 @@ def _vtk_rows(rows: Sequence[Entry]) -> List[List[object]]:
 
 
 def full(results: Results) -> List[str]:
-    if not results.get("parallel"):
-        return []
     rows, paraview = _measured(results)
     target = rows[0].get("target_error", 0.0) if rows else 0.0
     return ["## Parallel: ranks with interleaved pieces, no redistribution", "",
@@ -108,4 +106,4 @@ def full(results: Results) -> List[str]:
         + _paraview_table(paraview)
 
 
-PARALLEL = Section("Parallel rendering", "parallel", summary, full)
+PARALLEL = Section("Parallel rendering", "parallel", summary, full, key="parallel")

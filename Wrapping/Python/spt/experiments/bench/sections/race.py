@@ -116,9 +116,7 @@ def runs(race: Results, note: str = ": each scene's methods in one process, so c
 
 
 def summary(results: Results, folder: str) -> List[str]:
-    race = results.get("race")
-    if not race:
-        return []
+    race = results["race"]
     floors = [r["read_back_floor"] for r in race["rows"] if r.get("read_back_floor")]
     return [
         f"Each scene in one process at {race['size']} x {race['size']} (azimuth "
@@ -181,10 +179,8 @@ def _read_back_floors(race: Results) -> str:
             f"that of the exact image rounded to 8 bits: {listed}.")
 
 
-def race_full(race: Optional[Results], heading: str = "The race: time to quality") -> List[str]:
+def race_full(race: Results, heading: str = "The race: time to quality") -> List[str]:
     """The race at one size, under ``heading``."""
-    if not race:
-        return []
     source = ("`perf` samples of the application thread outside the OpenGL driver"
               if race["host_source"] == "perf" else
               "CPU time of the application thread during the frame (`perf` was not "
@@ -202,10 +198,10 @@ def race_full(race: Optional[Results], heading: str = "The race: time to quality
 
 def full(results: Results) -> List[str]:
     """The race, then the race at each other size it was run at."""
-    lines = race_full(results.get("race"))
+    lines = race_full(results["race"])
     for other in results.get("race_sizes") or []:
         lines += race_full(other, f"The race at {other['size']} x {other['size']}")
     return lines
 
 
-RACE = Section("The race: time to quality", "race", summary, full, FIGURES)
+RACE = Section("The race: time to quality", "race", summary, full, FIGURES, "race")

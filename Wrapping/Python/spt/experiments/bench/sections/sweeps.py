@@ -6,8 +6,8 @@ from __future__ import annotations
 from typing import List, Sequence, Tuple
 
 from ...tables import markdown
-from ..methods import METHODS
-from .markdown import Entry, Results, Section, figure, label, short, short_table, swept
+from ..methods import METHODS, label
+from .markdown import Entry, Results, Section, figure, short, short_table, swept
 
 #: The sweeps after the cell count: the entries' key, its unit in the summary, the title in
 #: ``bench.md``.

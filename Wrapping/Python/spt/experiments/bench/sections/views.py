@@ -222,9 +222,7 @@ VIEWS = Section("Larger views and ParaView", "race,paraview", views_summary, vie
 
 
 def camera_summary(results: Results, folder: str) -> List[str]:
-    camera = results.get("camera")
-    if not camera:
-        return []
+    camera = results["camera"]
     return ["The camera dollies from the framed view into the mesh; ratio: the frame "
             "over the same method's from outside.", "",
             short_table(["scene", "method", "camera", "frame [s]", "ratio", "RMSE"],
@@ -233,9 +231,7 @@ def camera_summary(results: Results, folder: str) -> List[str]:
 
 
 def camera_full(results: Results) -> List[str]:
-    camera = results.get("camera")
-    if not camera:
-        return []
+    camera = results["camera"]
     return ["## The camera anywhere", "",
             f"{camera['size']} x {camera['size']}, the stochastic methods at "
             f"{camera['repetitions']} repetitions; best of {camera['frames']} frames; the "
@@ -246,4 +242,4 @@ def camera_full(results: Results) -> List[str]:
                        r["ratio_to_outside"], r["rmse"]] for r in camera["rows"]]), ""]
 
 
-CAMERA = Section("The camera anywhere", "camera", camera_summary, camera_full)
+CAMERA = Section("The camera anywhere", "camera", camera_summary, camera_full, key="camera")
