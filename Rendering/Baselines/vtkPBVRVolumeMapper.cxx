@@ -52,14 +52,6 @@ size_t ParticlesInMemory(int memory)
   return std::min(size_t(memory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
     size_t(std::numeric_limits<int>::max() - 1));
 }
-
-double LargestSingularValue(const double matrix[3][3])
-{
-  double a[3][3], u[3][3], w[3], vt[3][3];
-  std::copy(&matrix[0][0], &matrix[0][0] + 9, &a[0][0]);
-  vtkMath::SingularValueDecomposition3x3(a, u, w, vt);
-  return std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
-}
 }
 
 class vtkPBVRVolumeMapper::vtkInternals
@@ -166,12 +158,8 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(
   // the data's bounding sphere is at its nearest w, at the corner of the frustum.
   const vtkVolumeViewMatrices& t = this->Transforms;
   const double(*p)[4] = t.ViewToClip;
-  double modelToView[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    std::copy_n(t.ModelToView[i], 3, modelToView[i]);
-  }
-  const double radius = this->MeshRadius * LargestSingularValue(modelToView);
+  const double radius =
+    this->MeshRadius * vtkVolumeViewMatrices::LargestSingularValue(t.ModelToViewLinear);
   // The mesh's normalized origin in view coordinates, and its w.
   const double centerW = p[3][0] * t.ModelToView[0][3] + p[3][1] * t.ModelToView[1][3] +
     p[3][2] * t.ModelToView[2][3] + p[3][3];
@@ -195,7 +183,7 @@ double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(
     (std::abs(p[0][0] * p[1][1]) * double(passWidth) * double(passHeight));
   // In model units: volumes scale by |det|, ray lengths by at most the largest singular value.
   const double volumeRatio = std::abs(vtkMath::Determinant3x3(t.ViewToModelLinear));
-  return areaVC * volumeRatio / LargestSingularValue(t.ViewToModelLinear);
+  return areaVC * volumeRatio / vtkVolumeViewMatrices::LargestSingularValue(t.ViewToModelLinear);
 }
 
 void vtkPBVRVolumeMapper::vtkInternals::PlacePoints(int passWidth, int passHeight)
