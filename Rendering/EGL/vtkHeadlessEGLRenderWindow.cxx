@@ -14,6 +14,7 @@
 #include <EGL/eglext.h>
 #endif
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -53,42 +54,31 @@ std::string EGLErrorText()
   return text.str();
 }
 
-/**
- * eglInitialize() and eglTerminate() do not count: a display terminated by one window would be
- * gone for every other window on it. The windows of a process share each display and terminate
- * it when the last one goes.
- */
-class DisplayUsers
+// eglInitialize() and eglTerminate() do not count: a display terminated by one window would be
+// gone for every other window on it. The windows of a process share each display (`change`:
+// +1 for a window that takes it, -1 for one that leaves it) and terminate it when the last goes.
+void CountDisplayUser(EGLDisplay display, int change)
 {
-public:
-  static void Add(EGLDisplay display)
+  static std::mutex mutex;
+  static std::map<EGLDisplay, int> users;
+  std::lock_guard<std::mutex> lock(mutex);
+  if ((users[display] += change) <= 0)
   {
-    std::lock_guard<std::mutex> lock(Mutex());
-    ++Counts()[display];
+    users.erase(display);
+    eglTerminate(display);
   }
-  static void Remove(EGLDisplay display)
-  {
-    std::lock_guard<std::mutex> lock(Mutex());
-    auto found = Counts().find(display);
-    if (found != Counts().end() && --found->second == 0)
-    {
-      Counts().erase(found);
-      eglTerminate(display);
-    }
-  }
+}
 
-private:
-  static std::mutex& Mutex()
-  {
-    static std::mutex mutex;
-    return mutex;
-  }
-  static std::map<EGLDisplay, int>& Counts()
-  {
-    static std::map<EGLDisplay, int> counts;
-    return counts;
-  }
-};
+/// An initialized display of EGL_EXT_platform_base's `platform`, or EGL_NO_DISPLAY.
+EGLDisplay InitializePlatformDisplay(EGLenum platform, void* nativeDisplay)
+{
+  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+    eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  EGLDisplay display =
+    getPlatformDisplay ? getPlatformDisplay(platform, nativeDisplay, nullptr) : EGL_NO_DISPLAY;
+  return display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr) ? display
+                                                                               : EGL_NO_DISPLAY;
+}
 
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
 vtkOpenGLRenderWindow::VTKOpenGLAPIProc LoadEGLSymbol(void*, const char* name)
@@ -140,12 +130,9 @@ EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int devic
     reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
   auto queryDeviceString =
     reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-    eglGetProcAddress("eglGetPlatformDisplayEXT"));
   EGLDeviceEXT devices[MaximumDevices];
   EGLint count = 0;
-  if (!queryDevices || !queryDeviceString || !getPlatformDisplay ||
-    !queryDevices(MaximumDevices, devices, &count))
+  if (!queryDevices || !queryDeviceString || !queryDevices(MaximumDevices, devices, &count))
   {
     return EGL_NO_DISPLAY;
   }
@@ -159,8 +146,8 @@ EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int devic
     {
       continue;
     }
-    EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-    if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
+    EGLDisplay display = InitializePlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i]);
+    if (display != EGL_NO_DISPLAY)
     {
       return display;
     }
@@ -179,19 +166,9 @@ EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int devic
 EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenSurfacelessDisplay()
 {
   const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-    eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (!HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless") || !getPlatformDisplay)
-  {
-    return EGL_NO_DISPLAY;
-  }
-  EGLDisplay display =
-    getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
-  {
-    return display;
-  }
-  return EGL_NO_DISPLAY;
+  return HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")
+    ? InitializePlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY)
+    : EGL_NO_DISPLAY;
 }
 
 bool vtkHeadlessEGLRenderWindow::vtkInternals::CreateContext(EGLDisplay display)
@@ -234,7 +211,6 @@ bool vtkHeadlessEGLRenderWindow::vtkInternals::CreateContext(EGLDisplay display)
   return true;
 }
 
-//------------------------------------------------------------------------------
 vtkHeadlessEGLRenderWindow::vtkHeadlessEGLRenderWindow()
   : Internals(new vtkInternals)
 {
@@ -249,13 +225,11 @@ vtkHeadlessEGLRenderWindow::vtkHeadlessEGLRenderWindow()
 #endif
 }
 
-//------------------------------------------------------------------------------
 vtkHeadlessEGLRenderWindow::~vtkHeadlessEGLRenderWindow()
 {
   this->Finalize();
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::InitializeContext()
 {
   vtkInternals& internals = *this->Internals;
@@ -293,10 +267,10 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
     vtkErrorMacro("No EGL context: " << internals.Error << ".");
     return false;
   }
-  DisplayUsers::Add(display);
+  CountDisplayUser(display, +1);
   if (!internals.CreateContext(display))
   {
-    DisplayUsers::Remove(display);
+    CountDisplayUser(display, -1);
     vtkErrorMacro("No EGL context on the " << platform << " platform: " << internals.Error << ".");
     return false;
   }
@@ -314,7 +288,6 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
   return true;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::DestroyContext()
 {
   vtkInternals& internals = *this->Internals;
@@ -325,14 +298,13 @@ void vtkHeadlessEGLRenderWindow::DestroyContext()
       eglMakeCurrent(internals.Display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     }
     eglDestroyContext(internals.Display, internals.Context);
-    DisplayUsers::Remove(internals.Display);
+    CountDisplayUser(internals.Display, -1);
   }
   internals.Context = EGL_NO_CONTEXT;
   internals.Display = EGL_NO_DISPLAY;
   this->SetIsCurrent(false);
 }
 
-//------------------------------------------------------------------------------
 const char* vtkHeadlessEGLRenderWindow::GetPlatformName()
 {
   return this->Internals->Platform.c_str();
@@ -348,7 +320,6 @@ const char* vtkHeadlessEGLRenderWindow::GetOpenGLVersion()
   return this->Internals->Version.c_str();
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::MakeCurrent()
 {
   if (!this->InitializeContext())
@@ -363,7 +334,6 @@ void vtkHeadlessEGLRenderWindow::MakeCurrent()
   this->SetIsCurrent(eglGetCurrentContext() == internals.Context);
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::IsCurrent()
 {
   const bool current = this->Internals->Context != EGL_NO_CONTEXT &&
@@ -372,7 +342,6 @@ bool vtkHeadlessEGLRenderWindow::IsCurrent()
   return current;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::ReleaseCurrent()
 {
   if (this->IsCurrent())
@@ -382,7 +351,6 @@ void vtkHeadlessEGLRenderWindow::ReleaseCurrent()
   }
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::SupportsOpenGL()
 {
   this->MakeCurrent();
@@ -403,7 +371,6 @@ int vtkHeadlessEGLRenderWindow::SupportsOpenGL()
   return this->Initialized ? 1 : 0;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::SetInteractor(vtkRenderWindowInteractor* interactor)
 {
   if (interactor && interactor->IsA("vtkXRenderWindowInteractor"))
@@ -416,7 +383,6 @@ void vtkHeadlessEGLRenderWindow::SetInteractor(vtkRenderWindowInteractor* intera
   this->Superclass::SetInteractor(interactor);
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::OpenGLInit()
 {
   this->MakeCurrent();
@@ -433,7 +399,6 @@ void vtkHeadlessEGLRenderWindow::OpenGLInit()
   }
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::OpenGLInitContext()
 {
 #if VTK_VERSION_NUMBER < VTK_VERSION_CHECK(9, 4, 0)
@@ -472,7 +437,6 @@ void vtkHeadlessEGLRenderWindow::OpenGLInitContext()
   this->Superclass::OpenGLInitContext();
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::QueryRenderFramebuffer(
   unsigned int attachment, int count, const unsigned int* names, int* values)
 {
@@ -497,7 +461,6 @@ bool vtkHeadlessEGLRenderWindow::QueryRenderFramebuffer(
   return type != GL_NONE;
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::GetColorBufferSizes(int* rgba)
 {
   if (!rgba)
@@ -505,19 +468,14 @@ int vtkHeadlessEGLRenderWindow::GetColorBufferSizes(int* rgba)
     return 0;
   }
   // What VTK's own framebuffers have, until the render framebuffer exists to tell.
-  int sizes[4] = { 8, 8, 8, 8 };
+  std::fill_n(rgba, 4, 8);
   const unsigned int names[4] = { GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE, GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE };
-  this->QueryRenderFramebuffer(GL_COLOR_ATTACHMENT0, 4, names, sizes);
-  for (int i = 0; i < 4; ++i)
-  {
-    rgba[i] = sizes[i];
-  }
+  this->QueryRenderFramebuffer(GL_COLOR_ATTACHMENT0, 4, names, rgba);
   return rgba[0] + rgba[1] + rgba[2] + rgba[3];
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::GetDepthBufferSize()
 {
   int bits = 24; // As VTK answers before it has a context.
@@ -526,7 +484,6 @@ int vtkHeadlessEGLRenderWindow::GetDepthBufferSize()
   return bits;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::Finalize()
 {
   if (this->Internals->Context != EGL_NO_CONTEXT)
@@ -538,7 +495,6 @@ void vtkHeadlessEGLRenderWindow::Finalize()
   }
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
