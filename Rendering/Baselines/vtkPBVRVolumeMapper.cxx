@@ -64,7 +64,7 @@ public:
 
   // The transfer functions, sampled over the mesh's scalar range. Only a change of the opacity
   // calls for new particles; colors are looked up when drawn.
-  vtkNew<vtkTransferFunctionSamples> Samples;
+  vtkTransferFunctionSamples Samples;
   vtkTimeStamp ColorUploadTime;
   vtkSmartPointer<vtkTextureObject> ColorTexture;
 
@@ -101,7 +101,7 @@ public:
 vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRenderWindow* renWin)
 {
   if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
-    this->ColorUploadTime > this->Samples->GetColorTime())
+    this->ColorUploadTime > this->Samples.GetColorTime())
   {
     return this->ColorTexture;
   }
@@ -114,7 +114,7 @@ vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRe
   {
     for (int c = 0; c < 3; ++c)
     {
-      rgba[4 * i + c] = static_cast<float>(this->Samples->GetColor()[3 * i + c]);
+      rgba[4 * i + c] = static_cast<float>(this->Samples.GetColor()[3 * i + c]);
     }
   }
   vtkTextureObject* texture = this->ColorTexture;
@@ -210,7 +210,7 @@ bool vtkPBVRVolumeMapper::vtkInternals::Generate(const vtkPBVRParticleKey& wante
   settings.Seed = wanted.Seed;
   settings.SamplingMode = wanted.SamplingMode;
   settings.MaximumParticles = wanted.MaximumParticles;
-  std::vector<double> attenuation(this->Samples->GetAttenuation());
+  std::vector<double> attenuation(this->Samples.GetAttenuation());
   for (double& tau : attenuation)
   {
     tau *= this->Mesh->GetScale(); // per normalized model unit
@@ -373,7 +373,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
 
   vtkPBVRParticleKey wanted;
   wanted.MeshBuild = internals.Mesh->GetBuildTime();
-  wanted.OpacityChange = internals.Samples->GetAttenuationTime();
+  wanted.OpacityChange = internals.Samples.GetAttenuationTime();
   wanted.Seed = this->Seed;
   wanted.SamplingMode = this->SamplingMode;
   wanted.MaximumParticles = ParticlesInMemory(this->MaximumParticleMemory);
@@ -428,10 +428,10 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     internals.ReleaseParticles();
     return;
   }
-  if (!internals.Samples->Update(
+  if (!internals.Samples.Update(
         vol->GetProperty(), this->GetMesh()->GetScalarRange(), TransferFunctionSamples))
   {
-    vtkErrorMacro(<< internals.Samples->GetLastError());
+    vtkErrorMacro(<< internals.Samples.GetLastError());
     return;
   }
 

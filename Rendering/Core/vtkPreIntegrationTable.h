@@ -20,7 +20,6 @@
 #define vtkPreIntegrationTable_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
-#include "vtkNew.h"                 // For the samples
 #include "vtkObject.h"
 #include "vtkSmartPointer.h"            // For the texture
 #include "vtkTimeStamp.h"               // For the build time
@@ -168,7 +167,7 @@ private:
 
   // Color and attenuation (opacity / unit distance) sampled finely over the scalar range, and
   // when those the table holds changed last.
-  vtkNew<vtkTransferFunctionSamples> Samples;
+  vtkTransferFunctionSamples Samples;
   vtkMTimeType IntegratedSamples = 0;
   // Prepared but not integrated yet: the axes above are the pending ones.
   bool Pending = false;
