@@ -204,18 +204,12 @@ void vtkPBVRVolumeMapper::vtkInternals::PlacePoints(int passWidth, int passHeigh
 bool vtkPBVRVolumeMapper::vtkInternals::Generate(const vtkPBVRParticleKey& wanted)
 {
   this->ReleaseParticles();
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = wanted.Footprint;
-  settings.Sets = wanted.Sets;
-  settings.Seed = wanted.Seed;
-  settings.SamplingMode = wanted.SamplingMode;
-  settings.MaximumParticles = wanted.MaximumParticles;
   std::vector<double> attenuation(this->Samples.GetAttenuation());
   for (double& tau : attenuation)
   {
     tau *= this->Mesh->GetScale(); // per normalized model unit
   }
-  if (!this->Generator->Generate(this->Mesh, attenuation, settings))
+  if (!this->Generator->Generate(this->Mesh, attenuation, wanted))
   {
     this->Failed = wanted;
     this->HaveFailed = true;
