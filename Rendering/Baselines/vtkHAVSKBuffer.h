@@ -109,19 +109,12 @@ public:
 
   ///@{
   /**
-   * Size of the targets, how many there are (the color, then entry pairs), and how many
-   * (scalar, distance) entries they hold per pixel.
+   * How many targets there are (the color, then entry pairs), and how many (scalar, distance)
+   * entries they hold per pixel.
    */
-  int GetWidth() const { return this->Width; }
-  int GetHeight() const { return this->Height; }
   int GetNumberOfTargets() const { return 1 + this->KBufferSize / 2; }
   int GetNumberOfEntries() const { return this->KBufferSize - 1; }
   ///@}
-
-  /**
-   * The scene depth texture.
-   */
-  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
 
   /**
    * Bytes held on the GPU.

@@ -288,15 +288,13 @@ void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  this->DrawKBuffer(ren, access);
+  this->DrawKBuffer(target, access);
 }
 
-void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
+void vtkHAVSVolumeMapper::DrawKBuffer(const RenderTarget& target, int access)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = this->GetContext();
-  int width, height, x, y;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSavedGLState savedState(ostate);
@@ -304,7 +302,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;
   ostate->PushFramebufferBindings();
-  kbuffer->CaptureSceneDepth(x, y);
+  kbuffer->CaptureSceneDepth(target.X, target.Y);
   kbuffer->Clear();
   // Both facings are drawn: a boundary face's facing tells an exit from an entry.
   ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -312,12 +310,13 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   ostate->vtkglDepthMask(GL_FALSE);
   vtkTextureObject* table = internals.Table->GetTexture(renWin);
   table->Activate();
-  const bool drawn = internals.DrawFaces(table, width, height) && internals.DrawFlush(table);
+  const bool drawn =
+    internals.DrawFaces(table, target.Width, target.Height) && internals.DrawFlush(table);
   table->Deactivate();
   ostate->PopFramebufferBindings();
   if (drawn)
   {
-    kbuffer->Resolve(x, y);
+    kbuffer->Resolve(target.X, target.Y);
   }
   this->LastGPUTime = internals.Timer.Stop();
   internals.AccessInUse = drawn ? access : -1;

@@ -152,7 +152,7 @@ private:
   void operator=(const vtkHAVSVolumeMapper&) = delete;
 
   bool PrepareInput(vtkRenderer* ren, vtkVolume* vol);
-  void DrawKBuffer(vtkRenderer* ren, int access);
+  void DrawKBuffer(const RenderTarget& target, int access);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;
