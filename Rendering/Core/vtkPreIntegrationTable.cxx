@@ -67,16 +67,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     // In one process each pair's lengths go straight to the texture's layout: no copy.
     const vtkIdType count = this->GetNumberOfScalarPairs();
     std::vector<float> table(size_t(count) * this->LengthResolution * 4);
-    vtkSMPTools::For(0, count,
-      [this, count, &table](vtkIdType begin, vtkIdType end)
-      {
-        const int n = this->ScalarResolution;
-        for (vtkIdType pair = begin; pair < end; ++pair)
-        {
-          this->IntegrateScalarPair(
-            int(pair % n), int(pair / n), table.data() + 4 * pair, 4 * count);
-        }
-      });
+    this->IntegrateScalarPairs(0, count, table.data(), 4, 4 * count);
     this->Commit(table);
   }
   return true;
@@ -164,14 +155,20 @@ vtkIdType vtkPreIntegrationTable::GetNumberOfScalarPairs() const
 
 void vtkPreIntegrationTable::IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out) const
 {
-  const int per = this->GetValuesPerScalarPair();
+  this->IntegrateScalarPairs(first, last, out, this->GetValuesPerScalarPair(), 4);
+}
+
+void vtkPreIntegrationTable::IntegrateScalarPairs(
+  vtkIdType first, vtkIdType last, float* out, vtkIdType pairStride, vtkIdType lengthStride) const
+{
   vtkSMPTools::For(first, last,
-    [this, first, out, per](vtkIdType begin, vtkIdType end)
+    [=](vtkIdType begin, vtkIdType end)
     {
       const int n = this->ScalarResolution;
       for (vtkIdType pair = begin; pair < end; ++pair)
       {
-        this->IntegrateScalarPair(int(pair % n), int(pair / n), out + (pair - first) * per, 4);
+        this->IntegrateScalarPair(
+          int(pair % n), int(pair / n), out + (pair - first) * pairStride, lengthStride);
       }
     });
 }

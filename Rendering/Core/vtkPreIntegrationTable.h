@@ -102,7 +102,6 @@ public:
    */
   double GetScalar(int i) const;
   double GetLength(int k) const;
-  double GetMaxLength() const { return this->MaxLength; }
   ///@}
 
   /**
@@ -139,6 +138,9 @@ private:
   // Whether the table has these axes.
   bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
     int lengthResolution) const;
+  // Pairs [first, last) in parallel, pair p's lengths from out + (p - first) * pairStride.
+  void IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out, vtkIdType pairStride,
+    vtkIdType lengthStride) const;
   // One scalar pair's lengths, the k-th at out + k * stride.
   void IntegrateScalarPair(int front, int back, float* out, vtkIdType stride) const;
   // The attenuation (`tau`) and color at the middle of each step from scalar front to back.
