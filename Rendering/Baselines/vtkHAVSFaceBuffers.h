@@ -2,9 +2,8 @@
  * @class   vtkHAVSFaceBuffers
  * @brief   the unique triangles of a tetrahedral mesh, radix-sorted by distance every frame
  *
- * The object-space half of Hardware-Assisted Visibility Sorting (S. P. Callahan, M. Ikits,
- * J. L. D. Comba and C. T. Silva, "Hardware-assisted visibility sorting for unstructured
- * volume rendering", IEEE TVCG 11(3), 2005):
+ * The object-space half of Hardware-Assisted Visibility Sorting (Callahan, Ikits, Comba and
+ * Silva 2005, the paper vtkHAVSVolumeMapper cites):
  * - once per input: the unique triangular faces of the tetrahedra, each marked boundary (a
  *   face of one tetrahedron) or interior (shared by two);
  * - every frame: a key from each face's eye-to-centroid distance (view coordinates, so that a
