@@ -6,14 +6,10 @@
 // nearer one. The flush pass composites what is left, in depth order.
 //
 // The buffer lives in KBUFFER_TARGETS RGBA32F textures: target 0 is the premultiplied color,
-// the others hold two entries each (scalar, distance, scalar, distance). One of these defines
-// chooses how a fragment reads and writes them:
-// - HAVS_FRAMEBUFFER_FETCH: the targets are the color attachments, read and written as inout
-//   outputs (GL_EXT_shader_framebuffer_fetch, coherent: each fragment reads what the
-//   fragments of earlier primitives wrote, in primitive order);
-// - HAVS_IMAGE: the targets are images, read and written with image load/store, inside a
-//   pixel_interlock_ordered critical section where HAVS_INTERLOCK is defined
-//   (GL_ARB_fragment_shader_interlock), else in whatever order the rasterizer shades them.
+// the others hold two entries each (scalar, distance, scalar, distance). A fragment reads and
+// writes them as inout color attachments (HAVS_FRAMEBUFFER_FETCH) or as images (HAVS_IMAGE),
+// inside a pixel_interlock_ordered critical section where HAVS_INTERLOCK is defined: see
+// vtkHAVSKBuffer.h for how each mode keeps a pixel's fragments in primitive order.
 //
 // An entry's scalar s in [0, 1] is stored as a code that also says where the ray crosses the
 // mesh's boundary: s inside, s + 2 where it leaves the mesh, s + 4 where it enters it. A
