@@ -120,7 +120,6 @@ private:
   vtkHAVSFaceBuffers(const vtkHAVSFaceBuffers&) = delete;
   void operator=(const vtkHAVSFaceBuffers&) = delete;
 
-  void Build(const vtkTetrahedralMesh* mesh);
   void BuildVertices(const vtkTetrahedralMesh* mesh, const std::vector<unsigned int>& boundaryCopy,
     unsigned int numberOfCopies);
 
