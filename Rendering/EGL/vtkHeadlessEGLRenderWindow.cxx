@@ -98,118 +98,114 @@ struct vtkHeadlessEGLRenderWindow::vtkInternals
   std::string Error;
 
   /// An initialized display on EGL_EXT_platform_device, or EGL_NO_DISPLAY.
-  EGLDisplay OpenDeviceDisplay(int deviceIndex);
+  EGLDisplay OpenDeviceDisplay(int deviceIndex)
+  {
+    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!HasExtension(clientExtensions, "EGL_EXT_platform_device") ||
+      !HasExtension(clientExtensions, "EGL_EXT_device_enumeration"))
+    {
+      return EGL_NO_DISPLAY;
+    }
+    auto queryDevices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+    EGLDeviceEXT devices[MaximumDevices];
+    EGLint count = 0;
+    if (!queryDevices || !queryDeviceString || !queryDevices(MaximumDevices, devices, &count))
+    {
+      return EGL_NO_DISPLAY;
+    }
+    for (EGLint i = 0; i < count; ++i)
+    {
+      // By default a GPU only: Mesa lists its software rasterizer as a device too, which the
+      // surfaceless platform serves as well.
+      if (deviceIndex >= 0
+          ? i != deviceIndex
+          : HasExtension(queryDeviceString(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+      {
+        continue;
+      }
+      EGLDisplay display = InitializePlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i]);
+      if (display != EGL_NO_DISPLAY)
+      {
+        return display;
+      }
+    }
+    if (deviceIndex >= 0)
+    {
+      std::ostringstream text;
+      text << "EGL device " << deviceIndex
+           << (deviceIndex < count ? " could not be opened" : " does not exist")
+           << " (libEGL lists " << count << " device(s), DeviceIndex 0 to " << count - 1 << ")";
+      this->Error = text.str();
+    }
+    return EGL_NO_DISPLAY;
+  }
+
   /// An initialized display on Mesa's surfaceless platform, or EGL_NO_DISPLAY.
-  EGLDisplay OpenSurfacelessDisplay();
-  bool CreateContext(EGLDisplay display);
+  EGLDisplay OpenSurfacelessDisplay()
+  {
+    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    return HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")
+      ? InitializePlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY)
+      : EGL_NO_DISPLAY;
+  }
+
+  bool CreateContext(EGLDisplay display)
+  {
+    if (!HasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
+    {
+      this->Error =
+        "the EGL display lacks EGL_KHR_surfaceless_context (a context without a surface)";
+      return false;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API))
+    {
+      this->Error = "the EGL display has no desktop OpenGL (eglBindAPI(EGL_OPENGL_API) failed, " +
+        EGLErrorText() + ")";
+      return false;
+    }
+    // Any surface type: the context is only ever made current without a surface.
+    const EGLint configAttributes[] = { EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE };
+    EGLConfig config = nullptr;
+    EGLint configs = 0;
+    if (!eglChooseConfig(display, configAttributes, &config, 1, &configs) || configs < 1)
+    {
+      this->Error = "the EGL display has no configuration for desktop OpenGL with 8-bit RGB";
+      return false;
+    }
+    // 3.2 core is what VTK's OpenGL2 back end needs; drivers return the newest version that is
+    // compatible with it (4.5 with llvmpipe).
+    const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+    this->Context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
+    if (this->Context == EGL_NO_CONTEXT)
+    {
+      this->Error = "the driver could not make an OpenGL 3.2 core profile context (" +
+        EGLErrorText() +
+        "); VTK needs OpenGL 3.2 or later. Use a driver that offers it (Mesa's llvmpipe offers "
+        "4.5), and check that MESA_GL_VERSION_OVERRIDE, if set, does not ask for less";
+      return false;
+    }
+    this->Display = display;
+    return true;
+  }
+
   /// Renderer and Version from the current context.
-  void ReadRendererStrings();
+  void ReadRendererStrings()
+  {
+    // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
+    // EGL context before any loader ran.
+    using GetStringFunction = const GLubyte* (*)(GLenum);
+    auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
+    const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
+    const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
+    this->Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
+    this->Version = version ? reinterpret_cast<const char*>(version) : "";
+  }
 };
-
-void vtkHeadlessEGLRenderWindow::vtkInternals::ReadRendererStrings()
-{
-  // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
-  // EGL context before any loader ran.
-  using GetStringFunction = const GLubyte* (*)(GLenum);
-  auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
-  const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
-  const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
-  this->Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
-  this->Version = version ? reinterpret_cast<const char*>(version) : "";
-}
-
-EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int deviceIndex)
-{
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!HasExtension(clientExtensions, "EGL_EXT_platform_device") ||
-    !HasExtension(clientExtensions, "EGL_EXT_device_enumeration"))
-  {
-    return EGL_NO_DISPLAY;
-  }
-  auto queryDevices =
-    reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-  auto queryDeviceString =
-    reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-  EGLDeviceEXT devices[MaximumDevices];
-  EGLint count = 0;
-  if (!queryDevices || !queryDeviceString || !queryDevices(MaximumDevices, devices, &count))
-  {
-    return EGL_NO_DISPLAY;
-  }
-  for (EGLint i = 0; i < count; ++i)
-  {
-    // By default a GPU only: Mesa lists its software rasterizer as a device too, which the
-    // surfaceless platform serves as well.
-    if (deviceIndex >= 0
-        ? i != deviceIndex
-        : HasExtension(queryDeviceString(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
-    {
-      continue;
-    }
-    EGLDisplay display = InitializePlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i]);
-    if (display != EGL_NO_DISPLAY)
-    {
-      return display;
-    }
-  }
-  if (deviceIndex >= 0)
-  {
-    std::ostringstream text;
-    text << "EGL device " << deviceIndex
-         << (deviceIndex < count ? " could not be opened" : " does not exist") << " (libEGL lists "
-         << count << " device(s), DeviceIndex 0 to " << count - 1 << ")";
-    this->Error = text.str();
-  }
-  return EGL_NO_DISPLAY;
-}
-
-EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenSurfacelessDisplay()
-{
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  return HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")
-    ? InitializePlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY)
-    : EGL_NO_DISPLAY;
-}
-
-bool vtkHeadlessEGLRenderWindow::vtkInternals::CreateContext(EGLDisplay display)
-{
-  if (!HasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
-  {
-    this->Error = "the EGL display lacks EGL_KHR_surfaceless_context (a context without a surface)";
-    return false;
-  }
-  if (!eglBindAPI(EGL_OPENGL_API))
-  {
-    this->Error = "the EGL display has no desktop OpenGL (eglBindAPI(EGL_OPENGL_API) failed, " +
-      EGLErrorText() + ")";
-    return false;
-  }
-  // Any surface type: the context is only ever made current without a surface.
-  const EGLint configAttributes[] = { EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-    EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE };
-  EGLConfig config = nullptr;
-  EGLint configs = 0;
-  if (!eglChooseConfig(display, configAttributes, &config, 1, &configs) || configs < 1)
-  {
-    this->Error = "the EGL display has no configuration for desktop OpenGL with 8-bit RGB";
-    return false;
-  }
-  // 3.2 core is what VTK's OpenGL2 back end needs; drivers return the newest version that is
-  // compatible with it (4.5 with llvmpipe).
-  const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
-    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
-  this->Context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
-  if (this->Context == EGL_NO_CONTEXT)
-  {
-    this->Error = "the driver could not make an OpenGL 3.2 core profile context (" +
-      EGLErrorText() +
-      "); VTK needs OpenGL 3.2 or later. Use a driver that offers it (Mesa's llvmpipe offers "
-      "4.5), and check that MESA_GL_VERSION_OVERRIDE, if set, does not ask for less";
-    return false;
-  }
-  this->Display = display;
-  return true;
-}
 
 vtkHeadlessEGLRenderWindow::vtkHeadlessEGLRenderWindow()
   : Internals(new vtkInternals)
