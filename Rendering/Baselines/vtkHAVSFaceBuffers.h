@@ -49,9 +49,7 @@ public:
   /// Added to the scalar (in [0, 1]) of the vertex copies that boundary faces use.
   static constexpr float BoundaryScalarOffset = 2.0f;
 
-  /**
-   * Rebuild the faces when the mesh was rebuilt since the last call (point scalars only).
-   */
+  /// Rebuild the faces when the mesh was rebuilt since the last call (point scalars only).
   void Update(const vtkTetrahedralMesh* mesh);
 
   ///@{
@@ -84,9 +82,7 @@ public:
   double GetLastSortTime() const { return this->LastSortTime; }
   ///@}
 
-  /**
-   * A float as an unsigned integer of the same order (negative floats included).
-   */
+  /// A float as an unsigned integer of the same order (negative floats included).
   static uint32_t SortableKey(float value);
 
   /**
@@ -96,9 +92,7 @@ public:
   static void RadixSort(std::vector<uint32_t>& keys, std::vector<unsigned int>& values,
     std::vector<uint32_t>& scratchKeys, std::vector<unsigned int>& scratchValues);
 
-  /**
-   * Upload the vertices (when they changed) and the triangles in the last sort's order.
-   */
+  /// Upload the vertices (when they changed) and the triangles in the last sort's order.
   bool Upload(vtkOpenGLRenderWindow* renWin);
 
   /**

@@ -90,9 +90,7 @@ public:
   double GetGenerationTime() const { return this->GenerationTime; }
   ///@}
 
-  /**
-   * Free the particles' memory once they are uploaded; the counts and offsets stay.
-   */
+  /// Free the particles' memory once they are uploaded; the counts and offsets stay.
   void ReleaseParticles();
 
 protected:

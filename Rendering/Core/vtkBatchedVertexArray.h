@@ -70,9 +70,7 @@ public:
   static void DrawElements(unsigned int mode, int indicesPerPrimitive, vtkIdType first,
     vtkIdType count, vtkIdType maxPerBatch, const BatchCallback& beforeBatch = nullptr);
 
-  /**
-   * Draw vertices [first, first + count) as `mode`, at most `maxPerBatch` a call.
-   */
+  /// Draw vertices [first, first + count) as `mode`, at most `maxPerBatch` a call.
   static void DrawArrays(
     unsigned int mode, vtkIdType first, vtkIdType count, vtkIdType maxPerBatch);
 

@@ -77,29 +77,21 @@ public:
    */
   std::uint64_t GetSignature() const;
 
-  /**
-   * When the contents of the table last changed.
-   */
+  /// When the contents of the table last changed.
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
 
-  /**
-   * How many times the table was integrated (the costly part of Update()); for tests.
-   */
+  /// How many times the table was integrated (the costly part of Update()); for tests.
   int GetIntegrationCount() const { return this->IntegrationCount; }
 
   ///@{
-  /**
-   * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
-   */
+  /// Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
   int GetScalarResolution() const { return this->ScalarResolution; }
   int GetLengthResolution() const { return this->LengthResolution; }
   const std::vector<float>& GetTable() const { return this->Table; }
   ///@}
 
   ///@{
-  /**
-   * The scalar and the length that sample (i, j or k) of the table stands for.
-   */
+  /// The scalar and the length that sample (i, j or k) of the table stands for.
   double GetScalar(int i) const;
   double GetLength(int k) const;
   ///@}
@@ -118,9 +110,7 @@ public:
    */
   void SetUniforms(vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
 
-  /**
-   * Bytes held on the GPU.
-   */
+  /// Bytes held on the GPU.
   size_t GetGPUMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);

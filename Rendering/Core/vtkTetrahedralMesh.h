@@ -80,9 +80,7 @@ public:
   void SetUseGlobalIds(bool use);
 
   ///@{
-  /**
-   * What Update() found.
-   */
+  /// What Update() found.
   vtkIdType GetNumberOfTetrahedra() const { return vtkIdType(this->Tetrahedra.size() / 4); }
   vtkIdType GetNumberOfPoints() const { return vtkIdType(this->Points.size() / 3); }
   bool GetCellScalars() const { return this->CellScalars; }
@@ -107,9 +105,7 @@ public:
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
   ///@}
 
-  /**
-   * The matrix from the normalized coordinates of the points to model coordinates.
-   */
+  /// The matrix from the normalized coordinates of the points to model coordinates.
   void GetNormalizationMatrix(vtkMatrix4x4* matrix) const;
 
 protected:

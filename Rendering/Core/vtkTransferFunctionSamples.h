@@ -40,18 +40,14 @@ public:
   const std::string& GetLastError() const { return this->LastError; }
 
   ///@{
-  /**
-   * The samples: RGB triples, and the attenuation per data unit.
-   */
+  /// The samples: RGB triples, and the attenuation per data unit.
   const std::vector<double>& GetColor() const { return this->Color; }
   const std::vector<double>& GetAttenuation() const { return this->Attenuation; }
   int GetNumberOfSamples() const { return static_cast<int>(this->Attenuation.size()); }
   ///@}
 
   ///@{
-  /**
-   * When the values of the colors, and of the attenuation, last changed.
-   */
+  /// When the values of the colors, and of the attenuation, last changed.
   vtkMTimeType GetColorTime() const { return this->ColorTime.GetMTime(); }
   vtkMTimeType GetAttenuationTime() const { return this->AttenuationTime.GetMTime(); }
   ///@}
