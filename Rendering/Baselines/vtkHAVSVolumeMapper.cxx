@@ -105,9 +105,10 @@ public:
     program->SetUniform2f("viewportSize", viewportSize);
     // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
     // view mirrors space or front faces wind clockwise.
-    program->SetUniformi(
-      "exitIsFrontFacing", (frontFace == GL_CW) != this->Matrices.Mirrored ? 1 : 0);
-    if (!this->DrawNearCap(program, frontFace))
+    const bool exitIsFrontFacing = (frontFace == GL_CW) != this->Matrices.Mirrored;
+    program->SetUniformi("exitIsFrontFacing", exitIsFrontFacing ? 1 : 0);
+    // The near cap faces the eye as faces where rays enter the mesh do.
+    if (!this->DrawNearCap(program, !exitIsFrontFacing == (frontFace == GL_CCW)))
     {
       return false;
     }
@@ -145,15 +146,13 @@ public:
     return true;
   }
 
-  bool DrawNearCap(vtkShaderProgram* program, int frontFace)
+  bool DrawNearCap(vtkShaderProgram* program, bool counterClockwise)
   {
     // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
     // first, as faces where the rays enter the mesh, which the shader tells by their facing.
     double modelToClip[4][4];
     vtkMatrix4x4::Multiply4x4(
       &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
-    const bool exitIsFrontFacing = (frontFace == GL_CW) != this->Matrices.Mirrored;
-    const bool counterClockwise = !exitIsFrontFacing == (frontFace == GL_CCW);
     if (!this->NearCap.Build(this->Mesh, this->Faces->GetVertices(),
           this->Faces->GetVertexScalars(), modelToClip, vtkHAVSFaceBuffers::BoundaryScalarOffset,
           counterClockwise))

@@ -205,10 +205,11 @@ bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneColl
   {
     return false;
   }
-  // A plane p of world coordinates is p^T (view -> world) in view coordinates, and the
+  // A plane p of world coordinates is (view -> world)^T p in view coordinates, and the
   // normalized view scales view coordinates by 1 / ViewScale.
-  vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
+  vtkNew<vtkMatrix4x4> planeToView;
+  vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetModelViewTransformMatrix(), planeToView);
+  planeToView->Transpose();
   this->ClippingPlaneCount = 0;
   for (int i = 0; i < count; ++i)
   {
@@ -218,14 +219,7 @@ bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneColl
     plane->GetOrigin(origin);
     const double world[4] = { normal[0], normal[1], normal[2], -vtkMath::Dot(normal, origin) };
     double view[4];
-    for (int j = 0; j < 4; ++j)
-    {
-      view[j] = 0.0;
-      for (int k = 0; k < 4; ++k)
-      {
-        view[j] += world[k] * viewToWorld->GetElement(k, j);
-      }
-    }
+    planeToView->MultiplyPoint(world, view);
     for (int j = 0; j < 3; ++j)
     {
       view[j] *= this->ViewScale;
