@@ -213,16 +213,11 @@ public:
     this->UploadedBytes = 0;
     this->VertexArray.ForgetLayout();
     const std::vector<unsigned short>& particles = this->Generator->GetParticles();
-    if (!particles.empty())
-    {
-      if (!this->ParticleBuffer->Upload(particles, vtkOpenGLBufferObject::ArrayBuffer))
-      {
-        return false;
-      }
-      this->UploadedBytes = particles.size() * sizeof(unsigned short);
-    }
-    this->Generator->ReleaseParticles();
-    return true;
+    const bool uploaded = particles.empty() ||
+      this->ParticleBuffer->Upload(particles, vtkOpenGLBufferObject::ArrayBuffer);
+    this->UploadedBytes = uploaded ? particles.size() * sizeof(unsigned short) : 0;
+    this->Generator->ReleaseParticles(); // on the GPU now, or failed for good
+    return uploaded;
   }
 
   void ReleaseParticles()
@@ -238,9 +233,10 @@ public:
   {
     vtkVolumeViewMatrices& transforms = this->Transforms;
     const double(*p)[4] = transforms.ViewToClip;
-    const float pixelArea = static_cast<float>(4.0 /
-      (std::abs(p[0][0] * p[1][1]) * this->Ensemble->GetPassWidth() *
-        this->Ensemble->GetPassHeight()));
+    const int width = this->Ensemble->GetPassWidth();
+    const int height = this->Ensemble->GetPassHeight();
+    const float pixelArea =
+      static_cast<float>(4.0 / (std::abs(p[0][0] * p[1][1]) * width * height));
     const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
       0.5f / TransferFunctionSamples };
     transforms.SetUniforms(program);
@@ -249,8 +245,6 @@ public:
     program->SetUniformf("pixelAreaFactor", pixelArea);
     program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
     program->SetUniformf("largestPointSize", static_cast<float>(this->LargestPointSize));
-    const int width = this->Ensemble->GetPassWidth();
-    const int height = this->Ensemble->GetPassHeight();
     const float clipScale[2] = { float(width) / float(width + 2 * this->GuardBand),
       float(height) / float(height + 2 * this->GuardBand) };
     program->SetUniform2f("clipScale", clipScale);
@@ -384,7 +378,6 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   {
     vtkErrorMacro("Could not upload " << internals.Generator->GetNumberOfParticles()
                                       << " particles to the GPU (out of GPU memory?).");
-    internals.Generator->ReleaseParticles();
     internals.ReleaseParticles();
     internals.Failed = wanted;
     internals.HaveFailed = true;
