@@ -7,6 +7,7 @@
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
@@ -17,7 +18,6 @@
 #include <tetgen.h> // TETLIBRARY comes with the TetGen::TetGen target: errors throw an int
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -107,23 +107,13 @@ bool CollectTriangles(vtkPolyData* input, Surface& surface, std::string& error)
       " that are not triangles; triangulate them first (vtkTriangleFilter)";
     return false;
   }
-  double bounds[6];
-  input->GetBounds(bounds);
-  surface.Diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  surface.Diagonal = input->GetLength();
   return true;
 }
 
-std::array<double, 3> Corner(const Surface& surface, std::size_t triangle, int corner)
+const double* Corner(const Surface& surface, std::size_t triangle, int corner)
 {
-  const double* x = &surface.Coordinates[3 * surface.Triangles[3 * triangle + corner]];
-  return { x[0], x[1], x[2] };
-}
-
-std::array<double, 3> Cross(const std::array<double, 3>& a, const std::array<double, 3>& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+  return &surface.Coordinates[3 * surface.Triangles[3 * triangle + corner]];
 }
 
 /// Triangles with a repeated corner or (almost) no area.
@@ -135,14 +125,11 @@ bool CheckTriangles(const Surface& surface, std::string& error)
   const std::size_t count = surface.Triangles.size() / 3;
   for (std::size_t t = 0; t < count; ++t)
   {
-    const auto a = Corner(surface, t, 0);
-    const auto b = Corner(surface, t, 1);
-    const auto c = Corner(surface, t, 2);
-    const auto normal =
-      Cross({ b[0] - a[0], b[1] - a[1], b[2] - a[2] }, { c[0] - a[0], c[1] - a[1], c[2] - a[2] });
-    const double doubleArea =
-      std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-    if (!(doubleArea > minimumDoubleArea))
+    double ab[3], ac[3], normal[3];
+    vtkMath::Subtract(Corner(surface, t, 1), Corner(surface, t, 0), ab);
+    vtkMath::Subtract(Corner(surface, t, 2), Corner(surface, t, 0), ac);
+    vtkMath::Cross(ab, ac, normal);
+    if (!(vtkMath::Norm(normal) > minimumDoubleArea)) // twice the area
     {
       ++degenerate;
     }
@@ -227,9 +214,9 @@ double SignedEnclosedVolume(const Surface& surface)
   const std::size_t count = surface.Triangles.size() / 3;
   for (std::size_t t = 0; t < count; ++t)
   {
-    const auto a = Corner(surface, t, 0);
-    const auto normal = Cross(Corner(surface, t, 1), Corner(surface, t, 2));
-    sixVolume += a[0] * normal[0] + a[1] * normal[1] + a[2] * normal[2];
+    double normal[3];
+    vtkMath::Cross(Corner(surface, t, 1), Corner(surface, t, 2), normal);
+    sixVolume += vtkMath::Dot(Corner(surface, t, 0), normal);
   }
   return sixVolume / 6.0;
 }
@@ -305,11 +292,12 @@ bool RunTetGen(const std::string& switches, tetgenio& in, tetgenio& out, std::st
 
 double SignedSixVolume(const double* a, const double* b, const double* c, const double* d)
 {
-  const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-  const double v[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
-  const double w[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
-  return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) +
-    u[2] * (v[0] * w[1] - v[1] * w[0]);
+  double u[3], v[3], w[3], vw[3];
+  vtkMath::Subtract(b, a, u);
+  vtkMath::Subtract(c, a, v);
+  vtkMath::Subtract(d, a, w);
+  vtkMath::Cross(v, w, vw);
+  return vtkMath::Dot(u, vw);
 }
 
 /// TetGen's tetrahedra as VTK_TETRA cells, each turned positive if TetGen's is not.
@@ -350,23 +338,11 @@ void CopyTetGenOutput(const tetgenio& out, vtkUnstructuredGrid* output)
 }
 } // namespace
 
-class vtkTetGenMesher::vtkInternals
-{
-public:
-  std::string Switches;
-};
-
 vtkStandardNewMacro(vtkTetGenMesher);
 
-vtkTetGenMesher::vtkTetGenMesher()
-  : Internals(new vtkInternals)
-{
-}
+vtkTetGenMesher::vtkTetGenMesher() = default;
 
-vtkTetGenMesher::~vtkTetGenMesher()
-{
-  delete this->Internals;
-}
+vtkTetGenMesher::~vtkTetGenMesher() = default;
 
 double vtkTetGenMesher::GetMeanVolumeFactor()
 {
@@ -375,7 +351,7 @@ double vtkTetGenMesher::GetMeanVolumeFactor()
 
 const char* vtkTetGenMesher::GetTetGenSwitches() const
 {
-  return this->Internals->Switches.c_str();
+  return this->Switches.c_str();
 }
 
 int vtkTetGenMesher::FillInputPortInformation(int, vtkInformation* info)
@@ -414,7 +390,7 @@ void vtkTetGenMesher::ComposeSwitches(double maximumVolume)
   {
     switches << "a" << maximumVolume;
   }
-  this->Internals->Switches = switches.str();
+  this->Switches = switches.str();
 }
 
 int vtkTetGenMesher::RequestData(
@@ -424,7 +400,7 @@ int vtkTetGenMesher::RequestData(
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   this->EnclosedVolume = 0.0;
   this->AppliedMaximumVolume = 0.0;
-  this->Internals->Switches.clear();
+  this->Switches.clear();
   if (!input)
   {
     vtkErrorMacro("No input surface: connect a vtkPolyData of triangles.");
@@ -454,10 +430,9 @@ int vtkTetGenMesher::RequestData(
   FillTetGenInput(surface, in);
   surface = Surface();
   this->UpdateProgress(0.05);
-  if (!RunTetGen(this->Internals->Switches, in, out, error))
+  if (!RunTetGen(this->Switches, in, out, error))
   {
-    vtkErrorMacro(
-      "Cannot mesh the input: " << error << " (switches " << this->Internals->Switches << ").");
+    vtkErrorMacro("Cannot mesh the input: " << error << " (switches " << this->Switches << ").");
     return 0;
   }
   this->UpdateProgress(0.9);
@@ -475,5 +450,5 @@ void vtkTetGenMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Verbose: " << (this->Verbose ? "On" : "Off") << "\n";
   os << indent << "EnclosedVolume: " << this->EnclosedVolume << "\n";
   os << indent << "AppliedMaximumVolume: " << this->AppliedMaximumVolume << "\n";
-  os << indent << "TetGenSwitches: " << this->Internals->Switches << "\n";
+  os << indent << "TetGenSwitches: " << this->Switches << "\n";
 }

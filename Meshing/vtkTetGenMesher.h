@@ -35,6 +35,8 @@
 #include "SPTMeshingModule.h" // for export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
+#include <string> // For the switches
+
 class SPTMESHING_EXPORT vtkTetGenMesher : public vtkUnstructuredGridAlgorithm
 {
 public:
@@ -135,11 +137,10 @@ private:
 
   /// The -a bound: MaximumVolume, or the mean volume that TargetNumberOfCells asks, if smaller.
   double ComputeMaximumVolume(double enclosedVolume) const;
-  /// TetGen's switches for the settings and the volume bound, kept in Internals.
+  /// Switches: TetGen's switches for the settings and the volume bound.
   void ComposeSwitches(double maximumVolume);
 
-  class vtkInternals;
-  vtkInternals* Internals;
+  std::string Switches;
 };
 
 #endif

@@ -88,11 +88,6 @@ void vtkHAVSFaceBuffers::Update(const vtkTetrahedralMesh* mesh)
     return;
   }
   this->MeshBuildTime = mesh->GetBuildTime();
-  this->Build(mesh);
-}
-
-void vtkHAVSFaceBuffers::Build(const vtkTetrahedralMesh* mesh)
-{
   const std::vector<float>& points = mesh->GetPoints();
   const std::vector<FaceOfTetrahedron> all = FacesOfTetrahedra(mesh->GetTetrahedra());
   const size_t numberOfPoints = points.size() / 3;

@@ -2,9 +2,8 @@
  * @class   vtkHAVSFaceBuffers
  * @brief   the unique triangles of a tetrahedral mesh, radix-sorted by distance every frame
  *
- * The object-space half of Hardware-Assisted Visibility Sorting (S. P. Callahan, M. Ikits,
- * J. L. D. Comba and C. T. Silva, "Hardware-assisted visibility sorting for unstructured
- * volume rendering", IEEE TVCG 11(3), 2005):
+ * The object-space half of Hardware-Assisted Visibility Sorting (Callahan, Ikits, Comba and
+ * Silva 2005, the paper vtkHAVSVolumeMapper cites):
  * - once per input: the unique triangular faces of the tetrahedra, each marked boundary (a
  *   face of one tetrahedron) or interior (shared by two);
  * - every frame: a key from each face's eye-to-centroid distance (view coordinates, so that a
@@ -50,9 +49,7 @@ public:
   /// Added to the scalar (in [0, 1]) of the vertex copies that boundary faces use.
   static constexpr float BoundaryScalarOffset = 2.0f;
 
-  /**
-   * Rebuild the faces when the mesh was rebuilt since the last call (point scalars only).
-   */
+  /// Rebuild the faces when the mesh was rebuilt since the last call (point scalars only).
   void Update(const vtkTetrahedralMesh* mesh);
 
   ///@{
@@ -85,9 +82,7 @@ public:
   double GetLastSortTime() const { return this->LastSortTime; }
   ///@}
 
-  /**
-   * A float as an unsigned integer of the same order (negative floats included).
-   */
+  /// A float as an unsigned integer of the same order (negative floats included).
   static uint32_t SortableKey(float value);
 
   /**
@@ -97,9 +92,7 @@ public:
   static void RadixSort(std::vector<uint32_t>& keys, std::vector<unsigned int>& values,
     std::vector<uint32_t>& scratchKeys, std::vector<unsigned int>& scratchValues);
 
-  /**
-   * Upload the vertices (when they changed) and the triangles in the last sort's order.
-   */
+  /// Upload the vertices (when they changed) and the triangles in the last sort's order.
   bool Upload(vtkOpenGLRenderWindow* renWin);
 
   /**
@@ -121,7 +114,6 @@ private:
   vtkHAVSFaceBuffers(const vtkHAVSFaceBuffers&) = delete;
   void operator=(const vtkHAVSFaceBuffers&) = delete;
 
-  void Build(const vtkTetrahedralMesh* mesh);
   void BuildVertices(const vtkTetrahedralMesh* mesh, const std::vector<unsigned int>& boundaryCopy,
     unsigned int numberOfCopies);
 

@@ -17,18 +17,12 @@
 #include "vtkEnsembleAccumulateFS.h"
 
 #include <sstream>
+#include <string>
 
 namespace
 {
 // Distance of an empty entry: the shaders' EMPTY_DISTANCE.
 constexpr float EmptyDistance = 1.0e30f;
-
-const char* TargetName(int target)
-{
-  static const char* names[] = { "kbufferTarget0", "kbufferTarget1", "kbufferTarget2",
-    "kbufferTarget3" };
-  return names[target];
-}
 }
 
 vtkStandardNewMacro(vtkHAVSKBuffer);
@@ -170,7 +164,7 @@ void vtkHAVSKBuffer::BeginPass(vtkShaderProgram* program)
     {
       glBindImageTexture(static_cast<GLuint>(t), this->Targets[t]->GetHandle(), 0, GL_FALSE, 0,
         GL_READ_WRITE, GL_RGBA32F);
-      program->SetUniformi(TargetName(t), t);
+      program->SetUniformi(("kbufferTarget" + std::to_string(t)).c_str(), t);
     }
   }
   this->SceneDepthActive = program->IsUniformUsed("sceneDepthTexture");

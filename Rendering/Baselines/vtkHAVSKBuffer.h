@@ -60,9 +60,7 @@ public:
     RASTERIZATION_ORDER = 3
   };
 
-  /**
-   * Whether the context has the OpenGL extension (core profile extension list).
-   */
+  /// Whether the context has the OpenGL extension (core profile extension list).
   static bool HasExtension(const char* name);
 
   /**
@@ -71,9 +69,7 @@ public:
    */
   bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int kbufferSize, int access);
 
-  /**
-   * The lines that the shaders' //HAVS::Defines::Dec tag becomes for this size and access.
-   */
+  /// The lines that the shaders' //HAVS::Defines::Dec tag becomes for this size and access.
   std::string GetShaderDefinitions() const;
 
   /**
@@ -90,9 +86,7 @@ public:
    */
   void BeginPass(vtkShaderProgram* program);
 
-  /**
-   * After a pass: make its image writes visible to the next pass and release the bindings.
-   */
+  /// After a pass: make its image writes visible to the next pass and release the bindings.
   void EndPass();
 
   /**
@@ -109,23 +103,14 @@ public:
 
   ///@{
   /**
-   * Size of the targets, how many there are (the color, then entry pairs), and how many
-   * (scalar, distance) entries they hold per pixel.
+   * How many targets there are (the color, then entry pairs), and how many (scalar, distance)
+   * entries they hold per pixel.
    */
-  int GetWidth() const { return this->Width; }
-  int GetHeight() const { return this->Height; }
   int GetNumberOfTargets() const { return 1 + this->KBufferSize / 2; }
   int GetNumberOfEntries() const { return this->KBufferSize - 1; }
   ///@}
 
-  /**
-   * The scene depth texture.
-   */
-  vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
-
-  /**
-   * Bytes held on the GPU.
-   */
+  /// Bytes held on the GPU.
   size_t GetGPUMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);

@@ -49,147 +49,138 @@ public:
   bool InterlockFailed = false;
   int ReportedAccessError = -1;
 
-  std::string Source(const char* shader) const;
-  int ChooseAccess(int requested);
-  void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table);
-  bool DrawFaces(vtkTextureObject* table, int width, int height);
-  bool DrawFlush(vtkTextureObject* table);
-  bool DrawNearCap(vtkShaderProgram* program, int frontFace);
-  void ReleaseGraphicsResources(vtkWindow* window, bool current);
+  std::string Source(const char* shader) const
+  {
+    std::string source = shader;
+    // The segments are cut by the clipping planes only where the mapper has some.
+    vtkShaderProgram::Substitute(source, "//HAVS::Defines::Dec",
+      this->KBuffer->GetShaderDefinitions() + this->Matrices.ClippingPlaneDefine("HAVS"));
+    vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
+    return source;
+  }
+
+  int ChooseAccess(int requested)
+  {
+    const bool interlock =
+      !this->InterlockFailed && vtkHAVSKBuffer::HasExtension("GL_ARB_fragment_shader_interlock");
+    const bool fetch = vtkHAVSKBuffer::HasExtension("GL_EXT_shader_framebuffer_fetch");
+    const bool images = vtkHAVSKBuffer::HasExtension("GL_ARB_shader_image_load_store");
+    switch (requested)
+    {
+      case AUTOMATIC:
+        return interlock ? FRAGMENT_SHADER_INTERLOCK : (fetch ? FRAMEBUFFER_FETCH : 0);
+      case FRAGMENT_SHADER_INTERLOCK:
+        return interlock ? requested : 0;
+      case FRAMEBUFFER_FETCH:
+        return fetch ? requested : 0;
+      default:
+        return images ? requested : 0;
+    }
+  }
+
+  void SetKBufferUniforms(vtkShaderProgram* program, vtkTextureObject* table)
+  {
+    this->Table->SetUniforms(program, table, this->Mesh->GetMaxEdgeLength());
+    program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
+    program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
+    program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
+    this->Matrices.SetClippingPlaneUniforms(program);
+  }
+
+  bool DrawFaces(vtkTextureObject* table, int width, int height)
+  {
+    vtkShaderProgram* program = this->Context->GetShaderCache()->ReadyShaderProgram(
+      vtkHAVSFacesVS, this->Source(vtkHAVSFacesFS).c_str(), "");
+    if (!program)
+    {
+      return false;
+    }
+    GLint frontFace = GL_CCW;
+    glGetIntegerv(GL_FRONT_FACE, &frontFace);
+    this->KBuffer->BeginPass(program);
+    this->SetKBufferUniforms(program, table);
+    program->SetUniformMatrix4x4("MCVCMatrix", this->Matrices.MCVC);
+    program->SetUniformMatrix4x4("VCDCMatrix", this->Matrices.VCDC);
+    const float viewportSize[2] = { float(width), float(height) };
+    program->SetUniform2f("viewportSize", viewportSize);
+    // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
+    // view mirrors space or front faces wind clockwise.
+    const bool exitIsFrontFacing = (frontFace == GL_CW) != this->Matrices.Mirrored;
+    program->SetUniformi("exitIsFrontFacing", exitIsFrontFacing ? 1 : 0);
+    // The near cap faces the eye as faces where rays enter the mesh do.
+    if (!this->DrawNearCap(program, !exitIsFrontFacing == (frontFace == GL_CCW)))
+    {
+      return false;
+    }
+    this->Faces->Bind(program);
+    this->Faces->Draw();
+    this->Faces->Unbind();
+    this->KBuffer->EndPass();
+    return true;
+  }
+
+  bool DrawFlush(vtkTextureObject* table)
+  {
+    if (this->KBuffer->GetNumberOfEntries() < 2)
+    {
+      // One entry is no segment: the flush would composite nothing and only empty the entries,
+      // which the next frame's Clear() does. (Drawn anyway, it would also lose the color on
+      // llvmpipe: see FRAMEBUFFER_FETCH in vtkHAVSKBuffer.h.)
+      return true;
+    }
+    const std::string source = this->Source(vtkHAVSFlushFS);
+    if (!this->Flush || source != this->FlushSource)
+    {
+      this->Flush.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
+      this->FlushSource = source;
+    }
+    vtkShaderProgram* program = this->Flush->Program;
+    if (!program || !this->Context->GetShaderCache()->ReadyShaderProgram(program))
+    {
+      return false;
+    }
+    this->KBuffer->BeginPass(program);
+    this->SetKBufferUniforms(program, table);
+    this->Flush->Render();
+    this->KBuffer->EndPass();
+    return true;
+  }
+
+  bool DrawNearCap(vtkShaderProgram* program, bool counterClockwise)
+  {
+    // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
+    // first, as faces where the rays enter the mesh, which the shader tells by their facing.
+    double modelToClip[4][4];
+    vtkMatrix4x4::Multiply4x4(
+      &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
+    if (!this->NearCap.Build(this->Mesh, this->Faces->GetVertices(),
+          this->Faces->GetVertexScalars(), modelToClip, vtkHAVSFaceBuffers::BoundaryScalarOffset,
+          counterClockwise))
+    {
+      return true;
+    }
+    vtkOpenGLState* ostate = this->Context->GetState();
+    vtkOpenGLState::ScopedglEnableDisable depthClamp(ostate, GL_DEPTH_CLAMP);
+    ostate->vtkglEnable(GL_DEPTH_CLAMP); // the cut lies on the near plane
+    if (!this->NearCap.Draw(program))
+    {
+      vtkGenericWarningMacro("Could not upload the near plane's cut through the mesh.");
+    }
+    return true;
+  }
+
+  void ReleaseGraphicsResources(vtkWindow* window, bool current)
+  {
+    this->Faces->ReleaseGraphicsResources(window);
+    this->Table->ReleaseGraphicsResources(window);
+    this->KBuffer->ReleaseGraphicsResources(window);
+    this->NearCap.ReleaseGraphicsResources();
+    this->Flush.reset();
+    this->FlushSource.clear();
+    this->Timer.Release(current);
+    this->InterlockFailed = false;
+  }
 };
-
-std::string vtkHAVSVolumeMapper::vtkInternals::Source(const char* shader) const
-{
-  std::string source = shader;
-  // The segments are cut by the clipping planes only where the mapper has some.
-  vtkShaderProgram::Substitute(source, "//HAVS::Defines::Dec",
-    this->KBuffer->GetShaderDefinitions() + this->Matrices.ClippingPlaneDefine("HAVS"));
-  vtkShaderProgram::Substitute(source, "//HAVS::KBuffer::Impl", vtkHAVSKBufferCommon);
-  return source;
-}
-
-int vtkHAVSVolumeMapper::vtkInternals::ChooseAccess(int requested)
-{
-  const bool interlock =
-    !this->InterlockFailed && vtkHAVSKBuffer::HasExtension("GL_ARB_fragment_shader_interlock");
-  const bool fetch = vtkHAVSKBuffer::HasExtension("GL_EXT_shader_framebuffer_fetch");
-  const bool images = vtkHAVSKBuffer::HasExtension("GL_ARB_shader_image_load_store");
-  switch (requested)
-  {
-    case AUTOMATIC:
-      return interlock ? FRAGMENT_SHADER_INTERLOCK : (fetch ? FRAMEBUFFER_FETCH : 0);
-    case FRAGMENT_SHADER_INTERLOCK:
-      return interlock ? requested : 0;
-    case FRAMEBUFFER_FETCH:
-      return fetch ? requested : 0;
-    default:
-      return images ? requested : 0;
-  }
-}
-
-void vtkHAVSVolumeMapper::vtkInternals::SetKBufferUniforms(
-  vtkShaderProgram* program, vtkTextureObject* table)
-{
-  this->Table->SetUniforms(program, table, this->Mesh->GetMaxEdgeLength());
-  program->SetUniformMatrix3x3("VCMCLinear", this->Matrices.VCMCLinear);
-  program->SetUniformMatrix4x4("DCVCMatrix", this->Matrices.DCVC);
-  program->SetUniformi("parallelProjection", this->Matrices.ParallelProjection ? 1 : 0);
-  this->Matrices.SetClippingPlaneUniforms(program);
-}
-
-bool vtkHAVSVolumeMapper::vtkInternals::DrawFaces(vtkTextureObject* table, int width, int height)
-{
-  vtkShaderProgram* program = this->Context->GetShaderCache()->ReadyShaderProgram(
-    vtkHAVSFacesVS, this->Source(vtkHAVSFacesFS).c_str(), "");
-  if (!program)
-  {
-    return false;
-  }
-  GLint frontFace = GL_CCW;
-  glGetIntegerv(GL_FRONT_FACE, &frontFace);
-  this->KBuffer->BeginPass(program);
-  this->SetKBufferUniforms(program, table);
-  program->SetUniformMatrix4x4("MCVCMatrix", this->Matrices.MCVC);
-  program->SetUniformMatrix4x4("VCDCMatrix", this->Matrices.VCDC);
-  const float viewportSize[2] = { float(width), float(height) };
-  program->SetUniform2f("viewportSize", viewportSize);
-  // Outward faces seen from behind are where rays leave the mesh: back-facing, unless the
-  // view mirrors space or front faces wind clockwise.
-  program->SetUniformi(
-    "exitIsFrontFacing", (frontFace == GL_CW) != this->Matrices.Mirrored ? 1 : 0);
-  if (!this->DrawNearCap(program, frontFace))
-  {
-    return false;
-  }
-  this->Faces->Bind(program);
-  this->Faces->Draw();
-  this->Faces->Unbind();
-  this->KBuffer->EndPass();
-  return true;
-}
-
-bool vtkHAVSVolumeMapper::vtkInternals::DrawNearCap(vtkShaderProgram* program, int frontFace)
-{
-  // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
-  // first, as faces where the rays enter the mesh, which the shader tells by their facing.
-  double modelToClip[4][4];
-  vtkMatrix4x4::Multiply4x4(
-    &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
-  const bool exitIsFrontFacing = (frontFace == GL_CW) != this->Matrices.Mirrored;
-  const bool counterClockwise = !exitIsFrontFacing == (frontFace == GL_CCW);
-  if (!this->NearCap.Build(this->Mesh, this->Faces->GetVertices(), this->Faces->GetVertexScalars(),
-        modelToClip, vtkHAVSFaceBuffers::BoundaryScalarOffset, counterClockwise))
-  {
-    return true;
-  }
-  vtkOpenGLState* ostate = this->Context->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthClamp(ostate, GL_DEPTH_CLAMP);
-  ostate->vtkglEnable(GL_DEPTH_CLAMP); // the cut lies on the near plane
-  if (!this->NearCap.Draw(program))
-  {
-    vtkGenericWarningMacro("Could not upload the near plane's cut through the mesh.");
-  }
-  return true;
-}
-
-bool vtkHAVSVolumeMapper::vtkInternals::DrawFlush(vtkTextureObject* table)
-{
-  if (this->KBuffer->GetNumberOfEntries() < 2)
-  {
-    // One entry is no segment: the flush would composite nothing and only empty the entries,
-    // which the next frame's Clear() does. (Drawn anyway, it would also lose the color on
-    // llvmpipe: see FRAMEBUFFER_FETCH in vtkHAVSKBuffer.h.)
-    return true;
-  }
-  const std::string source = this->Source(vtkHAVSFlushFS);
-  if (!this->Flush || source != this->FlushSource)
-  {
-    this->Flush.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, source.c_str(), ""));
-    this->FlushSource = source;
-  }
-  vtkShaderProgram* program = this->Flush->Program;
-  if (!program || !this->Context->GetShaderCache()->ReadyShaderProgram(program))
-  {
-    return false;
-  }
-  this->KBuffer->BeginPass(program);
-  this->SetKBufferUniforms(program, table);
-  this->Flush->Render();
-  this->KBuffer->EndPass();
-  return true;
-}
-
-void vtkHAVSVolumeMapper::vtkInternals::ReleaseGraphicsResources(vtkWindow* window, bool current)
-{
-  this->Faces->ReleaseGraphicsResources(window);
-  this->Table->ReleaseGraphicsResources(window);
-  this->KBuffer->ReleaseGraphicsResources(window);
-  this->NearCap.ReleaseGraphicsResources();
-  this->Flush.reset();
-  this->FlushSource.clear();
-  this->Timer.Release(current);
-  this->InterlockFailed = false;
-}
 
 vtkStandardNewMacro(vtkHAVSVolumeMapper);
 
@@ -288,15 +279,13 @@ void vtkHAVSVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  this->DrawKBuffer(ren, access);
+  this->DrawKBuffer(target, access);
 }
 
-void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
+void vtkHAVSVolumeMapper::DrawKBuffer(const RenderTarget& target, int access)
 {
   vtkInternals& internals = *this->Internals;
-  vtkOpenGLRenderWindow* renWin = this->GetContext();
-  int width, height, x, y;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x, &y);
+  vtkOpenGLRenderWindow* renWin = target.Window;
   vtkOpenGLClearErrorMacro();
   vtkOpenGLState* ostate = renWin->GetState();
   vtkSavedGLState savedState(ostate);
@@ -304,7 +293,7 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
 
   vtkHAVSKBuffer* kbuffer = internals.KBuffer;
   ostate->PushFramebufferBindings();
-  kbuffer->CaptureSceneDepth(x, y);
+  kbuffer->CaptureSceneDepth(target.X, target.Y);
   kbuffer->Clear();
   // Both facings are drawn: a boundary face's facing tells an exit from an entry.
   ostate->vtkglDisable(GL_DEPTH_TEST);
@@ -312,12 +301,13 @@ void vtkHAVSVolumeMapper::DrawKBuffer(vtkRenderer* ren, int access)
   ostate->vtkglDepthMask(GL_FALSE);
   vtkTextureObject* table = internals.Table->GetTexture(renWin);
   table->Activate();
-  const bool drawn = internals.DrawFaces(table, width, height) && internals.DrawFlush(table);
+  const bool drawn =
+    internals.DrawFaces(table, target.Width, target.Height) && internals.DrawFlush(table);
   table->Deactivate();
   ostate->PopFramebufferBindings();
   if (drawn)
   {
-    kbuffer->Resolve(x, y);
+    kbuffer->Resolve(target.X, target.Y);
   }
   this->LastGPUTime = internals.Timer.Stop();
   internals.AccessInUse = drawn ? access : -1;

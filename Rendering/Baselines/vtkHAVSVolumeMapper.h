@@ -128,14 +128,8 @@ public:
   vtkGetMacro(LastGPUTime, double);
   ///@}
 
-  /**
-   * Render the volume. Called by vtkVolume; not meant to be called directly.
-   */
+  /// Render the volume. Called by vtkVolume; not meant to be called directly.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
-
-  /**
-   * Release every GPU resource this mapper holds for the window.
-   */
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
@@ -152,7 +146,7 @@ private:
   void operator=(const vtkHAVSVolumeMapper&) = delete;
 
   bool PrepareInput(vtkRenderer* ren, vtkVolume* vol);
-  void DrawKBuffer(vtkRenderer* ren, int access);
+  void DrawKBuffer(const RenderTarget& target, int access);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

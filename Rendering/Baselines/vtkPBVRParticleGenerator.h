@@ -3,13 +3,8 @@
  * @brief   the particles of particle-based volume rendering, generated cell by cell
  *
  * Generates the opaque particles that vtkPBVRVolumeMapper draws, from the tetrahedra of a
- * vtkTetrahedralMesh and the attenuation of the transfer function, as in
- *
- *   N. Sakamoto, J. Nonaka, K. Koyamada and S. Tanaka, "Particle-based volume rendering",
- *   Asia-Pacific Symposium on Visualization (APVIS), 2007;
- *   N. Sakamoto, T. Kawamura, K. Koyamada and K. Nozaki, "Technical section: Improvement of
- *   particle-based volume rendering for visualizing irregular volume data sets", Computers &
- *   Graphics 34(1), 2010.
+ * vtkTetrahedralMesh and the attenuation of the transfer function, as in Sakamoto et al. 2007
+ * and 2010 (the papers vtkPBVRVolumeMapper cites).
  *
  * A particle hides what lies behind it over its cross-section S (the footprint of one pixel or
  * subpixel, normalized model units squared). Particles scattered as a Poisson process of
@@ -95,9 +90,7 @@ public:
   double GetGenerationTime() const { return this->GenerationTime; }
   ///@}
 
-  /**
-   * Free the particles' memory once they are uploaded; the counts and offsets stay.
-   */
+  /// Free the particles' memory once they are uploaded; the counts and offsets stay.
   void ReleaseParticles();
 
 protected:

@@ -14,11 +14,10 @@
 #ifndef vtkPBVRParticleKey_h
 #define vtkPBVRParticleKey_h
 
-#include "vtkType.h" // For vtkMTimeType
+#include "vtkPBVRParticleGenerator.h" // For the generator's settings
 
-#include <cstddef> // For size_t
-
-struct vtkPBVRParticleKey
+// The generator's settings, and the mesh and opacity they were applied to.
+struct vtkPBVRParticleKey : vtkPBVRParticleGenerator::Settings
 {
   // Particles serve views whose cross-section is at most this multiple of theirs.
   static constexpr double LargestFootprintRatio = 2.0;
@@ -27,11 +26,6 @@ struct vtkPBVRParticleKey
 
   vtkMTimeType MeshBuild = 0;
   vtkMTimeType OpacityChange = 0;
-  unsigned int Seed = 0;
-  int SamplingMode = 0;
-  size_t MaximumParticles = 0;
-  double Footprint = 0.0;
-  int Sets = 0;
 
   // Whether both keys describe the same density of particles.
   bool SameModel(const vtkPBVRParticleKey& o) const

@@ -52,14 +52,6 @@ size_t ParticlesInMemory(int memory)
   return std::min(size_t(memory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
     size_t(std::numeric_limits<int>::max() - 1));
 }
-
-double LargestSingularValue(const double matrix[3][3])
-{
-  double a[3][3], u[3][3], w[3], vt[3][3];
-  std::copy(&matrix[0][0], &matrix[0][0] + 9, &a[0][0]);
-  vtkMath::SingularValueDecomposition3x3(a, u, w, vt);
-  return std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
-}
 }
 
 class vtkPBVRVolumeMapper::vtkInternals
@@ -72,7 +64,7 @@ public:
 
   // The transfer functions, sampled over the mesh's scalar range. Only a change of the opacity
   // calls for new particles; colors are looked up when drawn.
-  vtkNew<vtkTransferFunctionSamples> Samples;
+  vtkTransferFunctionSamples Samples;
   vtkTimeStamp ColorUploadTime;
   vtkSmartPointer<vtkTextureObject> ColorTexture;
 
@@ -90,230 +82,202 @@ public:
   vtkBatchedVertexArray VertexArray;
   size_t UploadedBytes = 0;
 
-  vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin);
-  void UpdateMeshRadius();
-  double SmallestFootprint(int passWidth, int passHeight, bool atGenerationDepth = true) const;
+  vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin)
+  {
+    if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
+      this->ColorUploadTime > this->Samples.GetColorTime())
+    {
+      return this->ColorTexture;
+    }
+    if (!this->ColorTexture)
+    {
+      this->ColorTexture = vtkSmartPointer<vtkTextureObject>::New();
+    }
+    std::vector<float> rgba(4 * TransferFunctionSamples, 1.0f);
+    for (int i = 0; i < TransferFunctionSamples; ++i)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        rgba[4 * i + c] = static_cast<float>(this->Samples.GetColor()[3 * i + c]);
+      }
+    }
+    vtkTextureObject* texture = this->ColorTexture;
+    texture->SetContext(renWin);
+    texture->SetWrapS(vtkTextureObject::ClampToEdge);
+    texture->SetWrapT(vtkTextureObject::ClampToEdge);
+    texture->SetMinificationFilter(vtkTextureObject::Linear);
+    texture->SetMagnificationFilter(vtkTextureObject::Linear);
+    if (!texture->Create2DFromRaw(TransferFunctionSamples, 1, 4, VTK_FLOAT, rgba.data()))
+    {
+      this->ColorTexture = nullptr;
+      return nullptr;
+    }
+    this->ColorUploadTime.Modified();
+    return texture;
+  }
+
+  void UpdateMeshRadius()
+  {
+    if (this->RadiusBuild == this->Mesh->GetBuildTime())
+    {
+      return;
+    }
+    const std::vector<float>& points = this->Mesh->GetPoints();
+    double radius2 = 0.0;
+    for (unsigned int id : this->Mesh->GetTetrahedra())
+    {
+      const float* p = &points[3 * size_t(id)];
+      radius2 = std::max(radius2, double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2]);
+    }
+    this->MeshRadius = std::sqrt(radius2);
+    this->RadiusBuild = this->Mesh->GetBuildTime();
+  }
+
+  double SmallestFootprint(int passWidth, int passHeight, bool atGenerationDepth = true) const
+  {
+    // The cross-section of one pass pixel at clip w, in normalized view units, is
+    // 4 w^2 / (P00 P11 width height), perspective and parallel alike; per unit length of a
+    // perspective ray at angle phi to the axis, it is that times cos(phi). The smallest one over
+    // the data's bounding sphere is at its nearest w, at the corner of the frustum.
+    const vtkVolumeViewMatrices& t = this->Transforms;
+    const double(*p)[4] = t.ViewToClip;
+    const double radius =
+      this->MeshRadius * vtkVolumeViewMatrices::LargestSingularValue(t.ModelToViewLinear);
+    // The mesh's normalized origin in view coordinates, and its w.
+    const double centerW = p[3][0] * t.ModelToView[0][3] + p[3][1] * t.ModelToView[1][3] +
+      p[3][2] * t.ModelToView[2][3] + p[3][3];
+    const double wGradient = std::sqrt(p[3][0] * p[3][0] + p[3][1] * p[3][1] + p[3][2] * p[3][2]);
+    double nearestW = centerW - wGradient * radius;
+    double cosine = 1.0;
+    if (!t.ParallelProjection)
+    {
+      // Nothing nearer than the near plane, n = P23 / (P22 - 1), is drawn, and nothing nearer
+      // than the generation's nearest depth needs particles of its own size.
+      nearestW = std::max(nearestW, p[2][3] / (p[2][2] - 1.0));
+      if (atGenerationDepth)
+      {
+        nearestW = std::max(nearestW, NearestGenerationDepth * wGradient * radius);
+      }
+      const double tanX = (1.0 + std::abs(p[0][2])) / std::abs(p[0][0]);
+      const double tanY = (1.0 + std::abs(p[1][2])) / std::abs(p[1][1]);
+      cosine = 1.0 / std::sqrt(1.0 + tanX * tanX + tanY * tanY);
+    }
+    const double areaVC = 4.0 * nearestW * nearestW * cosine /
+      (std::abs(p[0][0] * p[1][1]) * double(passWidth) * double(passHeight));
+    // In model units: volumes scale by |det|, ray lengths by at most the largest singular value.
+    const double volumeRatio = std::abs(vtkMath::Determinant3x3(t.ViewToModelLinear));
+    return areaVC * volumeRatio / vtkVolumeViewMatrices::LargestSingularValue(t.ViewToModelLinear);
+  }
+
   // The side of the largest point drawn (pixels), and the guard band that keeps the points
   // centred outside the pass (see PlacePoints()).
   double LargestPointSize = 1.0;
   int GuardBand = 0;
-  void PlacePoints(int passWidth, int passHeight);
-  bool Generate(const vtkPBVRParticleKey& wanted);
-  bool Upload();
-  void ReleaseParticles();
-  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
-    vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel);
-  void DrawSet(vtkOpenGLState* ostate, vtkShaderProgram* program, int set);
-};
+  void PlacePoints(int passWidth, int passHeight)
+  {
+    // A particle's point covers generated / own cross-section pixels; the nearest visible one
+    // has the smallest cross-section.
+    const double nearest = this->SmallestFootprint(passWidth, passHeight, false);
+    const double side = std::sqrt(this->Generated.Footprint / nearest);
+    float range[2] = { 1.0f, 1.0f };
+    glGetFloatv(GL_POINT_SIZE_RANGE, range);
+    this->LargestPointSize =
+      std::isfinite(side) ? std::min(std::max(side, 1.0), double(range[1])) : double(range[1]);
+    // OpenGL clips a point by its centre: a point up to half its side outside the pass still
+    // covers pixels of it. A wider viewport, with the projection shrunk to match, keeps those.
+    this->GuardBand =
+      this->LargestPointSize > 1.0 ? int(std::ceil(0.5 * this->LargestPointSize)) : 0;
+  }
 
-vtkTextureObject* vtkPBVRVolumeMapper::vtkInternals::GetColorTexture(vtkOpenGLRenderWindow* renWin)
-{
-  if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
-    this->ColorUploadTime > this->Samples->GetColorTime())
+  bool Generate(const vtkPBVRParticleKey& wanted)
   {
-    return this->ColorTexture;
-  }
-  if (!this->ColorTexture)
-  {
-    this->ColorTexture = vtkSmartPointer<vtkTextureObject>::New();
-  }
-  std::vector<float> rgba(4 * TransferFunctionSamples, 1.0f);
-  for (int i = 0; i < TransferFunctionSamples; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
+    this->ReleaseParticles();
+    std::vector<double> attenuation(this->Samples.GetAttenuation());
+    for (double& tau : attenuation)
     {
-      rgba[4 * i + c] = static_cast<float>(this->Samples->GetColor()[3 * i + c]);
+      tau *= this->Mesh->GetScale(); // per normalized model unit
     }
-  }
-  vtkTextureObject* texture = this->ColorTexture;
-  texture->SetContext(renWin);
-  texture->SetWrapS(vtkTextureObject::ClampToEdge);
-  texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  texture->SetMinificationFilter(vtkTextureObject::Linear);
-  texture->SetMagnificationFilter(vtkTextureObject::Linear);
-  if (!texture->Create2DFromRaw(TransferFunctionSamples, 1, 4, VTK_FLOAT, rgba.data()))
-  {
-    this->ColorTexture = nullptr;
-    return nullptr;
-  }
-  this->ColorUploadTime.Modified();
-  return texture;
-}
-
-void vtkPBVRVolumeMapper::vtkInternals::UpdateMeshRadius()
-{
-  if (this->RadiusBuild == this->Mesh->GetBuildTime())
-  {
-    return;
-  }
-  const std::vector<float>& points = this->Mesh->GetPoints();
-  double radius2 = 0.0;
-  for (unsigned int id : this->Mesh->GetTetrahedra())
-  {
-    const float* p = &points[3 * size_t(id)];
-    radius2 = std::max(radius2, double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2]);
-  }
-  this->MeshRadius = std::sqrt(radius2);
-  this->RadiusBuild = this->Mesh->GetBuildTime();
-}
-
-double vtkPBVRVolumeMapper::vtkInternals::SmallestFootprint(
-  int passWidth, int passHeight, bool atGenerationDepth) const
-{
-  // The cross-section of one pass pixel at clip w, in normalized view units, is
-  // 4 w^2 / (P00 P11 width height), perspective and parallel alike; per unit length of a
-  // perspective ray at angle phi to the axis, it is that times cos(phi). The smallest one over
-  // the data's bounding sphere is at its nearest w, at the corner of the frustum.
-  const vtkVolumeViewMatrices& t = this->Transforms;
-  const double(*p)[4] = t.ViewToClip;
-  double modelToView[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    std::copy_n(t.ModelToView[i], 3, modelToView[i]);
-  }
-  const double radius = this->MeshRadius * LargestSingularValue(modelToView);
-  // The mesh's normalized origin in view coordinates, and its w.
-  const double centerW = p[3][0] * t.ModelToView[0][3] + p[3][1] * t.ModelToView[1][3] +
-    p[3][2] * t.ModelToView[2][3] + p[3][3];
-  const double wGradient = std::sqrt(p[3][0] * p[3][0] + p[3][1] * p[3][1] + p[3][2] * p[3][2]);
-  double nearestW = centerW - wGradient * radius;
-  double cosine = 1.0;
-  if (!t.ParallelProjection)
-  {
-    // Nothing nearer than the near plane, n = P23 / (P22 - 1), is drawn, and nothing nearer
-    // than the generation's nearest depth needs particles of its own size.
-    nearestW = std::max(nearestW, p[2][3] / (p[2][2] - 1.0));
-    if (atGenerationDepth)
+    if (!this->Generator->Generate(this->Mesh, attenuation, wanted))
     {
-      nearestW = std::max(nearestW, NearestGenerationDepth * wGradient * radius);
-    }
-    const double tanX = (1.0 + std::abs(p[0][2])) / std::abs(p[0][0]);
-    const double tanY = (1.0 + std::abs(p[1][2])) / std::abs(p[1][1]);
-    cosine = 1.0 / std::sqrt(1.0 + tanX * tanX + tanY * tanY);
-  }
-  const double areaVC = 4.0 * nearestW * nearestW * cosine /
-    (std::abs(p[0][0] * p[1][1]) * double(passWidth) * double(passHeight));
-  // In model units: volumes scale by |det|, ray lengths by at most the largest singular value.
-  const double volumeRatio = std::abs(vtkMath::Determinant3x3(t.ViewToModelLinear));
-  return areaVC * volumeRatio / LargestSingularValue(t.ViewToModelLinear);
-}
-
-void vtkPBVRVolumeMapper::vtkInternals::PlacePoints(int passWidth, int passHeight)
-{
-  // A particle's point covers generated / own cross-section pixels; the nearest visible one
-  // has the smallest cross-section.
-  const double nearest = this->SmallestFootprint(passWidth, passHeight, false);
-  const double side = std::sqrt(this->Generated.Footprint / nearest);
-  float range[2] = { 1.0f, 1.0f };
-  glGetFloatv(GL_POINT_SIZE_RANGE, range);
-  this->LargestPointSize =
-    std::isfinite(side) ? std::min(std::max(side, 1.0), double(range[1])) : double(range[1]);
-  // OpenGL clips a point by its centre: a point up to half its side outside the pass still
-  // covers pixels of it. A wider viewport, with the projection shrunk to match, keeps those.
-  this->GuardBand = this->LargestPointSize > 1.0 ? int(std::ceil(0.5 * this->LargestPointSize)) : 0;
-}
-
-bool vtkPBVRVolumeMapper::vtkInternals::Generate(const vtkPBVRParticleKey& wanted)
-{
-  this->ReleaseParticles();
-  vtkPBVRParticleGenerator::Settings settings;
-  settings.Footprint = wanted.Footprint;
-  settings.Sets = wanted.Sets;
-  settings.Seed = wanted.Seed;
-  settings.SamplingMode = wanted.SamplingMode;
-  settings.MaximumParticles = wanted.MaximumParticles;
-  std::vector<double> attenuation(this->Samples->GetAttenuation());
-  for (double& tau : attenuation)
-  {
-    tau *= this->Mesh->GetScale(); // per normalized model unit
-  }
-  if (!this->Generator->Generate(this->Mesh, attenuation, settings))
-  {
-    this->Failed = wanted;
-    this->HaveFailed = true;
-    return false;
-  }
-  this->HaveFailed = false;
-  ++this->GenerationCount;
-  return true;
-}
-
-void vtkPBVRVolumeMapper::vtkInternals::SetUniforms(vtkShaderProgram* program,
-  vtkTextureObject* colors, vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel)
-{
-  vtkVolumeViewMatrices& transforms = this->Transforms;
-  const double(*p)[4] = transforms.ViewToClip;
-  const float pixelArea = static_cast<float>(4.0 /
-    (std::abs(p[0][0] * p[1][1]) * this->Ensemble->GetPassWidth() *
-      this->Ensemble->GetPassHeight()));
-  const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
-    0.5f / TransferFunctionSamples };
-  transforms.SetUniforms(program);
-  program->SetUniformf("viewToModelVolume",
-    static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
-  program->SetUniformf("pixelAreaFactor", pixelArea);
-  program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
-  program->SetUniformf("largestPointSize", static_cast<float>(this->LargestPointSize));
-  const int width = this->Ensemble->GetPassWidth();
-  const int height = this->Ensemble->GetPassHeight();
-  const float clipScale[2] = { float(width) / float(width + 2 * this->GuardBand),
-    float(height) / float(height + 2 * this->GuardBand) };
-  program->SetUniform2f("clipScale", clipScale);
-  program->SetUniformf("generatedFootprint", static_cast<float>(this->Generated.Footprint));
-  program->SetUniformi("seed", static_cast<int>(seed));
-  program->SetUniformi("colorTable", colors->GetTextureUnit());
-  program->SetUniform2f("colorTexelScaleOffset", colorTexel);
-  program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
-  program->SetUniformi("subpixelLevel", subpixelLevel);
-  float pixelScale[2];
-  this->Ensemble->GetPixelScale(pixelScale);
-  program->SetUniform2f("pixelScale", pixelScale);
-}
-
-void vtkPBVRVolumeMapper::vtkInternals::DrawSet(
-  vtkOpenGLState* ostate, vtkShaderProgram* program, int set)
-{
-  const vtkIdType first = this->Generator->GetSetOffset(set);
-  const vtkIdType end = this->Generator->GetSetOffset(set + 1);
-  if (end <= first)
-  {
-    return;
-  }
-  this->VertexArray.Bind(program,
-    { { "particleMC", this->ParticleBuffer, vtkPBVRParticleGenerator::BytesPerParticle,
-      VTK_UNSIGNED_SHORT, 4, true } });
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  const int band = this->GuardBand;
-  ostate->vtkglViewport(-band, -band, this->Ensemble->GetPassWidth() + 2 * band,
-    this->Ensemble->GetPassHeight() + 2 * band);
-  vtkBatchedVertexArray::DrawArrays(GL_POINTS, first, end - first, MaxParticlesPerDraw);
-  this->VertexArray.Release();
-}
-
-bool vtkPBVRVolumeMapper::vtkInternals::Upload()
-{
-  this->UploadedBytes = 0;
-  this->VertexArray.ForgetLayout();
-  const std::vector<unsigned short>& particles = this->Generator->GetParticles();
-  if (!particles.empty())
-  {
-    if (!this->ParticleBuffer->Upload(particles, vtkOpenGLBufferObject::ArrayBuffer))
-    {
+      this->Failed = wanted;
+      this->HaveFailed = true;
       return false;
     }
-    this->UploadedBytes = particles.size() * sizeof(unsigned short);
+    this->HaveFailed = false;
+    ++this->GenerationCount;
+    return true;
   }
-  this->Generator->ReleaseParticles();
-  return true;
-}
 
-void vtkPBVRVolumeMapper::vtkInternals::ReleaseParticles()
-{
-  this->ParticleBuffer->ReleaseGraphicsResources();
-  this->VertexArray.ReleaseGraphicsResources();
-  this->UploadedBytes = 0;
-  this->HaveParticles = false;
-}
+  bool Upload()
+  {
+    this->UploadedBytes = 0;
+    this->VertexArray.ForgetLayout();
+    const std::vector<unsigned short>& particles = this->Generator->GetParticles();
+    const bool uploaded = particles.empty() ||
+      this->ParticleBuffer->Upload(particles, vtkOpenGLBufferObject::ArrayBuffer);
+    this->UploadedBytes = uploaded ? particles.size() * sizeof(unsigned short) : 0;
+    this->Generator->ReleaseParticles(); // on the GPU now, or failed for good
+    return uploaded;
+  }
+
+  void ReleaseParticles()
+  {
+    this->ParticleBuffer->ReleaseGraphicsResources();
+    this->VertexArray.ReleaseGraphicsResources();
+    this->UploadedBytes = 0;
+    this->HaveParticles = false;
+  }
+
+  void SetUniforms(vtkShaderProgram* program, vtkTextureObject* colors,
+    vtkTextureObject* sceneDepth, unsigned int seed, int subpixelLevel)
+  {
+    vtkVolumeViewMatrices& transforms = this->Transforms;
+    const double(*p)[4] = transforms.ViewToClip;
+    const int width = this->Ensemble->GetPassWidth();
+    const int height = this->Ensemble->GetPassHeight();
+    const float pixelArea =
+      static_cast<float>(4.0 / (std::abs(p[0][0] * p[1][1]) * width * height));
+    const float colorTexel[2] = { float(TransferFunctionSamples - 1) / TransferFunctionSamples,
+      0.5f / TransferFunctionSamples };
+    transforms.SetUniforms(program);
+    program->SetUniformf("viewToModelVolume",
+      static_cast<float>(std::abs(vtkMath::Determinant3x3(transforms.ViewToModelLinear))));
+    program->SetUniformf("pixelAreaFactor", pixelArea);
+    program->SetUniformi("parallelProjection", transforms.ParallelProjection ? 1 : 0);
+    program->SetUniformf("largestPointSize", static_cast<float>(this->LargestPointSize));
+    const float clipScale[2] = { float(width) / float(width + 2 * this->GuardBand),
+      float(height) / float(height + 2 * this->GuardBand) };
+    program->SetUniform2f("clipScale", clipScale);
+    program->SetUniformf("generatedFootprint", static_cast<float>(this->Generated.Footprint));
+    program->SetUniformi("seed", static_cast<int>(seed));
+    program->SetUniformi("colorTable", colors->GetTextureUnit());
+    program->SetUniform2f("colorTexelScaleOffset", colorTexel);
+    program->SetUniformi("sceneDepthTexture", sceneDepth->GetTextureUnit());
+    program->SetUniformi("subpixelLevel", subpixelLevel);
+    float pixelScale[2];
+    this->Ensemble->GetPixelScale(pixelScale);
+    program->SetUniform2f("pixelScale", pixelScale);
+  }
+
+  void DrawSet(vtkOpenGLState* ostate, vtkShaderProgram* program, int set)
+  {
+    const vtkIdType first = this->Generator->GetSetOffset(set);
+    const vtkIdType end = this->Generator->GetSetOffset(set + 1);
+    if (end <= first)
+    {
+      return;
+    }
+    this->VertexArray.Bind(program,
+      { { "particleMC", this->ParticleBuffer, vtkPBVRParticleGenerator::BytesPerParticle,
+        VTK_UNSIGNED_SHORT, 4, true } });
+    vtkOpenGLState::ScopedglViewport viewport(ostate);
+    const int band = this->GuardBand;
+    ostate->vtkglViewport(-band, -band, this->Ensemble->GetPassWidth() + 2 * band,
+      this->Ensemble->GetPassHeight() + 2 * band);
+    vtkBatchedVertexArray::DrawArrays(GL_POINTS, first, end - first, MaxParticlesPerDraw);
+    this->VertexArray.Release();
+  }
+};
 
 vtkStandardNewMacro(vtkPBVRVolumeMapper);
 
@@ -385,7 +349,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
 
   vtkPBVRParticleKey wanted;
   wanted.MeshBuild = internals.Mesh->GetBuildTime();
-  wanted.OpacityChange = internals.Samples->GetAttenuationTime();
+  wanted.OpacityChange = internals.Samples.GetAttenuationTime();
   wanted.Seed = this->Seed;
   wanted.SamplingMode = this->SamplingMode;
   wanted.MaximumParticles = ParticlesInMemory(this->MaximumParticleMemory);
@@ -414,7 +378,6 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
   {
     vtkErrorMacro("Could not upload " << internals.Generator->GetNumberOfParticles()
                                       << " particles to the GPU (out of GPU memory?).");
-    internals.Generator->ReleaseParticles();
     internals.ReleaseParticles();
     internals.Failed = wanted;
     internals.HaveFailed = true;
@@ -440,10 +403,10 @@ void vtkPBVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     internals.ReleaseParticles();
     return;
   }
-  if (!internals.Samples->Update(
+  if (!internals.Samples.Update(
         vol->GetProperty(), this->GetMesh()->GetScalarRange(), TransferFunctionSamples))
   {
-    vtkErrorMacro(<< internals.Samples->GetLastError());
+    vtkErrorMacro(<< internals.Samples.GetLastError());
     return;
   }
 

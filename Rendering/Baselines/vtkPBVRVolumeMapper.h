@@ -123,9 +123,7 @@ public:
   double GetGenerationTime();
   ///@}
 
-  /**
-   * Render the volume. Called by vtkVolume; not meant to be called directly.
-   */
+  /// Render the volume. Called by vtkVolume; not meant to be called directly.
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
 
   /**

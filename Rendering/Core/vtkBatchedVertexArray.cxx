@@ -71,16 +71,12 @@ void vtkBatchedVertexArray::DrawElements(unsigned int mode, int indicesPerPrimit
   }
 }
 
-void vtkBatchedVertexArray::DrawArrays(unsigned int mode, vtkIdType first, vtkIdType count,
-  vtkIdType maxPerBatch, const BatchCallback& beforeBatch)
+void vtkBatchedVertexArray::DrawArrays(
+  unsigned int mode, vtkIdType first, vtkIdType count, vtkIdType maxPerBatch)
 {
   const vtkIdType end = first + count;
   for (vtkIdType begin = first; begin < end; begin += maxPerBatch)
   {
-    if (beforeBatch)
-    {
-      beforeBatch(begin);
-    }
     glDrawArrays(
       mode, static_cast<GLint>(begin), static_cast<GLsizei>(std::min(maxPerBatch, end - begin)));
   }

@@ -6,8 +6,8 @@
  * vertex array: Bind() describes the attributes again only when the program changed (a
  * vtkOpenGLVertexArrayObject forgets its layout on ShaderProgramChanged()), and binds the
  * index buffer, if any. DrawElements() and DrawArrays() split a draw into batches of at most
- * a given number of primitives, so that counts stay far below GLsizei's range; a callback runs
- * before each batch (for a uniform that names its first primitive).
+ * a given number of primitives, so that counts stay far below GLsizei's range; DrawElements()
+ * runs a callback before each batch (for a uniform that names its first primitive).
  *
  * Private helper of the module's mappers; not wrapped.
  */
@@ -70,11 +70,9 @@ public:
   static void DrawElements(unsigned int mode, int indicesPerPrimitive, vtkIdType first,
     vtkIdType count, vtkIdType maxPerBatch, const BatchCallback& beforeBatch = nullptr);
 
-  /**
-   * Draw vertices [first, first + count) as `mode`, at most `maxPerBatch` a call.
-   */
-  static void DrawArrays(unsigned int mode, vtkIdType first, vtkIdType count, vtkIdType maxPerBatch,
-    const BatchCallback& beforeBatch = nullptr);
+  /// Draw vertices [first, first + count) as `mode`, at most `maxPerBatch` a call.
+  static void DrawArrays(
+    unsigned int mode, vtkIdType first, vtkIdType count, vtkIdType maxPerBatch);
 
 private:
   vtkNew<vtkOpenGLVertexArrayObject> VertexArray;

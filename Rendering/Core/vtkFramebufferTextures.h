@@ -33,9 +33,7 @@ public:
    */
   static void UseNearestTexels(vtkTextureObject* texture, vtkOpenGLRenderWindow* context);
 
-  /**
-   * Whether the texture is allocated, at width x height texels.
-   */
+  /// Whether the texture is allocated, at width x height texels.
   static bool HasSize(vtkTextureObject* texture, int width, int height);
 
   /**

@@ -67,16 +67,7 @@ bool vtkPreIntegrationTable::Update(vtkVolumeProperty* property, const double sc
     // In one process each pair's lengths go straight to the texture's layout: no copy.
     const vtkIdType count = this->GetNumberOfScalarPairs();
     std::vector<float> table(size_t(count) * this->LengthResolution * 4);
-    vtkSMPTools::For(0, count,
-      [this, count, &table](vtkIdType begin, vtkIdType end)
-      {
-        const int n = this->ScalarResolution;
-        for (vtkIdType pair = begin; pair < end; ++pair)
-        {
-          this->IntegrateScalarPair(
-            int(pair % n), int(pair / n), table.data() + 4 * pair, 4 * count);
-        }
-      });
+    this->IntegrateScalarPairs(0, count, table.data(), 4, 4 * count);
     this->Commit(table);
   }
   return true;
@@ -130,13 +121,13 @@ bool vtkPreIntegrationTable::Prepare(vtkVolumeProperty* property, const double s
   const int resolution = std::max(2, scalarResolution);
   const int samples = TransferFunctionSamplesPerCell * (resolution - 1) + 1;
   this->LastProperty = nullptr;
-  if (!this->Samples->Update(property, scalarRange, samples))
+  if (!this->Samples.Update(property, scalarRange, samples))
   {
-    this->LastError = this->Samples->GetLastError();
+    this->LastError = this->Samples.GetLastError();
     return false;
   }
   const vtkMTimeType sampled =
-    std::max(this->Samples->GetColorTime(), this->Samples->GetAttenuationTime());
+    std::max(this->Samples.GetColorTime(), this->Samples.GetAttenuationTime());
   const bool sameAxes =
     this->HasAxes(scalarRange, maxLength, resolution, std::max(2, lengthResolution));
   if (!this->Pending && sameAxes && !this->Table.empty() && sampled <= this->IntegratedSamples)
@@ -164,14 +155,20 @@ vtkIdType vtkPreIntegrationTable::GetNumberOfScalarPairs() const
 
 void vtkPreIntegrationTable::IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out) const
 {
-  const int per = this->GetValuesPerScalarPair();
+  this->IntegrateScalarPairs(first, last, out, this->GetValuesPerScalarPair(), 4);
+}
+
+void vtkPreIntegrationTable::IntegrateScalarPairs(
+  vtkIdType first, vtkIdType last, float* out, vtkIdType pairStride, vtkIdType lengthStride) const
+{
   vtkSMPTools::For(first, last,
-    [this, first, out, per](vtkIdType begin, vtkIdType end)
+    [=](vtkIdType begin, vtkIdType end)
     {
       const int n = this->ScalarResolution;
       for (vtkIdType pair = begin; pair < end; ++pair)
       {
-        this->IntegrateScalarPair(int(pair % n), int(pair / n), out + (pair - first) * per, 4);
+        this->IntegrateScalarPair(
+          int(pair % n), int(pair / n), out + (pair - first) * pairStride, lengthStride);
       }
     });
 }
@@ -224,8 +221,8 @@ std::uint64_t vtkPreIntegrationTable::GetSignature() const
       hash = (hash ^ byte[i]) * 1099511628211ull;
     }
   };
-  const std::vector<double>& color = this->Samples->GetColor();
-  const std::vector<double>& attenuation = this->Samples->GetAttenuation();
+  const std::vector<double>& color = this->Samples.GetColor();
+  const std::vector<double>& attenuation = this->Samples.GetAttenuation();
   add(color.data(), color.size() * sizeof(double));
   add(attenuation.data(), attenuation.size() * sizeof(double));
   add(this->ScalarRange, sizeof(this->ScalarRange));
@@ -276,12 +273,12 @@ void vtkPreIntegrationTable::SampleSteps(
   const int steps = static_cast<int>(tau.size());
   const double fineFront = double(front) * TransferFunctionSamplesPerCell;
   const double fineBack = double(back) * TransferFunctionSamplesPerCell;
-  const std::vector<double>& attenuation = this->Samples->GetAttenuation();
-  const std::vector<double>& colors = this->Samples->GetColor();
+  const std::vector<double>& attenuation = this->Samples.GetAttenuation();
+  const std::vector<double>& colors = this->Samples.GetColor();
   for (int m = 0; m < steps; ++m)
   {
     const double x = fineFront + (fineBack - fineFront) * (m + 0.5) / steps;
-    const int i0 = std::min(int(x), this->Samples->GetNumberOfSamples() - 2);
+    const int i0 = std::min(int(x), this->Samples.GetNumberOfSamples() - 2);
     const double w = x - i0;
     tau[m] = (1.0 - w) * attenuation[i0] + w * attenuation[i0 + 1];
     for (int c = 0; c < 3; ++c)

@@ -20,7 +20,6 @@
 #define vtkPreIntegrationTable_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
-#include "vtkNew.h"                 // For the samples
 #include "vtkObject.h"
 #include "vtkSmartPointer.h"            // For the texture
 #include "vtkTimeStamp.h"               // For the build time
@@ -78,32 +77,23 @@ public:
    */
   std::uint64_t GetSignature() const;
 
-  /**
-   * When the contents of the table last changed.
-   */
+  /// When the contents of the table last changed.
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
 
-  /**
-   * How many times the table was integrated (the costly part of Update()); for tests.
-   */
+  /// How many times the table was integrated (the costly part of Update()); for tests.
   int GetIntegrationCount() const { return this->IntegrationCount; }
 
   ///@{
-  /**
-   * Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
-   */
+  /// Table layout: RGBA floats, front scalar fastest, then back scalar, then length.
   int GetScalarResolution() const { return this->ScalarResolution; }
   int GetLengthResolution() const { return this->LengthResolution; }
   const std::vector<float>& GetTable() const { return this->Table; }
   ///@}
 
   ///@{
-  /**
-   * The scalar and the length that sample (i, j or k) of the table stands for.
-   */
+  /// The scalar and the length that sample (i, j or k) of the table stands for.
   double GetScalar(int i) const;
   double GetLength(int k) const;
-  double GetMaxLength() const { return this->MaxLength; }
   ///@}
 
   /**
@@ -120,9 +110,7 @@ public:
    */
   void SetUniforms(vtkShaderProgram* program, vtkTextureObject* texture, double maxThickness) const;
 
-  /**
-   * Bytes held on the GPU.
-   */
+  /// Bytes held on the GPU.
   size_t GetGPUMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);
@@ -140,6 +128,9 @@ private:
   // Whether the table has these axes.
   bool HasAxes(const double scalarRange[2], double maxLength, int scalarResolution,
     int lengthResolution) const;
+  // Pairs [first, last) in parallel, pair p's lengths from out + (p - first) * pairStride.
+  void IntegrateScalarPairs(vtkIdType first, vtkIdType last, float* out, vtkIdType pairStride,
+    vtkIdType lengthStride) const;
   // One scalar pair's lengths, the k-th at out + k * stride.
   void IntegrateScalarPair(int front, int back, float* out, vtkIdType stride) const;
   // The attenuation (`tau`) and color at the middle of each step from scalar front to back.
@@ -168,7 +159,7 @@ private:
 
   // Color and attenuation (opacity / unit distance) sampled finely over the scalar range, and
   // when those the table holds changed last.
-  vtkNew<vtkTransferFunctionSamples> Samples;
+  vtkTransferFunctionSamples Samples;
   vtkMTimeType IntegratedSamples = 0;
   // Prepared but not integrated yet: the axes above are the pending ones.
   bool Pending = false;

@@ -52,15 +52,8 @@ bool vtkSceneDepthTexture::Allocate(
   vtkOpenGLRenderWindow* renWin, int width, int height, int format)
 {
   vtkFramebufferTextures::UseNearestTexels(this->Texture, renWin);
-  bool ok = this->Texture->AllocateDepth(width, height, format);
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->PushFramebufferBindings();
-  this->Framebuffer->SetContext(renWin);
-  this->Framebuffer->Bind();
-  this->Framebuffer->AddDepthAttachment(this->Texture);
-  ok = ok && this->Framebuffer->CheckFrameBufferStatus(GL_FRAMEBUFFER);
-  ostate->PopFramebufferBindings();
-  if (!ok)
+  if (!this->Texture->AllocateDepth(width, height, format) ||
+    !vtkFramebufferTextures::Attach(this->Framebuffer, renWin, {}, this->Texture))
   {
     this->ReleaseGraphicsResources(renWin);
     return false;

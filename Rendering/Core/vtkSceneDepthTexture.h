@@ -42,9 +42,7 @@ public:
    */
   bool Allocate(vtkOpenGLRenderWindow* renWin, int width, int height, int format);
 
-  /**
-   * The format allocated, -1 before Allocate() or after a release.
-   */
+  /// The format allocated, -1 before Allocate() or after a release.
   int GetFormat() const { return this->Format; }
 
   /**

@@ -368,17 +368,18 @@ vtkSmartPointer<vtkDataSet> vtkTetrahedralMesh::Tetrahedralize(vtkDataSet* input
   // copy, may not even match the grid.
   auto bare = vtk::TakeSmartPointer(input->NewInstance());
   bare->CopyStructure(input);
-  auto shared = vtk::TakeSmartPointer(scalars->NewInstance());
-  shared->ShallowCopy(scalars);
-  shared->SetName(SplitScalarsName);
-  (cellScalars ? static_cast<vtkFieldData*>(bare->GetCellData()) : bare->GetPointData())
-    ->AddArray(shared);
+  const auto share = [](vtkDataArray* array, const char* name, vtkFieldData* to)
+  {
+    auto shared = vtk::TakeSmartPointer(array->NewInstance());
+    shared->ShallowCopy(array);
+    shared->SetName(name);
+    to->AddArray(shared);
+  };
+  share(scalars, SplitScalarsName,
+    cellScalars ? static_cast<vtkFieldData*>(bare->GetCellData()) : bare->GetPointData());
   if (ids)
   {
-    auto sharedIds = vtk::TakeSmartPointer(ids->NewInstance());
-    sharedIds->ShallowCopy(ids);
-    sharedIds->SetName(SplitIdsName);
-    bare->GetCellData()->AddArray(sharedIds);
+    share(ids, SplitIdsName, bare->GetCellData());
   }
   vtkNew<vtkDataSetTriangleFilter> triangulate;
   triangulate->SetInputData(bare);
@@ -442,11 +443,9 @@ void vtkTetrahedralMesh::Normalize(const std::vector<double>& coordinates, const
   double diagonal = 0.0;
   for (int a = 0; a < 3; ++a)
   {
-    this->Center[a] =
-      bounds[2 * a] <= bounds[2 * a + 1] ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
-    const double extent =
-      bounds[2 * a] <= bounds[2 * a + 1] ? bounds[2 * a + 1] - bounds[2 * a] : 0.0;
-    diagonal = std::max(diagonal, extent);
+    const bool valid = bounds[2 * a] <= bounds[2 * a + 1];
+    this->Center[a] = valid ? 0.5 * (bounds[2 * a] + bounds[2 * a + 1]) : 0.0;
+    diagonal = std::max(diagonal, valid ? bounds[2 * a + 1] - bounds[2 * a] : 0.0);
   }
   this->Scale = diagonal > 0.0 && std::isfinite(diagonal) ? diagonal : 1.0;
   for (int a = 0; a < 3; ++a)

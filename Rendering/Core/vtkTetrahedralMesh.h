@@ -80,15 +80,12 @@ public:
   void SetUseGlobalIds(bool use);
 
   ///@{
-  /**
-   * What Update() found.
-   */
+  /// What Update() found.
   vtkIdType GetNumberOfTetrahedra() const { return vtkIdType(this->Tetrahedra.size() / 4); }
   vtkIdType GetNumberOfPoints() const { return vtkIdType(this->Points.size() / 3); }
   bool GetCellScalars() const { return this->CellScalars; }
   const double* GetScalarRange() const { return this->ScalarRange; }
-  /// Point coordinates are (x - Center) / Scale.
-  const double* GetCenter() const { return this->Center; }
+  /// Point coordinates are (x - center) / Scale (GetNormalizationMatrix()).
   double GetScale() const { return this->Scale; }
   /// The bounds of the points, in the normalized units of the coordinates.
   const double* GetNormalizedBounds() const { return this->NormalizedBounds; }
@@ -107,9 +104,7 @@ public:
   vtkMTimeType GetBuildTime() const { return this->BuildTime.GetMTime(); }
   ///@}
 
-  /**
-   * The matrix from the normalized coordinates of the points to model coordinates.
-   */
+  /// The matrix from the normalized coordinates of the points to model coordinates.
   void GetNormalizationMatrix(vtkMatrix4x4* matrix) const;
 
 protected:
@@ -124,8 +119,7 @@ private:
   bool Fail(const std::string& reason);
   bool CheckConnectivity(vtkDataSet* input);
   // The input split into tetrahedra (or the input itself, if it holds nothing else), and in
-  // `scalars` the selected array of that output.
-  // `ids` (global cell ids, or null) likewise.
+  // `scalars` the selected array of that output; `ids` (global cell ids, or null) likewise.
   vtkSmartPointer<vtkDataSet> Tetrahedralize(vtkDataSet* input,
     vtkSmartPointer<vtkDataArray>& scalars, bool cellScalars, vtkSmartPointer<vtkDataArray>& ids);
   // RandomIds from the global cell ids of the tetrahedra kept.

@@ -113,9 +113,8 @@ protected:
    * The renderer's OpenGL window and viewport. False, with an error, when the window is not an
    * OpenGL one or its context is older than OpenGL 3.2 (the error names the version found and
    * what to do, once per context); false without one when the viewport has no pixels. The
-   * window's context is current on return. If this
-   * mapper last drew into another window, what it holds there is released first: a mapper keeps its
-   * GPU resources in one context at a time.
+   * window's context is current on return. If this mapper last drew into another window, what
+   * it holds there is released first: a mapper keeps its GPU resources in one context at a time.
    */
   bool BeginFrame(vtkRenderer* ren, RenderTarget& target);
 

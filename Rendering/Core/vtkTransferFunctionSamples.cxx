@@ -1,7 +1,6 @@
 #include "vtkTransferFunctionSamples.h"
 
 #include "vtkColorTransferFunction.h"
-#include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkVolumeProperty.h"
 
@@ -47,12 +46,6 @@ void Sample(vtkVolumeProperty* property, const double scalarRange[2], int sample
 }
 }
 
-vtkStandardNewMacro(vtkTransferFunctionSamples);
-
-vtkTransferFunctionSamples::vtkTransferFunctionSamples() = default;
-
-vtkTransferFunctionSamples::~vtkTransferFunctionSamples() = default;
-
 bool vtkTransferFunctionSamples::Update(
   vtkVolumeProperty* property, const double scalarRange[2], int samples)
 {
@@ -91,11 +84,4 @@ bool vtkTransferFunctionSamples::Update(
   this->SampledRange[1] = scalarRange[1];
   this->SampleTime.Modified();
   return true;
-}
-
-void vtkTransferFunctionSamples::PrintSelf(ostream& os, vtkIndent indent)
-{
-  this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfSamples: " << this->GetNumberOfSamples() << "\n";
-  os << indent << "SampledRange: " << this->SampledRange[0] << " " << this->SampledRange[1] << "\n";
 }

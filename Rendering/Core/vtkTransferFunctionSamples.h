@@ -17,20 +17,19 @@
 #define vtkTransferFunctionSamples_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
-#include "vtkObject.h"
-#include "vtkTimeStamp.h" // For the caches
+#include "vtkTimeStamp.h"           // For the caches
 
 #include <string> // For the error
 #include <vector> // For the samples
 
 class vtkVolumeProperty;
 
-class SPTRENDERINGCORE_EXPORT vtkTransferFunctionSamples : public vtkObject
+class SPTRENDERINGCORE_EXPORT vtkTransferFunctionSamples
 {
 public:
-  static vtkTransferFunctionSamples* New();
-  vtkTypeMacro(vtkTransferFunctionSamples, vtkObject);
-  void PrintSelf(ostream& os, vtkIndent indent) override;
+  vtkTransferFunctionSamples() = default;
+  vtkTransferFunctionSamples(const vtkTransferFunctionSamples&) = delete;
+  vtkTransferFunctionSamples& operator=(const vtkTransferFunctionSamples&) = delete;
 
   /**
    * Sample the property's functions at `samples` scalars from scalarRange[0] to
@@ -41,30 +40,19 @@ public:
   const std::string& GetLastError() const { return this->LastError; }
 
   ///@{
-  /**
-   * The samples: RGB triples, and the attenuation per data unit.
-   */
+  /// The samples: RGB triples, and the attenuation per data unit.
   const std::vector<double>& GetColor() const { return this->Color; }
   const std::vector<double>& GetAttenuation() const { return this->Attenuation; }
   int GetNumberOfSamples() const { return static_cast<int>(this->Attenuation.size()); }
   ///@}
 
   ///@{
-  /**
-   * When the values of the colors, and of the attenuation, last changed.
-   */
+  /// When the values of the colors, and of the attenuation, last changed.
   vtkMTimeType GetColorTime() const { return this->ColorTime.GetMTime(); }
   vtkMTimeType GetAttenuationTime() const { return this->AttenuationTime.GetMTime(); }
   ///@}
 
-protected:
-  vtkTransferFunctionSamples();
-  ~vtkTransferFunctionSamples() override;
-
 private:
-  vtkTransferFunctionSamples(const vtkTransferFunctionSamples&) = delete;
-  void operator=(const vtkTransferFunctionSamples&) = delete;
-
   std::vector<double> Color;
   std::vector<double> Attenuation;
   std::string LastError;

@@ -18,19 +18,13 @@
 
 namespace
 {
-// The largest singular value of the linear part of a model matrix: how much it scales.
-double ModelScale(vtkMatrix4x4* model)
+// The linear part (upper left 3x3) of a row-major 4x4 matrix.
+void LinearPart(const double matrix[4][4], double linear[3][3])
 {
-  double linear[3][3], u[3][3], w[3], vt[3][3];
   for (int i = 0; i < 3; ++i)
   {
-    for (int j = 0; j < 3; ++j)
-    {
-      linear[i][j] = model->GetElement(i, j);
-    }
+    std::copy_n(matrix[i], 3, linear[i]);
   }
-  vtkMath::SingularValueDecomposition3x3(linear, u, w, vt);
-  return std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
 }
 
 // Normalized view coordinates are view coordinates / viewScale. The projection of a
@@ -49,17 +43,6 @@ void ToNormalizedView(vtkMatrix4x4* modelToView, vtkMatrix4x4* viewToClip, doubl
   }
 }
 
-void ToRowMajor(vtkMatrix4x4* matrix, double elements[4][4])
-{
-  for (int i = 0; i < 4; ++i)
-  {
-    for (int j = 0; j < 4; ++j)
-    {
-      elements[i][j] = matrix->GetElement(i, j);
-    }
-  }
-}
-
 // Where the corners of the bounding box fall in clip space. A corner beyond the near plane (or
 // behind the eye) has clip z < -w; the box is convex, so without such a corner no cell reaches
 // there. In front of the near plane, the projections of the corners bound those of every point
@@ -67,32 +50,27 @@ void ToRowMajor(vtkMatrix4x4* matrix, double elements[4][4])
 struct BoundsInClipSpace
 {
   bool NearCut = false;                // some corner lies beyond the near plane or behind the eye
-  double NearestW = 0.0;               // the smallest clip w of the corners
+  double NearestW = VTK_DOUBLE_MAX;    // the smallest clip w of the corners
   double LargestNDC[2] = { 0.0, 0.0 }; // the largest |x / w| and |y / w| of the corners
   // The smallest and largest x / w and y / w of the corners: xmin, xmax, ymin, ymax.
   double NDC[4] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  // The smallest and largest -z of the corners in view coordinates (in front of the eye > 0).
+  double Depth[2] = { VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
 };
 
 BoundsInClipSpace ProjectBounds(
   const double bounds[6], const double modelToView[4][4], const double viewToClip[4][4])
 {
   BoundsInClipSpace result;
-  result.NearestW = VTK_DOUBLE_MAX;
   for (int corner = 0; corner < 8; ++corner)
   {
     const double point[4] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
       bounds[4 + ((corner >> 2) & 1)], 1.0 };
     double view[4], clip[4];
-    for (int i = 0; i < 4; ++i)
-    {
-      view[i] = modelToView[i][0] * point[0] + modelToView[i][1] * point[1] +
-        modelToView[i][2] * point[2] + modelToView[i][3];
-    }
-    for (int i = 0; i < 4; ++i)
-    {
-      clip[i] = viewToClip[i][0] * view[0] + viewToClip[i][1] * view[1] +
-        viewToClip[i][2] * view[2] + viewToClip[i][3] * view[3];
-    }
+    vtkMatrix4x4::MultiplyPoint(&modelToView[0][0], point, view);
+    vtkMatrix4x4::MultiplyPoint(&viewToClip[0][0], view, clip);
+    result.Depth[0] = std::min(result.Depth[0], -view[2]);
+    result.Depth[1] = std::max(result.Depth[1], -view[2]);
     const bool nearCut = !(clip[2] >= -clip[3] && clip[3] > 0.0);
     result.NearCut = result.NearCut || nearCut;
     result.NearestW = std::min(result.NearestW, clip[3]);
@@ -107,20 +85,13 @@ BoundsInClipSpace ProjectBounds(
   return result;
 }
 
-// The largest factor by which the linear part of model -> view stretches a length (its largest
-// singular value).
-double LargestStretch(const double modelToView[4][4])
+// The largest factor by which a linear map stretches a length (its largest singular value),
+// from the eigenvalues of its normal matrix.
+double LargestStretch(const double linear[3][3])
 {
-  double a[3][3], ata[3][3], values[3], vectors[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      a[i][j] = modelToView[i][j];
-    }
-  }
-  vtkMath::Transpose3x3(a, ata);
-  vtkMath::Multiply3x3(ata, a, ata);
+  double ata[3][3], values[3], vectors[3][3];
+  vtkMath::Transpose3x3(linear, ata);
+  vtkMath::Multiply3x3(ata, linear, ata);
   double* rows[3] = { ata[0], ata[1], ata[2] };
   double* vectorRows[3] = { vectors[0], vectors[1], vectors[2] };
   vtkMath::Jacobi(rows, values, vectorRows);
@@ -133,31 +104,38 @@ double LargestStretch(const double modelToView[4][4])
 // largest stretch of model -> view times the model distance. The typical extent is that of a
 // segment across the view at the depth of the bounds' centre.
 void ScreenLengths(const BoundsInClipSpace& box, const double bounds[6],
-  const double modelToView[4][4], const double viewToClip[4][4], double bound[2], double typical[2])
+  const vtkVolumeViewMatrices& m, double bound[2], double typical[2])
 {
   bound[0] = bound[1] = typical[0] = typical[1] = 0.0;
   if (box.NearCut || !(box.NearestW > 0.0))
   {
     return;
   }
-  const double stretch = LargestStretch(modelToView);
+  const double stretch = LargestStretch(m.ModelToViewLinear);
   const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
     0.5 * (bounds[4] + bounds[5]) };
-  double centerW = viewToClip[3][3];
+  double centerW = m.ViewToClip[3][3];
   for (int j = 0; j < 3; ++j)
   {
-    const double view = vtkMath::Dot(modelToView[j], center) + modelToView[j][3];
-    centerW += viewToClip[3][j] * view;
+    const double view = vtkMath::Dot(m.ModelToView[j], center) + m.ModelToView[j][3];
+    centerW += m.ViewToClip[3][j] * view;
   }
   centerW = std::max(centerW, box.NearestW);
-  const double wRow = vtkMath::Norm(viewToClip[3]);
+  const double wRow = vtkMath::Norm(m.ViewToClip[3]);
   for (int i = 0; i < 2; ++i)
   {
-    const double row = vtkMath::Norm(viewToClip[i]);
+    const double row = vtkMath::Norm(m.ViewToClip[i]);
     bound[i] = stretch * (row + box.LargestNDC[i] * wRow) / box.NearestW;
     typical[i] = stretch * row / centerW;
   }
 }
+}
+
+double vtkVolumeViewMatrices::LargestSingularValue(const double matrix[3][3])
+{
+  double u[3][3], w[3], vt[3][3];
+  vtkMath::SingularValueDecomposition3x3(matrix, u, w, vt);
+  return std::max({ std::abs(w[0]), std::abs(w[1]), std::abs(w[2]) });
 }
 
 void vtkVolumeViewMatrices::Compute(
@@ -169,7 +147,9 @@ void vtkVolumeViewMatrices::Compute(
   vtkNew<vtkMatrix4x4> normalization;
   mesh->GetNormalizationMatrix(normalization);
   vtkMatrix4x4* model = vol->GetMatrix();
-  const double modelScale = ModelScale(model);
+  double modelLinear[3][3];
+  LinearPart(model->Element, modelLinear);
+  const double modelScale = LargestSingularValue(modelLinear);
   this->ViewScale = mesh->GetScale() * (modelScale > 0.0 ? modelScale : 1.0);
 
   vtkCamera* camera = ren->GetActiveCamera();
@@ -185,20 +165,13 @@ void vtkVolumeViewMatrices::Compute(
   vtkShaderSourceUtilities::ToColumnMajor(modelToView, this->MCVC);
   vtkShaderSourceUtilities::ToColumnMajor(viewToClip, this->VCDC);
   vtkShaderSourceUtilities::ToColumnMajor(clipToView, this->DCVC);
-  ToRowMajor(modelToView, this->ModelToView);
-  ToRowMajor(viewToClip, this->ViewToClip);
+  vtkMatrix4x4::DeepCopy(&this->ModelToView[0][0], modelToView);
+  vtkMatrix4x4::DeepCopy(&this->ViewToClip[0][0], viewToClip);
+  LinearPart(this->ModelToView, this->ModelToViewLinear);
 
-  double linear[3][3];
-  for (int i = 0; i < 3; ++i)
-  {
-    for (int j = 0; j < 3; ++j)
-    {
-      linear[i][j] = this->ModelToView[i][j];
-    }
-  }
-  this->Mirrored = vtkMath::Determinant3x3(linear) < 0.0;
-  const BoundsInClipSpace box =
-    ProjectBounds(mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip);
+  this->Mirrored = vtkMath::Determinant3x3(this->ModelToViewLinear) < 0.0;
+  const double* bounds = mesh->GetNormalizedBounds();
+  const BoundsInClipSpace box = ProjectBounds(bounds, this->ModelToView, this->ViewToClip);
   this->NearPlaneCutsBounds = box.NearCut;
   for (int i = 0; i < 4; ++i)
   {
@@ -206,39 +179,22 @@ void vtkVolumeViewMatrices::Compute(
     const double whole = (i % 2 == 0) ? -1.0 : 1.0;
     this->ScreenBounds[i] = box.NearCut ? whole : std::max(-1.0, std::min(1.0, box.NDC[i]));
   }
-  ScreenLengths(box, mesh->GetNormalizedBounds(), this->ModelToView, this->ViewToClip,
-    this->NDCPerLength, this->TypicalNDCPerLength);
-  this->ComputeDistances(mesh->GetNormalizedBounds(), clipToView);
-  vtkMath::Invert3x3(linear, this->ViewToModelLinear);
+  ScreenLengths(box, bounds, *this, this->NDCPerLength, this->TypicalNDCPerLength);
+  for (int side = 0; side < 2; ++side)
+  {
+    this->BoundsDistance[side] = box.Depth[side] * this->ViewScale;
+    const double ndc[4] = { 0.0, 0.0, side == 0 ? -1.0 : 1.0, 1.0 };
+    double view[4];
+    clipToView->MultiplyPoint(ndc, view);
+    this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
+  }
+  vtkMath::Invert3x3(this->ModelToViewLinear, this->ViewToModelLinear);
   for (int column = 0; column < 3; ++column)
   {
     for (int row = 0; row < 3; ++row)
     {
       this->VCMCLinear[3 * column + row] = static_cast<float>(this->ViewToModelLinear[row][column]);
     }
-  }
-}
-
-void vtkVolumeViewMatrices::ComputeDistances(const double* bounds, vtkMatrix4x4* clipToView)
-{
-  this->BoundsDistance[0] = VTK_DOUBLE_MAX;
-  this->BoundsDistance[1] = -VTK_DOUBLE_MAX;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const double point[3] = { bounds[corner & 1], bounds[2 + ((corner >> 1) & 1)],
-      bounds[4 + ((corner >> 2) & 1)] };
-    const double* row = this->ModelToView[2];
-    const double distance =
-      -(row[0] * point[0] + row[1] * point[1] + row[2] * point[2] + row[3]) * this->ViewScale;
-    this->BoundsDistance[0] = std::min(this->BoundsDistance[0], distance);
-    this->BoundsDistance[1] = std::max(this->BoundsDistance[1], distance);
-  }
-  for (int side = 0; side < 2; ++side)
-  {
-    const double ndc[4] = { 0.0, 0.0, side == 0 ? -1.0 : 1.0, 1.0 };
-    double view[4];
-    clipToView->MultiplyPoint(ndc, view);
-    this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
   }
 }
 
@@ -249,10 +205,11 @@ bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneColl
   {
     return false;
   }
-  // A plane p of world coordinates is p^T (view -> world) in view coordinates, and the
+  // A plane p of world coordinates is (view -> world)^T p in view coordinates, and the
   // normalized view scales view coordinates by 1 / ViewScale.
-  vtkNew<vtkMatrix4x4> viewToWorld;
-  vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetModelViewTransformMatrix(), viewToWorld);
+  vtkNew<vtkMatrix4x4> planeToView;
+  vtkMatrix4x4::Invert(ren->GetActiveCamera()->GetModelViewTransformMatrix(), planeToView);
+  planeToView->Transpose();
   this->ClippingPlaneCount = 0;
   for (int i = 0; i < count; ++i)
   {
@@ -262,14 +219,7 @@ bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneColl
     plane->GetOrigin(origin);
     const double world[4] = { normal[0], normal[1], normal[2], -vtkMath::Dot(normal, origin) };
     double view[4];
-    for (int j = 0; j < 4; ++j)
-    {
-      view[j] = 0.0;
-      for (int k = 0; k < 4; ++k)
-      {
-        view[j] += world[k] * viewToWorld->GetElement(k, j);
-      }
-    }
+    planeToView->MultiplyPoint(world, view);
     for (int j = 0; j < 3; ++j)
     {
       view[j] *= this->ViewScale;

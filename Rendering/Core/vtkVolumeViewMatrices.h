@@ -15,7 +15,6 @@
 #include <string> // For ClippingPlaneDefine()
 #include <vector> // For AppendSignature()
 
-class vtkMatrix4x4;
 class vtkPlaneCollection;
 class vtkRenderer;
 class vtkShaderProgram;
@@ -35,6 +34,7 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
   /// The same transforms in double, row-major (element [row][column]), for CPU-side use.
   double ModelToView[4][4];
   double ViewToClip[4][4];
+  double ModelToViewLinear[3][3];
   double ViewToModelLinear[3][3];
   /// Normalized view coordinates are view (camera) coordinates divided by ViewScale.
   double ViewScale = 1.0;
@@ -101,9 +101,8 @@ struct SPTRENDERINGCORE_EXPORT vtkVolumeViewMatrices
    */
   void AppendSignature(std::vector<double>& signature) const;
 
-private:
-  // BoundsDistance and ClippingDistance, from the normalized bounds and the inverse projection.
-  void ComputeDistances(const double* bounds, vtkMatrix4x4* clipToView);
+  /// The largest singular value of a matrix: the most it stretches a length.
+  static double LargestSingularValue(const double matrix[3][3]);
 };
 
 #endif

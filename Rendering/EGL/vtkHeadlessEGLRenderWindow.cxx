@@ -14,6 +14,7 @@
 #include <EGL/eglext.h>
 #endif
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <mutex>
@@ -53,42 +54,31 @@ std::string EGLErrorText()
   return text.str();
 }
 
-/**
- * eglInitialize() and eglTerminate() do not count: a display terminated by one window would be
- * gone for every other window on it. The windows of a process share each display and terminate
- * it when the last one goes.
- */
-class DisplayUsers
+// eglInitialize() and eglTerminate() do not count: a display terminated by one window would be
+// gone for every other window on it. The windows of a process share each display (`change`:
+// +1 for a window that takes it, -1 for one that leaves it) and terminate it when the last goes.
+void CountDisplayUser(EGLDisplay display, int change)
 {
-public:
-  static void Add(EGLDisplay display)
+  static std::mutex mutex;
+  static std::map<EGLDisplay, int> users;
+  std::lock_guard<std::mutex> lock(mutex);
+  if ((users[display] += change) <= 0)
   {
-    std::lock_guard<std::mutex> lock(Mutex());
-    ++Counts()[display];
+    users.erase(display);
+    eglTerminate(display);
   }
-  static void Remove(EGLDisplay display)
-  {
-    std::lock_guard<std::mutex> lock(Mutex());
-    auto found = Counts().find(display);
-    if (found != Counts().end() && --found->second == 0)
-    {
-      Counts().erase(found);
-      eglTerminate(display);
-    }
-  }
+}
 
-private:
-  static std::mutex& Mutex()
-  {
-    static std::mutex mutex;
-    return mutex;
-  }
-  static std::map<EGLDisplay, int>& Counts()
-  {
-    static std::map<EGLDisplay, int> counts;
-    return counts;
-  }
-};
+/// An initialized display of EGL_EXT_platform_base's `platform`, or EGL_NO_DISPLAY.
+EGLDisplay InitializePlatformDisplay(EGLenum platform, void* nativeDisplay)
+{
+  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+    eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  EGLDisplay display =
+    getPlatformDisplay ? getPlatformDisplay(platform, nativeDisplay, nullptr) : EGL_NO_DISPLAY;
+  return display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr) ? display
+                                                                               : EGL_NO_DISPLAY;
+}
 
 #if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 4, 0)
 vtkOpenGLRenderWindow::VTKOpenGLAPIProc LoadEGLSymbol(void*, const char* name)
@@ -108,133 +98,115 @@ struct vtkHeadlessEGLRenderWindow::vtkInternals
   std::string Error;
 
   /// An initialized display on EGL_EXT_platform_device, or EGL_NO_DISPLAY.
-  EGLDisplay OpenDeviceDisplay(int deviceIndex);
+  EGLDisplay OpenDeviceDisplay(int deviceIndex)
+  {
+    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    if (!HasExtension(clientExtensions, "EGL_EXT_platform_device") ||
+      !HasExtension(clientExtensions, "EGL_EXT_device_enumeration"))
+    {
+      return EGL_NO_DISPLAY;
+    }
+    auto queryDevices =
+      reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
+      eglGetProcAddress("eglQueryDeviceStringEXT"));
+    EGLDeviceEXT devices[MaximumDevices];
+    EGLint count = 0;
+    if (!queryDevices || !queryDeviceString || !queryDevices(MaximumDevices, devices, &count))
+    {
+      return EGL_NO_DISPLAY;
+    }
+    for (EGLint i = 0; i < count; ++i)
+    {
+      // By default a GPU only: Mesa lists its software rasterizer as a device too, which the
+      // surfaceless platform serves as well.
+      if (deviceIndex >= 0
+          ? i != deviceIndex
+          : HasExtension(queryDeviceString(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
+      {
+        continue;
+      }
+      EGLDisplay display = InitializePlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i]);
+      if (display != EGL_NO_DISPLAY)
+      {
+        return display;
+      }
+    }
+    if (deviceIndex >= 0)
+    {
+      std::ostringstream text;
+      text << "EGL device " << deviceIndex
+           << (deviceIndex < count ? " could not be opened" : " does not exist")
+           << " (libEGL lists " << count << " device(s), DeviceIndex 0 to " << count - 1 << ")";
+      this->Error = text.str();
+    }
+    return EGL_NO_DISPLAY;
+  }
+
   /// An initialized display on Mesa's surfaceless platform, or EGL_NO_DISPLAY.
-  EGLDisplay OpenSurfacelessDisplay();
-  bool CreateContext(EGLDisplay display);
+  EGLDisplay OpenSurfacelessDisplay()
+  {
+    const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    return HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")
+      ? InitializePlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY)
+      : EGL_NO_DISPLAY;
+  }
+
+  bool CreateContext(EGLDisplay display)
+  {
+    if (!HasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
+    {
+      this->Error =
+        "the EGL display lacks EGL_KHR_surfaceless_context (a context without a surface)";
+      return false;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API))
+    {
+      this->Error = "the EGL display has no desktop OpenGL (eglBindAPI(EGL_OPENGL_API) failed, " +
+        EGLErrorText() + ")";
+      return false;
+    }
+    // Any surface type: the context is only ever made current without a surface.
+    const EGLint configAttributes[] = { EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE };
+    EGLConfig config = nullptr;
+    EGLint configs = 0;
+    if (!eglChooseConfig(display, configAttributes, &config, 1, &configs) || configs < 1)
+    {
+      this->Error = "the EGL display has no configuration for desktop OpenGL with 8-bit RGB";
+      return false;
+    }
+    // 3.2 core is what VTK's OpenGL2 back end needs; drivers return the newest version that is
+    // compatible with it (4.5 with llvmpipe).
+    const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
+      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+    this->Context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
+    if (this->Context == EGL_NO_CONTEXT)
+    {
+      this->Error = "the driver could not make an OpenGL 3.2 core profile context (" +
+        EGLErrorText() +
+        "); VTK needs OpenGL 3.2 or later. Use a driver that offers it (Mesa's llvmpipe offers "
+        "4.5), and check that MESA_GL_VERSION_OVERRIDE, if set, does not ask for less";
+      return false;
+    }
+    this->Display = display;
+    return true;
+  }
+
   /// Renderer and Version from the current context.
-  void ReadRendererStrings();
+  void ReadRendererStrings()
+  {
+    // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
+    // EGL context before any loader ran.
+    using GetStringFunction = const GLubyte* (*)(GLenum);
+    auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
+    const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
+    const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
+    this->Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
+    this->Version = version ? reinterpret_cast<const char*>(version) : "";
+  }
 };
 
-void vtkHeadlessEGLRenderWindow::vtkInternals::ReadRendererStrings()
-{
-  // Through libGLdispatch, which GLX's and EGL's libraries share: glGetString is valid in an
-  // EGL context before any loader ran.
-  using GetStringFunction = const GLubyte* (*)(GLenum);
-  auto getString = reinterpret_cast<GetStringFunction>(eglGetProcAddress("glGetString"));
-  const GLubyte* renderer = getString ? getString(GL_RENDERER) : nullptr;
-  const GLubyte* version = getString ? getString(GL_VERSION) : nullptr;
-  this->Renderer = renderer ? reinterpret_cast<const char*>(renderer) : "";
-  this->Version = version ? reinterpret_cast<const char*>(version) : "";
-}
-
-EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenDeviceDisplay(int deviceIndex)
-{
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!HasExtension(clientExtensions, "EGL_EXT_platform_device") ||
-    !HasExtension(clientExtensions, "EGL_EXT_device_enumeration"))
-  {
-    return EGL_NO_DISPLAY;
-  }
-  auto queryDevices =
-    reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-  auto queryDeviceString =
-    reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-    eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  EGLDeviceEXT devices[MaximumDevices];
-  EGLint count = 0;
-  if (!queryDevices || !queryDeviceString || !getPlatformDisplay ||
-    !queryDevices(MaximumDevices, devices, &count))
-  {
-    return EGL_NO_DISPLAY;
-  }
-  for (EGLint i = 0; i < count; ++i)
-  {
-    // By default a GPU only: Mesa lists its software rasterizer as a device too, which the
-    // surfaceless platform serves as well.
-    if (deviceIndex >= 0
-        ? i != deviceIndex
-        : HasExtension(queryDeviceString(devices[i], EGL_EXTENSIONS), "EGL_MESA_device_software"))
-    {
-      continue;
-    }
-    EGLDisplay display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-    if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
-    {
-      return display;
-    }
-  }
-  if (deviceIndex >= 0)
-  {
-    std::ostringstream text;
-    text << "EGL device " << deviceIndex
-         << (deviceIndex < count ? " could not be opened" : " does not exist") << " (libEGL lists "
-         << count << " device(s), DeviceIndex 0 to " << count - 1 << ")";
-    this->Error = text.str();
-  }
-  return EGL_NO_DISPLAY;
-}
-
-EGLDisplay vtkHeadlessEGLRenderWindow::vtkInternals::OpenSurfacelessDisplay()
-{
-  const char* clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-    eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (!HasExtension(clientExtensions, "EGL_MESA_platform_surfaceless") || !getPlatformDisplay)
-  {
-    return EGL_NO_DISPLAY;
-  }
-  EGLDisplay display =
-    getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr))
-  {
-    return display;
-  }
-  return EGL_NO_DISPLAY;
-}
-
-bool vtkHeadlessEGLRenderWindow::vtkInternals::CreateContext(EGLDisplay display)
-{
-  if (!HasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
-  {
-    this->Error = "the EGL display lacks EGL_KHR_surfaceless_context (a context without a surface)";
-    return false;
-  }
-  if (!eglBindAPI(EGL_OPENGL_API))
-  {
-    this->Error = "the EGL display has no desktop OpenGL (eglBindAPI(EGL_OPENGL_API) failed, " +
-      EGLErrorText() + ")";
-    return false;
-  }
-  // Any surface type: the context is only ever made current without a surface.
-  const EGLint configAttributes[] = { EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-    EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE };
-  EGLConfig config = nullptr;
-  EGLint configs = 0;
-  if (!eglChooseConfig(display, configAttributes, &config, 1, &configs) || configs < 1)
-  {
-    this->Error = "the EGL display has no configuration for desktop OpenGL with 8-bit RGB";
-    return false;
-  }
-  // 3.2 core is what VTK's OpenGL2 back end needs; drivers return the newest version that is
-  // compatible with it (4.5 with llvmpipe).
-  const EGLint contextAttributes[] = { EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 2,
-    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
-  this->Context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
-  if (this->Context == EGL_NO_CONTEXT)
-  {
-    this->Error = "the driver could not make an OpenGL 3.2 core profile context (" +
-      EGLErrorText() +
-      "); VTK needs OpenGL 3.2 or later. Use a driver that offers it (Mesa's llvmpipe offers "
-      "4.5), and check that MESA_GL_VERSION_OVERRIDE, if set, does not ask for less";
-    return false;
-  }
-  this->Display = display;
-  return true;
-}
-
-//------------------------------------------------------------------------------
 vtkHeadlessEGLRenderWindow::vtkHeadlessEGLRenderWindow()
   : Internals(new vtkInternals)
 {
@@ -249,13 +221,11 @@ vtkHeadlessEGLRenderWindow::vtkHeadlessEGLRenderWindow()
 #endif
 }
 
-//------------------------------------------------------------------------------
 vtkHeadlessEGLRenderWindow::~vtkHeadlessEGLRenderWindow()
 {
   this->Finalize();
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::InitializeContext()
 {
   vtkInternals& internals = *this->Internals;
@@ -293,10 +263,10 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
     vtkErrorMacro("No EGL context: " << internals.Error << ".");
     return false;
   }
-  DisplayUsers::Add(display);
+  CountDisplayUser(display, +1);
   if (!internals.CreateContext(display))
   {
-    DisplayUsers::Remove(display);
+    CountDisplayUser(display, -1);
     vtkErrorMacro("No EGL context on the " << platform << " platform: " << internals.Error << ".");
     return false;
   }
@@ -314,7 +284,6 @@ bool vtkHeadlessEGLRenderWindow::InitializeContext()
   return true;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::DestroyContext()
 {
   vtkInternals& internals = *this->Internals;
@@ -325,14 +294,13 @@ void vtkHeadlessEGLRenderWindow::DestroyContext()
       eglMakeCurrent(internals.Display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     }
     eglDestroyContext(internals.Display, internals.Context);
-    DisplayUsers::Remove(internals.Display);
+    CountDisplayUser(internals.Display, -1);
   }
   internals.Context = EGL_NO_CONTEXT;
   internals.Display = EGL_NO_DISPLAY;
   this->SetIsCurrent(false);
 }
 
-//------------------------------------------------------------------------------
 const char* vtkHeadlessEGLRenderWindow::GetPlatformName()
 {
   return this->Internals->Platform.c_str();
@@ -348,7 +316,6 @@ const char* vtkHeadlessEGLRenderWindow::GetOpenGLVersion()
   return this->Internals->Version.c_str();
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::MakeCurrent()
 {
   if (!this->InitializeContext())
@@ -363,7 +330,6 @@ void vtkHeadlessEGLRenderWindow::MakeCurrent()
   this->SetIsCurrent(eglGetCurrentContext() == internals.Context);
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::IsCurrent()
 {
   const bool current = this->Internals->Context != EGL_NO_CONTEXT &&
@@ -372,7 +338,6 @@ bool vtkHeadlessEGLRenderWindow::IsCurrent()
   return current;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::ReleaseCurrent()
 {
   if (this->IsCurrent())
@@ -382,7 +347,6 @@ void vtkHeadlessEGLRenderWindow::ReleaseCurrent()
   }
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::SupportsOpenGL()
 {
   this->MakeCurrent();
@@ -403,7 +367,6 @@ int vtkHeadlessEGLRenderWindow::SupportsOpenGL()
   return this->Initialized ? 1 : 0;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::SetInteractor(vtkRenderWindowInteractor* interactor)
 {
   if (interactor && interactor->IsA("vtkXRenderWindowInteractor"))
@@ -416,7 +379,6 @@ void vtkHeadlessEGLRenderWindow::SetInteractor(vtkRenderWindowInteractor* intera
   this->Superclass::SetInteractor(interactor);
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::OpenGLInit()
 {
   this->MakeCurrent();
@@ -433,7 +395,6 @@ void vtkHeadlessEGLRenderWindow::OpenGLInit()
   }
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::OpenGLInitContext()
 {
 #if VTK_VERSION_NUMBER < VTK_VERSION_CHECK(9, 4, 0)
@@ -472,7 +433,6 @@ void vtkHeadlessEGLRenderWindow::OpenGLInitContext()
   this->Superclass::OpenGLInitContext();
 }
 
-//------------------------------------------------------------------------------
 bool vtkHeadlessEGLRenderWindow::QueryRenderFramebuffer(
   unsigned int attachment, int count, const unsigned int* names, int* values)
 {
@@ -497,7 +457,6 @@ bool vtkHeadlessEGLRenderWindow::QueryRenderFramebuffer(
   return type != GL_NONE;
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::GetColorBufferSizes(int* rgba)
 {
   if (!rgba)
@@ -505,19 +464,14 @@ int vtkHeadlessEGLRenderWindow::GetColorBufferSizes(int* rgba)
     return 0;
   }
   // What VTK's own framebuffers have, until the render framebuffer exists to tell.
-  int sizes[4] = { 8, 8, 8, 8 };
+  std::fill_n(rgba, 4, 8);
   const unsigned int names[4] = { GL_FRAMEBUFFER_ATTACHMENT_RED_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_GREEN_SIZE, GL_FRAMEBUFFER_ATTACHMENT_BLUE_SIZE,
     GL_FRAMEBUFFER_ATTACHMENT_ALPHA_SIZE };
-  this->QueryRenderFramebuffer(GL_COLOR_ATTACHMENT0, 4, names, sizes);
-  for (int i = 0; i < 4; ++i)
-  {
-    rgba[i] = sizes[i];
-  }
+  this->QueryRenderFramebuffer(GL_COLOR_ATTACHMENT0, 4, names, rgba);
   return rgba[0] + rgba[1] + rgba[2] + rgba[3];
 }
 
-//------------------------------------------------------------------------------
 int vtkHeadlessEGLRenderWindow::GetDepthBufferSize()
 {
   int bits = 24; // As VTK answers before it has a context.
@@ -526,7 +480,6 @@ int vtkHeadlessEGLRenderWindow::GetDepthBufferSize()
   return bits;
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::Finalize()
 {
   if (this->Internals->Context != EGL_NO_CONTEXT)
@@ -538,7 +491,6 @@ void vtkHeadlessEGLRenderWindow::Finalize()
   }
 }
 
-//------------------------------------------------------------------------------
 void vtkHeadlessEGLRenderWindow::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -32,14 +32,15 @@ void main()
     parallelProjection != 0 ? -positionVCVSOutput.z : length(positionVCVSOutput);
   vec2 fragment = vec2(clamp(scalar, 0.0, 1.0) + crossing, distance);
 
+  vec2 ndc = gl_FragCoord.xy / viewportSize * 2.0 - 1.0;
 #ifdef HAVS_CLIPPING_PLANES
-  clipRay(gl_FragCoord.xy / viewportSize * 2.0 - 1.0);
+  clipRay(ndc);
 #endif
   KBUFFER_BEGIN_CRITICAL_SECTION;
   loadKBuffer();
   if (accumulated.a < OPAQUE_ALPHA)
   {
-    insertFragment(fragment, modelLengthPerDistance(gl_FragCoord.xy / viewportSize * 2.0 - 1.0));
+    insertFragment(fragment, modelLengthPerDistance(ndc));
     storeKBuffer();
   }
   KBUFFER_END_CRITICAL_SECTION;

@@ -6,14 +6,10 @@
 // nearer one. The flush pass composites what is left, in depth order.
 //
 // The buffer lives in KBUFFER_TARGETS RGBA32F textures: target 0 is the premultiplied color,
-// the others hold two entries each (scalar, distance, scalar, distance). One of these defines
-// chooses how a fragment reads and writes them:
-// - HAVS_FRAMEBUFFER_FETCH: the targets are the color attachments, read and written as inout
-//   outputs (GL_EXT_shader_framebuffer_fetch, coherent: each fragment reads what the
-//   fragments of earlier primitives wrote, in primitive order);
-// - HAVS_IMAGE: the targets are images, read and written with image load/store, inside a
-//   pixel_interlock_ordered critical section where HAVS_INTERLOCK is defined
-//   (GL_ARB_fragment_shader_interlock), else in whatever order the rasterizer shades them.
+// the others hold two entries each (scalar, distance, scalar, distance). A fragment reads and
+// writes them as inout color attachments (HAVS_FRAMEBUFFER_FETCH) or as images (HAVS_IMAGE),
+// inside a pixel_interlock_ordered critical section where HAVS_INTERLOCK is defined: see
+// vtkHAVSKBuffer.h for how each mode keeps a pixel's fragments in primitive order.
 //
 // An entry's scalar s in [0, 1] is stored as a code that also says where the ray crosses the
 // mesh's boundary: s inside, s + 2 where it leaves the mesh, s + 4 where it enters it. A
@@ -37,35 +33,25 @@ uniform mat4 DCVCMatrix;               // clip -> view, for the ray through a pi
 uniform int parallelProjection;
 
 #ifdef HAVS_FRAMEBUFFER_FETCH
-layout(location = 0) inout vec4 kbufferTarget0;
-layout(location = 1) inout vec4 kbufferTarget1;
-#if KBUFFER_TARGETS > 2
-layout(location = 2) inout vec4 kbufferTarget2;
-#endif
-#if KBUFFER_TARGETS > 3
-layout(location = 3) inout vec4 kbufferTarget3;
-#endif
+#define KBUFFER_TARGET(n) layout(location = n) inout vec4
+#define KBUFFER_READ(target) (target)
+#define KBUFFER_WRITE(target, value) target = (value)
 #else
-layout(rgba32f) coherent uniform image2D kbufferTarget0;
-layout(rgba32f) coherent uniform image2D kbufferTarget1;
+#define KBUFFER_TARGET(n) layout(rgba32f) coherent uniform image2D
+#define KBUFFER_READ(target) imageLoad(target, ivec2(gl_FragCoord.xy))
+#define KBUFFER_WRITE(target, value) imageStore(target, ivec2(gl_FragCoord.xy), value)
+#endif
+KBUFFER_TARGET(0) kbufferTarget0;
+KBUFFER_TARGET(1) kbufferTarget1;
 #if KBUFFER_TARGETS > 2
-layout(rgba32f) coherent uniform image2D kbufferTarget2;
+KBUFFER_TARGET(2) kbufferTarget2;
 #endif
 #if KBUFFER_TARGETS > 3
-layout(rgba32f) coherent uniform image2D kbufferTarget3;
-#endif
+KBUFFER_TARGET(3) kbufferTarget3;
 #endif
 
 vec4 accumulated;
 vec2 entries[KBUFFER_SIZE - 1];
-
-#ifdef HAVS_FRAMEBUFFER_FETCH
-#define KBUFFER_READ(target) (target)
-#define KBUFFER_WRITE(target, value) target = (value)
-#else
-#define KBUFFER_READ(target) imageLoad(target, ivec2(gl_FragCoord.xy))
-#define KBUFFER_WRITE(target, value) imageStore(target, ivec2(gl_FragCoord.xy), value)
-#endif
 
 // The first (second == 0) or second (scalar, distance) entry of a target's pair of them.
 vec2 entryOf(vec4 pair, int second)
