@@ -112,3 +112,16 @@ int vtkSPTErrorTarget::StepInPairs(
   }
   return drawn;
 }
+
+double vtkSPTErrorTarget::ChooseTiles(
+  const std::vector<double>& tileNoise, double target, std::vector<bool>& active)
+{
+  double largest = -1.0;
+  active.assign(tileNoise.size(), false);
+  for (size_t tile = 0; tile < tileNoise.size(); ++tile)
+  {
+    largest = std::max(largest, tileNoise[tile]);
+    active[tile] = tileNoise[tile] > target;
+  }
+  return largest;
+}

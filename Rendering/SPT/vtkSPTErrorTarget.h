@@ -3,7 +3,9 @@
  * @brief   the steps of SPT's error target: how many repetitions an image draws next
  *
  * vtkSPTVolumeMapper::SetTargetError() draws repetitions in two independent halves, whose
- * difference estimates the image's noise, until the estimate meets the target. This class
+ * difference estimates the noise of each tile of the image, until the estimate meets the
+ * target in every tile; after each step, the repetitions that follow are drawn only into the
+ * tiles still above it (vtkEnsembleTiles). This class
  * decides each step from the noise measured so far (or assumed, for a mapper's first image),
  * whoever draws it: one process (vtkSPTFrame) or the ranks of a parallel render, which share
  * each estimate (vtkSPTParallelFrame).
@@ -17,6 +19,7 @@
 #include "SPTRenderingSPTModule.h" // For export macro
 
 #include <functional> // For the steps
+#include <vector>     // For the tiles
 
 class SPTRENDERINGSPT_EXPORT vtkSPTErrorTarget
 {
@@ -49,7 +52,8 @@ public:
   {
     /// Draw repetitions [first, first + count), as two halves when `halves`.
     std::function<bool(int first, int count, bool coverage, bool halves)> Draw;
-    /// The noise of the image whose halves hold `halfCount` repetitions each.
+    /// The noise of the image whose halves hold `halfCount` repetitions each: its largest tile's
+    /// (ChooseTiles()); the repetitions that follow go to the tiles still above the target.
     std::function<bool(int halfCount, double& estimate)> Estimate;
   };
 
@@ -64,6 +68,15 @@ public:
    */
   static int StepToTarget(const Steps& steps, int first, int count, int perPass, bool coverage,
     double target, State& state);
+
+  /**
+   * From the noise of each tile of an image (negative for a tile that shows nothing), the tiles
+   * that later repetitions are drawn into (`active`): those above the target. Returns the
+   * largest tile's noise, the image's estimate: the target holds for every tile once it holds
+   * for the image. Negative when no tile shows anything.
+   */
+  static double ChooseTiles(
+    const std::vector<double>& tileNoise, double target, std::vector<bool>& active);
 
 private:
   /// StepToTarget's steps once the first one's size is chosen: pairs of halves, or one alone.
