@@ -140,8 +140,16 @@ bool vtkEnsembleTiles::Restrict(vtkOpenGLRenderWindow* context, const std::vecto
   }
   this->Active = active;
   this->Restricted = true;
-  // The stencil: 0, then 1 in each row's runs of active tiles (a cleared scissor box each).
   ostate->vtkBindFramebuffer(GL_FRAMEBUFFER, framebuffers.front());
+  this->WriteStencil(ostate);
+  ostate->PopFramebufferBindings();
+  return true;
+}
+
+void vtkEnsembleTiles::WriteStencil(vtkOpenGLState* ostate)
+{
+  // 0, then 1 in each row's runs of active tiles (a cleared scissor box each); the box
+  // around them.
   vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
   vtkOpenGLState::ScopedglScissor box(ostate);
   ostate->vtkglStencilMask(0xFF);
@@ -155,16 +163,16 @@ bool vtkEnsembleTiles::Restrict(vtkOpenGLRenderWindow* context, const std::vecto
   const int side = TileSize * this->SubpixelLevel;
   for (int row = 0; row < this->Rows; ++row)
   {
+    const size_t first = size_t(row) * size_t(this->Columns);
     for (int column = 0; column < this->Columns;)
     {
-      const size_t first = size_t(row) * size_t(this->Columns);
-      if (!active[first + size_t(column)])
+      if (!this->Active[first + size_t(column)])
       {
         ++column;
         continue;
       }
       int end = column;
-      while (end < this->Columns && active[first + size_t(end)])
+      while (end < this->Columns && this->Active[first + size_t(end)])
       {
         ++end;
       }
@@ -178,12 +186,11 @@ bool vtkEnsembleTiles::Restrict(vtkOpenGLRenderWindow* context, const std::vecto
     }
   }
   glClearStencil(0);
-  ostate->PopFramebufferBindings();
-  this->Box[0] = low[0];
-  this->Box[1] = low[1];
-  this->Box[2] = std::max(0, high[0] - low[0]);
-  this->Box[3] = std::max(0, high[1] - low[1]);
-  return true;
+  for (int axis = 0; axis < 2; ++axis)
+  {
+    this->Box[axis] = low[axis];
+    this->Box[2 + axis] = std::max(0, high[axis] - low[axis]);
+  }
 }
 
 void vtkEnsembleTiles::AddRepetitions(int count)

@@ -28,6 +28,7 @@
 
 class vtkOpenGLFramebufferObject;
 class vtkOpenGLRenderWindow;
+class vtkOpenGLState;
 class vtkShaderProgram;
 class vtkTextureObject;
 class vtkWindow;
@@ -97,6 +98,8 @@ public:
 private:
   bool UploadMissed(vtkOpenGLRenderWindow* context);
   bool AllocateStencil(vtkTextureObject* depth);
+  // The active tiles into the stencil of the bound framebuffer, and their box.
+  void WriteStencil(vtkOpenGLState* ostate);
 
   int Width = 0;
   int Height = 0;

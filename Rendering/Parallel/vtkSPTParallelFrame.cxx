@@ -75,7 +75,7 @@ bool vtkSPTParallelFrame::MoveSums(bool halves)
 }
 
 bool vtkSPTParallelFrame::Estimate(
-  int halfCount, bool exactCoverage, double target, double& estimate)
+  int halfCount, bool exactCoverage, double target, double& estimate, double& median)
 {
   this->Ok = this->MoveSums(true) && this->Ok;
   // Rank 0 holds the whole image's halves; every rank restricts its later repetitions to the
@@ -91,7 +91,7 @@ bool vtkSPTParallelFrame::Estimate(
     return false;
   }
   std::vector<bool> active;
-  estimate = vtkSPTErrorTarget::ChooseTiles(tileNoise, target, active);
+  estimate = vtkSPTErrorTarget::ChooseTiles(tileNoise, target, active, median);
   this->Ok = (estimate <= target || this->Ensemble->RestrictToTiles(active)) && this->Ok;
   return true;
 }
@@ -109,8 +109,8 @@ int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool co
     this->Ensemble->GetTiles().AddRepetitions(repetitions);
     return true;
   };
-  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate)
-  { return this->Estimate(halfCount, exactCoverage, target, estimate); };
+  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
+  { return this->Estimate(halfCount, exactCoverage, target, estimate, median); };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
 }
 

@@ -581,11 +581,11 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
     this->Ensemble->GetTiles().AddRepetitions(repetitions);
     return drawn;
   };
-  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate)
+  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
   {
     std::vector<bool> active;
     estimate = vtkSPTErrorTarget::ChooseTiles(
-      this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active);
+      this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
     return estimate <= target || this->Ensemble->RestrictToTiles(active);
   };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);

@@ -130,6 +130,25 @@ def test_every_tile_meets_the_target_and_quiet_tiles_stop_first(name, have_displ
         f"largest tile's error {measured:.4f} at {fewest} to {most} repetitions")
 
 
+def test_a_new_image_aims_its_first_step_at_the_median_tile(have_display):
+    """On the Post, the noisiest tiles need about twice the repetitions of the median one: a
+    new image's first step aims at the median tile, and only the tiles still above the target
+    draw the later steps; every tile meets the target."""
+    target = 0.003
+    mapper = _mapper(CAP, 1, target, per_pass=None)
+    s = scene("post")
+    window, _ = window_with(mapper, SIZE, "post", prop=s.property)
+    window.Render()
+    mapper.SetSeed(2)
+    window.Render()
+    statistics = mapper.GetFrameStatistics()
+    most, fewest = statistics.GetRepetitionCount(), statistics.GetFewestRepetitionCount()
+    assert 2 <= fewest < most < CAP, f"tiles hold {fewest} to {most} repetitions"
+    measured = tile_error(render.read_rgba(window), "post")
+    window.Finalize()
+    assert measured <= 1.1 * target, f"largest tile's error {measured:.4f}"
+
+
 def _render_to_target(s, mapper, name, target=None):
     """One render of scene ``s`` through ``mapper``, which must stop with an estimate at or
     below ``target`` (the scene's by default) and below the cap: the image, the repetitions
