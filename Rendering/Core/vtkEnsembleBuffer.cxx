@@ -48,11 +48,16 @@ bool vtkEnsembleBuffer::Prepare(
     {
       this->ReleaseGraphicsResources(this->Context);
     }
+    if (this->Context == renWin)
+    {
+      this->Tiles.DetachStencil(renWin, this->DepthFramebuffers());
+    }
     this->Width = imageWidth;
     this->Height = imageHeight;
     this->ViewportWidth = width;
     this->ViewportHeight = height;
     this->SubpixelLevel = subpixelLevel;
+    this->Tiles.Resize(imageWidth, imageHeight, subpixelLevel);
     this->Allocate(renWin, depthFormat);
   }
   return this->Context != nullptr;
@@ -101,8 +106,26 @@ void vtkEnsembleBuffer::Allocate(vtkOpenGLRenderWindow* renWin, int depthFormat)
   this->Context = renWin;
 }
 
+std::vector<vtkOpenGLFramebufferObject*> vtkEnsembleBuffer::DepthFramebuffers()
+{
+  return { this->PassFramebuffer, this->SumFramebuffer, this->HalvesFramebuffer };
+}
+
+bool vtkEnsembleBuffer::RestrictToTiles(const std::vector<bool>& active)
+{
+  const char* error = "";
+  if (!this->Tiles.Restrict(
+        this->Context, active, this->PassDepth, this->DepthFramebuffers(), error))
+  {
+    vtkErrorMacro("Could not restrict the ensemble to some tiles: " << error << ".");
+    return false;
+  }
+  return true;
+}
+
 void vtkEnsembleBuffer::ClearSum()
 {
+  this->Tiles.Reset();
   vtkOpenGLState* ostate = this->Context->GetState();
   vtkOpenGLState::ScopedglClearColor clearColor(ostate);
   vtkOpenGLState::ScopedglColorMask colorMask(ostate);
@@ -122,7 +145,7 @@ void vtkEnsembleBuffer::BeginPass()
   vtkOpenGLState* ostate = this->Context->GetState();
   this->PassFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   this->PassFramebuffer->ActivateDrawBuffers(1);
-  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  this->Tiles.ApplyTests(this->Context); // the caller restores them after the last pass
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -135,7 +158,7 @@ void vtkEnsembleBuffer::BeginSumPass(bool halves)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
   this->SumsFramebuffer(halves)->Bind(GL_DRAW_FRAMEBUFFER);
-  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  this->Tiles.ApplyTests(this->Context); // the caller restores them after the last pass
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
 }
 
@@ -246,8 +269,10 @@ std::vector<float> vtkEnsembleBuffer::DrawNoise(
   program->SetUniformi("coverageTexture", coverage->GetTextureUnit());
   program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
   program->SetUniformi("subpixelLevel", this->SubpixelLevel);
-  program->SetUniformf("inverseHalfCount", 1.0f / float(halfCount));
+  program->SetUniformf("halfCount", float(halfCount));
+  this->Tiles.Activate(this->Context, program);
   this->NoiseQuad->Render();
+  this->Tiles.Deactivate();
   coverage->Deactivate();
   this->SecondHalf->Deactivate();
   this->Sum->Deactivate();
@@ -260,11 +285,11 @@ std::vector<float> vtkEnsembleBuffer::DrawNoise(
   return values;
 }
 
-double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
+std::vector<double> vtkEnsembleBuffer::EstimateTileNoise(int halfCount, bool exactCoverage)
 {
   if (!this->Halves || halfCount < 1 || !this->AllocateNoise())
   {
-    return -1.0;
+    return {};
   }
   if (!this->NoiseQuad)
   {
@@ -274,28 +299,13 @@ double vtkEnsembleBuffer::EstimateNoise(int halfCount, bool exactCoverage)
   if (!program)
   {
     vtkErrorMacro("Could not compile the shader of the noise estimate.");
-    return -1.0;
+    return {};
   }
   exactCoverage = exactCoverage && this->Coverage->GetHandle() != 0;
-  // Per pixel: the squared difference of the halves' means, and whether it is in the footprint.
-  const std::vector<float> values = this->DrawNoise(program, halfCount, exactCoverage);
-  double squares = 0.0;
-  size_t footprint = 0;
-  for (size_t i = 0; i < values.size(); i += 2)
-  {
-    if (values[i + 1] > 0.5f)
-    {
-      squares += values[i];
-      ++footprint;
-    }
-  }
-  if (footprint == 0)
-  {
-    return -1.0;
-  }
-  // The mean of the halves has a quarter of the variance of their difference; the mean over
-  // the four channels of the footprint's pixels.
-  return std::sqrt(squares / (4.0 * 4.0 * static_cast<double>(footprint)));
+  // Per pixel: the squared difference of the halves' means over the four channels, and whether
+  // it is in the footprint. The mean of the halves has a quarter of the variance of their
+  // difference, and the mean over the channels a quarter of their sum.
+  return this->Tiles.MeanPerTile(this->DrawNoise(program, halfCount, exactCoverage), 1.0 / 16.0);
 }
 
 bool vtkEnsembleBuffer::BeginCoveragePass()
@@ -361,7 +371,7 @@ bool vtkEnsembleBuffer::BeginSumBesideDepthPass(bool coverage)
   framebuffer->ActivateDrawBuffers(coverage ? 2 : 1);
   ostate->PopFramebufferBindings();
   framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  ostate->vtkglDisable(GL_SCISSOR_TEST); // the caller restores it after the last pass
+  this->Tiles.ApplyTests(this->Context); // the caller restores them after the last pass
   ostate->vtkglViewport(0, 0, this->GetPassWidth(), this->GetPassHeight());
   return true;
 }
@@ -380,6 +390,8 @@ void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCove
   program->SetUniformi("interpolate",
     this->Width != this->ViewportWidth || this->Height != this->ViewportHeight ? 1 : 0);
   program->SetUniformf("inversePassCount", 1.0f / float(numberOfPasses));
+  program->SetUniformf("passCount", float(numberOfPasses));
+  this->Tiles.Activate(this->Context, program);
   program->SetUniformi("exactCoverage", exactCoverage ? 1 : 0);
   if (exactCoverage)
   {
@@ -393,6 +405,7 @@ void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCove
   {
     this->Coverage->Deactivate();
   }
+  this->Tiles.Deactivate();
   this->Sum->Deactivate();
 }
 
@@ -538,6 +551,7 @@ void vtkEnsembleBuffer::ReleaseGraphicsResources(vtkWindow* window)
     texture->ReleaseGraphicsResources(window);
   }
   this->SceneDepth->ReleaseGraphicsResources(window);
+  this->Tiles.ReleaseGraphicsResources(window);
   this->Context = nullptr;
   this->Width = this->Height = this->ViewportWidth = this->ViewportHeight = 0;
   this->SubpixelLevel = 0;

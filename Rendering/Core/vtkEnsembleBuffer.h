@@ -24,6 +24,7 @@
 #define vtkEnsembleBuffer_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
+#include "vtkEnsembleTiles.h"       // For the tiles
 #include "vtkNew.h"                 // For the framebuffers
 #include "vtkObject.h"
 #include "vtkSceneDepthTexture.h" // For the scene depth
@@ -68,16 +69,17 @@ public:
   void ClearSum();
 
   /**
-   * Bind the pass framebuffer, set the viewport to it, turn the scissor test off and clear its
-   * color and depth. The caller draws one pass, then calls EndPass(), which adds it to the sum.
-   * The caller brackets all passes with vtkOpenGLState::PushFramebufferBindings() /
-   * PopFramebufferBindings() and restores the viewport and the scissor test.
+   * Bind the pass framebuffer, set the viewport to it, set the tests of the tiles drawn (the
+   * scissor and stencil tests off when all are; RestrictToTiles()) and clear its color and
+   * depth. The caller draws one pass, then calls EndPass(), which adds it to the sum. The caller
+   * brackets all passes with vtkOpenGLState::PushFramebufferBindings() /
+   * PopFramebufferBindings() and restores the viewport, the scissor test and the stencil test.
    */
   void BeginPass();
   void EndPass(bool secondHalf = false);
 
   /**
-   * Bind the sum itself for drawing, with the viewport set to it and the scissor test off, for
+   * Bind the sum itself for drawing, with the viewport set to it and the tiles' tests, for
    * a caller that adds its fragments straight into the sum (additive blending, set by the
    * caller). Bracketed like BeginPass(). The passes' depth buffer is attached too, for a
    * caller that tests against a depth of its own (the depth test is the caller's).
@@ -94,12 +96,24 @@ public:
   bool SetHalves(bool halves);
 
   /**
-   * The root mean square noise of the resolved image (premultiplied RGBA over the pixels of
-   * its footprint, alpha above 1/255): a quarter of the mean squared difference between the
-   * two halves' images, each of `halfCount` passes, resolved as Resolve() resolves the whole.
-   * Reads back one float pair per pixel. Negative when there is no footprint or no halves.
+   * Per tile of the image (vtkEnsembleTiles), the root mean square noise of the resolved image
+   * there (premultiplied RGBA over the pixels of its footprint, alpha above 1/255): a quarter of
+   * the mean squared difference between the two halves' images, each of `halfCount` passes less
+   * half of those the tile missed, resolved as Resolve() resolves the whole. Reads back one float
+   * pair per pixel. Negative for a tile without footprint; empty without halves.
    */
-  double EstimateNoise(int halfCount, bool exactCoverage);
+  std::vector<double> EstimateTileNoise(int halfCount, bool exactCoverage);
+
+  /**
+   * Draw the passes that follow (BeginPass(), BeginSumPass(), BeginSumBesideDepthPass() and what
+   * is drawn after them) only into the tiles where `active` holds, until ClearSum(); then
+   * AddRepetitions() counts what each tile holds, and Resolve() and the noise estimate divide
+   * each tile's sums by its own count. False, with an error, when the stencil cannot be made.
+   */
+  bool RestrictToTiles(const std::vector<bool>& active);
+
+  /// The tiles, and which of them the passes draw.
+  vtkEnsembleTiles& GetTiles() { return this->Tiles; }
 
   /**
    * Allocate the coverage buffer (if needed), bind it for drawing with the viewport set to it
@@ -129,7 +143,8 @@ public:
 
   /**
    * Blend the mean of the sum over what is bound for drawing, into the viewport at (x, y):
-   * premultiplied RGBA, divided by numberOfPasses * SubpixelLevel^2; with exactCoverage,
+   * premultiplied RGBA, divided by numberOfPasses (less the repetitions a tile missed) *
+   * SubpixelLevel^2; with exactCoverage,
    * corrected by the coverage buffer drawn since the sum was cleared.
    */
   void Resolve(int x, int y, int numberOfPasses, bool exactCoverage = false);
@@ -229,6 +244,9 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> SceneQuad;
   vtkNew<vtkTextureObject> SceneColor; // the composited scene's color (DrawScene())
   std::unique_ptr<vtkOpenGLQuadHelper> NoiseQuad;
+  vtkEnsembleTiles Tiles;
+  // The framebuffers whose depth attachment is the passes' depth (and its stencil).
+  std::vector<vtkOpenGLFramebufferObject*> DepthFramebuffers();
 };
 
 #endif

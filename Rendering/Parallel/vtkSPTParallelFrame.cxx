@@ -7,7 +7,6 @@
 #include "vtkSPTParallelReduction.h"
 
 #include <algorithm>
-#include <limits>
 
 vtkSPTParallelFrame::vtkSPTParallelFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
   vtkSPTDepthKeyBuffer* depthKeys, const std::vector<vtkSPTFrame::Volume>& volumes,
@@ -75,14 +74,26 @@ bool vtkSPTParallelFrame::MoveSums(bool halves)
   return this->Reduction->ReduceSums(textures, this->Samples);
 }
 
-bool vtkSPTParallelFrame::Estimate(int halfCount, bool exactCoverage, double& estimate)
+bool vtkSPTParallelFrame::Estimate(
+  int halfCount, bool exactCoverage, double target, double& estimate, double& median)
 {
   this->Ok = this->MoveSums(true) && this->Ok;
-  // Rank 0 holds the whole image's halves; the others' estimate is ignored.
+  // Rank 0 holds the whole image's halves; every rank restricts its later repetitions to the
+  // same tiles, those whose noise rank 0 estimated above the target.
   const bool root = this->Reduction->GetController()->GetLocalProcessId() == 0;
-  estimate = root && this->Ok ? this->Ensemble->EstimateNoise(halfCount, exactCoverage)
-                              : std::numeric_limits<double>::infinity();
-  return this->Reduction->ShareEstimate(this->Ok, estimate);
+  std::vector<double> tileNoise;
+  if (root && this->Ok)
+  {
+    tileNoise = this->Ensemble->EstimateTileNoise(halfCount, exactCoverage);
+  }
+  if (!this->Reduction->ShareTileNoise(this->Ok, tileNoise))
+  {
+    return false;
+  }
+  std::vector<bool> active;
+  estimate = vtkSPTErrorTarget::ChooseTiles(tileNoise, target, active, median);
+  this->Ok = (estimate <= target || this->Ensemble->RestrictToTiles(active)) && this->Ok;
+  return true;
 }
 
 int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool coverage,
@@ -95,10 +106,11 @@ int vtkSPTParallelFrame::DrawToTarget(int first, int count, int perPass, bool co
   steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
   {
     this->Draw(from, repetitions, perPass, withCoverage, halves);
+    this->Ensemble->GetTiles().AddRepetitions(repetitions);
     return true;
   };
-  steps.Estimate = [this, exactCoverage](int halfCount, double& estimate)
-  { return this->Estimate(halfCount, exactCoverage, estimate); };
+  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
+  { return this->Estimate(halfCount, exactCoverage, target, estimate, median); };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
 }
 

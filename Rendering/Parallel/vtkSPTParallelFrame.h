@@ -79,7 +79,7 @@ private:
   // Move the sums (and the second half's, and the coverage if drawn since) to rank 0.
   bool MoveSums(bool halves);
   // Move the halves to rank 0, estimate there, and share; false when any rank failed.
-  bool Estimate(int halfCount, bool exactCoverage, double& estimate);
+  bool Estimate(int halfCount, bool exactCoverage, double target, double& estimate, double& median);
 
   vtkEnsembleBuffer* Ensemble;
   vtkSPTParallelReduction* Reduction;

@@ -410,19 +410,26 @@ bool vtkSPTParallelReduction::AllMinimum(int* values, int count)
            local.data(), values, vtkIdType(count), vtkCommunicator::MIN_OP) != 0;
 }
 
-bool vtkSPTParallelReduction::ShareEstimate(bool ok, double& estimate)
+bool vtkSPTParallelReduction::ShareTileNoise(bool ok, std::vector<double>& values)
 {
-  // One minimum: of the success flags, and of rank 0's estimate against the others' infinity.
+  // One minimum: of the success flags, and of the count of rank 0's values against the
+  // others' largest; then rank 0's values.
   const bool root = this->Controller->GetLocalProcessId() == 0;
   const double local[2] = { ok ? 1.0 : 0.0,
-    root ? estimate : std::numeric_limits<double>::infinity() };
+    root ? double(values.size()) : std::numeric_limits<double>::infinity() };
   double global[2] = { 0.0, 0.0 };
   this->Bytes += sizeof(local);
   if (!this->Controller->AllReduce(local, global, 2, vtkCommunicator::MIN_OP))
   {
     return false;
   }
-  estimate = global[1];
+  values.resize(static_cast<size_t>(global[1]), -1.0);
+  this->Bytes += static_cast<vtkIdType>(values.size() * sizeof(double));
+  if (!values.empty() &&
+    !this->Controller->Broadcast(values.data(), static_cast<vtkIdType>(values.size()), 0))
+  {
+    return false;
+  }
   return global[0] == 1.0;
 }
 

@@ -122,10 +122,10 @@ public:
   bool AllMinimum(int* values, int count);
 
   /**
-   * Whether `ok` holds on every rank, and rank 0's `estimate` on every rank (the others'
-   * are ignored). Collective.
+   * Whether `ok` holds on every rank, and rank 0's `values` on every rank (the others' are
+   * ignored): the noise of each tile of the image. Collective.
    */
-  bool ShareEstimate(bool ok, double& estimate);
+  bool ShareTileNoise(bool ok, std::vector<double>& values);
 
   /// This rank's part of a key reduction it could not draw: `keys` keys of "nothing kept".
   bool ReduceNothingKept(size_t keys);

@@ -21,6 +21,11 @@ int RepetitionsToTarget(int half, double estimate, double target)
   return static_cast<int>(std::max(1.0, std::min(more, 16.0 * half)));
 }
 
+// The repetitions of a first step below which an image's tiles are not worth a step of their
+// own: with fewer, the fixed cost of a step (a traversal pair's setup and geometry, and the
+// estimate) outweighs the repetitions the quiet tiles are spared.
+constexpr int TypicalStepRepetitions = 32;
+
 // The noise of one repetition that the first image of a mapper assumes before it has measured
 // any (RMSE of premultiplied RGBA): a little above the largest measured on the benchmark's
 // scenes at their defaults (0.025 on the torus, 0.020 to 0.023 on the Oxygen Post and the
@@ -44,6 +49,21 @@ int FirstHalfToTarget(double noisePerRepetition, double target, double margin, i
 }
 }
 
+int vtkSPTErrorTarget::FirstHalfOfImage(const State& state, double target, int most)
+{
+  const int largest = FirstHalfToTarget(state.NoisePerRepetition, target, StepMargin, most);
+  if (state.TypicalNoisePerRepetition <= 0.0)
+  {
+    return largest;
+  }
+  // Aimed at the median tile, the first step leaves about half of the tiles for the later
+  // steps, which draw only those: worth a step's fixed cost (its traversals' setup and
+  // geometry, and the estimate) where the largest tile asks for at least twice as many
+  // repetitions, and for more than a group of TypicalStepRepetitions.
+  const int typical = FirstHalfToTarget(state.TypicalNoisePerRepetition, target, StepMargin, most);
+  return largest >= 2 * typical && 2 * largest > TypicalStepRepetitions ? typical : largest;
+}
+
 int vtkSPTErrorTarget::StepToTarget(
   const Steps& steps, int first, int count, int perPass, bool coverage, double target, State& state)
 {
@@ -63,7 +83,7 @@ int vtkSPTErrorTarget::StepToTarget(
   if (state.HalfCount == 0 && state.FirstHalf == 0 && count >= 2)
   {
     state.FirstHalf = state.NoisePerRepetition > 0.0
-      ? FirstHalfToTarget(state.NoisePerRepetition, target, StepMargin, count / 2)
+      ? FirstHalfOfImage(state, target, count / 2)
       : FirstHalfToTarget(
           FirstImageNoisePerRepetition, target, 1.0, std::max(1, std::min(perPass, count) / 2));
   }
@@ -85,13 +105,20 @@ int vtkSPTErrorTarget::StepInPairs(
     }
     drawn += 2 * half;
     state.HalfCount += half;
-    if (!steps.Estimate(state.HalfCount, state.Estimate))
+    const bool firstEstimate = state.HalfCount == half;
+    double median = -1.0;
+    if (!steps.Estimate(state.HalfCount, state.Estimate, median))
     {
       return -1;
     }
     if (state.Estimate > 0.0)
     {
       state.NoisePerRepetition = state.Estimate * std::sqrt(2.0 * state.HalfCount);
+    }
+    if (firstEstimate && median > 0.0)
+    {
+      // Every tile holds the same repetitions only at an image's first estimate.
+      state.TypicalNoisePerRepetition = median * std::sqrt(2.0 * state.HalfCount);
     }
     if (state.Estimate <= target)
     {
@@ -111,4 +138,27 @@ int vtkSPTErrorTarget::StepInPairs(
     drawn = 1;
   }
   return drawn;
+}
+
+double vtkSPTErrorTarget::ChooseTiles(
+  const std::vector<double>& tileNoise, double target, std::vector<bool>& active, double& median)
+{
+  active.assign(tileNoise.size(), false);
+  std::vector<double> shown;
+  for (size_t tile = 0; tile < tileNoise.size(); ++tile)
+  {
+    active[tile] = tileNoise[tile] > target;
+    if (tileNoise[tile] >= 0.0)
+    {
+      shown.push_back(tileNoise[tile]);
+    }
+  }
+  if (shown.empty())
+  {
+    median = -1.0;
+    return -1.0;
+  }
+  std::nth_element(shown.begin(), shown.begin() + shown.size() / 2, shown.end());
+  median = shown[shown.size() / 2];
+  return *std::max_element(shown.begin(), shown.end());
 }

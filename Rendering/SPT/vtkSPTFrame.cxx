@@ -50,6 +50,29 @@ public:
 private:
   std::vector<vtkTextureObject*> Textures;
 };
+
+// The scissor box, the stencil test and the stencil's write mask, which the passes of an image
+// restricted to some tiles set (vtkEnsembleTiles), as they were, on every way out.
+class ScopedTileTests
+{
+public:
+  explicit ScopedTileTests(vtkOpenGLState* state)
+    : State(state)
+    , Box(state)
+    , Stencil(state, GL_STENCIL_TEST)
+  {
+    glGetIntegerv(GL_STENCIL_WRITEMASK, &this->WriteMask);
+  }
+  ~ScopedTileTests() { this->State->vtkglStencilMask(static_cast<unsigned int>(this->WriteMask)); }
+  ScopedTileTests(const ScopedTileTests&) = delete;
+  ScopedTileTests& operator=(const ScopedTileTests&) = delete;
+
+private:
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglScissor Box;
+  vtkOpenGLState::ScopedglEnableDisable Stencil;
+  GLint WriteMask = 0;
+};
 }
 
 class vtkSPTFrame::ScopedFootprint
@@ -235,6 +258,7 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   }
   ostate->vtkglDisable(GL_CULL_FACE);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ScopedTileTests tileTests(ostate);
   vtkOpenGLState::ScopedglBlendFuncSeparate blendFunction(ostate);
   ostate->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
   if (depthSurvivors)
@@ -365,8 +389,13 @@ void vtkSPTFrame::ChooseFootprint()
     const double high = 0.5 * (ndc[2 * axis + 1] + 1.0) * size[axis];
     const int from = whole ? 0 : std::max(0, static_cast<int>(std::floor(low)) - 1);
     const int to = whole ? size[axis] : std::min(size[axis], static_cast<int>(std::ceil(high)) + 1);
-    this->Footprint[axis] = from;
-    this->Footprint[2 + axis] = std::max(0, to - from);
+    // Only the tiles drawn, where the error target restricted the image to some.
+    int tiles[4];
+    this->Ensemble->GetTiles().GetSampleBox(tiles);
+    const int first = std::max(from, tiles[axis]);
+    const int last = std::min(to, tiles[axis] + tiles[2 + axis]);
+    this->Footprint[axis] = first;
+    this->Footprint[2 + axis] = std::max(0, last - first);
   }
 }
 
@@ -547,11 +576,17 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
 {
   vtkSPTErrorTarget::Steps steps;
   steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
-  { return this->DrawRepetitions(from, repetitions, perPass, withCoverage, halves); };
-  steps.Estimate = [this, exactCoverage](int halfCount, double& estimate)
   {
-    estimate = this->Ensemble->EstimateNoise(halfCount, exactCoverage);
-    return true;
+    const bool drawn = this->DrawRepetitions(from, repetitions, perPass, withCoverage, halves);
+    this->Ensemble->GetTiles().AddRepetitions(repetitions);
+    return drawn;
+  };
+  steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
+  {
+    std::vector<bool> active;
+    estimate = vtkSPTErrorTarget::ChooseTiles(
+      this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
+    return estimate <= target || this->Ensemble->RestrictToTiles(active);
   };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
 }

@@ -19,6 +19,7 @@ void vtkSPTFrameStatistics::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "RepetitionCount: " << this->Current.RepetitionCount << "\n";
+  os << indent << "FewestRepetitionCount: " << this->Current.FewestRepetitionCount << "\n";
   os << indent << "EstimatedError: " << this->Current.EstimatedError << "\n";
   os << indent << "DepthSlabs: " << this->Current.DepthSlabs << "\n";
   os << indent << "PointCellCount: " << this->Current.PointCellCount << "\n";

@@ -28,6 +28,7 @@ public:
   struct Values
   {
     int RepetitionCount = 0;
+    int FewestRepetitionCount = 0;
     double EstimatedError = -1.0;
     int DepthSlabs = 1;
     vtkIdType PointCellCount = 0;
@@ -37,7 +38,11 @@ public:
 
   /// Repetitions averaged into the image shown (all renders of a progressive image).
   int GetRepetitionCount() const { return this->Current.RepetitionCount; }
-  /// The image's estimated error (noise and rounding); -1 without an error target or estimate.
+  /// The repetitions of the image's tiles that hold fewest: an error target stops drawing a
+  /// tile once its own error meets the target. RepetitionCount where every tile holds them all.
+  int GetFewestRepetitionCount() const { return this->Current.FewestRepetitionCount; }
+  /// The image's estimated error (noise and rounding), its largest tile's; -1 without an error
+  /// target or estimate.
   double GetEstimatedError() const { return this->Current.EstimatedError; }
   /// Depth slabs the last render drew.
   int GetDepthSlabs() const { return this->Current.DepthSlabs; }

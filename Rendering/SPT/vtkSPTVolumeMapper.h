@@ -85,8 +85,10 @@ public:
   /**
    * Error target: the error (root mean square of premultiplied RGBA over the volume's
    * footprint, noise and the framebuffer's rounding) at which a render stops adding
-   * repetitions; RepetitionLevel becomes its cap. The noise is estimated from the image itself
-   * (two independent halves), never from a reference. 0 turns it off. Range 0 to 1, default 0;
+   * repetitions, in every tile of 32 x 32 pixels of the image: after each step, the
+   * repetitions that follow are drawn only into the tiles still above it. RepetitionLevel
+   * becomes its cap. The noise is estimated from the image itself (two independent halves),
+   * never from a reference. 0 turns it off. Range 0 to 1, default 0;
    * 0.005 is about 1.3 levels of an 8-bit image.
    */
   vtkSetClampMacro(TargetError, double, 0.0, 1.0);
@@ -94,7 +96,8 @@ public:
   ///@}
 
   /**
-   * The error estimated for the image of the last render, as TargetError counts it; -1 when
+   * The error estimated for the image of the last render, as TargetError counts it (its
+   * largest tile's); -1 when
    * none was (TargetError off, fewer than two repetitions, or nothing drawn).
    */
   vtkGetMacro(EstimatedError, double);

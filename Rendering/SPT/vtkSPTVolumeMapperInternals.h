@@ -75,6 +75,8 @@ public:
   {
     vtkSPTFrameStatistics::Values values;
     values.RepetitionCount = self->GetAccumulatedRepetitions();
+    values.FewestRepetitionCount =
+      std::max(0, values.RepetitionCount - self->GetEnsemble()->GetTiles().GetMostMissed());
     values.EstimatedError = this->ImageError(self);
     values.DepthSlabs = frame.GetDepthSlabs();
     values.ParallelBytes = parallelBytes;

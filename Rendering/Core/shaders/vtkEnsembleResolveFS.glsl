@@ -13,6 +13,9 @@
 // With interpolate, the image has fewer pixels than the viewport (an interactive render's
 // sample distance): each viewport pixel is the bilinear interpolation of the four image
 // pixels around it, premultiplied.
+//
+// Where the error target restricted its later repetitions to some tiles (`restricted`), each
+// tile's sum holds passCount less the repetitions it missed.
 in vec2 texCoord;
 uniform sampler2D sumTexture;
 uniform sampler2D coverageTexture;   // per sample: (sum(tau_i * color_i), sum(tau_i))
@@ -20,16 +23,25 @@ uniform int exactCoverage;
 uniform int subpixelLevel;
 uniform int interpolate;
 uniform float inversePassCount;      // 1 / repetitions
+uniform float passCount;
+uniform int restricted;
+uniform int tileSize;
+uniform sampler2D tileMissed;        // per tile: the repetitions it missed
 
 vec4 resolvePixel(ivec2 pixel)
 {
   ivec2 first = pixel * subpixelLevel;
+  float inverseCount = inversePassCount;
+  if (restricted != 0)
+  {
+    inverseCount = 1.0 / (passCount - texelFetch(tileMissed, pixel / tileSize, 0).r);
+  }
   vec4 sum = vec4(0.0);
   for (int j = 0; j < subpixelLevel; ++j)
   {
     for (int i = 0; i < subpixelLevel; ++i)
     {
-      vec4 mean = texelFetch(sumTexture, first + ivec2(i, j), 0) * inversePassCount;
+      vec4 mean = texelFetch(sumTexture, first + ivec2(i, j), 0) * inverseCount;
       if (exactCoverage != 0)
       {
         vec4 coverage = texelFetch(coverageTexture, first + ivec2(i, j), 0);

@@ -5,6 +5,11 @@
 // otherwise the color mask is off. With SPT_DEPTH_SLABS, the fragment's slab's layers hold
 // its keys, and with the coverage it adds its optical depth terms to its slab's.
 layout(r32ui) coherent uniform uimage3D depthKeys; // (repetition in the pass, pixel)
+// Where an error target draws only into some tiles, their stencil rejects the other fragments
+// before they are shaded (the depth test is off in this pass).
+#ifndef SPT_COMPUTE
+layout(early_fragment_tests) in;
+#endif
 
 // Key layer `layer` (a repetition of the pass) keeps the fragment. A kept fragment behind the
 // nearest survivor so far changes nothing: a plain load spares it the atomic read-modify-write.

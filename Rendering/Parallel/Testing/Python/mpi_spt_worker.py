@@ -46,6 +46,7 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--clipping-plane", action="store_true",
                         help="every rank's mapper clipped by one oblique plane")
     parser.add_argument("--frames", type=int, default=2)
+    parser.add_argument("--per-pass", type=int, default=None, help="RepetitionsPerPass")
     parser.add_argument("--target-error", type=float, default=None,
                         help="TargetError; --repetitions is then the cap")
     parser.add_argument("--progressive", action="store_true",
@@ -155,7 +156,8 @@ def add_volumes(arguments, renderer, controller, scene):
     mappers, pieces = [], []
     for second in ((False, True) if arguments.second_volume else (False,)):
         target_error = 0.01 if rank == arguments.other_target_on else arguments.target_error
-        mapper = render.spt_mapper(arguments.repetitions, seed=seed, target_error=target_error)
+        mapper = render.spt_mapper(arguments.repetitions, seed=seed, target_error=target_error,
+                                   per_pass=arguments.per_pass)
         mapper.SetProgressiveRefinement(arguments.progressive)
         mapper.SetDepthSlabs(arguments.depth_slabs)
         if arguments.update_rate > 0.0:
@@ -216,7 +218,8 @@ def main() -> None:
         np.save(arguments.output, np.stack(images))
         report = {"ranks": ranks, "cells": pieces[0].GetNumberOfCells(),
                   "bytes": mappers[0].GetFrameStatistics().GetParallelBytes(),
-                  "repetitions": counts, "estimated_errors": estimates}
+                  "repetitions": counts, "estimated_errors": estimates,
+                  "fewest": mappers[0].GetFrameStatistics().GetFewestRepetitionCount()}
         arguments.output.with_suffix(".json").write_text(json.dumps(report))
     window.Finalize()
 

@@ -2,10 +2,14 @@
 exact reference, and the images it stops at.
 
 The mapper draws its repetitions as two independent halves and estimates the noise of their
-mean from their difference, never from a reference. The tests check that
-- the estimate is within a factor of 1.5 of the error measured against the exact reference,
-  and of the noise measured from two seeds, on the embedded mesh, SPX, Blunt Fin and the Post;
-- a render stops once the estimate meets the target, with fewer repetitions than the cap;
+mean from their difference, never from a reference, in each tile of 32 x 32 pixels; the image's
+estimate is its largest tile's, and after each step only the tiles above the target are drawn.
+The tests check that
+- the estimate is within a factor of 1.5 of the largest tile's error measured against the exact
+  reference, and of its noise measured from two seeds, on the embedded mesh, SPX, Blunt Fin and
+  the Post;
+- a render stops once the estimate meets the target, with fewer repetitions than the cap, and
+  every tile then meets it against the reference; the tiles that met it first drew fewer;
 - the images it stops at are unbiased: their bias against the reference is that of a fixed
   repetition count, within four standard errors;
 - RepetitionLevel caps the repetitions, progressive refinement stops adding once the target
@@ -32,6 +36,32 @@ TARGETS = {"default": 0.006, "spx": 0.006, "bluntfin": 0.005, "post": 0.01}
 SCENES = list(TARGETS)
 #: The root mean square error of rounding to 8 bits: a level over sqrt(12).
 ROUNDING_8_BITS = 1.0 / (255.0 * np.sqrt(12.0))
+#: The side of the tiles whose errors the target bounds one by one (vtkEnsembleTiles).
+TILE = 32
+
+
+def _largest_tile(values, mask):
+    """The largest over the tiles of the mean of ``values`` (per pixel) over the tile's
+    pixels in ``mask``."""
+    means = [values[y:y + TILE, x:x + TILE][mask[y:y + TILE, x:x + TILE]].mean()
+             for y in range(0, mask.shape[0], TILE) for x in range(0, mask.shape[1], TILE)
+             if mask[y:y + TILE, x:x + TILE].any()]
+    return max(means)
+
+
+def tile_error(image, name):
+    """The largest tile's root mean square error against the exact reference (premultiplied
+    RGBA over the footprint of either image)."""
+    image, exact = metrics.as_float(image), metrics.as_float(reference(name, SIZE))
+    mask = metrics.footprint(image, exact)
+    return np.sqrt(_largest_tile(((image - exact) ** 2).mean(axis=2), mask))
+
+
+def tile_noise(first, second, name):
+    """The largest tile's noise of one render, from two renders with other seeds."""
+    first, second = metrics.as_float(first), metrics.as_float(second)
+    mask = metrics.footprint(first, metrics.as_float(reference(name, SIZE)))
+    return np.sqrt(_largest_tile((0.5 * (first - second) ** 2).mean(axis=2), mask))
 
 
 #: Repetitions per traversal for the tests of the estimate. A first image's first step is at
@@ -72,22 +102,57 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert 2 <= level < CAP, f"stopped at {level} repetitions"
     assert 0.0 < estimated <= TARGETS[name]
-    measured = metrics.rmse(image, reference(name, SIZE))
+    measured = tile_error(image, name)
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
     # The noise, from two seeds at the same count (half their mean squared difference), and
     # the rounding to 8 bits, which the estimate counts too.
-    noise = np.sqrt(image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
-                                              reference(name, SIZE), level).noise)
+    noise = tile_noise(_fixed(name, level, 1), _fixed(name, level, 2), name)
     shown = np.hypot(noise, ROUNDING_8_BITS)
     assert shown / 1.5 <= estimated <= 1.5 * shown, (
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f} with the rounding {shown:.4f}")
 
 
+@pytest.mark.parametrize("name", ["post", "spx"])
+def test_every_tile_meets_the_target_and_quiet_tiles_stop_first(name, have_display):
+    """After the first step, the repetitions go only to the tiles whose noise is still above
+    the target: the image's quietest tiles hold fewer than its noisiest, and every tile's error
+    against the exact reference meets the target (within a tenth: the measured error is
+    itself that of one image)."""
+    s = scene(name)
+    mapper = _mapper(CAP, 1, TARGETS[name])
+    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    statistics = mapper.GetFrameStatistics()
+    most, fewest = statistics.GetRepetitionCount(), statistics.GetFewestRepetitionCount()
+    assert 2 <= fewest < most < CAP, f"tiles hold {fewest} to {most} repetitions"
+    measured = tile_error(image, name)
+    assert measured <= 1.1 * TARGETS[name], (
+        f"largest tile's error {measured:.4f} at {fewest} to {most} repetitions")
+
+
+def test_a_new_image_aims_its_first_step_at_the_median_tile(have_display):
+    """On the Post, the noisiest tiles need about twice the repetitions of the median one: a
+    new image's first step aims at the median tile, and only the tiles still above the target
+    draw the later steps; every tile meets the target."""
+    target = 0.003
+    mapper = _mapper(CAP, 1, target, per_pass=None)
+    s = scene("post")
+    window, _ = window_with(mapper, SIZE, "post", prop=s.property)
+    window.Render()
+    mapper.SetSeed(2)
+    window.Render()
+    statistics = mapper.GetFrameStatistics()
+    most, fewest = statistics.GetRepetitionCount(), statistics.GetFewestRepetitionCount()
+    assert 2 <= fewest < most < CAP, f"tiles hold {fewest} to {most} repetitions"
+    measured = tile_error(render.read_rgba(window), "post")
+    window.Finalize()
+    assert measured <= 1.1 * target, f"largest tile's error {measured:.4f}"
+
+
 def _render_to_target(s, mapper, name, target=None):
     """One render of scene ``s`` through ``mapper``, which must stop with an estimate at or
     below ``target`` (the scene's by default) and below the cap: the image, the repetitions
-    drawn, the estimate and the error measured against the reference."""
+    drawn, the estimate and the largest tile's error measured against the reference."""
     target = TARGETS[name] if target is None else target
     image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
     level = mapper.GetLastRepetitionCount()
@@ -95,7 +160,7 @@ def _render_to_target(s, mapper, name, target=None):
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert level < CAP, f"drew the cap of {CAP} repetitions"
     assert 0.0 < estimated <= target
-    return image, level, estimated, metrics.rmse(image, reference(name, SIZE))
+    return image, level, estimated, tile_error(image, name)
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
