@@ -138,6 +138,57 @@ UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
+def _cells_without_points():
+    grid = vtk.vtkUnstructuredGrid()
+    grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
+    grid.GetCellData().SetScalars(named_array(np.array([0.5]), "c"))
+    return grid
+
+
+def _select_point_array(mapper):
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectScalarArray("pressure")
+
+
+def _select_component_3(mapper):
+    mapper.SetVectorModeToComponent()
+    mapper.SetVectorComponent(3)
+
+
+# Bad input that every mapper refuses with one clear error and draws nothing: the input, a
+# change to the mapper, a change to the property (property_for()), and the words of the error.
+BAD_INPUT = {
+    "no scalars": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), None, None,
+                   ["no scalars"]),
+    "missing array": (lambda: ONE, _select_point_array, None, ["'pressure'"]),
+    "point id 7": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3), (0, 1, 2, 7)],
+                                      [0.0, 0.3, 0.6, 1.0]), None, None, ["point id 7"]),
+    "point id -1": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3), (0, 1, -1, 3)],
+                                       [0.0, 0.3, 0.6, 1.0]), None, None, ["point id -1"]),
+    "cells without points": (_cells_without_points, None, None, ["point id 0", "0 points"]),
+    "component 3": (lambda: ONE, _select_component_3, None, ["Component 3"]),
+    "dependent components": (lambda: ONE, None, lambda prop: prop.IndependentComponentsOff(),
+                             ["IndependentComponents"]),
+    "unit distance 0": (lambda: ONE, None, lambda prop: prop.SetScalarOpacityUnitDistance(0.0),
+                        ["ScalarOpacityUnitDistance"]),
+}
+
+
+def check_bad_input(case: str, mapper, size: Sequence[int], view: Optional[render.View] = None):
+    """BAD_INPUT[case] drawn through ``mapper``: one error that names the problem (a bad
+    property is reported at each of its checks), an empty image, and the input unchanged."""
+    make_grid, change_mapper, change_property, words = BAD_INPUT[case]
+    prop = property_for()
+    if change_mapper:
+        change_mapper(mapper)
+    if change_property:
+        change_property(prop)
+    rendering, messages = watched_render(mapper, make_grid(), prop, size, view)
+    assert len(set(messages.errors)) == 1, messages.errors
+    assert all(word in messages.errors[0] for word in words), messages.errors
+    assert rendering.image.max() == 0.0
+
+
 def property_with_points(points: int) -> vtk.vtkVolumeProperty:
     """A volume property whose color and opacity functions have no point (``points`` 0) or
     one point (``points`` 1)."""

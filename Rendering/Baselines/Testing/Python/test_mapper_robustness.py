@@ -20,10 +20,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from spt import metrics, render
 
 import image_statistics
-from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for,
-                                property_with_points, render_scaled, scaled_copy, split_image,
-                                tetrahedra, watch, watched_render, with_constant_scalars,
-                                with_point_scalars)
+from robustness_support import (BAD_INPUT, ONE, UNIT_TETRAHEDRON, check_bad_input, named_array,
+                                property_for, property_with_points, render_scaled, scaled_copy,
+                                split_image, tetrahedra, watch, watched_render,
+                                with_constant_scalars, with_point_scalars)
 from scene_support import draw_once
 
 SIZE = (64, 64)
@@ -115,49 +115,9 @@ def test_empty_grid_draws_nothing_without_error(kind, points, have_display):
 
 
 @pytest.mark.parametrize("kind", KINDS)
-def test_cells_without_points_are_a_clear_error(kind, have_display):
-    grid = vtk.vtkUnstructuredGrid()
-    grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
-    grid.GetCellData().SetScalars(named_array(np.array([0.5]), "c"))
-    image, _, messages = draw(kind, grid)
-    assert messages.errors and "point id 0" in messages.errors[0]
-    assert "0 points" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_no_scalars_is_a_clear_error(kind, have_display):
-    image, _, messages = draw(kind, tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]))
-    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_missing_array_is_named(kind, have_display):
-    mapper = make_mapper(kind)
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectScalarArray("pressure")
-    image, _, messages = draw(kind, ONE, mapper=mapper)
-    assert messages.errors and "'pressure'" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-@pytest.mark.parametrize("kind", KINDS)
-@pytest.mark.parametrize("ids", [(0, 1, 2, 7), (0, 1, -1, 3)])
-def test_point_ids_out_of_range_are_a_clear_error(kind, ids, have_display):
-    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3), ids], [0.0, 0.3, 0.6, 1.0])
-    image, _, messages = draw(kind, grid)
-    bad = [i for i in ids if not 0 <= i < 4][0]
-    assert messages.errors and f"point id {bad}" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_dependent_components_are_a_clear_error(kind, have_display):
-    prop = property_for()
-    prop.IndependentComponentsOff()
-    _, _, messages = draw(kind, ONE, prop)
-    assert messages.errors and "IndependentComponents" in messages.errors[0]
+@pytest.mark.parametrize("case", BAD_INPUT)
+def test_bad_input_is_a_clear_error(kind, case, have_display):
+    check_bad_input(case, make_mapper(kind), SIZE, VIEW)
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
@@ -277,15 +237,6 @@ def test_multi_component_arrays(kind, mode, component, expected, have_display):
     assert not messages.errors
     assert image[..., 3].max() > 0.1
     assert np.array_equal(image, expected_image)
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_component_out_of_range_is_a_clear_error(kind, have_display):
-    mapper = make_mapper(kind)
-    mapper.SetVectorModeToComponent()
-    mapper.SetVectorComponent(3)
-    _, _, messages = draw(kind, ONE, mapper=mapper)
-    assert messages.errors and "Component 3" in messages.errors[0]
 
 
 def test_havs_refuses_cell_scalars_clearly(have_display):
@@ -449,13 +400,6 @@ def test_opacity_one_everywhere(kind, have_display):
     assert not messages.errors
     covered = image[..., 3] > 0
     assert covered.sum() > 50 and np.mean(image[..., 3][covered] > 0.99) > 0.8
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_unit_distance_zero_is_a_clear_error(kind, have_display):
-    image, _, messages = draw(kind, ONE, property_for(unit=0.0))
-    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
-    assert image.max() == 0.0
 
 
 # --- Changes between renders, windows, viewports ---------------------------------------------

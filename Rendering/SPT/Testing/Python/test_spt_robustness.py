@@ -10,9 +10,10 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (ONE, UNIT_TETRAHEDRON, check_second_window, property_for,
-                                property_with_points, render_scaled, scaled_copy, tetrahedra,
-                                watch, watched_render, with_constant_scalars, with_point_scalars)
+from robustness_support import (BAD_INPUT, ONE, UNIT_TETRAHEDRON, check_bad_input,
+                                check_second_window, property_for, property_with_points,
+                                render_scaled, scaled_copy, tetrahedra, watch, watched_render,
+                                with_constant_scalars, with_point_scalars)
 
 SIZE = (96, 96)
 
@@ -37,26 +38,9 @@ def test_empty_grid_draws_nothing_without_error(have_display):
     assert image.max() == 0.0
 
 
-def test_no_scalars_is_a_clear_error(have_display):
-    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)])
-    image, _, messages = draw(grid)
-    assert len(messages.errors) == 1 and "no scalars" in messages.errors[0]
-    assert image.max() == 0.0
-
-
-def test_missing_array_is_named(have_display):
-    mapper = render.spt_mapper(4)
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectScalarArray("pressure")
-    _, _, messages = draw(ONE, mapper=mapper)
-    assert messages.errors and "'pressure'" in messages.errors[0]
-
-
-def test_point_ids_out_of_range_are_a_clear_error(have_display):
-    grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 7)], [0.0, 0.3, 0.6, 1.0])
-    image, _, messages = draw(grid)
-    assert messages.errors and "point id 7" in messages.errors[0]
-    assert image.max() == 0.0
+@pytest.mark.parametrize("case", BAD_INPUT)
+def test_bad_input_is_a_clear_error(case, have_display):
+    check_bad_input(case, render.spt_mapper(4), SIZE)
 
 
 def test_short_global_ids_are_a_clear_error(have_display):
@@ -109,14 +93,6 @@ def test_multi_component_arrays(mode, component, expected, have_display):
     expected_image, _, _ = draw(single, prop, render.spt_mapper(16, seed=1))
     assert not messages.errors
     assert np.array_equal(image, expected_image)
-
-
-def test_component_out_of_range_is_a_clear_error(have_display):
-    mapper = render.spt_mapper(4)
-    mapper.SetVectorModeToComponent()
-    mapper.SetVectorComponent(3)
-    _, _, messages = draw(ONE, mapper=mapper)
-    assert messages.errors and "Component 3" in messages.errors[0]
 
 
 def test_mixed_and_quadratic_cells_are_split(have_display):
@@ -181,11 +157,6 @@ def test_opacity_one_everywhere(sampling, have_display):
         exact = render.reference(ONE, prop, render.View(30, 30), SIZE).image[..., 3]
         assert np.mean(image[..., 3][exact > 0.999] > 0.99) > 0.97
         assert np.abs(image[..., 3] - exact).mean() < 0.01
-
-
-def test_unit_distance_zero_is_a_clear_error(have_display):
-    _, _, messages = draw(ONE, property_for(unit=0.0))
-    assert messages.errors and "ScalarOpacityUnitDistance" in messages.errors[0]
 
 
 def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
