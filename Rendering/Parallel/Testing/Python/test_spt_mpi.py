@@ -96,6 +96,23 @@ def largest_difference(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.abs(metrics.to_uint8(a).astype(int) - metrics.to_uint8(b).astype(int)).max())
 
 
+def run_serial_and_two_ranks(tmp_path, name: str, *options: str, repetitions=REPETITIONS):
+    """Render with no controller and with 2 ranks: the 2-rank frames are the serial ones (one
+    8-bit level), with no error on any rank; the two runs (images, report, stderr)."""
+    serial = run(tmp_path / f"{name}0.npy", 0, *options, repetitions=repetitions)
+    two = run(tmp_path / f"{name}2.npy", 2, *options, repetitions=repetitions)
+    assert "ERR" not in two[2], two[2]
+    assert len(serial[0]) == len(two[0])
+    for frame in range(len(two[0])):
+        assert largest_difference(serial[0][frame], two[0][frame]) <= 1.0
+    return serial, two
+
+
+def check_bytes(report, expected: int) -> None:
+    """The bytes a rank moved are ``expected``, plus a small record."""
+    assert expected <= report["bytes"] <= expected + 4096
+
+
 def test_two_ranks_equal_one_rank(renders):
     one, report_one, _ = renders[1]
     two, report_two, errors = renders[2]
@@ -128,9 +145,7 @@ def test_bytes_moved(renders):
     """Per frame, each rank reduces the keys (4 bytes per sample and repetition), the sums
     and coverage (2 x 16 bytes per sample), and a small record."""
     _, report, _ = renders[2]
-    samples = SIZE * SIZE
-    expected = samples * (4 * REPETITIONS + 32)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS + 32))
 
 
 @pytest.fixture(scope="module")
@@ -156,19 +171,15 @@ def test_depth_slabs_on_two_ranks_equal_one_process(slab_renders, renders):
     reference = scene_support.reference("default", SIZE)
     assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
     # Per sample: each slab's keys, the sums and coverage, and each slab's four sums.
-    samples = SIZE * SIZE
-    expected = samples * (4 * REPETITIONS * SLABS + 32 + 16 * SLABS)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS * SLABS + 32 + 16 * SLABS))
 
 
 def test_clipping_planes_on_two_ranks_equal_one_process(have_display, tmp_path, renders):
     """Each rank cuts its piece's segments by the mappers' clipping plane: the combined image
     is one process's image of the clipped volume, not the unclipped one."""
-    serial, _, _ = run(tmp_path / "clipped0.npy", 0, "--clipping-plane")
-    two, _, errors = run(tmp_path / "clipped2.npy", 2, "--clipping-plane")
-    assert "ERR" not in errors, errors
+    (serial, _, _), (two, _, _) = run_serial_and_two_ranks(tmp_path, "clipped",
+                                                           "--clipping-plane")
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
-    assert largest_difference(serial[0], two[0]) <= 1.0
     unclipped, _, _ = renders[0]
     assert metrics.rmse(two[0], unclipped[0]) > 0.05, "the plane changes nothing"
 
@@ -177,14 +188,10 @@ def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
     """The keys of 12 repetitions lie in a buffer of 16 layers (the shaders are compiled for
     a power of two): the ranks exchange the 12 layers in use, and combine them as one process
     draws them."""
-    serial, _, _ = run(tmp_path / "twelve0.npy", 0, repetitions=12)
-    two, report, errors = run(tmp_path / "twelve2.npy", 2, repetitions=12)
-    assert "ERR" not in errors, errors
+    (serial, _, _), (_, report, _) = run_serial_and_two_ranks(tmp_path, "twelve",
+                                                              repetitions=12)
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
-    assert largest_difference(serial[0], two[0]) <= 1.0
-    samples = SIZE * SIZE
-    expected = samples * (4 * 12 + 32)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * 12 + 32))
 
 
 def test_ranks_share_the_table(have_display, tmp_path, renders):
@@ -197,10 +204,8 @@ def test_ranks_share_the_table(have_display, tmp_path, renders):
     assert "ERR" not in errors, errors
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
     assert largest_difference(serial[0], three[0]) <= 1.0
-    samples = SIZE * SIZE
     table = 5462 * 64 * 4 * 4
-    expected = samples * (4 * REPETITIONS + 32) + table
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS + 32) + table)
 
 
 def test_an_empty_piece_takes_part(have_display, tmp_path):
@@ -286,14 +291,11 @@ def test_progressive_refinement_across_ranks(have_display, tmp_path):
     """Each frame adds RepetitionLevel repetitions to the whole image until the target is met;
     the 2-rank frames are the frames of one process."""
     options = ("--target-error", "0.002", "--progressive", "--frames", "4")
-    serial, serial_report, _ = run(tmp_path / "progressive0.npy", 0, *options, repetitions=4)
-    two, report, errors = run(tmp_path / "progressive2.npy", 2, *options, repetitions=4)
-    assert "ERR" not in errors, errors
+    (_, serial_report, _), (_, report, _) = run_serial_and_two_ranks(
+        tmp_path, "progressive", *options, repetitions=4)
     assert report["repetitions"] == serial_report["repetitions"] == [4, 8, 12, 16]
     assert report["estimated_errors"] == pytest.approx(serial_report["estimated_errors"],
                                                        rel=1e-5)
-    for frame in range(4):
-        assert largest_difference(serial[frame], two[frame]) <= 1.0
 
 
 def test_time_budget_across_ranks(have_display, tmp_path):
@@ -302,12 +304,9 @@ def test_time_budget_across_ranks(have_display, tmp_path):
     second one repetition of the visibility estimator (a pair of traversals, not timed yet)
     and the third the cheapest frame, one repetition in one traversal, on every rank alike."""
     options = ("--update-rate", "1000", "--frames", "3")
-    serial, serial_report, _ = run(tmp_path / "budget0.npy", 0, *options, repetitions=64)
-    two, report, errors = run(tmp_path / "budget2.npy", 2, *options, repetitions=64)
-    assert "ERR" not in errors, errors
+    (_, serial_report, _), (_, report, _) = run_serial_and_two_ranks(
+        tmp_path, "budget", *options, repetitions=64)
     assert report["repetitions"] == serial_report["repetitions"] == [64, 1, 1]
-    for frame in range(3):
-        assert largest_difference(serial[frame], two[frame]) <= 1.0
 
 
 def test_target_error_with_an_empty_piece(have_display, tmp_path):
