@@ -20,10 +20,11 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from spt import metrics, render
 
 import image_statistics
-from robustness_support import (BAD_INPUT, ONE, UNIT_TETRAHEDRON, check_bad_input, named_array,
-                                property_for, property_with_points, render_scaled, scaled_copy,
-                                split_image, tetrahedra, watch, watched_render,
-                                with_constant_scalars, with_point_scalars)
+from robustness_support import (BAD_INPUT, MULTI_COMPONENT_CASES, ONE, UNIT_TETRAHEDRON,
+                                check_bad_input, check_extreme_scale, check_multi_component,
+                                check_non_finite_scalars, named_array, property_for,
+                                property_with_points, split_image, tetrahedra, watch,
+                                watched_render, with_constant_scalars, with_point_scalars)
 from scene_support import draw_once
 
 SIZE = (64, 64)
@@ -182,13 +183,7 @@ def test_a_camera_that_is_not_finite_is_a_clear_error(kind, have_display):
 @pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
 def test_non_finite_scalars_leave_their_cells_out_with_a_warning(kind, bad, have_display):
-    points = UNIT_TETRAHEDRON + [(1, 1, 1)]
-    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, bad])
-    image, mapper, messages = draw(kind, grid)
-    assert not messages.errors
-    assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-    assert messages.warnings and "not finite" in messages.warnings[0]
-    assert image[..., 3].max() > 0.1
+    check_non_finite_scalars(make_mapper(kind), bad, SIZE, VIEW)
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -219,24 +214,9 @@ def test_constant_field_matches_the_reference(kind, have_display):
 
 
 @pytest.mark.parametrize("kind", KINDS)
-@pytest.mark.parametrize("mode, component, expected", [("magnitude", None, 5.0),
-                                                       ("component", 1, 4.0)])
-def test_multi_component_arrays(kind, mode, component, expected, have_display):
-    """The magnitude, or one component, is rendered: the same image as that single array."""
-    vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * np.array([[0.2], [0.5], [0.8], [1.0]])
-    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), vectors, "v")
-    mapper = make_mapper(kind)
-    if mode == "component":
-        mapper.SetVectorModeToComponent()
-        mapper.SetVectorComponent(component)
-    prop = property_for(0.0, 5.0, opacity=0.9)
-    image, _, messages = draw(kind, grid, prop, mapper)
-    single = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)],
-                        expected * np.array([0.2, 0.5, 0.8, 1.0]))
-    expected_image, _, _ = draw(kind, single, prop)
-    assert not messages.errors
-    assert image[..., 3].max() > 0.1
-    assert np.array_equal(image, expected_image)
+@pytest.mark.parametrize("mode, component, factor", MULTI_COMPONENT_CASES)
+def test_multi_component_arrays(kind, mode, component, factor, have_display):
+    check_multi_component(lambda: make_mapper(kind), mode, component, factor, SIZE, VIEW)
 
 
 def test_havs_refuses_cell_scalars_clearly(have_display):
@@ -366,15 +346,9 @@ def test_degenerate_inverted_and_duplicate_tetrahedra(kind, have_display):
 @pytest.mark.parametrize("kind", KINDS)
 @pytest.mark.parametrize("scale", [1e30, 1e-30])
 def test_extreme_coordinates_give_the_same_image(kind, scale, have_display):
-    """Coordinates and unit distance scaled together: the same picture."""
-    grid = field_grid()
-    prop = property_for(0.0, 1.0, unit=1.0, opacity=0.6)
-    expected, _ = render_scaled(grid, prop, make_mapper(kind), 1.0, SIZE)
-    scaled, scaled_prop = scaled_copy(grid, prop, scale)
-    image, messages = render_scaled(scaled, scaled_prop, make_mapper(kind), scale, SIZE)
-    assert not messages.errors, messages.errors
-    assert expected[..., 3].max() > 0.2
-    assert metrics.rmse(image, expected) < (0.01 if kind == "havs" else 0.03)
+    check_extreme_scale(lambda: make_mapper(kind), field_grid(),
+                        property_for(0.0, 1.0, unit=1.0, opacity=0.6), scale, SIZE,
+                        tolerance=0.01 if kind == "havs" else 0.03)
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -10,10 +10,11 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (BAD_INPUT, ONE, UNIT_TETRAHEDRON, check_bad_input,
-                                check_second_window, property_for, property_with_points,
-                                render_scaled, scaled_copy, tetrahedra, watch, watched_render,
-                                with_constant_scalars, with_point_scalars)
+from robustness_support import (BAD_INPUT, MULTI_COMPONENT_CASES, ONE, UNIT_TETRAHEDRON,
+                                check_bad_input, check_extreme_scale, check_multi_component,
+                                check_non_finite_scalars, check_second_window, property_for,
+                                property_with_points, tetrahedra, watch, watched_render,
+                                with_constant_scalars)
 
 SIZE = (96, 96)
 
@@ -56,15 +57,9 @@ def test_short_global_ids_are_a_clear_error(have_display):
     assert image.max() == 0.0
 
 
-def test_non_finite_scalars_leave_their_cells_out_with_a_warning(have_display):
-    points = UNIT_TETRAHEDRON + [(1, 1, 1)]
-    for bad in (math.nan, math.inf):
-        grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, bad])
-        image, mapper, messages = draw(grid)
-        assert not messages.errors
-        assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-        assert messages.warnings and "not finite" in messages.warnings[0]
-        assert np.isfinite(image).all() and image[..., 3].max() > 0.1
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_non_finite_scalars_leave_their_cells_out_with_a_warning(bad, have_display):
+    check_non_finite_scalars(render.spt_mapper(8, seed=1), bad, SIZE)
 
 
 def test_constant_field_matches_the_reference(have_display):
@@ -76,23 +71,9 @@ def test_constant_field_matches_the_reference(have_display):
     assert metrics.rmse(image, reference) < 0.05
 
 
-@pytest.mark.parametrize("mode, component, expected", [("magnitude", None, 5.0),
-                                                       ("component", 1, 4.0)])
-def test_multi_component_arrays(mode, component, expected, have_display):
-    """The magnitude, or one component, is rendered: the same image as that single array."""
-    vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * np.array([[0.2], [0.5], [0.8], [1.0]])
-    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), vectors, "v")
-    mapper = render.spt_mapper(16, seed=1)
-    if mode == "component":
-        mapper.SetVectorModeToComponent()
-        mapper.SetVectorComponent(component)
-    prop = property_for(0.0, 5.0, opacity=0.9)
-    image, _, messages = draw(grid, prop, mapper)
-    single = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)],
-                        expected * np.array([0.2, 0.5, 0.8, 1.0]))
-    expected_image, _, _ = draw(single, prop, render.spt_mapper(16, seed=1))
-    assert not messages.errors
-    assert np.array_equal(image, expected_image)
+@pytest.mark.parametrize("mode, component, factor", MULTI_COMPONENT_CASES)
+def test_multi_component_arrays(mode, component, factor, have_display):
+    check_multi_component(lambda: render.spt_mapper(16, seed=1), mode, component, factor, SIZE)
 
 
 def test_mixed_and_quadratic_cells_are_split(have_display):
@@ -118,15 +99,9 @@ def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
 
 @pytest.mark.parametrize("scale", [1e30, 1e-30])
 def test_extreme_coordinates_give_the_same_image(scale, have_display):
-    """Coordinates and unit distance scaled together: the same picture."""
     grid = data.make_default_mesh()
-    prop = data.default_transfer_function(grid)
-    expected, _ = render_scaled(grid, prop, render.spt_mapper(8, seed=1), 1.0, SIZE)
-    scaled, scaled_prop = scaled_copy(grid, prop, scale)
-    image, messages = render_scaled(scaled, scaled_prop, render.spt_mapper(8, seed=1), scale, SIZE)
-    assert not messages.errors
-    assert expected[..., 3].max() > 0.2
-    assert metrics.rmse(image, expected) < 0.01
+    check_extreme_scale(lambda: render.spt_mapper(8, seed=1), grid,
+                        data.default_transfer_function(grid), scale, SIZE, tolerance=0.01)
 
 
 @pytest.mark.parametrize("points", [0, 1])
