@@ -104,16 +104,6 @@ def watched_render(mapper, grid, prop=None, size: Sequence[int] = (96, 96),
     return rendering, messages
 
 
-def check_second_window(volume: vtk.vtkVolume, size: Sequence[int], messages) -> None:
-    """The volume's mapper draws in a second window too, without an error."""
-    other, other_renderer = render.make_window(*size)
-    other_renderer.AddVolume(volume)
-    other_renderer.ResetCamera()
-    other.Render()
-    assert render.read_rgba(other)[..., 3].max() > 0.1
-    assert not messages.errors
-
-
 def volume_property(colors, opacities, unit: float = 1.0) -> vtk.vtkVolumeProperty:
     """A volume property of the color points (x, r, g, b), the opacity points (x, a) and the
     unit distance."""
