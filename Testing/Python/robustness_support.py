@@ -91,6 +91,17 @@ def split_image(image: vtk.vtkImageData) -> vtk.vtkUnstructuredGrid:
     return grid
 
 
+def split_box(cells: Sequence[int], field, origin=(0.0, 0.0, 0.0), name: str = "f"):
+    """A box of cells[0] x cells[1] x cells[2] unit cubes from ``origin``, split into
+    tetrahedra, with the point scalars ``field(points)`` (points: an n x 3 array) named
+    ``name``."""
+    image = vtk.vtkImageData()
+    image.SetDimensions(*(n + 1 for n in cells))
+    image.SetOrigin(*origin)
+    points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
+    return split_image(with_point_scalars(image, field(points), name))
+
+
 def watched_render(mapper, grid, prop=None, size: Sequence[int] = (96, 96),
                    view: Optional[render.View] = None):
     """Render ``grid`` through ``mapper`` (with ``prop``, property_for() by default, from

@@ -18,7 +18,7 @@ import spt
 from spt import data, metrics, render
 
 from robustness_support import (ONE, check_clamped_setting, opaque_plane, property_for,
-                                split_image, watch, watched_render, with_point_scalars)
+                                split_box, watch, watched_render)
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -26,14 +26,13 @@ HAVS = spt.vtkHAVSVolumeMapper
 
 def block(cells=(6, 6, 6), origin=(0.0, 0.0, 0.0)):
     """A box of cells^3 unit cubes split into tetrahedra, with a smooth point scalar."""
-    image = vtk.vtkImageData()
-    image.SetDimensions(*(n + 1 for n in cells))
-    image.SetOrigin(*origin)
-    points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
     center = np.asarray(origin) + 0.5 * np.asarray(cells)
-    field = np.exp(-np.sum(((points - center) / (0.35 * np.asarray(cells))) ** 2, axis=1))
-    field += 0.3 * np.sin(0.7 * points[:, 0])
-    return split_image(with_point_scalars(image, field.astype(np.float32), "f"))
+
+    def field(points):
+        bump = np.exp(-np.sum(((points - center) / (0.35 * np.asarray(cells))) ** 2, axis=1))
+        return (bump + 0.3 * np.sin(0.7 * points[:, 0])).astype(np.float32)
+
+    return split_box(cells, field, origin)
 
 
 @lru_cache(maxsize=None)

@@ -23,7 +23,7 @@ import image_statistics
 from robustness_support import (BAD_INPUT, MULTI_COMPONENT_CASES, ONE, UNIT_TETRAHEDRON,
                                 check_bad_input, check_extreme_scale, check_multi_component,
                                 check_non_finite_scalars, named_array, property_for,
-                                property_with_points, split_image, tetrahedra, watch,
+                                property_with_points, split_box, tetrahedra, watch,
                                 watched_render, with_constant_scalars, with_point_scalars)
 from scene_support import draw_once
 
@@ -85,13 +85,10 @@ def assert_same_picture(kind, image, expected, havs_rmse=0.0):
     assert metrics.rmse(image, expected) <= 0.2
 
 
-def field_grid(cells=(3, 3, 3), array_name="f"):
+def field_grid():
     """A small box split into tetrahedra with a smooth point field and a cell field."""
-    image = vtk.vtkImageData()
-    image.SetDimensions(*(n + 1 for n in cells))
-    points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
-    values = 0.5 + 0.5 * np.sin(points[:, 0] + 0.7 * points[:, 1] - 0.4 * points[:, 2])
-    grid = split_image(with_point_scalars(image, values, array_name))
+    grid = split_box((3, 3, 3),
+                     lambda p: 0.5 + 0.5 * np.sin(p[:, 0] + 0.7 * p[:, 1] - 0.4 * p[:, 2]))
     grid.GetCellData().AddArray(named_array(np.arange(grid.GetNumberOfCells()) % 5 / 4.0, "c"))
     return grid
 
