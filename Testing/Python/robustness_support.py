@@ -10,9 +10,7 @@ import numpy as np
 import vtk
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
-from spt import metrics, render
-
-from scene_support import draw_once
+from spt import render
 
 
 def _with_call_data(observer):
@@ -141,57 +139,6 @@ UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
-def _cells_without_points():
-    grid = vtk.vtkUnstructuredGrid()
-    grid.InsertNextCell(vtk.VTK_TETRA, 4, [0, 1, 2, 3])
-    grid.GetCellData().SetScalars(named_array(np.array([0.5]), "c"))
-    return grid
-
-
-def _select_point_array(mapper):
-    mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectScalarArray("pressure")
-
-
-def _select_component_3(mapper):
-    mapper.SetVectorModeToComponent()
-    mapper.SetVectorComponent(3)
-
-
-# Bad input that every mapper refuses with one clear error and draws nothing: the input, a
-# change to the mapper, a change to the property (property_for()), and the words of the error.
-BAD_INPUT = {
-    "no scalars": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), None, None,
-                   ["no scalars"]),
-    "missing array": (lambda: ONE, _select_point_array, None, ["'pressure'"]),
-    "point id 7": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3), (0, 1, 2, 7)],
-                                      [0.0, 0.3, 0.6, 1.0]), None, None, ["point id 7"]),
-    "point id -1": (lambda: tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3), (0, 1, -1, 3)],
-                                       [0.0, 0.3, 0.6, 1.0]), None, None, ["point id -1"]),
-    "cells without points": (_cells_without_points, None, None, ["point id 0", "0 points"]),
-    "component 3": (lambda: ONE, _select_component_3, None, ["Component 3"]),
-    "dependent components": (lambda: ONE, None, lambda prop: prop.IndependentComponentsOff(),
-                             ["IndependentComponents"]),
-    "unit distance 0": (lambda: ONE, None, lambda prop: prop.SetScalarOpacityUnitDistance(0.0),
-                        ["ScalarOpacityUnitDistance"]),
-}
-
-
-def check_bad_input(case: str, mapper, size: Sequence[int], view: Optional[render.View] = None):
-    """BAD_INPUT[case] drawn through ``mapper``: one error that names the problem (a bad
-    property is reported at each of its checks), an empty image, and the input unchanged."""
-    make_grid, change_mapper, change_property, words = BAD_INPUT[case]
-    prop = property_for()
-    if change_mapper:
-        change_mapper(mapper)
-    if change_property:
-        change_property(prop)
-    rendering, messages = watched_render(mapper, make_grid(), prop, size, view)
-    assert len(set(messages.errors)) == 1, messages.errors
-    assert all(word in messages.errors[0] for word in words), messages.errors
-    assert rendering.image.max() == 0.0
-
-
 def property_with_points(points: int) -> vtk.vtkVolumeProperty:
     """A volume property whose color and opacity functions have no point (``points`` 0) or
     one point (``points`` 1)."""
@@ -227,74 +174,6 @@ def assert_unchanged(grid: vtk.vtkDataSet, before: Dict[str, object]) -> None:
                 f"the input's {key} changed")
         else:
             assert value == after[key], f"the input's {key} changed: {value} -> {after[key]}"
-
-
-def check_extreme_scale(make_mapper, grid, prop, scale: float, size: Sequence[int],
-                        tolerance: float) -> None:
-    """Coordinates and unit distance multiplied by ``scale`` (a deep copy of each), seen from
-    the camera of the unscaled data scaled by ``scale``: the same picture (RMSE below
-    ``tolerance``), without an error. VTK's own ResetCameraClippingRange fails at 1e30 and
-    1e-30 (it returns 1.8e-21..1.8e-18), so the camera is set by hand."""
-    scaled = vtk.vtkUnstructuredGrid()
-    scaled.DeepCopy(grid)
-    coordinates = vtk_to_numpy(scaled.GetPoints().GetData()).astype(np.float64) * scale
-    scaled.GetPoints().SetData(numpy_to_vtk(coordinates, deep=True))
-    scaled_prop = vtk.vtkVolumeProperty()
-    scaled_prop.DeepCopy(prop)
-    scaled_prop.SetScalarOpacityUnitDistance(prop.GetScalarOpacityUnitDistance() * scale)
-    images = []
-    for factor, data, data_prop in ((1.0, grid, prop), (scale, scaled, scaled_prop)):
-        window, renderer = render.make_window(*size)
-        mapper = make_mapper()
-        messages = watch(mapper)
-        render.add_volume(renderer, data, data_prop, mapper)
-        render.place_camera(renderer, grid.GetBounds(), render.View(30, 30))
-        camera = renderer.GetActiveCamera()
-        camera.SetPosition([x * factor for x in camera.GetPosition()])
-        camera.SetFocalPoint([x * factor for x in camera.GetFocalPoint()])
-        camera.SetClippingRange([x * factor for x in camera.GetClippingRange()])
-        images.append(draw_once(window))
-        assert not messages.errors, messages.errors
-    expected, image = images
-    assert expected[..., 3].max() > 0.2
-    assert metrics.rmse(image, expected) < tolerance
-
-
-#: (vector mode, component, the single array's factor) of check_multi_component().
-MULTI_COMPONENT_CASES = [("magnitude", None, 5.0), ("component", 1, 4.0)]
-
-
-def check_multi_component(make_mapper, mode, component, factor, size: Sequence[int],
-                          view: Optional[render.View] = None) -> None:
-    """The magnitude, or one component, of a vector array is rendered: the same image as that
-    single array (``factor`` times the vectors' lengths)."""
-    lengths = np.array([0.2, 0.5, 0.8, 1.0])
-    vectors = np.tile([3.0, 4.0, 0.0], (4, 1)) * lengths[:, None]
-    grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]), vectors, "v")
-    mapper = make_mapper()
-    if mode == "component":
-        mapper.SetVectorModeToComponent()
-        mapper.SetVectorComponent(component)
-    prop = property_for(0.0, 5.0, opacity=0.9)
-    rendering, messages = watched_render(mapper, grid, prop, size, view)
-    single = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], factor * lengths)
-    expected, _ = watched_render(make_mapper(), single, prop, size, view)
-    assert not messages.errors
-    assert rendering.image[..., 3].max() > 0.1
-    assert np.array_equal(rendering.image, expected.image)
-
-
-def check_non_finite_scalars(mapper, bad: float, size: Sequence[int],
-                             view: Optional[render.View] = None) -> None:
-    """A cell with a scalar ``bad`` (NaN or infinite) is left out with a warning; the other
-    cell is drawn."""
-    grid = tetrahedra(UNIT_TETRAHEDRON + [(1, 1, 1)], [(0, 1, 2, 3), (1, 2, 3, 4)],
-                      [0.0, 0.3, 0.6, 1.0, bad])
-    rendering, messages = watched_render(mapper, grid, None, size, view)
-    assert not messages.errors
-    assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-    assert messages.warnings and "not finite" in messages.warnings[0]
-    assert np.isfinite(rendering.image).all() and rendering.image[..., 3].max() > 0.1
 
 
 def opaque_plane(z: float = 0.2, gray: float = 0.5) -> vtk.vtkActor:

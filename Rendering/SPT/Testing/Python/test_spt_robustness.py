@@ -1,7 +1,7 @@
 """vtkSPTVolumeMapper on bad and unusual input: a correct image or a clear error, never a crash,
-and the input is never modified. Also: re-rendering, several windows, resizes, releases."""
-
-import math
+and the input is never modified. Also: re-rendering, several windows, resizes, releases. The
+cases that every mapper meets alike (empty grids, bad input, values that are not finite, vector
+arrays, extreme coordinates) are test_mapper_robustness.py's, for SPT too."""
 
 import numpy as np
 import pytest
@@ -10,9 +10,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from spt import data, metrics, render
 
-from robustness_support import (BAD_INPUT, MULTI_COMPONENT_CASES, ONE, UNIT_TETRAHEDRON,
-                                check_bad_input, check_extreme_scale, check_multi_component,
-                                check_non_finite_scalars, property_for, property_with_points,
+from robustness_support import (ONE, UNIT_TETRAHEDRON, property_for, property_with_points,
                                 tetrahedra, watch, watched_render, with_constant_scalars)
 
 SIZE = (96, 96)
@@ -32,17 +30,6 @@ def test_one_tetrahedron_renders(have_display):
     assert image[..., 3].max() > 0.2
 
 
-def test_empty_grid_draws_nothing_without_error(have_display):
-    image, mapper, messages = draw(vtk.vtkUnstructuredGrid())
-    assert not messages.errors and mapper.GetNumberOfTetrahedra() == 0
-    assert image.max() == 0.0
-
-
-@pytest.mark.parametrize("case", BAD_INPUT)
-def test_bad_input_is_a_clear_error(case, have_display):
-    check_bad_input(case, render.spt_mapper(4), SIZE)
-
-
 def test_short_global_ids_are_a_clear_error(have_display):
     grid = tetrahedra(UNIT_TETRAHEDRON + [(1, 1, 1)], [(0, 1, 2, 3), (1, 2, 3, 4)],
                       [0.0, 0.3, 0.6, 1.0, 0.5])
@@ -56,11 +43,6 @@ def test_short_global_ids_are_a_clear_error(have_display):
     assert image.max() == 0.0
 
 
-@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
-def test_non_finite_scalars_leave_their_cells_out_with_a_warning(bad, have_display):
-    check_non_finite_scalars(render.spt_mapper(8, seed=1), bad, SIZE)
-
-
 def test_constant_field_matches_the_reference(have_display):
     grid = with_constant_scalars(data.make_default_mesh())
     prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
@@ -68,11 +50,6 @@ def test_constant_field_matches_the_reference(have_display):
     reference = render.reference(grid, prop, render.View(30, 30), SIZE).image
     assert not messages.errors
     assert metrics.rmse(image, reference) < 0.05
-
-
-@pytest.mark.parametrize("mode, component, factor", MULTI_COMPONENT_CASES)
-def test_multi_component_arrays(mode, component, factor, have_display):
-    check_multi_component(lambda: render.spt_mapper(16, seed=1), mode, component, factor, SIZE)
 
 
 def test_mixed_and_quadratic_cells_are_split(have_display):
@@ -94,13 +71,6 @@ def test_degenerate_inverted_and_duplicate_tetrahedra(have_display):
     image, mapper, messages = draw(grid)
     assert not messages.errors and mapper.GetNumberOfTetrahedra() == 5
     assert np.isfinite(image).all() and image[..., 3].max() > 0.2
-
-
-@pytest.mark.parametrize("scale", [1e30, 1e-30])
-def test_extreme_coordinates_give_the_same_image(scale, have_display):
-    grid = data.make_default_mesh()
-    check_extreme_scale(lambda: render.spt_mapper(8, seed=1), grid,
-                        data.default_transfer_function(grid), scale, SIZE, tolerance=0.01)
 
 
 @pytest.mark.parametrize("points", [0, 1])
