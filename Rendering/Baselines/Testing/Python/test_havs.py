@@ -180,18 +180,12 @@ def test_automatic_synchronization_and_time_split(have_display):
     assert 2 * mapper.GetNumberOfFaces() == 4 * tetrahedra_count + mapper.GetNumberOfBoundaryFaces()
 
 
-def draw(grid, prop=None, mapper=None):
-    """Render with a HAVS mapper; returns (image, mapper, messages). The input must not change."""
-    mapper = mapper or render.havs_mapper()
-    rendering, messages = watched_render(mapper, grid, prop)
-    return rendering.image, mapper, messages
-
-
 def test_one_tetrahedron_renders(have_display):
-    image, mapper, messages = draw(ONE)
+    mapper = render.havs_mapper()
+    rendering, messages = watched_render(mapper, ONE)
     assert not messages.errors
     assert (mapper.GetNumberOfFaces(), mapper.GetNumberOfBoundaryFaces()) == (4, 4)
-    assert image[..., 3].max() > 0.2
+    assert rendering.image[..., 3].max() > 0.2
 
 
 def test_settings_have_defaults_and_clamps():

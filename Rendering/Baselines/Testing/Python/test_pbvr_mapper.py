@@ -18,13 +18,6 @@ from scene_support import bilinear_upsampled, draw_once, window_with
 SIZE = (96, 96)
 
 
-def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
-    """Render and return (rendering, mapper, messages); the input must not change."""
-    mapper = mapper or render.pbvr_mapper(repetitions, seed=1)
-    rendering, messages = watched_render(mapper, grid, prop, size)
-    return rendering, mapper, messages
-
-
 def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
     mapper = spt.vtkPBVRVolumeMapper()
     assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
@@ -58,7 +51,7 @@ def test_print_self_lists_every_setting_and_report():
 
 
 def test_one_tetrahedron_renders_and_reports(have_display):
-    rendering, mapper, messages = draw(ONE)
+    rendering, messages = watched_render(render.pbvr_mapper(8, seed=1), ONE, size=SIZE)
     report = rendering.report
     assert not messages.errors
     assert rendering.image[..., 3].max() > 0.2

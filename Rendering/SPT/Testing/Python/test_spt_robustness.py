@@ -17,10 +17,10 @@ from robustness_support import (ONE, UNIT_TETRAHEDRON, property_for, tetrahedra,
 SIZE = (96, 96)
 
 
-def draw(grid, prop=None, mapper=None, size=SIZE, repetitions=8):
+def draw(grid, prop=None, mapper=None, repetitions=8):
     """Render and return (image, mapper, messages); the input must not change."""
     mapper = mapper or render.spt_mapper(repetitions, seed=1)
-    rendering, messages = watched_render(mapper, grid, prop, size)
+    rendering, messages = watched_render(mapper, grid, prop, SIZE)
     return rendering.image, mapper, messages
 
 
