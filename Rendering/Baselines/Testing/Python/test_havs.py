@@ -19,33 +19,28 @@ from spt import data, metrics, render
 
 from robustness_support import (ONE, check_clamped_setting, opaque_plane, property_for,
                                 split_box, watch, watched_render)
+from scene_support import with_moved_copy
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
 
 
-def block(cells=(6, 6, 6), origin=(0.0, 0.0, 0.0)):
+def block(cells=(6, 6, 6)):
     """A box of cells^3 unit cubes split into tetrahedra, with a smooth point scalar."""
-    center = np.asarray(origin) + 0.5 * np.asarray(cells)
+    center = 0.5 * np.asarray(cells)
 
     def field(points):
         bump = np.exp(-np.sum(((points - center) / (0.35 * np.asarray(cells))) ** 2, axis=1))
         return (bump + 0.3 * np.sin(0.7 * points[:, 0])).astype(np.float32)
 
-    return split_box(cells, field, origin)
+    return split_box(cells, field)
 
 
 @lru_cache(maxsize=None)
 def two_blocks(gap):
     """Two disjoint blocks side by side along y, `gap` apart (a unit cube's longest tet edge
     is 1.73)."""
-    append = vtk.vtkAppendFilter()
-    append.AddInputData(block())
-    append.AddInputData(block(origin=(0.0, 6.0 + gap, 0.0)))
-    append.Update()
-    grid = vtk.vtkUnstructuredGrid()
-    grid.ShallowCopy(append.GetOutput())
-    return grid
+    return with_moved_copy(block(), (0.0, 6.0 + gap, 0.0))
 
 
 @lru_cache(maxsize=None)

@@ -226,23 +226,16 @@ def test_a_camera_that_is_not_finite_is_a_clear_error(kind, have_display):
 # --- Values -----------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
-def test_non_finite_scalars_leave_their_cells_out_with_a_warning(kind, bad, have_display):
-    points = UNIT_TETRAHEDRON + [(1, 1, 1)]
-    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, bad])
+@pytest.mark.parametrize("point, scalar", [((1, 1, 1), math.nan), ((1, 1, 1), math.inf),
+                                           ((1, 1, 1), -math.inf), ((math.nan, 1, 1), 0.5)])
+def test_non_finite_values_leave_their_cells_out_with_a_warning(kind, point, scalar,
+                                                                have_display):
+    """The second cell's fifth point, or its scalar, is not finite."""
+    grid = tetrahedra(UNIT_TETRAHEDRON + [point], [(0, 1, 2, 3), (1, 2, 3, 4)],
+                      [0.0, 0.3, 0.6, 1.0, scalar])
     image, mapper, messages = draw(kind, grid)
     assert not messages.errors
     assert mapper.GetNumberOfTetrahedra() == 1 and mapper.GetNumberOfSkippedCells() == 1
-    assert messages.warnings and "not finite" in messages.warnings[0]
-    assert image[..., 3].max() > 0.1
-
-
-@pytest.mark.parametrize("kind", ALL_KINDS)
-def test_non_finite_coordinates_leave_their_cells_out_with_a_warning(kind, have_display):
-    points = UNIT_TETRAHEDRON + [(math.nan, 1, 1)]
-    grid = tetrahedra(points, [(0, 1, 2, 3), (1, 2, 3, 4)], [0.0, 0.3, 0.6, 1.0, 0.5])
-    image, mapper, messages = draw(kind, grid)
-    assert not messages.errors and mapper.GetNumberOfSkippedCells() == 1
     assert messages.warnings and "not finite" in messages.warnings[0]
     assert image[..., 3].max() > 0.1
 

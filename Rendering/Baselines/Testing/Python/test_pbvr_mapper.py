@@ -134,15 +134,10 @@ def test_particles_are_made_again_only_when_they_must(have_display):
     assert scene.generations == 1
     # Closer: smaller pixels need more particles. Slightly farther: the surplus is thinned.
     # Much farther: too many would be thrown away.
-    scene.camera.Zoom(1.5)
-    scene.draw()
-    assert scene.generations == 2
-    scene.camera.Zoom(1.0 / 1.2)
-    scene.draw()
-    assert scene.generations == 2
-    scene.camera.Zoom(0.4)
-    scene.draw()
-    assert scene.generations == 3
+    for zoom, generations in ((1.5, 2), (1.0 / 1.2, 2), (0.4, 3)):
+        scene.camera.Zoom(zoom)
+        scene.draw()
+        assert scene.generations == generations, zoom
     # Fewer repetitions draw fewer of the sets; more need new ones.
     sets = scene.mapper.GetNumberOfParticleSets()
     scene.mapper.SetRepetitionLevel(4)
