@@ -33,9 +33,8 @@ import sys
 import numpy as np
 import pytest
 
-import mpi_spt_worker
 import scene_support
-from spt import metrics, render, scenes
+from spt import metrics
 
 WORKER = pathlib.Path(__file__).resolve().parent / "mpi_spt_worker.py"
 SIZE = 128
@@ -324,14 +323,6 @@ def two_volume_renders(have_display, tmp_path_factory):
             for ranks in (0, 2)}
 
 
-def union_reference():
-    """The exact reference of both volumes: the mesh and its moved copy as one grid."""
-    scene = scenes.scene("default")
-    union = scene_support.with_moved_copy(
-        scene.grid, mpi_spt_worker.second_offset(scene.grid.GetBounds()))
-    return render.reference(union, scene.property, scene.view, (SIZE, SIZE)).image
-
-
 def test_two_volumes_on_two_ranks_equal_one_process(two_volume_renders):
     serial, serial_report, _ = two_volume_renders[0]
     two, report, _ = two_volume_renders[2]
@@ -344,7 +335,7 @@ def test_two_volumes_on_two_ranks_are_the_union(two_volume_renders):
     """Both volumes, composited where they overlap: as close to the union's reference as one
     volume is to its own (an image missing a volume or a piece is off by more than 0.02)."""
     two, _, _ = two_volume_renders[2]
-    reference = union_reference()
+    reference = scene_support.union_reference("default", SIZE)
     assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
     assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
 
