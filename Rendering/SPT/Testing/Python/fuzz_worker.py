@@ -94,17 +94,12 @@ def random_grid(rng: np.random.Generator) -> vtk.vtkUnstructuredGrid:
 
 
 def random_property(rng: np.random.Generator) -> vtk.vtkVolumeProperty:
-    color = vtk.vtkColorTransferFunction()
-    opacity = vtk.vtkPiecewiseFunction()
+    colors, opacities = [], []
     for _ in range(int(rng.choice([0, 1, 2, 3, 3, 3]))):
         x = float(rng.normal() * 10.0 ** rng.uniform(-1, 1))
-        color.AddRGBPoint(x, *rng.random(3))
-        opacity.AddPoint(x, float(rng.choice([0.0, 1.0, rng.random()])))
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(float(10.0 ** rng.uniform(-3, 1)))
-    return prop
+        colors.append((x, *rng.random(3)))
+        opacities.append((x, float(rng.choice([0.0, 1.0, rng.random()]))))
+    return volume_property(colors, opacities, float(10.0 ** rng.uniform(-3, 1)))
 
 
 def random_mapper(kind: str, rng: np.random.Generator):
