@@ -29,7 +29,8 @@ from scene_support import draw_once
 SIZE = (64, 64)
 VIEW = render.View(30, 30)
 KINDS = ["havs", "pbvr"]
-#: For the cases that every mapper meets alike (SPT's own: test_spt_robustness.py).
+#: For the cases that every mapper meets alike, among them those the fuzz test found
+#: (fuzz_worker.py). SPT's own cases: test_spt_robustness.py.
 ALL_KINDS = ["spt"] + KINDS
 PBVR_LEVEL = 64  # repetitions of the renders compared with the reference
 Z = 4.0  # standard errors
@@ -71,10 +72,9 @@ def assert_matches_reference(kind, grid, prop, havs_rmse, pbvr_bias):
 
 def assert_same_picture(kind, image, expected, havs_rmse=0.0):
     """HAVS, and SPT (its random numbers follow the pixel and the cell): the same image (or
-    within havs_rmse). PBVR, whose particles may have been made
-    for another view and thinned, or for other tetrahedra: the same total coverage within Z
-    standard errors of its noise (each pixel's alpha is a mean of PBVR_LEVEL Bernoulli
-    trials), and no pixel far off."""
+    within havs_rmse). PBVR, whose particles may have been made for another view and thinned,
+    or for other tetrahedra: the same total coverage within Z standard errors of its noise
+    (each pixel's alpha is a mean of PBVR_LEVEL Bernoulli trials), and no pixel far off."""
     if kind != "pbvr":
         assert metrics.rmse(image, expected) <= havs_rmse if havs_rmse else \
             np.array_equal(image, expected)
