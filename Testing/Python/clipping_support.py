@@ -11,12 +11,11 @@ from typing import Sequence, Tuple
 
 import numpy as np
 import vtk
-from vtkmodules.util.numpy_support import numpy_to_vtk
 
 from spt import metrics, raycast, render
 
 from image_statistics import Estimate, estimate
-from robustness_support import ONE, property_for, split_image, volume_property, watch
+from robustness_support import ONE, property_for, split_box, volume_property, watch
 from scene_support import scene
 from statistics_checks import Z
 
@@ -45,17 +44,11 @@ def coarse():
     """Few large cells (a box of 3 x 3 x 3 unit cubes split into tetrahedra) under a field
     that varies across each of them and a transfer function that follows it closely: a cut
     segment is much of its ray, so its colour must be the cut segment's own."""
-    image = vtk.vtkImageData()
-    image.SetDimensions(4, 4, 4)
-    image.SetOrigin(-1.5, -1.5, -1.5)
-    points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
-    field = 0.5 + 0.5 * np.sin(1.3 * points[:, 0] + 0.9 * points[:, 1] - 0.7 * points[:, 2])
-    array = numpy_to_vtk(field.astype(np.float32), deep=True)
-    array.SetName("f")
-    image.GetPointData().SetScalars(array)
+    grid = split_box((3, 3, 3), lambda p: (0.5 + 0.5 * np.sin(
+        1.3 * p[:, 0] + 0.9 * p[:, 1] - 0.7 * p[:, 2])).astype(np.float32), (-1.5, -1.5, -1.5))
     prop = volume_property([(0.0, 0.1, 0.3, 1.0), (1.0, 1.0, 0.7, 0.1)], [(0.0, 0.0), (1.0, 1.0)],
                            1.5)
-    return split_image(image), prop
+    return grid, prop
 
 
 def _scene(mesh: str):

@@ -89,6 +89,17 @@ def split_image(image: vtk.vtkImageData) -> vtk.vtkUnstructuredGrid:
     return grid
 
 
+def split_box(cells: Sequence[int], field, origin=(0.0, 0.0, 0.0), name: str = "f"):
+    """A box of cells[0] x cells[1] x cells[2] unit cubes from ``origin``, split into
+    tetrahedra, with the point scalars ``field(points)`` (points: an n x 3 array) named
+    ``name``."""
+    image = vtk.vtkImageData()
+    image.SetDimensions(*(n + 1 for n in cells))
+    image.SetOrigin(*origin)
+    points = np.array([image.GetPoint(i) for i in range(image.GetNumberOfPoints())])
+    return split_image(with_point_scalars(image, field(points), name))
+
+
 def watched_render(mapper, grid, prop=None, size: Sequence[int] = (96, 96),
                    view: Optional[render.View] = None):
     """Render ``grid`` through ``mapper`` (with ``prop``, property_for() by default, from
@@ -100,16 +111,6 @@ def watched_render(mapper, grid, prop=None, size: Sequence[int] = (96, 96),
                               size)
     assert_unchanged(grid, before)
     return rendering, messages
-
-
-def check_second_window(volume: vtk.vtkVolume, size: Sequence[int], messages) -> None:
-    """The volume's mapper draws in a second window too, without an error."""
-    other, other_renderer = render.make_window(*size)
-    other_renderer.AddVolume(volume)
-    other_renderer.ResetCamera()
-    other.Render()
-    assert render.read_rgba(other)[..., 3].max() > 0.1
-    assert not messages.errors
 
 
 def volume_property(colors, opacities, unit: float = 1.0) -> vtk.vtkVolumeProperty:
@@ -173,39 +174,6 @@ def assert_unchanged(grid: vtk.vtkDataSet, before: Dict[str, object]) -> None:
                 f"the input's {key} changed")
         else:
             assert value == after[key], f"the input's {key} changed: {value} -> {after[key]}"
-
-
-def render_scaled(grid, prop, mapper, scale: float, size: Sequence[int],
-                  view: Optional[render.View] = None):
-    """Render with the camera of the unscaled data scaled by `scale`; returns (image,
-    messages). VTK's own ResetCameraClippingRange fails at 1e30 and 1e-30 (it returns
-    1.8e-21..1.8e-18), so the camera is set by hand."""
-    window, renderer = render.make_window(*size)
-    messages = watch(mapper)
-    render.add_volume(renderer, grid, prop, mapper)
-    bounds = [b / scale for b in grid.GetBounds()]
-    render.place_camera(renderer, bounds, view or render.View(30, 30))
-    camera = renderer.GetActiveCamera()
-    camera.SetPosition([x * scale for x in camera.GetPosition()])
-    camera.SetFocalPoint([x * scale for x in camera.GetFocalPoint()])
-    camera.SetClippingRange([x * scale for x in camera.GetClippingRange()])
-    window.Render()
-    image = render.read_rgba(window)
-    window.Finalize()
-    return image, messages
-
-
-def scaled_copy(grid, prop, scale: float):
-    """A deep copy of the grid with its coordinates, and of the property with its unit
-    distance, multiplied by `scale`: the same picture, seen from a scaled camera."""
-    scaled = vtk.vtkUnstructuredGrid()
-    scaled.DeepCopy(grid)
-    coordinates = vtk_to_numpy(scaled.GetPoints().GetData()).astype(np.float64) * scale
-    scaled.GetPoints().SetData(numpy_to_vtk(coordinates, deep=True))
-    scaled_prop = vtk.vtkVolumeProperty()
-    scaled_prop.DeepCopy(prop)
-    scaled_prop.SetScalarOpacityUnitDistance(prop.GetScalarOpacityUnitDistance() * scale)
-    return scaled, scaled_prop
 
 
 def opaque_plane(z: float = 0.2, gray: float = 0.5) -> vtk.vtkActor:

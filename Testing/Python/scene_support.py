@@ -72,6 +72,28 @@ def with_moved_copy(grid, offset):
     return union.GetOutput()
 
 
+def union_offset(grid):
+    """Where the tests' second volume of ``grid`` is moved by its vtkVolume: 0.35, 0.2 and 0.1
+    of the grid's extent along x, y and z, into the first."""
+    b = grid.GetBounds()
+    return (0.35 * (b[1] - b[0]), 0.2 * (b[3] - b[2]), 0.1 * (b[5] - b[4]))
+
+
+@lru_cache(maxsize=None)
+def union(name: str):
+    """The named scene's mesh and its copy moved by union_offset(), as one grid: what the
+    scene's mesh shows as two volumes, the second moved."""
+    s = scene(name)
+    return with_moved_copy(s.grid, union_offset(s.grid))
+
+
+@lru_cache(maxsize=None)
+def union_reference(name: str, size: int):
+    """The exact reference image of union(name) in the scene's view at size x size pixels."""
+    s = scene(name)
+    return render.reference(union(name), s.property, s.view, (size, size)).image
+
+
 def window_with(mapper, size: int, name: str = "default", prop=None, view=None):
     """A size x size window showing the named scene through ``mapper`` from its view (or
     ``view``), with ``prop`` or else a property of its own (the tests change it)."""

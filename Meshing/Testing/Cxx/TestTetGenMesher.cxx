@@ -20,6 +20,7 @@
 #include "vtkPolyData.h"
 #include "vtkReverseSense.h"
 #include "vtkSphereSource.h"
+#include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include "SPTTestChecks.h"
@@ -31,23 +32,11 @@
 
 namespace
 {
-double SixVolume(const double a[3], const double b[3], const double c[3], const double d[3])
-{
-  double u[3], v[3], w[3];
-  for (int i = 0; i < 3; ++i)
-  {
-    u[i] = b[i] - a[i];
-    v[i] = c[i] - a[i];
-    w[i] = d[i] - a[i];
-  }
-  double cross[3];
-  vtkMath::Cross(v, w, cross);
-  return vtkMath::Dot(u, cross);
-}
-
+// The volume of the polyhedron, by the divergence theorem: the signed volumes of the
+// tetrahedra from the origin to each triangle, summed.
 double EnclosedVolume(vtkPolyData* surface)
 {
-  const double origin[3] = { 0.0, 0.0, 0.0 };
+  double origin[3] = { 0.0, 0.0, 0.0 };
   double sum = 0.0;
   auto polys = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
   for (polys->GoToFirstCell(); !polys->IsDoneWithTraversal(); polys->GoToNextCell())
@@ -59,9 +48,9 @@ double EnclosedVolume(vtkPolyData* surface)
     surface->GetPoint(ids[0], a);
     surface->GetPoint(ids[1], b);
     surface->GetPoint(ids[2], c);
-    sum += SixVolume(origin, a, b, c);
+    sum += vtkTetra::ComputeVolume(origin, a, b, c);
   }
-  return sum / 6.0;
+  return sum;
 }
 
 struct TetStatistics
@@ -91,7 +80,7 @@ TetStatistics Measure(vtkUnstructuredGrid* grid, double bound = VTK_DOUBLE_MAX)
     {
       grid->GetPoint(ids[corner], x[corner]);
     }
-    const double volume = SixVolume(x[0], x[1], x[2], x[3]) / 6.0;
+    const double volume = vtkTetra::ComputeVolume(x[0], x[1], x[2], x[3]);
     statistics.Total += volume;
     statistics.Smallest = std::min(statistics.Smallest, volume);
     statistics.Largest = std::max(statistics.Largest, volume);

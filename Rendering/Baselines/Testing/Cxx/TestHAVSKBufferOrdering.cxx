@@ -50,6 +50,7 @@
 #include <glm/glm.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -205,18 +206,6 @@ bool Offers(int access)
   }
 }
 
-// Render the mesh with the mapper; returns its RGBA pixels (bottom row first), or none if the
-// mapper could not draw.
-std::vector<unsigned char> RenderOnGPU(vtkRenderWindow* window, vtkHAVSVolumeMapper* mapper)
-{
-  window->Render();
-  if (mapper->GetKBufferSynchronizationInUse() < 0)
-  {
-    return {};
-  }
-  return SPTTestWindow::Capture(window, true);
-}
-
 // The mapper drawing the mesh alone, offscreen, onto a transparent background.
 struct GPUScene
 {
@@ -249,13 +238,9 @@ struct GPUScene
   vtkNew<vtkVolume> Volume;
 };
 
-// The CPU images for one k-buffer size: in draw order, and in the two perturbed orders.
-struct Simulations
-{
-  std::vector<glm::vec4> Expected;
-  std::vector<glm::vec4> Swapped;
-  std::vector<glm::vec4> Lost;
-};
+// The CPU images for one k-buffer size, by Perturbation: in draw order, and in the two
+// perturbed orders.
+using Simulations = std::array<std::vector<glm::vec4>, 3>;
 
 // The CPU side: the same mesh, faces, sort and table as the mapper, and the fragments.
 struct CPUScene
@@ -279,12 +264,11 @@ struct CPUScene
   Simulations Simulate(int k) const
   {
     Simulations images;
-    images.Expected =
-      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::None);
-    images.Swapped =
-      ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::SwapPairs);
-    images.Lost = ::Simulate(
-      this->Pixels, k, this->Table, this->ThicknessToTable, Perturbation::LoseEveryFourth);
+    for (Perturbation p :
+      { Perturbation::None, Perturbation::SwapPairs, Perturbation::LoseEveryFourth })
+    {
+      images[int(p)] = ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, p);
+    }
     return images;
   }
 
@@ -315,16 +299,20 @@ int CheckSynchronization(GPUScene& gpu, const CPUScene& cpu, int k, int access,
   int failures = 0;
   const double tolerance = 3.0 / 255.0;
   gpu.Mapper->SetKBufferSynchronization(access);
-  const std::vector<unsigned char> image = RenderOnGPU(gpu.Window, gpu.Mapper);
-  if (image.empty())
+  gpu.Window->Render();
+  if (gpu.Mapper->GetKBufferSynchronizationInUse() < 0)
   {
     std::cerr << "FAILED: the mapper did not draw with synchronization " << access << "\n";
     return 1;
   }
   ++*modesRun;
-  const Comparison same = Compare(cpu.Pixels, simulated.Expected, image, tolerance);
-  const Comparison pairs = Compare(cpu.Pixels, simulated.Swapped, image, tolerance);
-  const Comparison races = Compare(cpu.Pixels, simulated.Lost, image, tolerance);
+  // RGBA, bottom row first.
+  const std::vector<unsigned char> image = SPTTestWindow::Capture(gpu.Window, true);
+  auto compare = [&](Perturbation p)
+  { return Compare(cpu.Pixels, simulated[int(p)], image, tolerance); };
+  const Comparison same = compare(Perturbation::None);
+  const Comparison pairs = compare(Perturbation::SwapPairs);
+  const Comparison races = compare(Perturbation::LoseEveryFourth);
   std::cout << "  k=" << k << ", synchronization " << access << ": " << same.Off << " of "
             << same.Compared << " pixels off (largest " << same.Largest << ", " << same.Ambiguous
             << " on edges left out); perturbed orders, of " << same.Layered

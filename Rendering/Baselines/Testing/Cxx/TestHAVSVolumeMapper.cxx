@@ -9,6 +9,7 @@
 
 #include "vtkHAVSVolumeMapper.h"
 
+#include "SPTTestChecks.h"
 #include "SPTTestScene.h"
 
 using namespace SPTTestScene;
@@ -27,13 +28,15 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
   vtkSmartPointer<vtkVolume> rightVolume = MakeVolume(rightMapper, input.Property, -0.7);
 
   TwoViewports scene(400, 200, leftVolume, rightVolume);
-  int failures = scene.Render();
+  SPTTestChecks::FailureCount failures;
+  failures.Check(scene.Render() == 0, "no OpenGL error");
   if (leftMapper->GetKBufferSynchronizationInUse() < 0)
   {
     std::cout << "This context cannot synchronize the k-buffer; nothing to test.\n";
     return VTK_SKIP_RETURN_CODE;
   }
-  failures += scene.CheckCovered(Capture(scene.Window), 4000);
+  failures.Check(
+    scene.CheckCovered(Capture(scene.Window), 4000) == 0, "each viewport shows the volume");
   const vtkIdType tetrahedra = leftMapper->GetNumberOfTetrahedra();
   const vtkIdType faces = leftMapper->GetNumberOfFaces();
   const vtkIdType boundary = leftMapper->GetNumberOfBoundaryFaces();
@@ -41,17 +44,10 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
             << " on the boundary; sort " << leftMapper->GetLastSortTime() << " s, GPU "
             << leftMapper->GetLastGPUTime() << " s; synchronization "
             << leftMapper->GetKBufferSynchronizationInUse() << "\n";
-  failures += input.CheckInputAndSplit(tetrahedra);
-  if (2 * faces != 4 * tetrahedra + boundary || rightMapper->GetNumberOfFaces() != faces)
-  {
-    std::cerr << "The faces do not match the tetrahedra.\n";
-    ++failures;
-  }
-  if (!(leftMapper->GetLastSortTime() > 0.0) || !(rightMapper->GetLastGPUTime() > 0.0))
-  {
-    std::cerr << "The mapper does not report its sort and GPU times.\n";
-    ++failures;
-  }
-
-  return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures);
+  failures.Check(input.CheckInputAndSplit(tetrahedra) == 0, "the input unmodified and split");
+  failures.Check(2 * faces == 4 * tetrahedra + boundary && rightMapper->GetNumberOfFaces() == faces,
+    "the faces match the tetrahedra");
+  failures.Check(leftMapper->GetLastSortTime() > 0.0 && rightMapper->GetLastGPUTime() > 0.0,
+    "the mapper reports its sort and GPU times");
+  return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures.GetCount());
 }

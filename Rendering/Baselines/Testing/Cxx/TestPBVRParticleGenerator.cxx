@@ -23,6 +23,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -32,10 +33,11 @@
 
 namespace
 {
-// The unit corner tetrahedron (volume 1/6); its normalized coordinates are the same, shifted.
-vtkSmartPointer<vtkUnstructuredGrid> MakeTetrahedron(const double scalars[4])
+// The mesh of the unit corner tetrahedron (volume 1/6; its normalized coordinates are the
+// same, shifted) with the point scalars.
+void SetTetrahedron(vtkTetrahedralMesh* mesh, const std::array<double, 4>& scalars)
 {
-  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> points;
   points->InsertNextPoint(0.0, 0.0, 0.0);
   points->InsertNextPoint(1.0, 0.0, 0.0);
@@ -51,7 +53,7 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeTetrahedron(const double scalars[4])
     values->InsertNextValue(scalars[i]);
   }
   grid->GetPointData()->SetScalars(values);
-  return grid;
+  mesh->Update(grid, vtkTetrahedralMesh::ScalarSelection());
 }
 
 std::vector<double> Sample(const std::function<double(double)>& tau, int n = 4001)
@@ -101,8 +103,7 @@ vtkPBVRParticleGenerator::Settings MakeSettings(
 
 void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
-  const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
+  SetTetrahedron(mesh, { 0.0, 0.3, 0.6, 1.0 });
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(1000, 7);
   const double tau = 2.0;
@@ -153,8 +154,7 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& 
 
 void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
-  const double scalars[4] = { 0.0, 0.0, 0.0, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
+  SetTetrahedron(mesh, { 0.0, 0.0, 0.0, 1.0 });
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(500, 11);
   // tau(s) = 2 s; s is Beta(1, 3) in the cell: E[s] = 1/4, E[s^2] = 1/10.
@@ -198,8 +198,7 @@ void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failur
 
 void TestCellAverageRounding(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
-  const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
+  SetTetrahedron(mesh, { 0.0, 0.3, 0.6, 1.0 });
   vtkNew<vtkPBVRParticleGenerator> generator;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(2000, 0);
   settings.SamplingMode = vtkPBVRVolumeMapper::CELL_AVERAGE;
@@ -221,8 +220,7 @@ void TestCellAverageRounding(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCou
 
 void TestSeedsLimitsAndErrors(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
-  const double scalars[4] = { 0.0, 0.3, 0.6, 1.0 };
-  mesh->Update(MakeTetrahedron(scalars), vtkTetrahedralMesh::ScalarSelection());
+  SetTetrahedron(mesh, { 0.0, 0.3, 0.6, 1.0 });
   const std::vector<double> samples = Sample([](double s) { return 1.0 + s; });
   vtkNew<vtkPBVRParticleGenerator> first, second;
   vtkPBVRParticleGenerator::Settings settings = MakeSettings(16, 3, 1000000);

@@ -9,6 +9,7 @@
 
 #include "vtkPBVRVolumeMapper.h"
 
+#include "SPTTestChecks.h"
 #include "SPTTestScene.h"
 
 using namespace SPTTestScene;
@@ -17,53 +18,39 @@ namespace
 {
 // The particle count, sets, memory and generation count after the first render, and the input
 // untouched with its hexahedra split into 5 or 6 tetrahedra each.
-int CheckParticles(
-  vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper, const ShellInput& input)
+void CheckParticles(vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper,
+  const ShellInput& input, SPTTestChecks::FailureCount& failures)
 {
-  int failures = 0;
   const vtkIdType particles = pointMapper->GetNumberOfParticles();
   std::cout << "Particles: " << particles << " (perspective, 64 sets), "
             << cellMapper->GetNumberOfParticles() << " (parallel, 2x2 subpixels, 32 sets); "
             << pointMapper->GetGPUMemorySize() << " bytes on the GPU; generated in "
             << pointMapper->GetGenerationTime() << " s\n";
-  if (particles < 64 * 1000 || pointMapper->GetNumberOfParticleSets() != 64 ||
-    pointMapper->GetGPUMemorySize() < 8 * particles || cellMapper->GetNumberOfParticles() <= 0 ||
-    pointMapper->GetGenerationCount() != 1 || cellMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "The particle count, sets, memory or generation count are not as expected.\n";
-    ++failures;
-  }
-  return failures + input.CheckInputAndSplit(pointMapper->GetNumberOfTetrahedra());
+  failures.Check(particles >= 64 * 1000 && pointMapper->GetNumberOfParticleSets() == 64 &&
+      pointMapper->GetGPUMemorySize() >= 8 * particles && cellMapper->GetNumberOfParticles() > 0 &&
+      pointMapper->GetGenerationCount() == 1 && cellMapper->GetGenerationCount() == 1,
+    "the particle count, sets, memory and generation count");
+  failures.Check(input.CheckInputAndSplit(pointMapper->GetNumberOfTetrahedra()) == 0,
+    "the input unmodified and split");
 }
 
 // Particles are kept while nothing that shapes them changes, and made anew when it does.
-int CheckRegeneration(TwoViewports& scene, const std::vector<unsigned char>& first,
-  vtkVolumeProperty* property, vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper)
+void CheckRegeneration(TwoViewports& scene, const std::vector<unsigned char>& first,
+  vtkVolumeProperty* property, vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellMapper,
+  SPTTestChecks::FailureCount& failures)
 {
-  int failures = 0;
-  // The same particles again: the same image, no new generation.
   scene.Window->Render();
-  if (Capture(scene.Window) != first || pointMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "A second render differs from the first or generated new particles.\n";
-    ++failures;
-  }
+  failures.Check(Capture(scene.Window) == first && pointMapper->GetGenerationCount() == 1,
+    "a second render draws the same image from the same particles");
   // About the data's centre the nearest point of its bounding sphere stays as near.
   scene.Left->GetActiveCamera()->Azimuth(40.0);
   scene.Window->Render();
-  if (pointMapper->GetGenerationCount() != 1)
-  {
-    std::cerr << "Rotating the camera about the data generated new particles.\n";
-    ++failures;
-  }
+  failures.Check(pointMapper->GetGenerationCount() == 1,
+    "rotating the camera about the data keeps the particles");
   property->GetScalarOpacity()->AddPoint(0.5, 0.2);
   scene.Window->Render();
-  if (pointMapper->GetGenerationCount() != 2 || cellMapper->GetGenerationCount() != 2)
-  {
-    std::cerr << "A new opacity did not generate new particles.\n";
-    ++failures;
-  }
-  return failures;
+  failures.Check(pointMapper->GetGenerationCount() == 2 && cellMapper->GetGenerationCount() == 2,
+    "a new opacity generates new particles");
 }
 }
 
@@ -85,13 +72,14 @@ int TestPBVRVolumeMapper(int argc, char* argv[])
   vtkSmartPointer<vtkVolume> cellVolume = MakeVolume(cellMapper, input.Property, 0.7);
 
   TwoViewports scene(256, 128, pointVolume, cellVolume);
-  int failures = scene.Render();
+  SPTTestChecks::FailureCount failures;
+  failures.Check(scene.Render() == 0, "no OpenGL error");
   const std::vector<unsigned char> first = Capture(scene.Window);
-  failures += scene.CheckCovered(first, 1500);
-  failures += CheckParticles(pointMapper, cellMapper, input);
+  failures.Check(scene.CheckCovered(first, 1500) == 0, "each viewport shows the volume");
+  CheckParticles(pointMapper, cellMapper, input, failures);
 
   const int result = scene.CompareWithBaseline(argc, argv);
 
-  failures += CheckRegeneration(scene, first, input.Property, pointMapper, cellMapper);
-  return TwoViewports::ExitStatus(result, failures);
+  CheckRegeneration(scene, first, input.Property, pointMapper, cellMapper, failures);
+  return TwoViewports::ExitStatus(result, failures.GetCount());
 }

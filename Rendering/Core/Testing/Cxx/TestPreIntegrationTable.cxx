@@ -13,6 +13,8 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "SPTTestChecks.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -212,65 +214,49 @@ int CheckOpacityGrowsWithLength(const vtkPreIntegrationTable* table)
 
 // A property touched without a change (VTK creates default functions on first access) is
 // sampled again but not integrated again; a changed function is.
-int CheckCaching(vtkPreIntegrationTable* table, TransferFunctions& functions)
+void CheckCaching(vtkPreIntegrationTable* table, TransferFunctions& functions,
+  SPTTestChecks::FailureCount& failures)
 {
-  int failures = 0;
   const int integrations = table->GetIntegrationCount();
   const vtkMTimeType built = table->GetBuildTime();
   functions.Property->Modified();
   functions.Color->Modified();
-  if (!UpdateTable(table, functions.Property) || table->GetIntegrationCount() != integrations ||
-    table->GetBuildTime() != built)
-  {
-    ++failures;
-    std::cerr << "An unchanged property was integrated again.\n";
-  }
+  failures.Check(UpdateTable(table, functions.Property) &&
+      table->GetIntegrationCount() == integrations && table->GetBuildTime() == built,
+    "an unchanged property is not integrated again");
   functions.Opacity->AddPoint(8.0, 0.3);
-  if (!UpdateTable(table, functions.Property) || table->GetIntegrationCount() != integrations + 1 ||
-    table->GetBuildTime() == built)
-  {
-    ++failures;
-    std::cerr << "A changed opacity function did not rebuild the table.\n";
-  }
+  failures.Check(UpdateTable(table, functions.Property) &&
+      table->GetIntegrationCount() == integrations + 1 && table->GetBuildTime() != built,
+    "a changed opacity function rebuilds the table");
   functions.Opacity->RemovePoint(8.0);
-  if (!UpdateTable(table, functions.Property))
-  {
-    ++failures;
-    std::cerr << "Update failed after the opacity function was restored.\n";
-  }
+  failures.Check(UpdateTable(table, functions.Property),
+    "Update succeeds after the opacity function is restored");
   // The longest edge measured from float coordinates normalized in another frame differs in
   // the seventh digit: the same table. A length that differs in the fourth digit is another.
   const vtkMTimeType restored = table->GetBuildTime();
-  if (!table->Update(
-        functions.Property, Range, MaxLength * (1.0 + 3e-7), ScalarResolution, LengthResolution) ||
-    table->GetBuildTime() != restored)
-  {
-    ++failures;
-    std::cerr << "A longest edge equal to float precision rebuilt the table.\n";
-  }
-  if (!table->Update(
-        functions.Property, Range, MaxLength * (1.0 + 1e-4), ScalarResolution, LengthResolution) ||
-    table->GetBuildTime() == restored)
-  {
-    ++failures;
-    std::cerr << "Another longest edge did not rebuild the table.\n";
-  }
-  return failures;
+  failures.Check(table->Update(functions.Property, Range, MaxLength * (1.0 + 3e-7),
+                   ScalarResolution, LengthResolution) &&
+      table->GetBuildTime() == restored,
+    "a longest edge equal to float precision keeps the table");
+  failures.Check(table->Update(functions.Property, Range, MaxLength * (1.0 + 1e-4),
+                   ScalarResolution, LengthResolution) &&
+      table->GetBuildTime() != restored,
+    "another longest edge rebuilds the table");
 }
 
 // The steps the ranks of a parallel render take, each integrating a share of the scalar pairs
 // (here three uneven shares), give Update()'s table bit for bit, and the same signature.
-int CheckShares(vtkVolumeProperty* property)
+void CheckShares(vtkVolumeProperty* property, SPTTestChecks::FailureCount& failures)
 {
   vtkNew<vtkPreIntegrationTable> whole;
   vtkNew<vtkPreIntegrationTable> table;
   bool pending = false;
-  if (!UpdateTable(whole, property) ||
-    !table->Prepare(property, Range, MaxLength, ScalarResolution, LengthResolution, pending) ||
-    !pending)
+  if (!failures.Check(UpdateTable(whole, property) &&
+          table->Prepare(property, Range, MaxLength, ScalarResolution, LengthResolution, pending) &&
+          pending,
+        "Update() succeeds, and Prepare() on a new table asks for the integration"))
   {
-    std::cerr << "Update() failed, or Prepare() on a new table did not ask for the integration.\n";
-    return 1;
+    return;
   }
   const vtkIdType pairs = table->GetNumberOfScalarPairs();
   const size_t per = size_t(table->GetValuesPerScalarPair());
@@ -281,18 +267,10 @@ int CheckShares(vtkVolumeProperty* property)
     table->IntegrateScalarPairs(cuts[share], cuts[share + 1], &values[cuts[share] * per]);
   }
   table->SetIntegrated(values.data());
-  int failures = 0;
-  if (table->GetTable() != whole->GetTable())
-  {
-    ++failures;
-    std::cerr << "The table integrated in shares differs from Update()'s.\n";
-  }
-  if (table->GetSignature() != whole->GetSignature())
-  {
-    ++failures;
-    std::cerr << "The table integrated in shares has another signature.\n";
-  }
-  return failures;
+  failures.Check(
+    table->GetTable() == whole->GetTable(), "the table integrated in shares is Update()'s");
+  failures.Check(table->GetSignature() == whole->GetSignature(),
+    "the table integrated in shares has Update()'s signature");
 }
 }
 
@@ -300,50 +278,38 @@ int TestPreIntegrationTable(int, char*[])
 {
   TransferFunctions functions;
   vtkNew<vtkPreIntegrationTable> table;
-  if (!UpdateTable(table, functions.Property))
+  SPTTestChecks::FailureCount failures;
+  if (!failures.Check(
+        UpdateTable(table, functions.Property), "Update succeeds on a valid property") ||
+    !failures.Check(table->GetTable().size() ==
+        size_t(4) * ScalarResolution * ScalarResolution * LengthResolution,
+      "the table has 4 values per entry"))
   {
-    std::cerr << "Update failed on a valid property.\n";
-    return EXIT_FAILURE;
-  }
-  const std::vector<float>& values = table->GetTable();
-  if (values.size() != size_t(4) * ScalarResolution * ScalarResolution * LengthResolution)
-  {
-    std::cerr << "Table has " << values.size() << " values.\n";
-    return EXIT_FAILURE;
+    return failures.ExitStatus();
   }
 
-  int failures = CheckAgainstIntegrals(table, functions.Property);
-  failures += CheckHomogeneous(table, functions);
-  failures += CheckOpacityGrowsWithLength(table);
-  failures += CheckCaching(table, functions);
-  failures += CheckShares(functions.Property);
+  failures.Check(CheckAgainstIntegrals(table, functions.Property) == 0, "the integrals");
+  failures.Check(CheckHomogeneous(table, functions) == 0, "the homogeneous segments");
+  failures.Check(CheckOpacityGrowsWithLength(table) == 0, "opacity grows with length");
+  CheckCaching(table, functions, failures);
+  CheckShares(functions.Property, failures);
 
   // A unit distance that is not positive is refused with a reason that names it.
   functions.Property->SetScalarOpacityUnitDistance(0.0);
-  if (UpdateTable(table, functions.Property) ||
-    table->GetLastError().find("ScalarOpacityUnitDistance") == std::string::npos)
-  {
-    ++failures;
-    std::cerr << "A zero unit distance was not refused with a clear error.\n";
-  }
+  failures.Check(!UpdateTable(table, functions.Property) &&
+      table->GetLastError().find("ScalarOpacityUnitDistance") != std::string::npos,
+    "a zero unit distance is refused with a clear error");
 
   // A table too large to integrate in reasonable time and memory is refused, naming the
   // settings to lower, before anything is allocated.
   functions.Property->SetScalarOpacityUnitDistance(0.7);
   vtkNew<vtkPreIntegrationTable> huge;
-  if (huge->Update(functions.Property, Range, MaxLength, 1024, 1024) ||
-    huge->GetLastError().find("PreIntegrationThicknessResolution") == std::string::npos ||
-    !huge->GetTable().empty())
-  {
-    ++failures;
-    std::cerr << "A 1024 x 1024 x 1024 table was not refused with a clear error.\n";
-  }
-  if (huge->Update(functions.Property, Range, MaxLength, 1024, 64) ||
-    huge->GetLastError().find("times the integration time") == std::string::npos)
-  {
-    ++failures;
-    std::cerr << "A 1024 x 1024 x 64 table (minutes of integration) was not refused.\n";
-  }
-
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  failures.Check(!huge->Update(functions.Property, Range, MaxLength, 1024, 1024) &&
+      huge->GetLastError().find("PreIntegrationThicknessResolution") != std::string::npos &&
+      huge->GetTable().empty(),
+    "a 1024 x 1024 x 1024 table is refused with a clear error");
+  failures.Check(!huge->Update(functions.Property, Range, MaxLength, 1024, 64) &&
+      huge->GetLastError().find("times the integration time") != std::string::npos,
+    "a 1024 x 1024 x 64 table (minutes of integration) is refused");
+  return failures.ExitStatus();
 }

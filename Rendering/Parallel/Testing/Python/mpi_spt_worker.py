@@ -26,7 +26,7 @@ def parse() -> argparse.Namespace:
                         help="this rank renders an array of another name (in the second "
                              "volume with --second-volume)")
     parser.add_argument("--second-volume", action="store_true",
-                        help="a second SPT volume: the mesh moved by SECOND_OFFSET")
+                        help="a second SPT volume: the mesh moved by scene_support.union_offset()")
     parser.add_argument("--other-seed-on", type=int, default=-1,
                         help="this rank renders with seed 7")
     parser.add_argument("--other-opacity-on", type=int, default=-1,
@@ -68,19 +68,6 @@ def controller_or_none(serial: bool):
     controller.Initialize()
     vtkMultiProcessController.SetGlobalController(controller)
     return controller
-
-
-#: Where the second volume's copy of the mesh goes, as fractions of the mesh's extent.
-SECOND_OFFSET = (0.35, 0.2, 0.1)
-
-
-def second_offset(bounds):
-    return tuple(f * (bounds[2 * a + 1] - bounds[2 * a]) for a, f in enumerate(SECOND_OFFSET))
-
-
-def union_bounds(bounds):
-    offset = second_offset(bounds)
-    return [bounds[i] + (offset[i // 2] if i % 2 else 0.0) for i in range(6)]
 
 
 def opaque_sphere(bounds):
@@ -136,6 +123,7 @@ def oblique_plane():
 def add_volumes(arguments, renderer, controller, scene):
     """This rank's SPT volumes of the scene (two with --second-volume) in ``renderer``, each
     with its piece of the mesh; returns their mappers and pieces."""
+    import scene_support
     from spt import meshes, render
 
     rank = controller.GetLocalProcessId() if controller else 0
@@ -171,7 +159,7 @@ def add_volumes(arguments, renderer, controller, scene):
         piece = piece_of(grid, renamed=second == arguments.second_volume)
         volume = render.add_volume(renderer, piece, volume_property, mapper)
         if second:
-            volume.SetPosition(*second_offset(grid.GetBounds()))
+            volume.SetPosition(*scene_support.union_offset(grid))
         mappers.append(mapper)
         pieces.append(piece)
     return mappers, pieces
@@ -193,6 +181,7 @@ def render_frames(arguments, window, mappers):
 
 def main() -> None:
     arguments = parse()
+    import scene_support
     from spt import render, scenes
 
     controller = controller_or_none(arguments.serial)
@@ -209,7 +198,7 @@ def main() -> None:
     mappers, pieces = add_volumes(arguments, renderer, controller, scene)
     if rank == arguments.opaque_on:
         renderer.AddActor(opaque_sphere(grid.GetBounds()))
-    bounds = union_bounds(grid.GetBounds()) if arguments.second_volume else grid.GetBounds()
+    bounds = (scene_support.union("default") if arguments.second_volume else grid).GetBounds()
     render.place_camera(renderer, bounds, scene.view)
     if arguments.update_rate > 0.0:
         window.SetDesiredUpdateRate(arguments.update_rate)

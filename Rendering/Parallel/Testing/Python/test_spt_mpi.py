@@ -33,9 +33,8 @@ import sys
 import numpy as np
 import pytest
 
-import mpi_spt_worker
 import scene_support
-from spt import metrics, render, scenes
+from spt import metrics
 
 WORKER = pathlib.Path(__file__).resolve().parent / "mpi_spt_worker.py"
 SIZE = 128
@@ -72,9 +71,10 @@ def mpiexec():
     return command
 
 
-def run(output: pathlib.Path, ranks: int, *options: str, repetitions: int = REPETITIONS):
-    """Render with ``ranks`` ranks (0: no MPI, no controller); the frames rank 0 read back,
-    its report, and the stderr of every rank."""
+def run(output: pathlib.Path, ranks: int, *options: str, repetitions: int = REPETITIONS,
+        errors: int = 0):
+    """Render with ``ranks`` ranks (0: no MPI, no controller), which must report ``errors``
+    errors in all; the frames rank 0 read back, its report, and the stderr of every rank."""
     command = [sys.executable, str(WORKER), "--output", str(output), "--size", str(SIZE),
                "--repetitions", str(repetitions), *options]
     if ranks > 0:
@@ -84,6 +84,7 @@ def run(output: pathlib.Path, ranks: int, *options: str, repetitions: int = REPE
     result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
                             check=False)
     assert result.returncode == 0, result.stdout[-4000:] + result.stderr[-4000:]
+    assert result.stderr.count("ERR") == errors, result.stderr
     report = json.loads(output.with_suffix(".json").read_text())
     return np.load(output), report, result.stderr
 
@@ -99,13 +100,28 @@ def largest_difference(a: np.ndarray, b: np.ndarray) -> float:
     return float(np.abs(metrics.to_uint8(a).astype(int) - metrics.to_uint8(b).astype(int)).max())
 
 
+def run_serial_and_two_ranks(tmp_path, name: str, *options: str, repetitions=REPETITIONS):
+    """Render with no controller and with 2 ranks: the 2-rank frames are the serial ones (one
+    8-bit level), with no error on any rank; the two runs (images, report, stderr)."""
+    serial = run(tmp_path / f"{name}0.npy", 0, *options, repetitions=repetitions)
+    two = run(tmp_path / f"{name}2.npy", 2, *options, repetitions=repetitions)
+    assert len(serial[0]) == len(two[0])
+    for frame in range(len(two[0])):
+        assert largest_difference(serial[0][frame], two[0][frame]) <= 1.0
+    return serial, two
+
+
+def check_bytes(report, expected: int) -> None:
+    """The bytes a rank moved are ``expected``, plus a small record."""
+    assert expected <= report["bytes"] <= expected + 4096
+
+
 def test_two_ranks_equal_one_rank(renders):
     one, report_one, _ = renders[1]
-    two, report_two, errors = renders[2]
+    two, report_two, _ = renders[2]
     assert report_one["ranks"] == 1 and report_two["ranks"] == 2
     assert report_two["cells"] == 24000  # rank 0's piece: every other cell
     assert largest_difference(one[0], two[0]) <= 1.0
-    assert "ERR" not in errors, errors
 
 
 def test_one_rank_equals_no_controller(renders):
@@ -131,9 +147,7 @@ def test_bytes_moved(renders):
     """Per frame, each rank reduces the keys (4 bytes per sample and repetition), the sums
     and coverage (2 x 16 bytes per sample), and a small record."""
     _, report, _ = renders[2]
-    samples = SIZE * SIZE
-    expected = samples * (4 * REPETITIONS + 32)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS + 32))
 
 
 @pytest.fixture(scope="module")
@@ -151,27 +165,22 @@ def test_depth_slabs_on_two_ranks_equal_one_process(slab_renders, renders):
     """The slabs' sums are fixed point, the same in any order: the 2-rank image is the one
     of one process. The slabs change the image (its noise), and it stays the volume."""
     serial, _, _ = slab_renders[0]
-    two, report, errors = slab_renders[2]
+    two, report, _ = slab_renders[2]
     assert largest_difference(serial[0], two[0]) <= 1.0
     assert largest_difference(two[0], two[1]) == 0.0
-    assert "ERR" not in errors, errors
     assert largest_difference(two[0], renders[2][0][0]) >= 2.0
     reference = scene_support.reference("default", SIZE)
     assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
     # Per sample: each slab's keys, the sums and coverage, and each slab's four sums.
-    samples = SIZE * SIZE
-    expected = samples * (4 * REPETITIONS * SLABS + 32 + 16 * SLABS)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS * SLABS + 32 + 16 * SLABS))
 
 
 def test_clipping_planes_on_two_ranks_equal_one_process(have_display, tmp_path, renders):
     """Each rank cuts its piece's segments by the mappers' clipping plane: the combined image
     is one process's image of the clipped volume, not the unclipped one."""
-    serial, _, _ = run(tmp_path / "clipped0.npy", 0, "--clipping-plane")
-    two, _, errors = run(tmp_path / "clipped2.npy", 2, "--clipping-plane")
-    assert "ERR" not in errors, errors
+    (serial, _, _), (two, _, _) = run_serial_and_two_ranks(tmp_path, "clipped",
+                                                           "--clipping-plane")
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
-    assert largest_difference(serial[0], two[0]) <= 1.0
     unclipped, _, _ = renders[0]
     assert metrics.rmse(two[0], unclipped[0]) > 0.05, "the plane changes nothing"
 
@@ -180,14 +189,10 @@ def test_a_count_that_is_not_a_power_of_two(have_display, tmp_path):
     """The keys of 12 repetitions lie in a buffer of 16 layers (the shaders are compiled for
     a power of two): the ranks exchange the 12 layers in use, and combine them as one process
     draws them."""
-    serial, _, _ = run(tmp_path / "twelve0.npy", 0, repetitions=12)
-    two, report, errors = run(tmp_path / "twelve2.npy", 2, repetitions=12)
-    assert "ERR" not in errors, errors
+    (serial, _, _), (_, report, _) = run_serial_and_two_ranks(tmp_path, "twelve",
+                                                              repetitions=12)
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
-    assert largest_difference(serial[0], two[0]) <= 1.0
-    samples = SIZE * SIZE
-    expected = samples * (4 * 12 + 32)
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * 12 + 32))
 
 
 def test_ranks_share_the_table(have_display, tmp_path, renders):
@@ -196,20 +201,16 @@ def test_ranks_share_the_table(have_display, tmp_path, renders):
     (64 lengths of RGBA floats per pair) besides the frame's keys and sums, and the image is
     one process's."""
     serial, _, _ = renders[0]
-    three, report, errors = run(tmp_path / "three.npy", 3, "--frames", "1")
-    assert "ERR" not in errors, errors
+    three, report, _ = run(tmp_path / "three.npy", 3, "--frames", "1")
     assert serial[0][..., 3].max() > 0.2, "the image is empty"
     assert largest_difference(serial[0], three[0]) <= 1.0
-    samples = SIZE * SIZE
     table = 5462 * 64 * 4 * 4
-    expected = samples * (4 * REPETITIONS + 32) + table
-    assert expected <= report["bytes"] <= expected + 4096
+    check_bytes(report, SIZE * SIZE * (4 * REPETITIONS + 32) + table)
 
 
 def test_an_empty_piece_takes_part(have_display, tmp_path):
     """Rank 1 has no cells: rank 0's half of the mesh is drawn, with no error."""
-    images, _, errors = run(tmp_path / "empty.npy", 2, "--empty-rank", "1")
-    assert "ERR" not in errors, errors
+    images, _, _ = run(tmp_path / "empty.npy", 2, "--empty-rank", "1")
     alpha = images[0][..., 3].mean()
     reference = scene_support.reference("default", SIZE)
     assert 0.2 * reference[..., 3].mean() < alpha < 0.9 * reference[..., 3].mean()
@@ -221,8 +222,7 @@ def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path
     rank 0 resolves the volume over every rank's geometry, so the 2-rank image is the 1-rank
     image with the sphere, in all four channels."""
     one, _, _ = run(tmp_path / "sphere1.npy", 1, "--opaque-on", "0")
-    two, _, errors = run(tmp_path / "sphere2.npy", 2, "--opaque-on", "1")
-    assert "ERR" not in errors, errors
+    two, _, _ = run(tmp_path / "sphere2.npy", 2, "--opaque-on", "1")
     assert largest_difference(one[0], two[0]) <= 1.0
     without, _, _ = renders[2]
     assert largest_difference(without[0], two[0]) > 32.0
@@ -237,9 +237,8 @@ def test_opaque_geometry_on_another_rank_hides_the_volume(have_display, tmp_path
     (("--empty-viewport-on", "1"), "Rank 1 has image width 0 but rank 0 has 128"),
 ])
 def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, message):
-    images, _, errors = run(tmp_path / "differ.npy", 2, *options)
+    images, _, errors = run(tmp_path / "differ.npy", 2, *options, errors=1)
     assert errors.count(message) == 1, errors
-    assert errors.count("ERR") == 1, errors
     assert "nothing is drawn on any rank" in errors
     assert images[..., 3].max() == 0.0
 
@@ -258,8 +257,7 @@ def test_target_error_as_one_process(target_renders, ranks):
     target met well before the cap (a render that ignored the target would draw 256); the
     ranks drew the later steps into the same tiles as one process, fewer than all."""
     serial, serial_report, _ = target_renders[0]
-    images, report, errors = target_renders[ranks]
-    assert "ERR" not in errors, errors
+    images, report, _ = target_renders[ranks]
     assert report["repetitions"] == serial_report["repetitions"]
     assert report["fewest"] == serial_report["fewest"] < report["repetitions"][0]
     assert report["repetitions"][0] < TARGET_CAP
@@ -292,14 +290,11 @@ def test_progressive_refinement_across_ranks(have_display, tmp_path):
     """Each frame adds RepetitionLevel repetitions to the whole image until the target is met;
     the 2-rank frames are the frames of one process."""
     options = ("--target-error", "0.002", "--progressive", "--frames", "4")
-    serial, serial_report, _ = run(tmp_path / "progressive0.npy", 0, *options, repetitions=4)
-    two, report, errors = run(tmp_path / "progressive2.npy", 2, *options, repetitions=4)
-    assert "ERR" not in errors, errors
+    (_, serial_report, _), (_, report, _) = run_serial_and_two_ranks(
+        tmp_path, "progressive", *options, repetitions=4)
     assert report["repetitions"] == serial_report["repetitions"] == [4, 8, 12, 16]
     assert report["estimated_errors"] == pytest.approx(serial_report["estimated_errors"],
                                                        rel=1e-5)
-    for frame in range(4):
-        assert largest_difference(serial[frame], two[frame]) <= 1.0
 
 
 def test_time_budget_across_ranks(have_display, tmp_path):
@@ -308,27 +303,22 @@ def test_time_budget_across_ranks(have_display, tmp_path):
     second one repetition of the visibility estimator (a pair of traversals, not timed yet)
     and the third the cheapest frame, one repetition in one traversal, on every rank alike."""
     options = ("--update-rate", "1000", "--frames", "3")
-    serial, serial_report, _ = run(tmp_path / "budget0.npy", 0, *options, repetitions=64)
-    two, report, errors = run(tmp_path / "budget2.npy", 2, *options, repetitions=64)
-    assert "ERR" not in errors, errors
+    (_, serial_report, _), (_, report, _) = run_serial_and_two_ranks(
+        tmp_path, "budget", *options, repetitions=64)
     assert report["repetitions"] == serial_report["repetitions"] == [64, 1, 1]
-    for frame in range(3):
-        assert largest_difference(serial[frame], two[frame]) <= 1.0
 
 
 def test_target_error_with_an_empty_piece(have_display, tmp_path):
     """Rank 1 has no cells: rank 0's half is drawn to the target, with no error and no hang."""
-    images, report, errors = run(tmp_path / "target-empty.npy", 2, "--empty-rank", "1",
-                                 "--target-error", str(TARGET), repetitions=TARGET_CAP)
-    assert "ERR" not in errors, errors
+    images, report, _ = run(tmp_path / "target-empty.npy", 2, "--empty-rank", "1",
+                            "--target-error", str(TARGET), repetitions=TARGET_CAP)
     assert 0.0 < report["estimated_errors"][0] <= TARGET
     assert images[0][..., 3].max() > 0.0
 
 
 def test_target_error_ranks_that_differ(have_display, tmp_path):
-    images, _, errors = run(tmp_path / "target-differ.npy", 2, "--other-array-on", "1",
-                            "--target-error", str(TARGET), repetitions=TARGET_CAP)
-    assert errors.count("ERR") == 1, errors
+    images, _, _ = run(tmp_path / "target-differ.npy", 2, "--other-array-on", "1",
+                       "--target-error", str(TARGET), repetitions=TARGET_CAP, errors=1)
     assert images[..., 3].max() == 0.0
 
 
@@ -339,18 +329,9 @@ def two_volume_renders(have_display, tmp_path_factory):
             for ranks in (0, 2)}
 
 
-def union_reference():
-    """The exact reference of both volumes: the mesh and its moved copy as one grid."""
-    scene = scenes.scene("default")
-    union = scene_support.with_moved_copy(
-        scene.grid, mpi_spt_worker.second_offset(scene.grid.GetBounds()))
-    return render.reference(union, scene.property, scene.view, (SIZE, SIZE)).image
-
-
 def test_two_volumes_on_two_ranks_equal_one_process(two_volume_renders):
     serial, serial_report, _ = two_volume_renders[0]
-    two, report, errors = two_volume_renders[2]
-    assert "ERR" not in errors, errors
+    two, report, _ = two_volume_renders[2]
     assert report["repetitions"][0] == serial_report["repetitions"][0] == [REPETITIONS] * 2
     assert largest_difference(serial[0], two[0]) <= 1.0
     assert largest_difference(two[0], two[1]) == 0.0
@@ -360,24 +341,23 @@ def test_two_volumes_on_two_ranks_are_the_union(two_volume_renders):
     """Both volumes, composited where they overlap: as close to the union's reference as one
     volume is to its own (an image missing a volume or a piece is off by more than 0.02)."""
     two, _, _ = two_volume_renders[2]
-    reference = union_reference()
+    reference = scene_support.union_reference("default", SIZE)
     assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
     assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
 
 
 def test_a_later_volume_that_differs_gives_one_error(have_display, tmp_path):
     images, _, errors = run(tmp_path / "differ2.npy", 2, "--second-volume",
-                            "--other-array-on", "1")
+                            "--other-array-on", "1", errors=1)
     message = ("SPT volume 2 of the renderer: Rank 1 renders the point array 'another name' of "
                "1 component(s), but rank 0 renders the point array 'field'")
     assert errors.count(message) == 1, errors
-    assert errors.count("ERR") == 1, errors
     assert images[..., 3].max() == 0.0
 
 
 def test_an_empty_viewport_on_every_rank_draws_nothing_without_error(have_display, tmp_path):
     images, _, errors = run(tmp_path / "no_pixels.npy", 2, "--empty-viewport-on", "all")
-    assert "ERR" not in errors and "Warning" not in errors, errors
+    assert "Warning" not in errors, errors
     assert images.max() == 0.0
 
 

@@ -19,7 +19,7 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 
 from spt import render
 
-from robustness_support import assert_unchanged, snapshot, watch
+from robustness_support import assert_unchanged, snapshot, volume_property, watch
 
 SIZE = (40, 40)
 CELL_SIZES = {vtk.VTK_TETRA: 4, vtk.VTK_HEXAHEDRON: 8, vtk.VTK_WEDGE: 6, vtk.VTK_PYRAMID: 5,
@@ -94,17 +94,12 @@ def random_grid(rng: np.random.Generator) -> vtk.vtkUnstructuredGrid:
 
 
 def random_property(rng: np.random.Generator) -> vtk.vtkVolumeProperty:
-    color = vtk.vtkColorTransferFunction()
-    opacity = vtk.vtkPiecewiseFunction()
+    colors, opacities = [], []
     for _ in range(int(rng.choice([0, 1, 2, 3, 3, 3]))):
         x = float(rng.normal() * 10.0 ** rng.uniform(-1, 1))
-        color.AddRGBPoint(x, *rng.random(3))
-        opacity.AddPoint(x, float(rng.choice([0.0, 1.0, rng.random()])))
-    prop = vtk.vtkVolumeProperty()
-    prop.SetColor(color)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(float(10.0 ** rng.uniform(-3, 1)))
-    return prop
+        colors.append((x, *rng.random(3)))
+        opacities.append((x, float(rng.choice([0.0, 1.0, rng.random()]))))
+    return volume_property(colors, opacities, float(10.0 ** rng.uniform(-3, 1)))
 
 
 def random_mapper(kind: str, rng: np.random.Generator):
@@ -131,7 +126,7 @@ def random_mapper(kind: str, rng: np.random.Generator):
 
 def camera_can_frame(grid: vtk.vtkDataSet) -> bool:
     """Whether VTK's ResetCamera can frame the grid: finite bounds of a size its clipping
-    range handles (it fails far from 1, see robustness_support.render_scaled)."""
+    range handles (it fails far from 1, see robustness_support.check_extreme_scale)."""
     bounds = np.array(grid.GetBounds())
     if not np.isfinite(bounds).all():
         return False
@@ -141,13 +136,8 @@ def camera_can_frame(grid: vtk.vtkDataSet) -> bool:
 
 def opaque_property(grid: vtk.vtkDataSet) -> vtk.vtkVolumeProperty:
     """Opacity 1 at every scalar, reaching full opacity within a millionth of the data's size."""
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(0.0, 1.0)
-    prop = vtk.vtkVolumeProperty()
-    prop.SetScalarOpacity(opacity)
     bounds = np.array(grid.GetBounds())
-    prop.SetScalarOpacityUnitDistance(1e-6 * float(np.max(bounds[1::2] - bounds[0::2])))
-    return prop
+    return volume_property([], [(0.0, 1.0)], 1e-6 * float(np.max(bounds[1::2] - bounds[0::2])))
 
 
 def render_seed(kind: str, seed: int, window, renderer) -> str:

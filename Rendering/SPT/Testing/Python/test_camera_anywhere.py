@@ -91,14 +91,10 @@ def _image(method, name, dolly, seed=1, parallel=False):
     return _render(name, MAPPERS[method](seed), dolly, parallel)
 
 
-def _spt(name, dolly, seed=1, parallel=False):
-    return _image("spt", name, dolly, seed, parallel)
-
-
 @lru_cache(maxsize=None)
 def _reference(name, dolly, parallel=False):
     s = scene(name)
-    _, camera = _spt(name, dolly, 1, parallel)
+    _, camera = _image("spt", name, dolly, 1, parallel)
     return raycast.render(s.grid, s.property, camera, (SIZE, SIZE))
 
 
@@ -145,7 +141,7 @@ def test_inside_in_parallel_projection(method, name, have_display):
 @pytest.mark.parametrize("name", SCENES)
 def test_no_holes_with_the_camera_inside(name, have_display):
     """No pixel of the footprint is empty where the reference has alpha above 0.05."""
-    image, _ = _spt(name, CAMERAS["inside"])
+    image, _ = _image("spt", name, CAMERAS["inside"], 1, False)
     reference = _reference(name, CAMERAS["inside"])
     holes = (reference[..., 3] > 0.05) & (image[..., 3] == 0.0)
     assert not holes.any(), f"{int(holes.sum())} empty pixels"

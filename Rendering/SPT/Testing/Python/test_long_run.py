@@ -12,6 +12,8 @@ import vtk
 
 from spt import data, render
 
+from robustness_support import watch
+
 
 def _gl_error(window) -> int:
     """glGetError() in the window's context (VTK 9.2 does not wrap CheckGraphicError)."""
@@ -25,19 +27,6 @@ _GL = ctypes.CDLL(ctypes.util.find_library("GL") or "libGL.so.1")
 def _rss_bytes() -> int:
     with open("/proc/self/statm") as statm:
         return int(statm.read().split()[1]) * resource.getpagesize()
-
-
-class Errors:
-    """Counts error and warning events of the objects it watches."""
-
-    def __init__(self, *objects):
-        self.count = 0
-        for obj in objects:
-            obj.AddObserver("ErrorEvent", self._seen)
-            obj.AddObserver("WarningEvent", self._seen)
-
-    def _seen(self, *args):
-        self.count += 1
 
 
 def _small_mesh() -> vtk.vtkUnstructuredGrid:
@@ -79,7 +68,7 @@ def test_a_thousand_renders_do_not_grow(kind, have_display):
     mapper = MAPPERS[kind]()
     render.add_volume(renderer, grid, prop, mapper)
     renderer.ResetCamera()
-    errors = Errors(mapper, window, renderer)
+    messages = [watch(obj) for obj in (mapper, window, renderer)]
     opacity = prop.GetScalarOpacity()
     sizes = [(64, 64), (80, 48), (48, 72)]
     gpu_bytes, rss, particles, graphic_errors = [], [], [], []
@@ -98,7 +87,8 @@ def test_a_thousand_renders_do_not_grow(kind, have_display):
             error = _gl_error(window)
             if error:
                 graphic_errors.append((frame, hex(error)))
-    assert errors.count == 0 and not graphic_errors, graphic_errors
+    reported = [text for m in messages for text in m.errors + m.warnings]
+    assert not reported and not graphic_errors, (reported, graphic_errors)
     # GPU memory (apart from PBVR's particles, which follow the view) depends only on the
     # window size.
     by_size = {}

@@ -29,30 +29,22 @@ from scene_support import reference, scene
 SIZE = (128, 128)
 
 
-def _scene(name):
-    return scene(name)
-
-
-def _reference(name):
-    return reference(name, SIZE[0])
-
-
 @lru_cache(maxsize=None)
 def _rmse(name, method):
-    s = _scene(name)
+    s = scene(name)
     mapper = {"havs2": lambda: render.havs_mapper(2), "havs6": lambda: render.havs_mapper(6),
               "pt": render.projected_tetrahedra_mapper}[method]()
     return metrics.rmse(render.render(s.grid, s.property, mapper, s.view, SIZE).image,
-                        _reference(name))
+                        reference(name, SIZE[0]))
 
 
 @lru_cache(maxsize=None)
 def _spt_estimate(name, level):
-    s = _scene(name)
+    s = scene(name)
     first, second = (render.render(s.grid, s.property,
                                    render.spt_mapper(level, seed=seed, **render.PAPER_SAMPLING),
                                    s.view, SIZE, frames=0).image for seed in (1, 2))
-    return image_statistics.estimate(first, second, _reference(name), level)
+    return image_statistics.estimate(first, second, reference(name, SIZE[0]), level)
 
 
 def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
@@ -68,10 +60,10 @@ CLAIMS = [("torus", "havs2"), ("torus", "pt"), ("default", "havs2"), ("default",
 
 @lru_cache(maxsize=None)
 def _spt_1024_rmse(name):
-    s = _scene(name)
+    s = scene(name)
     spt = render.render(s.grid, s.property, render.spt_mapper(1024, seed=3), s.view,
                         SIZE, frames=0).image
-    return metrics.rmse(spt, _reference(name))
+    return metrics.rmse(spt, reference(name, SIZE[0]))
 
 
 @pytest.mark.parametrize("name, method", CLAIMS)

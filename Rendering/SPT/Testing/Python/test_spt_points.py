@@ -16,10 +16,10 @@ from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
 from spt import render
 
+from robustness_support import tetrahedra, volume_property
 from scene_support import draw_once, opaque_plane, scene, window_with, with_cell_scalars
 
 SIZE = 128
@@ -108,25 +108,11 @@ def test_needles_are_drawn_as_triangles(have_display):
     """A cell whose mean projection fills little of the square of its longest edge (a
     needle) is drawn as triangles however small; a regular one of the same size as a point.
     Both are drawn."""
-    points = vtk.vtkPoints()
     regular = [(0, 0, 0), (1, 0, 0), (0.5, 0.866, 0), (0.5, 0.289, 0.816)]
     needle = [(2, 0, 0), (3, 0, 0), (2, 0.05, 0), (2, 0, 0.05)]
-    grid = vtk.vtkUnstructuredGrid()
-    for corners in (regular, needle):
-        ids = [points.InsertNextPoint(p) for p in corners]
-        grid.InsertNextCell(vtk.VTK_TETRA, 4, ids)
-    grid.SetPoints(points)
-    scalars = vtk.vtkFloatArray()
-    scalars.SetName("s")
-    for i in range(8):
-        scalars.InsertNextValue(float(i % 4) / 3.0)
-    grid.GetPointData().SetScalars(scalars)
-    prop = vtk.vtkVolumeProperty()
-    opacity = vtk.vtkPiecewiseFunction()
-    opacity.AddPoint(0.0, 0.5)
-    opacity.AddPoint(1.0, 0.9)
-    prop.SetScalarOpacity(opacity)
-    prop.SetScalarOpacityUnitDistance(0.05)
+    grid = tetrahedra(regular + needle, [(0, 1, 2, 3), (4, 5, 6, 7)],
+                      [float(i % 4) / 3.0 for i in range(8)])
+    prop = volume_property([], [(0.0, 0.5), (1.0, 0.9)], unit=0.05)
     mapper = render.spt_mapper(4)
     mapper.SetSmallCellSize(ALL_SMALL)
     image = render.render(grid, prop, mapper, render.View(azimuth=30.0, elevation=20.0),

@@ -149,11 +149,12 @@ def test_a_new_image_aims_its_first_step_at_the_median_tile(have_display):
     assert measured <= 1.1 * target, f"largest tile's error {measured:.4f}"
 
 
-def _render_to_target(s, mapper, name, target=None):
-    """One render of scene ``s`` through ``mapper``, which must stop with an estimate at or
-    below ``target`` (the scene's by default) and below the cap: the image, the repetitions
+def _render_to_target(mapper, name, target=None):
+    """One render of the named scene through ``mapper``, which must stop with an estimate at
+    or below ``target`` (the scene's by default) and below the cap: the image, the repetitions
     drawn, the estimate and the largest tile's error measured against the reference."""
     target = TARGETS[name] if target is None else target
+    s = scene(name)
     image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
     level = mapper.GetLastRepetitionCount()
     estimated = mapper.GetEstimatedError()
@@ -169,10 +170,9 @@ def test_default_group_stops_at_or_below_the_target(name, have_display):
     repetition above these meshes' own: the render stops at the first estimate that meets the
     target, and its error against the reference (the 8-bit read-back's floor included) meets
     it too."""
-    s = scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
     assert mapper.GetRepetitionsPerPass() == 256
-    _, level, _, measured = _render_to_target(s, mapper, name)
+    _, level, _, measured = _render_to_target(mapper, name)
     assert 2 <= level < CAP, f"stopped at {level} repetitions"
     assert measured <= TARGETS[name], f"measured {measured:.4f} at {level} repetitions"
 
@@ -181,11 +181,10 @@ def test_a_first_image_steps_by_its_target(have_display):
     """A mapper's first image has no noise measured before it: its first step aims with an
     assumed noise per repetition, so a lower target draws more repetitions in that one step,
     and each image meets its own target."""
-    s = scene("spx")
     counts = []
     for target in (0.02, 0.006, 0.003):
         mapper = _mapper(CAP, 1, target, per_pass=None)
-        _, level, _, measured = _render_to_target(s, mapper, "spx", target)
+        _, level, _, measured = _render_to_target(mapper, "spx", target)
         assert measured <= target, f"measured {measured:.4f} at {level} for {target}"
         counts.append(level)
     assert counts[0] < counts[1] < counts[2], f"repetitions {counts} for 0.02, 0.006, 0.003"
@@ -202,7 +201,7 @@ def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_d
     render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE))
     first_level = mapper.GetLastRepetitionCount()
     mapper.SetSeed(2)
-    _, level, estimated, measured = _render_to_target(s, mapper, name)
+    _, level, estimated, measured = _render_to_target(mapper, name)
     assert 2 <= level < first_level, f"{level} repetitions after {first_level}"
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
@@ -280,8 +279,7 @@ def test_a_target_near_the_rounding_is_met_against_the_reference(name, have_disp
     Counting the noise alone would stop where the measured error is sqrt(target^2 + 0.00113^2),
     a quarter above the target here."""
     target = 0.0015
-    s = scene(name)
-    _, level, estimated, measured = _render_to_target(s, _mapper(CAP, 1, target), name, target)
+    _, level, estimated, measured = _render_to_target(_mapper(CAP, 1, target), name, target)
     assert measured <= 1.1 * target, (
         f"measured {measured:.5f} for the target {target} at {level} repetitions")
     assert measured / 1.15 <= estimated <= 1.15 * measured, (

@@ -11,8 +11,6 @@ one grid, the second with the transform applied to its points). The tests check 
 - the image is the same whichever of the volumes comes first in the renderer.
 """
 
-from functools import lru_cache
-
 import numpy as np
 import pytest
 
@@ -21,28 +19,11 @@ from vtkmodules.vtkRenderingCore import vtkVolumeProperty
 
 import image_statistics
 from robustness_support import watch
-from scene_support import draw_once, scene, with_moved_copy
+from scene_support import draw_once, scene, union, union_offset, union_reference
 
 SIZE = 128
 REPETITIONS = 32
 SCENES = ("default", "spx")
-
-
-def _offset(grid):
-    b = grid.GetBounds()
-    return (0.35 * (b[1] - b[0]), 0.2 * (b[3] - b[2]), 0.1 * (b[5] - b[4]))
-
-
-@lru_cache(maxsize=None)
-def _union(name):
-    s = scene(name)
-    return with_moved_copy(s.grid, _offset(s.grid))
-
-
-@lru_cache(maxsize=None)
-def _reference(name):
-    s = scene(name)
-    return render.reference(_union(name), s.property, s.view, (SIZE, SIZE)).image
 
 
 def _two_volumes(name, make, second_property=None, second_first=False):
@@ -52,8 +33,8 @@ def _two_volumes(name, make, second_property=None, second_first=False):
     properties = [s.property, second_property or s.property]
     volumes = {index: render.add_volume(renderer, s.grid, properties[index], make())
                for index in ((1, 0) if second_first else (0, 1))}
-    volumes[1].SetPosition(*_offset(s.grid))
-    render.place_camera(renderer, _union(name).GetBounds(), s.view)
+    volumes[1].SetPosition(*union_offset(s.grid))
+    render.place_camera(renderer, union(name).GetBounds(), s.view)
     return draw_once(window)
 
 
@@ -65,11 +46,11 @@ def _check_as_close_as_the_union(name, make):
     """Two volumes through mappers of ``make(seed)`` against their union drawn as one grid
     through the same: no farther from the reference, within 4 x the noise of one render at
     this count (from two seeds of the union). Returns the two volumes' error."""
-    reference = _reference(name)
+    reference = union_reference(name, SIZE)
     two = _two_volumes(name, lambda: make(1))
     assert two[..., 3].max() > 0.2, "the image is (almost) empty"
     s = scene(name)
-    one, second_seed = (render.render(_union(name), s.property, make(seed), s.view,
+    one, second_seed = (render.render(union(name), s.property, make(seed), s.view,
                                       (SIZE, SIZE)).image for seed in (1, 2))
     noise = image_statistics.estimate(one, second_seed, reference, REPETITIONS)
     one_error, two_error = metrics.rmse(one, reference), metrics.rmse(two, reference)
@@ -82,7 +63,7 @@ def _check_as_close_as_the_union(name, make):
 def test_two_volumes_composite_as_their_union(name, have_display):
     two_error = _check_as_close_as_the_union(
         name, lambda seed: render.spt_mapper(REPETITIONS, seed=seed))
-    reference = _reference(name)
+    reference = union_reference(name, SIZE)
     sorted_one_by_one = metrics.rmse(
         _two_volumes(name, render.projected_tetrahedra_mapper), reference)
     assert two_error < 0.5 * sorted_one_by_one, (
