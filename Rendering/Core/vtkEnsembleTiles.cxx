@@ -267,13 +267,10 @@ bool vtkEnsembleTiles::UploadMissed(vtkOpenGLRenderWindow* context)
 
 void vtkEnsembleTiles::Activate(vtkOpenGLRenderWindow* context, vtkShaderProgram* program)
 {
-  const bool missed = this->GetMostMissed() > 0 && this->UploadMissed(context);
-  if (this->MissedTexture->GetHandle() == 0)
-  {
-    this->UploadMissed(context);
-  }
+  // The sampler names the texture even where no tile missed a repetition and it is not read.
+  const bool uploaded = this->UploadMissed(context);
   this->MissedTexture->Activate();
-  program->SetUniformi("restricted", missed ? 1 : 0);
+  program->SetUniformi("restricted", uploaded && this->GetMostMissed() > 0 ? 1 : 0);
   program->SetUniformi("tileSize", TileSize);
   program->SetUniformi("tileMissed", this->MissedTexture->GetTextureUnit());
 }
