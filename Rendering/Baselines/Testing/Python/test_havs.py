@@ -1,8 +1,8 @@
 """vtkHAVSVolumeMapper, the HAVS-like sorted baseline, against the reference ray caster: convex
 and non-convex meshes (gaps between disjoint blocks contribute nothing, whatever their width),
 mirrored and parallel views, opaque geometry; every synchronization of the k-buffer gives the
-same image; settings, PrintSelf, the time split, re-rendering and released resources. Bad and
-unusual input: test_mapper_robustness.py.
+same image; settings, PrintSelf and the time split. Bad and unusual input, re-rendering and
+released resources: test_mapper_robustness.py.
 
 Tolerances are the RMSE measured on llvmpipe at 128 x 128 with a margin of about 1.5x; VTK's
 projected tetrahedra, rendered next to it, is the yardstick on the same scene.
@@ -17,8 +17,7 @@ import vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import (ONE, check_clamped_setting, opaque_plane, property_for,
-                                split_box, watch, watched_render)
+from robustness_support import check_clamped_setting, opaque_plane, property_for, split_box, watch
 from scene_support import with_moved_copy
 
 SIZE = (128, 128)
@@ -175,14 +174,6 @@ def test_automatic_synchronization_and_time_split(have_display):
     assert 2 * mapper.GetNumberOfFaces() == 4 * tetrahedra_count + mapper.GetNumberOfBoundaryFaces()
 
 
-def test_one_tetrahedron_renders(have_display):
-    mapper = render.havs_mapper()
-    rendering, messages = watched_render(mapper, ONE)
-    assert not messages.errors
-    assert (mapper.GetNumberOfFaces(), mapper.GetNumberOfBoundaryFaces()) == (4, 4)
-    assert rendering.image[..., 3].max() > 0.2
-
-
 def test_settings_have_defaults_and_clamps():
     mapper = HAVS()
     assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
@@ -206,24 +197,3 @@ def test_print_self_lists_every_setting():
                     "NumberOfBoundaryFaces", "GPUMemorySize", "LastSortTime", "LastGPUTime",
                     "ScalarMode"]:
         assert setting + ":" in text, setting
-
-
-def test_repeated_renders_clear_the_k_buffer_and_follow_the_camera(have_display):
-    """Releases, resizes and a second window: test_mapper_robustness.py."""
-    grid = data.make_default_mesh()
-    mapper = render.havs_mapper(6)
-    messages = watch(mapper)
-    window, renderer = render.make_window(*SIZE)
-    render.add_volume(renderer, grid, data.default_transfer_function(grid), mapper)
-    renderer.ResetCamera()
-    window.Render()
-    first = render.read_rgba(window)
-    assert first[..., 3].max() > 0.2 and mapper.GetGPUMemorySize() > 0
-    for _ in range(2):
-        window.Render()
-    assert np.array_equal(render.read_rgba(window), first), "the k-buffer is not cleared"
-    renderer.GetActiveCamera().Azimuth(40.0)
-    window.Render()
-    assert not np.array_equal(render.read_rgba(window), first), "the sort ignores the camera"
-    assert not messages.errors, messages.errors
-    window.Finalize()
