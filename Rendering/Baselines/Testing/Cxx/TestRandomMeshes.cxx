@@ -10,7 +10,6 @@
 #include "vtkPBVRVolumeMapper.h"
 #include "vtkSPTVolumeMapper.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
@@ -24,6 +23,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -186,11 +186,6 @@ struct Counts
   int Errors = 0;
 };
 
-void CountError(vtkObject*, unsigned long, void* clientData, void*)
-{
-  ++*static_cast<int*>(clientData);
-}
-
 // Render one seed; false when a check fails.
 bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int seed, Counts& counts)
 {
@@ -198,12 +193,9 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
   vtkSmartPointer<vtkUnstructuredGrid> grid = RandomGrid(random);
   vtkSmartPointer<vtkVolumeProperty> property = RandomProperty(random);
   vtkSmartPointer<vtkUnstructuredGridVolumeMapper> mapper = RandomMapper(random, kind);
-  int errors = 0;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(CountError);
-  onError->SetClientData(&errors);
-  mapper->AddObserver(vtkCommand::ErrorEvent, onError);
-  mapper->AddObserver(vtkCommand::WarningEvent, onError);
+  vtkNew<vtkTest::ErrorObserver> messages;
+  mapper->AddObserver(vtkCommand::ErrorEvent, messages);
+  mapper->AddObserver(vtkCommand::WarningEvent, messages);
   const vtkMTimeType inputTime = grid->GetMTime();
 
   mapper->SetInputData(grid);
@@ -227,7 +219,7 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
   mapper->ReleaseGraphicsResources(window);
 
   counts.Drew += drew ? 1 : 0;
-  counts.Errors += errors > 0 ? 1 : 0;
+  counts.Errors += messages->GetError() || messages->GetWarning() ? 1 : 0;
   if (error != GL_NO_ERROR || grid->GetMTime() != inputTime)
   {
     std::cerr << "Mapper " << kind << ", seed " << seed << ": "
