@@ -259,13 +259,11 @@ inline Entry Interpolate(const ProjectedFace& f, const double barycentric[3], bo
 inline void RasterizeFace(
   const ProjectedFace& f, bool parallel, int size, std::vector<PixelFragments>& pixels)
 {
-  const double lo[2] = { std::min({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
-    std::min({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
-  const double hi[2] = { std::max({ f.Window[0].x, f.Window[1].x, f.Window[2].x }),
-    std::max({ f.Window[0].y, f.Window[1].y, f.Window[2].y }) };
-  for (int y = std::max(0, int(lo[1]) - 1); y <= std::min(size - 1, int(hi[1]) + 1); ++y)
+  const glm::dvec2 lo = glm::min(f.Window[0], glm::min(f.Window[1], f.Window[2]));
+  const glm::dvec2 hi = glm::max(f.Window[0], glm::max(f.Window[1], f.Window[2]));
+  for (int y = std::max(0, int(lo.y) - 1); y <= std::min(size - 1, int(hi.y) + 1); ++y)
   {
-    for (int x = std::max(0, int(lo[0]) - 1); x <= std::min(size - 1, int(hi[0]) + 1); ++x)
+    for (int x = std::max(0, int(lo.x) - 1); x <= std::min(size - 1, int(hi.x) + 1); ++x)
     {
       double barycentric[3];
       bool onEdge = false;
