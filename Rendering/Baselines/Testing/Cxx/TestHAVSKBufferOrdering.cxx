@@ -123,33 +123,6 @@ vtkSmartPointer<vtkVolumeProperty> MakeProperty(const double range[2], double un
   return property;
 }
 
-std::vector<glm::vec4> Simulate(const std::vector<PixelFragments>& pixels, int kbufferSize,
-  const vtkPreIntegrationTable* table, float thicknessToTable, Perturbation perturbation)
-{
-  std::vector<glm::vec4> image(pixels.size());
-  for (size_t p = 0; p < pixels.size(); ++p)
-  {
-    std::vector<Entry> fragments = pixels[p].Fragments;
-    if (perturbation == Perturbation::SwapPairs)
-    {
-      for (size_t i = 0; i + 1 < fragments.size(); i += 2)
-      {
-        std::swap(fragments[i], fragments[i + 1]);
-      }
-    }
-    KBuffer kbuffer(kbufferSize, table, thicknessToTable, pixels[p].LengthScale);
-    for (size_t i = 0; i < fragments.size(); ++i)
-    {
-      if (perturbation != Perturbation::LoseEveryFourth || i % 4 != 3)
-      {
-        kbuffer.Insert(fragments[i]);
-      }
-    }
-    image[p] = kbuffer.Flush();
-  }
-  return image;
-}
-
 struct Comparison
 {
   int Compared = 0;
@@ -241,15 +214,32 @@ struct Scene
     this->Pixels = Rasterize(this->Faces, matrices, Size);
   }
 
-  Simulations Simulate(int k) const
+  // The CPU image of a k-buffer of size k fed with the fragments in draw order, or in a
+  // perturbed order.
+  std::vector<glm::vec4> Simulate(int k, Perturbation perturbation) const
   {
-    Simulations images;
-    for (Perturbation p :
-      { Perturbation::None, Perturbation::SwapPairs, Perturbation::LoseEveryFourth })
+    std::vector<glm::vec4> image(this->Pixels.size());
+    for (size_t p = 0; p < this->Pixels.size(); ++p)
     {
-      images[int(p)] = ::Simulate(this->Pixels, k, this->Table, this->ThicknessToTable, p);
+      std::vector<Entry> fragments = this->Pixels[p].Fragments;
+      if (perturbation == Perturbation::SwapPairs)
+      {
+        for (size_t i = 0; i + 1 < fragments.size(); i += 2)
+        {
+          std::swap(fragments[i], fragments[i + 1]);
+        }
+      }
+      KBuffer kbuffer(k, this->Table, this->ThicknessToTable, this->Pixels[p].LengthScale);
+      for (size_t i = 0; i < fragments.size(); ++i)
+      {
+        if (perturbation != Perturbation::LoseEveryFourth || i % 4 != 3)
+        {
+          kbuffer.Insert(fragments[i]);
+        }
+      }
+      image[p] = kbuffer.Flush();
     }
-    return images;
+    return image;
   }
 
   void Print(const char* name) const
@@ -318,7 +308,9 @@ void CheckMesh(vtkUnstructuredGrid* grid, const char* name, double unitDistance,
   for (int k = 2; k <= 6; ++k)
   {
     scene.Mapper->SetKBufferSize(k);
-    const Simulations simulated = scene.Simulate(k);
+    const Simulations simulated = { scene.Simulate(k, Perturbation::None),
+      scene.Simulate(k, Perturbation::SwapPairs),
+      scene.Simulate(k, Perturbation::LoseEveryFourth) };
     for (int access : { vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK,
            vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH, vtkHAVSVolumeMapper::RASTERIZATION_ORDER })
     {

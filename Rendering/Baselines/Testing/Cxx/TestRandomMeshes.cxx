@@ -28,6 +28,7 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "SPTTestChecks.h"
 #include "SPTTestWindow.h"
 
 #include <cmath>
@@ -186,8 +187,9 @@ struct Counts
   int Errors = 0;
 };
 
-// Render one seed; false when a check fails.
-bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int seed, Counts& counts)
+// Render one seed.
+void RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int seed, Counts& counts,
+  SPTTestChecks::FailureCount& failures)
 {
   Random random(1000 * kind + seed + 1);
   vtkSmartPointer<vtkUnstructuredGrid> grid = RandomGrid(random);
@@ -220,13 +222,9 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
 
   counts.Drew += drew ? 1 : 0;
   counts.Errors += messages->GetError() || messages->GetWarning() ? 1 : 0;
-  if (error != GL_NO_ERROR || grid->GetMTime() != inputTime)
-  {
-    std::cerr << "Mapper " << kind << ", seed " << seed << ": "
-              << (error != GL_NO_ERROR ? "an OpenGL error" : "the input was modified") << "\n";
-    return false;
-  }
-  return true;
+  const std::string what = "mapper " + std::to_string(kind) + ", seed " + std::to_string(seed);
+  failures.Check(error == GL_NO_ERROR, what + ": no OpenGL error");
+  failures.Check(grid->GetMTime() == inputTime, what + ": the input is not modified");
 }
 }
 
@@ -242,22 +240,19 @@ int TestRandomMeshes(int, char*[])
   window->Render();
   glGetError();
 
-  int failures = 0;
-  const char* names[] = { "SPT", "HAVS", "PBVR" };
+  SPTTestChecks::FailureCount failures;
+  const std::string names[] = { "SPT", "HAVS", "PBVR" };
   for (int kind = 0; kind < 3; ++kind)
   {
     Counts counts;
     for (int seed = 0; seed < Seeds; ++seed)
     {
-      failures += RenderSeed(window, renderer, kind, seed, counts) ? 0 : 1;
+      RenderSeed(window, renderer, kind, seed, counts, failures);
     }
     std::cout << names[kind] << ": " << counts.Drew << " of " << Seeds << " seeds drew, "
               << counts.Errors << " reported an error or a warning\n";
-    if (counts.Drew < 5 || counts.Errors < 5)
-    {
-      std::cerr << names[kind] << ": the random input did not reach both drawing and errors.\n";
-      ++failures;
-    }
+    failures.Check(counts.Drew >= 5 && counts.Errors >= 5,
+      names[kind] + ": the random input reaches both drawing and errors");
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return failures.ExitStatus();
 }
