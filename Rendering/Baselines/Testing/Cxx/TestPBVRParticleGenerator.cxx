@@ -39,19 +39,16 @@ void SetTetrahedron(vtkTetrahedralMesh* mesh, const std::array<double, 4>& scala
 {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0.0, 0.0, 0.0);
-  points->InsertNextPoint(1.0, 0.0, 0.0);
-  points->InsertNextPoint(0.0, 1.0, 0.0);
-  points->InsertNextPoint(0.0, 0.0, 1.0);
-  grid->SetPoints(points);
-  const vtkIdType ids[4] = { 0, 1, 2, 3 };
-  grid->InsertNextCell(VTK_TETRA, 4, ids);
   vtkNew<vtkDoubleArray> values;
   values->SetName("s");
   for (int i = 0; i < 4; ++i)
   {
+    points->InsertNextPoint(i == 1, i == 2, i == 3);
     values->InsertNextValue(scalars[i]);
   }
+  grid->SetPoints(points);
+  const vtkIdType ids[4] = { 0, 1, 2, 3 };
+  grid->InsertNextCell(VTK_TETRA, 4, ids);
   grid->GetPointData()->SetScalars(values);
   mesh->Update(grid, vtkTetrahedralMesh::ScalarSelection());
 }
@@ -137,20 +134,17 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& 
 
   const glm::dvec3 corner(-0.5);
   glm::dvec3 centroid(0.0);
-  double outside = 0.0;
+  int outside = 0;
   const std::vector<Particle> particles = Decode(generator);
   for (const Particle& p : particles)
   {
     const glm::dvec3 b = p.Position - corner; // barycentric weights of vertices 1, 2, 3
     const double margin = 2.0 / 65535.0;
-    if (b.x < -margin || b.y < -margin || b.z < -margin || b.x + b.y + b.z > 1.0 + margin)
-    {
-      ++outside;
-    }
+    outside += b.x < -margin || b.y < -margin || b.z < -margin || b.x + b.y + b.z > 1.0 + margin;
     centroid += p.Position;
   }
   centroid /= double(particles.size());
-  failures.Check(outside == 0.0, "every particle is inside the tetrahedron");
+  failures.Check(outside == 0, "every particle is inside the tetrahedron");
   failures.Check(glm::length(centroid - (corner + glm::dvec3(0.25))) < 0.005,
     "constant density: particles are uniform (their mean is the centroid)");
   failures.Check(generator->GetNumberOfCandidates() == generator->GetNumberOfParticles(),

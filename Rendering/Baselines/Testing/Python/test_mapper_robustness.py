@@ -355,11 +355,9 @@ def polyhedron_cube():
               (0, 1, 1)]
     faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
     grid = tetrahedra(points, [], np.array(points, dtype=float) @ np.array([0.2, 0.3, 0.5]))
-    stream = [len(faces)]
-    for face in faces:
-        stream += [len(face), *face]
     ids = vtk.vtkIdList()
-    for i in stream:
+    # The face stream: the number of faces, then each face's size and point ids.
+    for i in [len(faces)] + [n for face in faces for n in (len(face), *face)]:
         ids.InsertNextId(i)
     grid.InsertNextCell(vtk.VTK_POLYHEDRON, ids)
     return grid

@@ -11,18 +11,12 @@ import pytest
 import vtk
 
 import spt
-from spt import render, scenes
+from spt import render
 
 from robustness_support import ONE, check_clamped_setting, watch, watched_render
 from scene_support import bilinear_upsampled, draw_once, window_with
 
 SIZE = (96, 96)
-
-
-def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
-    mapper = spt.vtkPBVRVolumeMapper()
-    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
-    assert mapper.GetClassName() == "vtkPBVRVolumeMapper"
 
 
 @pytest.mark.parametrize("name, default, low, high", [
@@ -38,6 +32,8 @@ def test_settings_have_defaults_and_clamps(name, default, low, high):
 
 def test_print_self_lists_every_setting_and_report():
     mapper = spt.vtkPBVRVolumeMapper()
+    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
+    assert mapper.GetClassName() == "vtkPBVRVolumeMapper"
     mapper.SetSamplingModeToCellAverage()
     mapper.SetSeed(4000000000)
     assert mapper.GetSeed() == 4000000000
@@ -180,13 +176,12 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     """With a budget of 1 ms a render draws only the sets that fit (at least one); progressive
     refinement adds the next sets at each render until all are drawn, and the image is then
     the image of one render of all of them, bit for bit. A change of the camera starts anew."""
-    s = scenes.scene("default")
     level = 16
     mapper = render.pbvr_mapper(level, seed=1)
     mapper.AutoAdjustRepetitionsOn()
     mapper.AutoAdjustSampleDistancesOff()  # every pixel: the image of one render of them all
     mapper.ProgressiveRefinementOn()
-    window, renderer = window_with(mapper, SIZE[0], prop=s.property)
+    window, renderer = window_with(mapper, SIZE[0])
     window.Render()  # measures the time of a set
     assert mapper.GetLastRepetitionCount() == level
     assert mapper.GetTimePerRepetition() > 0.0
@@ -203,8 +198,7 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     progressive = render.read_rgba(window)
     assert progressive[..., 3].max() > 0.2
 
-    full_window, full_renderer = render.make_window(*SIZE)
-    render.add_volume(full_renderer, s.grid, s.property, render.pbvr_mapper(level, seed=1))
+    full_window, full_renderer = window_with(render.pbvr_mapper(level, seed=1), SIZE[0])
     full_renderer.SetActiveCamera(renderer.GetActiveCamera())
     full_renderer.ResetCameraClippingRange()
     renderer.ResetCameraClippingRange()
