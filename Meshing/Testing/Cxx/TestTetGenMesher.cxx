@@ -97,8 +97,8 @@ void TestVolumeAndOrientation(vtkPolyData* sphere, SPTTestChecks::FailureCount& 
     polyhedron > 0.97 * ball && polyhedron < ball, "the sphere's polyhedron is near a ball");
 
   const vtkMTimeType inputTime = sphere->GetMTime();
-  const vtkIdType inputPoints = sphere->GetNumberOfPoints();
-  const vtkIdType inputPolys = sphere->GetNumberOfPolys();
+  const vtkIdType inputPoints = sphere->GetNumberOfPoints(),
+                  inputPolys = sphere->GetNumberOfPolys();
   vtkNew<vtkTetGenMesher> mesher;
   mesher->SetInputData(sphere);
   mesher->Update();

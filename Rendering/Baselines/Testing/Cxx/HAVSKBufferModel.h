@@ -1,12 +1,20 @@
-// The k-buffer of vtkHAVSVolumeMapper's shaders on the CPU (Callahan et al. 2005): insertion
-// of each fragment, the final flush and early termination, and compositing through the
-// pre-integration table with trilinear filtering, in the shaders' single precision. The model
-// against which TestHAVSKBufferOrdering checks the GPU's fragment order.
+// vtkHAVSVolumeMapper on the CPU, the model against which TestHAVSKBufferOrdering checks the
+// GPU's fragment order:
+// - the fragments of the mapper's faces as the GPU makes them: the faces (vtkHAVSFaceBuffers,
+//   in the mapper's draw order) rasterized at the pixel centers, with the scalar and the eye
+//   distance interpolated perspective-correct. Pixels whose center lies within EdgeMargin
+//   pixels of a triangle edge, where coverage is a matter of rasterizer precision, are marked
+//   ambiguous;
+// - the k-buffer of the mapper's shaders (Callahan et al. 2005): insertion of each fragment,
+//   the final flush and early termination, and compositing through the pre-integration table
+//   with trilinear filtering, in the shaders' single precision.
 
 #ifndef HAVSKBufferModel_h
 #define HAVSKBufferModel_h
 
+#include "vtkHAVSFaceBuffers.h"
 #include "vtkPreIntegrationTable.h"
+#include "vtkVolumeViewMatrices.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -142,6 +150,156 @@ private:
   float ThicknessToTable;
   float LengthScale;
 };
+
+constexpr double EdgeMargin = 0.01; // pixels (llvmpipe snaps vertices to 1/256 pixel)
+
+// What the CPU rasterizer found for one pixel: its fragments in draw order.
+struct PixelFragments
+{
+  std::vector<Entry> Fragments;
+  bool Ambiguous = false;
+  float LengthScale = 0.0f;
+};
+
+// A face of the mapper in view and window coordinates, with its clip w and scalars.
+struct ProjectedFace
+{
+  glm::dvec3 VC[3];
+  glm::dvec2 Window[3];
+  double W[3];
+  double Scalar[3];
+  double Area; // twice the signed window area: positive counter-clockwise
+};
+
+inline ProjectedFace ProjectFace(vtkHAVSFaceBuffers* faces, unsigned int face,
+  const glm::mat4& modelToView, const glm::mat4& viewToClip, int size)
+{
+  ProjectedFace f;
+  for (int v = 0; v < 3; ++v)
+  {
+    const unsigned int id = faces->GetFaces()[3 * size_t(face) + v];
+    f.VC[v] = glm::dvec3(
+      modelToView * glm::vec4(glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]), 1.0f));
+    const glm::dvec4 clip = glm::dmat4(viewToClip) * glm::dvec4(f.VC[v], 1.0);
+    f.W[v] = clip.w;
+    f.Window[v] = (glm::dvec2(clip) / clip.w + 1.0) * 0.5 * double(size);
+    f.Scalar[v] = faces->GetVertexScalars()[id];
+  }
+  const glm::dvec2 e01 = f.Window[1] - f.Window[0], e02 = f.Window[2] - f.Window[0];
+  f.Area = e01.x * e02.y - e01.y * e02.x;
+  return f;
+}
+
+// The pixels with their length scale from view to model distance along their rays.
+inline std::vector<PixelFragments> MakePixels(const vtkVolumeViewMatrices& m, int size)
+{
+  const glm::mat4 clipToView = glm::make_mat4(m.DCVC);
+  const glm::mat3 viewToModel = glm::make_mat3(m.VCMCLinear);
+  std::vector<PixelFragments> pixels(size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+  {
+    for (int x = 0; x < size; ++x)
+    {
+      const glm::vec2 ndc((x + 0.5f) / size * 2.0f - 1.0f, (y + 0.5f) / size * 2.0f - 1.0f);
+      const glm::vec4 nearVC = clipToView * glm::vec4(ndc, -1.0f, 1.0f);
+      const glm::vec4 farVC = clipToView * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 ray = m.ParallelProjection
+        ? glm::vec3(0.0f, 0.0f, -1.0f)
+        : glm::normalize(glm::vec3(farVC) / farVC.w - glm::vec3(nearVC) / nearVC.w);
+      pixels[y * size + x].LengthScale = glm::length(viewToModel * ray);
+    }
+  }
+  return pixels;
+}
+
+// Barycentric weights of the window point p in the face. Returns whether p is covered (within
+// EdgeMargin pixels of the inside); onEdge tells whether it is that close to an edge.
+inline bool Cover(const ProjectedFace& f, glm::dvec2 p, double barycentric[3], bool& onEdge)
+{
+  double nearest = 1e30;
+  bool inside = true;
+  for (int v = 0; v < 3; ++v)
+  {
+    const glm::dvec2 a = f.Window[(v + 1) % 3], b = f.Window[(v + 2) % 3];
+    const double edge = ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / f.Area;
+    barycentric[v] = edge;
+    const double pixelsFromEdge = edge * std::abs(f.Area) / glm::length(b - a);
+    nearest = std::min(nearest, std::abs(pixelsFromEdge));
+    inside = inside && pixelsFromEdge > -EdgeMargin;
+  }
+  onEdge = nearest < EdgeMargin;
+  return inside;
+}
+
+// The fragment at the barycentric weights: scalar (with the crossing code of a boundary face)
+// and eye distance, interpolated perspective-correct, as the GPU does.
+inline Entry Interpolate(const ProjectedFace& f, const double barycentric[3], bool parallel)
+{
+  const bool boundary = f.Scalar[0] > 1.5;
+  // Counter-clockwise is front-facing: an outward face seen from behind is an exit.
+  const float crossing = boundary ? (f.Area < 0.0 ? 2.0f : 4.0f) : 0.0f;
+  double sum = 0.0, weights[3];
+  for (int v = 0; v < 3; ++v)
+  {
+    weights[v] = barycentric[v] / f.W[v];
+    sum += weights[v];
+  }
+  glm::dvec3 positionVC(0.0);
+  double s = 0.0;
+  for (int v = 0; v < 3; ++v)
+  {
+    positionVC += weights[v] / sum * f.VC[v];
+    s += weights[v] / sum * f.Scalar[v];
+  }
+  const double distance = parallel ? -positionVC.z : glm::length(positionVC);
+  const float code = float(glm::clamp(boundary ? s - 2.0 : s, 0.0, 1.0)) + crossing;
+  return Entry{ code, float(distance) };
+}
+
+inline void RasterizeFace(
+  const ProjectedFace& f, bool parallel, int size, std::vector<PixelFragments>& pixels)
+{
+  const glm::dvec2 lo = glm::min(f.Window[0], glm::min(f.Window[1], f.Window[2]));
+  const glm::dvec2 hi = glm::max(f.Window[0], glm::max(f.Window[1], f.Window[2]));
+  for (int y = std::max(0, int(lo.y) - 1); y <= std::min(size - 1, int(hi.y) + 1); ++y)
+  {
+    for (int x = std::max(0, int(lo.x) - 1); x <= std::min(size - 1, int(hi.x) + 1); ++x)
+    {
+      double barycentric[3];
+      bool onEdge = false;
+      if (!Cover(f, glm::dvec2(x + 0.5, y + 0.5), barycentric, onEdge))
+      {
+        continue;
+      }
+      PixelFragments& pixel = pixels[y * size + x];
+      if (onEdge)
+      {
+        pixel.Ambiguous = true;
+        continue;
+      }
+      pixel.Fragments.push_back(Interpolate(f, barycentric, parallel));
+    }
+  }
+}
+
+// The fragments of the mapper's faces, in its draw order, at every pixel center of a size x
+// size image.
+inline std::vector<PixelFragments> Rasterize(
+  vtkHAVSFaceBuffers* faces, const vtkVolumeViewMatrices& m, int size)
+{
+  const glm::mat4 modelToView = glm::make_mat4(m.MCVC);
+  const glm::mat4 viewToClip = glm::make_mat4(m.VCDC);
+  std::vector<PixelFragments> pixels = MakePixels(m, size);
+  for (unsigned int face : faces->GetOrder())
+  {
+    const ProjectedFace f = ProjectFace(faces, face, modelToView, viewToClip, size);
+    if (f.Area != 0.0)
+    {
+      RasterizeFace(f, m.ParallelProjection, size, pixels);
+    }
+  }
+  return pixels;
+}
 }
 
 #endif

@@ -2,8 +2,8 @@
 // - unique faces and boundary marks: a cube split into 5 tetrahedra has 16 faces, 12 of them
 //   on the boundary; two disjoint tetrahedra have 8, all on the boundary; a 3x3x3 block of
 //   such cubes has the counts that Euler's formula gives;
-// - every boundary face is wound to face out of its tetrahedron (inverted tetrahedra too),
-//   and indexes vertex copies whose scalar carries the boundary offset;
+// - every boundary face of a convex block is wound to face out of it (inverted tetrahedra
+//   too), and indexes vertex copies whose scalar carries the boundary offset;
 // - the float-to-key map keeps the order of floats, negative ones included;
 // - the radix sort agrees with std::stable_sort, and Sort() orders faces by the distance of
 //   their centroids from the eye (perspective) or by depth (parallel).
@@ -51,77 +51,74 @@ vtkSmartPointer<vtkUnstructuredGrid> MakeBlock(int nx, int ny, int nz, bool inve
   return grid;
 }
 
-glm::vec3 Vertex(const vtkHAVSFaceBuffers* faces, unsigned int id)
+// The mapper's faces of a grid, and the mesh they index.
+struct MeshFaces
 {
-  return glm::make_vec3(&faces->GetVertices()[3 * size_t(id)]);
-}
+  explicit MeshFaces(vtkUnstructuredGrid* grid)
+    : Accepted(this->Mesh->Update(grid, vtkTetrahedralMesh::ScalarSelection()))
+  {
+    this->Faces->Update(this->Mesh);
+  }
 
+  glm::vec3 Vertex(unsigned int id) const
+  {
+    return glm::make_vec3(&this->Faces->GetVertices()[3 * size_t(id)]);
+  }
+
+  glm::vec3 Centroid(unsigned int face) const
+  {
+    const unsigned int* v = &this->Faces->GetFaces()[3 * size_t(face)];
+    return (this->Vertex(v[0]) + this->Vertex(v[1]) + this->Vertex(v[2])) / 3.0f;
+  }
+
+  vtkNew<vtkTetrahedralMesh> Mesh;
+  vtkNew<vtkHAVSFaceBuffers> Faces;
+  bool Accepted;
+};
+
+// The face counts; boundary faces (and only they) index the vertex copies whose scalar carries
+// the boundary offset; and, on a convex mesh, boundary faces face away from its center.
 void CheckFaces(vtkUnstructuredGrid* grid, vtkIdType expectedFaces, vtkIdType expectedBoundary,
-  const char* name, SPTTestChecks::FailureCount& failures)
+  bool convex, const char* name, SPTTestChecks::FailureCount& failures)
 {
-  vtkNew<vtkTetrahedralMesh> mesh;
-  vtkTetrahedralMesh::ScalarSelection selection;
-  failures.Check(mesh->Update(grid, selection), "the mesh is accepted");
-  vtkNew<vtkHAVSFaceBuffers> faces;
-  faces->Update(mesh);
+  const MeshFaces m(grid);
+  vtkHAVSFaceBuffers* faces = m.Faces;
+  failures.Check(m.Accepted, "the mesh is accepted");
   std::cout << name << ": " << faces->GetNumberOfFaces() << " faces, "
             << faces->GetNumberOfBoundaryFaces() << " on the boundary\n";
   failures.Check(faces->GetNumberOfFaces() == expectedFaces, "number of unique faces");
   failures.Check(faces->GetNumberOfBoundaryFaces() == expectedBoundary, "number of boundary faces");
 
-  // The mesh is a union of unit cubes or tetrahedra whose centroid is inside: a boundary
-  // face's outward normal points away from the centroid of its own tetrahedron, checked here
-  // through the face's distance to the mesh's center of mass along the normal for convex
-  // meshes, and in general by the scalar offset and the winding test below.
-  const std::vector<unsigned int>& ids = faces->GetFaces();
-  const size_t numberOfPoints = mesh->GetPoints().size() / 3;
-  int wrongOffsets = 0;
+  const size_t numberOfPoints = m.Mesh->GetPoints().size() / 3;
+  glm::vec3 center(0.0f);
+  for (size_t i = 0; i < numberOfPoints; ++i)
+  {
+    center += glm::make_vec3(&m.Mesh->GetPoints()[3 * i]);
+  }
+  center /= float(numberOfPoints);
+  int wrongOffsets = 0, inward = 0;
   for (vtkIdType f = 0; f < faces->GetNumberOfFaces(); ++f)
   {
     const bool boundary = faces->GetBoundary()[f] != 0;
-    for (int v = 0; v < 3; ++v)
+    const unsigned int* v = &faces->GetFaces()[3 * f];
+    for (int corner = 0; corner < 3; ++corner)
     {
-      const unsigned int vertex = ids[3 * f + v];
-      const float scalar = faces->GetVertexScalars()[vertex];
-      const bool copy = vertex >= numberOfPoints;
+      const float scalar = faces->GetVertexScalars()[v[corner]];
+      const bool copy = v[corner] >= numberOfPoints;
       wrongOffsets += copy != boundary ||
         (copy && std::abs(scalar - vtkHAVSFaceBuffers::BoundaryScalarOffset) > 1.0f + 1e-6f) ||
         (!copy && (scalar < 0.0f || scalar > 1.0f));
     }
+    const glm::vec3 a = m.Vertex(v[0]);
+    const glm::vec3 normal = glm::cross(m.Vertex(v[1]) - a, m.Vertex(v[2]) - a);
+    inward += boundary && glm::dot(normal, m.Centroid(unsigned(f)) - center) <= 0.0f;
   }
   failures.Check(wrongOffsets == 0, "boundary faces (only they) use the offset vertex copies");
-}
-
-// Boundary faces of a convex mesh face away from its center.
-void CheckOutwardWinding(
-  vtkUnstructuredGrid* grid, const char* name, SPTTestChecks::FailureCount& failures)
-{
-  vtkNew<vtkTetrahedralMesh> mesh;
-  vtkTetrahedralMesh::ScalarSelection selection;
-  mesh->Update(grid, selection);
-  vtkNew<vtkHAVSFaceBuffers> faces;
-  faces->Update(mesh);
-  glm::vec3 center(0.0f);
-  for (size_t i = 0; i < mesh->GetPoints().size() / 3; ++i)
+  if (convex)
   {
-    center += glm::make_vec3(&mesh->GetPoints()[3 * i]);
+    std::cout << name << ": " << inward << " boundary faces wound inward\n";
+    failures.Check(inward == 0, "boundary faces are wound to face out of the mesh");
   }
-  center /= float(mesh->GetPoints().size() / 3);
-  int inward = 0;
-  for (vtkIdType f = 0; f < faces->GetNumberOfFaces(); ++f)
-  {
-    if (!faces->GetBoundary()[f])
-    {
-      continue;
-    }
-    const unsigned int* v = &faces->GetFaces()[3 * f];
-    const glm::vec3 a = Vertex(faces, v[0]);
-    const glm::vec3 normal = glm::cross(Vertex(faces, v[1]) - a, Vertex(faces, v[2]) - a);
-    const glm::vec3 centroid = (a + Vertex(faces, v[1]) + Vertex(faces, v[2])) / 3.0f;
-    inward += glm::dot(normal, centroid - center) <= 0.0f;
-  }
-  std::cout << name << ": " << inward << " boundary faces wound inward\n";
-  failures.Check(inward == 0, "boundary faces are wound to face out of the mesh");
 }
 
 void CheckKeysAndRadixSort(SPTTestChecks::FailureCount& failures)
@@ -169,12 +166,8 @@ void CheckKeysAndRadixSort(SPTTestChecks::FailureCount& failures)
 
 void CheckSortOrder(bool parallel, SPTTestChecks::FailureCount& failures)
 {
-  vtkSmartPointer<vtkUnstructuredGrid> grid = MakeBlock(4, 3, 2, false);
-  vtkNew<vtkTetrahedralMesh> mesh;
-  vtkTetrahedralMesh::ScalarSelection selection;
-  mesh->Update(grid, selection);
-  vtkNew<vtkHAVSFaceBuffers> faces;
-  faces->Update(mesh);
+  const MeshFaces m(MakeBlock(4, 3, 2, false));
+  vtkHAVSFaceBuffers* faces = m.Faces;
   const glm::mat4 view =
     glm::lookAt(glm::vec3(1.3f, -2.0f, 1.7f), glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
   faces->Sort(glm::value_ptr(view), parallel);
@@ -186,10 +179,7 @@ void CheckSortOrder(bool parallel, SPTTestChecks::FailureCount& failures)
   for (unsigned int face : order)
   {
     seen[face] = 1;
-    const unsigned int* v = &faces->GetFaces()[3 * size_t(face)];
-    const glm::vec3 centroid =
-      (Vertex(faces, v[0]) + Vertex(faces, v[1]) + Vertex(faces, v[2])) / 3.0f;
-    const glm::vec3 centroidVC = glm::vec3(view * glm::vec4(centroid, 1.0f));
+    const glm::vec3 centroidVC = glm::vec3(view * glm::vec4(m.Centroid(face), 1.0f));
     const double key = parallel ? -centroidVC.z : glm::length(centroidVC);
     misordered += key < previous - 1e-5;
     previous = std::max(previous, key);
@@ -206,35 +196,32 @@ int TestHAVSFaceBuffers(int, char*[])
 {
   SPTTestChecks::FailureCount failures;
   // One cube: 5 tetrahedra, 4 faces shared by the central one: 20 - 4 = 16 unique, 12 outside.
-  CheckFaces(MakeBlock(1, 1, 1, false), 16, 12, "one cube", failures);
-  CheckFaces(MakeBlock(1, 1, 1, true), 16, 12, "one cube, inverted tetrahedra", failures);
+  CheckFaces(MakeBlock(1, 1, 1, false), 16, 12, true, "one cube", failures);
+  CheckFaces(MakeBlock(1, 1, 1, true), 16, 12, true, "one cube, inverted tetrahedra", failures);
   // A 3x3x3 block: 27 cubes x 5 = 135 tetrahedra; boundary: 6 sides x 9 squares x 2 triangles;
   // unique faces = (4 x 135 + 108) / 2.
-  CheckFaces(MakeBlock(3, 3, 3, false), (4 * 135 + 108) / 2, 108, "3x3x3 cubes", failures);
-  CheckOutwardWinding(MakeBlock(3, 3, 3, false), "3x3x3 cubes", failures);
-  CheckOutwardWinding(MakeBlock(3, 3, 3, true), "3x3x3 cubes, inverted tetrahedra", failures);
+  for (bool invert : { false, true })
+  {
+    CheckFaces(MakeBlock(3, 3, 3, invert), (4 * 135 + 108) / 2, 108, true,
+      invert ? "3x3x3 cubes, inverted tetrahedra" : "3x3x3 cubes", failures);
+  }
 
-  // Two disjoint tetrahedra.
+  // Two disjoint tetrahedra, the second listed inverted.
   vtkNew<vtkUnstructuredGrid> two;
   vtkNew<vtkPoints> points;
-  for (double offset : { 0.0, 3.0 })
-  {
-    points->InsertNextPoint(offset, 0, 0);
-    points->InsertNextPoint(offset + 1, 0, 0);
-    points->InsertNextPoint(offset, 1, 0);
-    points->InsertNextPoint(offset, 0, 1);
-  }
-  two->SetPoints(points);
-  const vtkIdType first[4] = { 0, 1, 2, 3 }, second[4] = { 4, 6, 5, 7 };
-  two->InsertNextCell(VTK_TETRA, 4, first);
-  two->InsertNextCell(VTK_TETRA, 4, second);
   vtkNew<vtkFloatArray> scalars;
   for (int i = 0; i < 8; ++i)
   {
+    const int corner = i % 4;
+    points->InsertNextPoint((i < 4 ? 0.0 : 3.0) + (corner == 1), corner == 2, corner == 3);
     scalars->InsertNextValue(float(i));
   }
+  two->SetPoints(points);
   two->GetPointData()->SetScalars(scalars);
-  CheckFaces(two, 8, 8, "two disjoint tetrahedra", failures);
+  const vtkIdType first[4] = { 0, 1, 2, 3 }, second[4] = { 4, 6, 5, 7 };
+  two->InsertNextCell(VTK_TETRA, 4, first);
+  two->InsertNextCell(VTK_TETRA, 4, second);
+  CheckFaces(two, 8, 8, false, "two disjoint tetrahedra", failures);
 
   CheckKeysAndRadixSort(failures);
   CheckSortOrder(false, failures);

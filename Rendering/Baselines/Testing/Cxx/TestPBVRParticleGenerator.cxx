@@ -39,19 +39,16 @@ void SetTetrahedron(vtkTetrahedralMesh* mesh, const std::array<double, 4>& scala
 {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> points;
-  points->InsertNextPoint(0.0, 0.0, 0.0);
-  points->InsertNextPoint(1.0, 0.0, 0.0);
-  points->InsertNextPoint(0.0, 1.0, 0.0);
-  points->InsertNextPoint(0.0, 0.0, 1.0);
-  grid->SetPoints(points);
-  const vtkIdType ids[4] = { 0, 1, 2, 3 };
-  grid->InsertNextCell(VTK_TETRA, 4, ids);
   vtkNew<vtkDoubleArray> values;
   values->SetName("s");
   for (int i = 0; i < 4; ++i)
   {
+    points->InsertNextPoint(i == 1, i == 2, i == 3);
     values->InsertNextValue(scalars[i]);
   }
+  grid->SetPoints(points);
+  const vtkIdType ids[4] = { 0, 1, 2, 3 };
+  grid->InsertNextCell(VTK_TETRA, 4, ids);
   grid->GetPointData()->SetScalars(values);
   mesh->Update(grid, vtkTetrahedralMesh::ScalarSelection());
 }
@@ -101,6 +98,16 @@ vtkPBVRParticleGenerator::Settings MakeSettings(
   return settings;
 }
 
+// A failure unless the generator's particle count is within 5 standard deviations of a
+// Poisson count of mean `expected`.
+void CheckCount(const vtkPBVRParticleGenerator* generator, double expected, const std::string& what,
+  SPTTestChecks::FailureCount& failures)
+{
+  const double count = double(generator->GetNumberOfParticles());
+  std::cout << what << ": " << count << " particles, expected " << expected << "\n";
+  failures.Check(std::abs(count - expected) < 5.0 * std::sqrt(expected), what + ": count");
+}
+
 void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failures)
 {
   SetTetrahedron(mesh, { 0.0, 0.3, 0.6, 1.0 });
@@ -109,12 +116,7 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& 
   const double tau = 2.0;
   failures.Check(generator->Generate(mesh, Sample([=](double) { return tau; }), settings),
     "constant density: generation succeeds");
-  const double meanPerSet = tau * Volume / Footprint;
-  const double total = double(generator->GetNumberOfParticles());
-  const double expected = meanPerSet * settings.Sets;
-  std::cout << "constant density: " << total << " particles, expected " << expected << "\n";
-  failures.Check(
-    std::abs(total - expected) < 5.0 * std::sqrt(expected), "constant density: total count");
+  CheckCount(generator, tau * Volume / Footprint * settings.Sets, "constant density", failures);
 
   double sum = 0.0, sum2 = 0.0;
   for (int set = 0; set < settings.Sets; ++set)
@@ -132,20 +134,17 @@ void TestConstantDensity(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& 
 
   const glm::dvec3 corner(-0.5);
   glm::dvec3 centroid(0.0);
-  double outside = 0.0;
+  int outside = 0;
   const std::vector<Particle> particles = Decode(generator);
   for (const Particle& p : particles)
   {
     const glm::dvec3 b = p.Position - corner; // barycentric weights of vertices 1, 2, 3
     const double margin = 2.0 / 65535.0;
-    if (b.x < -margin || b.y < -margin || b.z < -margin || b.x + b.y + b.z > 1.0 + margin)
-    {
-      ++outside;
-    }
+    outside += b.x < -margin || b.y < -margin || b.z < -margin || b.x + b.y + b.z > 1.0 + margin;
     centroid += p.Position;
   }
   centroid /= double(particles.size());
-  failures.Check(outside == 0.0, "every particle is inside the tetrahedron");
+  failures.Check(outside == 0, "every particle is inside the tetrahedron");
   failures.Check(glm::length(centroid - (corner + glm::dvec3(0.25))) < 0.005,
     "constant density: particles are uniform (their mean is the centroid)");
   failures.Check(generator->GetNumberOfCandidates() == generator->GetNumberOfParticles(),
@@ -160,17 +159,14 @@ void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failur
   // tau(s) = 2 s; s is Beta(1, 3) in the cell: E[s] = 1/4, E[s^2] = 1/10.
   failures.Check(generator->Generate(mesh, Sample([](double s) { return 2.0 * s; }), settings),
     "ramp: generation succeeds");
-  const double expected = settings.Sets * Volume / Footprint * 2.0 * 0.25;
-  const double total = double(generator->GetNumberOfParticles());
+  CheckCount(generator, settings.Sets * Volume / Footprint * 2.0 * 0.25, "ramp", failures);
   double meanScalar = 0.0;
   for (const Particle& p : Decode(generator))
   {
     meanScalar += p.Scalar;
   }
-  meanScalar /= total;
-  std::cout << "ramp: " << total << " particles (expected " << expected << "), mean scalar "
-            << meanScalar << " (expected 0.4)\n";
-  failures.Check(std::abs(total - expected) < 5.0 * std::sqrt(expected), "ramp: count");
+  meanScalar /= double(generator->GetNumberOfParticles());
+  std::cout << "ramp: mean scalar " << meanScalar << " (expected 0.4)\n";
   failures.Check(std::abs(meanScalar - 0.4) < 0.004, "ramp: the density follows the scalar");
 
   // A thin peak at s = 0.5 (+-0.02, height 50): expected count from the cell's scalar law.
@@ -184,11 +180,8 @@ void TestRejection(vtkTetrahedralMesh* mesh, SPTTestChecks::FailureCount& failur
     expectedTau += 3.0 * (1.0 - s) * (1.0 - s) * peak(s) / steps;
   }
   failures.Check(generator->Generate(mesh, samples, settings), "peak: generation succeeds");
-  const double peakExpected = settings.Sets * Volume / Footprint * expectedTau;
-  const double peakTotal = double(generator->GetNumberOfParticles());
-  std::cout << "thin peak, rejection: " << peakTotal << " particles (expected " << peakExpected
-            << ")\n";
-  failures.Check(std::abs(peakTotal - peakExpected) < 5.0 * std::sqrt(peakExpected), "peak: count");
+  CheckCount(
+    generator, settings.Sets * Volume / Footprint * expectedTau, "thin peak, rejection", failures);
   settings.SamplingMode = vtkPBVRVolumeMapper::CELL_AVERAGE;
   failures.Check(generator->Generate(mesh, samples, settings), "peak, cell average: succeeds");
   std::cout << "thin peak, cell average: " << generator->GetNumberOfParticles() << " particles\n";

@@ -57,29 +57,20 @@ void CheckRegeneration(TwoViewports& scene, const std::vector<unsigned char>& fi
 int TestPBVRVolumeMapper(int argc, char* argv[])
 {
   const ShellInput input;
-  vtkNew<vtkPBVRVolumeMapper> pointMapper;
-  pointMapper->SetInputData(input.Shell);
-  pointMapper->SetRepetitionLevel(64);
-  pointMapper->SetSeed(1);
-  vtkSmartPointer<vtkVolume> pointVolume = MakeVolume(pointMapper, input.Property);
+  ShellVolumes<vtkPBVRVolumeMapper> volumes(input.Shell, input.Property);
+  volumes.CellMapper->SetRepetitionLevel(32);
+  volumes.CellMapper->SetSubpixelLevel(2);
 
-  vtkNew<vtkPBVRVolumeMapper> cellMapper;
-  cellMapper->SetInputData(input.Shell);
-  SelectCellField(cellMapper);
-  cellMapper->SetRepetitionLevel(32);
-  cellMapper->SetSubpixelLevel(2);
-  cellMapper->SetSeed(2);
-  vtkSmartPointer<vtkVolume> cellVolume = MakeVolume(cellMapper, input.Property, 0.7);
-
-  TwoViewports scene(256, 128, pointVolume, cellVolume);
+  TwoViewports scene(256, 128, volumes.Point, volumes.Cell);
   SPTTestChecks::FailureCount failures;
   failures.Check(scene.Render() == 0, "no OpenGL error");
   const std::vector<unsigned char> first = Capture(scene.Window);
   failures.Check(scene.CheckCovered(first, 1500) == 0, "each viewport shows the volume");
-  CheckParticles(pointMapper, cellMapper, input, failures);
+  CheckParticles(volumes.PointMapper, volumes.CellMapper, input, failures);
 
   const int result = scene.CompareWithBaseline(argc, argv);
 
-  CheckRegeneration(scene, first, input.Property, pointMapper, cellMapper, failures);
+  CheckRegeneration(
+    scene, first, input.Property, volumes.PointMapper, volumes.CellMapper, failures);
   return TwoViewports::ExitStatus(result, failures.GetCount());
 }

@@ -10,7 +10,6 @@
 #include "vtkPBVRVolumeMapper.h"
 #include "vtkSPTVolumeMapper.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
@@ -24,10 +23,12 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "SPTTestChecks.h"
 #include "SPTTestWindow.h"
 
 #include <cmath>
@@ -186,24 +187,17 @@ struct Counts
   int Errors = 0;
 };
 
-void CountError(vtkObject*, unsigned long, void* clientData, void*)
-{
-  ++*static_cast<int*>(clientData);
-}
-
-// Render one seed; false when a check fails.
-bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int seed, Counts& counts)
+// Render one seed.
+void RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int seed, Counts& counts,
+  SPTTestChecks::FailureCount& failures)
 {
   Random random(1000 * kind + seed + 1);
   vtkSmartPointer<vtkUnstructuredGrid> grid = RandomGrid(random);
   vtkSmartPointer<vtkVolumeProperty> property = RandomProperty(random);
   vtkSmartPointer<vtkUnstructuredGridVolumeMapper> mapper = RandomMapper(random, kind);
-  int errors = 0;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(CountError);
-  onError->SetClientData(&errors);
-  mapper->AddObserver(vtkCommand::ErrorEvent, onError);
-  mapper->AddObserver(vtkCommand::WarningEvent, onError);
+  vtkNew<vtkTest::ErrorObserver> messages;
+  mapper->AddObserver(vtkCommand::ErrorEvent, messages);
+  mapper->AddObserver(vtkCommand::WarningEvent, messages);
   const vtkMTimeType inputTime = grid->GetMTime();
 
   mapper->SetInputData(grid);
@@ -227,14 +221,10 @@ bool RenderSeed(vtkRenderWindow* window, vtkRenderer* renderer, int kind, int se
   mapper->ReleaseGraphicsResources(window);
 
   counts.Drew += drew ? 1 : 0;
-  counts.Errors += errors > 0 ? 1 : 0;
-  if (error != GL_NO_ERROR || grid->GetMTime() != inputTime)
-  {
-    std::cerr << "Mapper " << kind << ", seed " << seed << ": "
-              << (error != GL_NO_ERROR ? "an OpenGL error" : "the input was modified") << "\n";
-    return false;
-  }
-  return true;
+  counts.Errors += messages->GetError() || messages->GetWarning() ? 1 : 0;
+  const std::string what = "mapper " + std::to_string(kind) + ", seed " + std::to_string(seed);
+  failures.Check(error == GL_NO_ERROR, what + ": no OpenGL error");
+  failures.Check(grid->GetMTime() == inputTime, what + ": the input is not modified");
 }
 }
 
@@ -250,22 +240,19 @@ int TestRandomMeshes(int, char*[])
   window->Render();
   glGetError();
 
-  int failures = 0;
-  const char* names[] = { "SPT", "HAVS", "PBVR" };
+  SPTTestChecks::FailureCount failures;
+  const std::string names[] = { "SPT", "HAVS", "PBVR" };
   for (int kind = 0; kind < 3; ++kind)
   {
     Counts counts;
     for (int seed = 0; seed < Seeds; ++seed)
     {
-      failures += RenderSeed(window, renderer, kind, seed, counts) ? 0 : 1;
+      RenderSeed(window, renderer, kind, seed, counts, failures);
     }
     std::cout << names[kind] << ": " << counts.Drew << " of " << Seeds << " seeds drew, "
               << counts.Errors << " reported an error or a warning\n";
-    if (counts.Drew < 5 || counts.Errors < 5)
-    {
-      std::cerr << names[kind] << ": the random input did not reach both drawing and errors.\n";
-      ++failures;
-    }
+    failures.Check(counts.Drew >= 5 && counts.Errors >= 5,
+      names[kind] + ": the random input reaches both drawing and errors");
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return failures.ExitStatus();
 }

@@ -43,18 +43,18 @@ def test_havs_clipped_is_as_close_as_unclipped(name, parallel, have_display):
     other = unclipped_name(name)
     clipped = image(render.havs_mapper(), CASES[name], SIZE, parallel=parallel)
     unclipped = image(render.havs_mapper(), CASES[other], SIZE, parallel=parallel)
-    keep_images(f"havs clipping {name} {parallel}",
-                [clipped, reference(name, SIZE, parallel=parallel)])
+    expected = reference(name, SIZE, parallel=parallel)
+    expected_unclipped = reference(other, SIZE, parallel=parallel)
+    keep_images(f"havs clipping {name} {parallel}", [clipped, expected])
     # Over the same pixels, the unclipped footprint (HAVS's few wrong pixels on silhouettes,
     # where the k-buffer sees grazing faces, are the same with and without the planes).
-    expected = reference(other, SIZE, parallel=parallel)
-    pixels = metrics.footprint(unclipped, expected)
-    error = metrics.rmse(clipped, reference(name, SIZE, parallel=parallel), pixels)
-    unclipped_error = metrics.rmse(unclipped, expected, pixels)
+    pixels = metrics.footprint(unclipped, expected_unclipped)
+    error = metrics.rmse(clipped, expected, pixels)
+    unclipped_error = metrics.rmse(unclipped, expected_unclipped, pixels)
     assert error <= 1.5 * unclipped_error, (error, unclipped_error)
-    error = metrics.rmse(clipped, reference(name, SIZE, parallel=parallel))
+    error = metrics.rmse(clipped, expected)
     assert error <= 0.008
-    ignored = metrics.rmse(clipped, reference(other, SIZE, parallel=parallel))
+    ignored = metrics.rmse(clipped, expected_unclipped)
     assert ignored > 5.0 * error, f"{name}: the planes changed too little ({ignored:.4f})"
 
 

@@ -1,7 +1,8 @@
 """vtkPBVRVolumeMapper: the wrapped class and its settings, the memory cap (a mesh too big for
 it is a clear error), and particles made again only when they must be: when the data, the
 opacity, the seed or the sampling change, when the view needs smaller particles, or much larger
-ones, or more sets than were made. Bad and unusual input: test_mapper_robustness.py."""
+ones, or more sets than were made. Bad and unusual input, released resources, resizes and a second
+window: test_mapper_robustness.py."""
 
 import math
 
@@ -10,18 +11,12 @@ import pytest
 import vtk
 
 import spt
-from spt import data, render, scenes
+from spt import render
 
 from robustness_support import ONE, check_clamped_setting, watch, watched_render
 from scene_support import bilinear_upsampled, draw_once, window_with
 
 SIZE = (96, 96)
-
-
-def test_mapper_is_a_vtk_unstructured_grid_volume_mapper():
-    mapper = spt.vtkPBVRVolumeMapper()
-    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
-    assert mapper.GetClassName() == "vtkPBVRVolumeMapper"
 
 
 @pytest.mark.parametrize("name, default, low, high", [
@@ -37,6 +32,8 @@ def test_settings_have_defaults_and_clamps(name, default, low, high):
 
 def test_print_self_lists_every_setting_and_report():
     mapper = spt.vtkPBVRVolumeMapper()
+    assert isinstance(mapper, vtk.vtkUnstructuredGridVolumeMapper)
+    assert mapper.GetClassName() == "vtkPBVRVolumeMapper"
     mapper.SetSamplingModeToCellAverage()
     mapper.SetSeed(4000000000)
     assert mapper.GetSeed() == 4000000000
@@ -64,14 +61,11 @@ def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
     """1 MiB holds 131072 particles; 512 sets of the default mesh need millions. The error says
     what to change, comes once however often the view is drawn, and nothing is drawn; a larger
     cap then renders."""
-    grid = data.make_default_mesh()
-    prop = data.default_transfer_function(grid)
     mapper = render.pbvr_mapper(512, seed=1)
     mapper.SetMaximumParticleMemory(1)
     messages = watch(mapper)
-    window, renderer = render.make_window(*SIZE)
-    render.add_volume(renderer, grid, prop, mapper)
-    renderer.ResetCamera()
+    window, _ = window_with(mapper, SIZE[0])
+    grid = mapper.GetInput()
     before = grid.GetMTime()
     for _ in range(3):
         window.Render()
@@ -95,16 +89,14 @@ def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
 
 
 class Scene:
-    """The default mesh in one window, for counting generations."""
+    """The default scene in one window, with a property of its own, for counting generations."""
 
     def __init__(self, repetitions=8):
-        self.grid = data.make_default_mesh()
-        self.prop = data.default_transfer_function(self.grid)
         self.mapper = render.pbvr_mapper(repetitions, seed=1)
         self.messages = watch(self.mapper)
-        self.window, self.renderer = render.make_window(*SIZE)
-        render.add_volume(self.renderer, self.grid, self.prop, self.mapper)
-        render.place_camera(self.renderer, self.grid.GetBounds(), render.View(30, 30))
+        self.window, self.renderer = window_with(self.mapper, SIZE[0])
+        self.grid = self.mapper.GetInput()
+        self.prop = self.renderer.GetVolumes().GetLastProp().GetProperty()
         self.camera = self.renderer.GetActiveCamera()
 
     def draw(self):
@@ -180,26 +172,16 @@ def test_particle_count_follows_the_optical_model(have_display):
     assert scene.mapper.GetGPUMemorySize() >= 8 * scene.mapper.GetNumberOfParticles()
 
 
-def test_release_frees_the_particles(have_display):
-    """Resizes, empty viewports and a second window: test_mapper_robustness.py."""
-    scene = Scene()
-    scene.draw()
-    scene.mapper.ReleaseGraphicsResources(scene.window)
-    assert scene.mapper.GetGPUMemorySize() == 0 and scene.mapper.GetNumberOfParticles() == 0
-    assert scene.draw()[..., 3].max() > 0.2
-
-
 def test_time_budget_and_progressive_refinement_complete_the_image(have_display):
     """With a budget of 1 ms a render draws only the sets that fit (at least one); progressive
     refinement adds the next sets at each render until all are drawn, and the image is then
     the image of one render of all of them, bit for bit. A change of the camera starts anew."""
-    s = scenes.scene("default")
     level = 16
     mapper = render.pbvr_mapper(level, seed=1)
     mapper.AutoAdjustRepetitionsOn()
     mapper.AutoAdjustSampleDistancesOff()  # every pixel: the image of one render of them all
     mapper.ProgressiveRefinementOn()
-    window, renderer = window_with(mapper, SIZE[0], prop=s.property)
+    window, renderer = window_with(mapper, SIZE[0])
     window.Render()  # measures the time of a set
     assert mapper.GetLastRepetitionCount() == level
     assert mapper.GetTimePerRepetition() > 0.0
@@ -216,8 +198,7 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     progressive = render.read_rgba(window)
     assert progressive[..., 3].max() > 0.2
 
-    full_window, full_renderer = render.make_window(*SIZE)
-    render.add_volume(full_renderer, s.grid, s.property, render.pbvr_mapper(level, seed=1))
+    full_window, full_renderer = window_with(render.pbvr_mapper(level, seed=1), SIZE[0])
     full_renderer.SetActiveCamera(renderer.GetActiveCamera())
     full_renderer.ResetCameraClippingRange()
     renderer.ResetCameraClippingRange()

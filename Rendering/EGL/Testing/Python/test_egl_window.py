@@ -14,20 +14,22 @@ import numpy as np
 import pytest
 
 import spt
-from spt import data, metrics, render
+from spt import metrics, render
+
+from scene_support import reference, scene
 
 SIZE = 96
 LEVEL = 64
 
-# The child: the default mesh through SPT in render.make_window's window, with no DISPLAY.
+# The child: the default scene through SPT in render.make_window's window, with no DISPLAY.
 CHILD = """
 import json, sys
 import numpy as np
-from spt import data, render
+from spt import render, scenes
 window, _ = render.make_window(8, 8)
-grid = data.make_default_mesh()
-image = render.render(grid, data.default_transfer_function(grid),
-                      render.spt_mapper({level}, seed=1), size=({size}, {size})).image
+s = scenes.scene("default")
+image = render.render(s.grid, s.property, render.spt_mapper({level}, seed=1), s.view,
+                      ({size}, {size})).image
 np.save(sys.argv[1], image)
 window.Render()
 print(json.dumps({{"class": window.GetClassName(), "platform": window.GetPlatformName()}}))
@@ -54,29 +56,25 @@ def without_x(tmp_path_factory):
 
 def test_without_display_the_egl_window_is_chosen_and_prints_nothing(without_x):
     _, window, stderr = without_x
-    assert window == {"class": "vtkHeadlessEGLRenderWindow", "platform": "surfaceless"} or \
-        window == {"class": "vtkHeadlessEGLRenderWindow", "platform": "device"}
+    assert window in ({"class": "vtkHeadlessEGLRenderWindow", "platform": platform}
+                      for platform in ("surfaceless", "device")), window
     # No spurious message (GLEW's "could not be initialized" among them): nothing at all.
     assert stderr == ""
 
 
 def test_without_display_the_image_is_the_volume(without_x):
     image, _, _ = without_x
-    grid = data.make_default_mesh()
-    prop = data.default_transfer_function(grid)
-    covered = (image[..., 3] > 0.05).mean()
-    assert 0.05 < covered < 0.95
-    exact = render.reference(grid, prop, size=(SIZE, SIZE)).image
-    assert metrics.rmse(image, exact) < 0.05
+    assert 0.05 < (image[..., 3] > 0.05).mean() < 0.95
+    assert metrics.rmse(image, reference("default", SIZE)) < 0.05
 
 
 def test_without_display_the_image_is_the_one_x_renders(without_x):
     if not os.environ.get("DISPLAY"):
         pytest.skip("no X display to render the same scene through X (GLX)")
     image, _, _ = without_x
-    grid = data.make_default_mesh()
-    with_x = render.render(grid, data.default_transfer_function(grid),
-                           render.spt_mapper(LEVEL, seed=1), size=(SIZE, SIZE)).image
+    s = scene("default")
+    with_x = render.render(s.grid, s.property, render.spt_mapper(LEVEL, seed=1), s.view,
+                           (SIZE, SIZE)).image
     # The same driver (Mesa) draws both, with the same seed: the same image up to rounding.
     assert np.abs(image - with_x).max() <= 2.0 / 255.0
 
