@@ -17,7 +17,6 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import (
     VTK_TETRA,
-    vtkCellArray,
     vtkDataSet,
     vtkUnstructuredGrid,
 )
@@ -38,7 +37,7 @@ from vtkmodules.vtkRenderingVolume import (
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window factories)
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
-from . import metrics, raycast
+from . import meshes, metrics, raycast
 from . import HAVE_BASELINES, vtkHeadlessEGLRenderWindow, vtkSPTVolumeMapper
 
 if HAVE_BASELINES:
@@ -217,14 +216,9 @@ def reference_grid(grid: vtkDataSet) -> vtkDataSet:
         return grid
     repaired = cells.copy()
     repaired[inverted, 0], repaired[inverted, 1] = cells[inverted, 1], cells[inverted, 0]
-    repaired = repaired[~flat]
-    connectivity = vtkCellArray()
-    connectivity.SetData(
-        numpy_to_vtk(np.arange(0, 4 * len(repaired) + 1, 4, dtype=np.int64), deep=True),
-        numpy_to_vtk(repaired.ravel().astype(np.int64), deep=True))
     copy = vtkUnstructuredGrid()
     copy.SetPoints(grid.GetPoints())
-    copy.SetCells(VTK_TETRA, connectivity)
+    copy.SetCells(VTK_TETRA, meshes.cell_array(repaired[~flat]))
     copy.GetPointData().ShallowCopy(grid.GetPointData())
     cell_data = grid.GetCellData()
     for index in range(cell_data.GetNumberOfArrays()):
@@ -334,13 +328,7 @@ def after_another_view(mapper: vtkSPTVolumeMapper, grid: vtkDataSet, prop: vtkVo
     image is then a new one, whose error target aims at once with the noise per repetition
     this render measured, as when a user turns the camera and the view renders still."""
     turned = dataclasses.replace(view, azimuth=view.azimuth + ANOTHER_VIEW_AZIMUTH)
-    window, renderer = make_window(*size)
-    add_volume(renderer, grid, prop, mapper)
-    place_camera(renderer, grid.GetBounds(), turned)
-    window.Render()
-    window.WaitForCompletion()
-    renderer.RemoveAllViewProps()
-    window.Finalize()
+    render(grid, prop, mapper, turned, size, frames=0)
     return mapper
 
 
@@ -469,10 +457,17 @@ def reference(grid: vtkDataSet, prop: vtkVolumeProperty, view: View = View(),
         return render(grid, prop, reference_mapper(), view, size, actors=actors)
     if actors:
         raise ValueError("the exact reference cannot draw opaque actors; use method='vtk'")
+    return exact_reference([(grid, prop)], grid.GetBounds(), view, size)
+
+
+def exact_reference(volumes: Sequence[tuple], bounds: Sequence[float], view: View,
+                    size: Tuple[int, int]) -> Rendering:
+    """The exact image of ``volumes`` (:func:`spt.raycast.render_volumes`), with the camera
+    that :func:`place_camera` places around ``bounds``."""
     window, renderer = make_window(*size)
-    place_camera(renderer, grid.GetBounds(), view)
+    place_camera(renderer, bounds, view)
     start = time.perf_counter()
-    image = raycast.render(grid, prop, renderer.GetActiveCamera(), size)
+    image = raycast.render_volumes(volumes, renderer.GetActiveCamera(), size)
     seconds = time.perf_counter() - start
     window.Finalize()
     return Rendering(image=image, seconds=seconds, mapper=None)
