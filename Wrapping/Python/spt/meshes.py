@@ -251,12 +251,16 @@ def _check_shape(shape: str) -> None:
         raise ValueError(f"unknown shape {shape!r}; choose from {', '.join(SHAPES)}")
 
 
+def _check_whole(name: str, value) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be a whole number, not {value!r}")
+
+
 def surface_arrays(shape: str, resolution: int) -> Tuple[np.ndarray, np.ndarray]:
     """Points (n, 3) and outward triangles (m, 3) of the shape's surface; ``resolution`` is the
     number of points around the shape's widest circumference (at least 8)."""
     _check_shape(shape)
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)):
-        raise ValueError(f"resolution must be a whole number, not {resolution!r}")
+    _check_whole("resolution", resolution)
     if not 8 <= resolution <= 100_000:
         raise ValueError(f"resolution {resolution} is outside 8..100000")
     rings, closed = _RINGS[shape](2.0 * math.pi * _WIDEST[shape] / resolution)
@@ -336,9 +340,8 @@ def field(shape: str, points: np.ndarray, seed: int = 0) -> np.ndarray:
 
 def _check_arguments(shape: str, cells: int, seed: int) -> None:
     _check_shape(shape)
-    for name, value in (("cells", cells), ("seed", seed)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-            raise ValueError(f"{name} must be a whole number, not {value!r}")
+    _check_whole("cells", cells)
+    _check_whole("seed", seed)
     if not MIN_CELLS <= cells <= MAX_CELLS:
         raise ValueError(f"cells {cells} is outside {MIN_CELLS}..{MAX_CELLS}")
     if seed < 0:

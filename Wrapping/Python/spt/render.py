@@ -71,28 +71,32 @@ _ESTIMATORS = {"survivor": vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
 DEFAULT_TARGET_ERROR = 0.005
 
 
+def _stochastic(mapper, repetitions: int, subpixels: int, seed: int):
+    """``mapper`` with the given RepetitionLevel, SubpixelLevel and Seed, and the time budget
+    off: its image has exactly ``repetitions`` repetitions (unless an error target stops it)."""
+    mapper.SetRepetitionLevel(repetitions)
+    mapper.SetSubpixelLevel(subpixels)
+    mapper.SetSeed(seed)
+    mapper.SetAutoAdjustRepetitions(False)
+    return mapper
+
+
 def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                stratified: Optional[bool] = None, per_pass: Optional[int] = None,
                estimator: Optional[str] = None, exact_coverage: Optional[bool] = None,
                target_error: Optional[float] = None,
                depth_slabs: Optional[int] = None) -> vtkSPTVolumeMapper:
-    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``,
-    ``per_pass``, ``estimator`` ("survivor" or "visibility"), ``exact_coverage`` and
-    ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
-    ExactCoverage and DepthSlabs (None keeps the mapper's defaults). The time budget is off.
-    Without ``target_error`` the image has exactly ``repetitions`` repetitions; with it,
-    rendering stops once the error the mapper estimates (its noise and the rounding to the
-    framebuffer's bits) is at most ``target_error``, and
+    """An SPT mapper (:func:`_stochastic`); ``stratified``, ``per_pass``, ``estimator``
+    ("survivor" or "visibility"), ``exact_coverage`` and ``depth_slabs`` (1 to 8) set
+    StratifiedSampling, RepetitionsPerPass, Estimator, ExactCoverage and DepthSlabs (None keeps
+    the mapper's defaults). With ``target_error``, rendering stops once the error the mapper
+    estimates (its noise and the rounding to the framebuffer's bits) is at most that, and
     ``repetitions`` is the cap."""
     if target_error is not None and not 0.0 <= target_error <= 1.0:
         raise ValueError(f"the target error must be in 0..1, not {target_error}")
     if depth_slabs is not None and not 1 <= depth_slabs <= 8:
         raise ValueError(f"the depth slabs must be 1 to 8, not {depth_slabs}")
-    mapper = vtkSPTVolumeMapper()
-    mapper.SetRepetitionLevel(repetitions)
-    mapper.SetSubpixelLevel(subpixels)
-    mapper.SetSeed(seed)
-    mapper.SetAutoAdjustRepetitions(False)
+    mapper = _stochastic(vtkSPTVolumeMapper(), repetitions, subpixels, seed)
     if estimator is not None:
         if estimator not in _ESTIMATORS:
             raise ValueError(f"unknown estimator {estimator!r}; choose from "
@@ -127,15 +131,10 @@ def havs_mapper(kbuffer_size: int = 6) -> "vtkHAVSVolumeMapper":
 
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                 cell_average: bool = False) -> "vtkPBVRVolumeMapper":
-    """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
-    selects the papers' one-density-per-cell sampling instead of exact rejection sampling.
-    The time budget is off: the image has exactly ``repetitions`` particle sets."""
+    """A PBVR mapper (:func:`_stochastic`: ``repetitions`` particle sets); ``cell_average``
+    selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
     _require_baselines()
-    mapper = vtkPBVRVolumeMapper()
-    mapper.SetRepetitionLevel(repetitions)
-    mapper.SetSubpixelLevel(subpixels)
-    mapper.SetSeed(seed)
-    mapper.SetAutoAdjustRepetitions(False)
+    mapper = _stochastic(vtkPBVRVolumeMapper(), repetitions, subpixels, seed)
     if cell_average:
         mapper.SetSamplingModeToCellAverage()
     return mapper
