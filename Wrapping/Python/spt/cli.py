@@ -16,25 +16,28 @@ import sys
 from typing import Dict, List, Optional, Sequence
 
 from . import HAVE_MESHING
+from .meshes import MAX_CELLS, MIN_CELLS
 
 MAX_IMAGE_SIZE = 4096
 
 
-def _convert(text: str, kind, noun: str):
-    """``kind(text)``, or an argument error that says ``text`` is not ``noun``."""
-    try:
-        return kind(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+def _number(kind, accept, refusal: str):
+    """A parser of an int or a float (``kind``, ``_`` allowed between digits) that refuses
+    what is not one, and says "VALUE ``refusal``" where ``accept(value)`` is false."""
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            noun = "a whole number" if kind is int else "a number"
+            raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+        if not accept(value):
+            raise argparse.ArgumentTypeError(f"{value} {refusal}")
+        return value
+    return parse
 
 
 def _positive_int(limit: int):
-    def parse(text: str) -> int:
-        value = _convert(text, int, "a whole number")
-        if not 1 <= value <= limit:
-            raise argparse.ArgumentTypeError(f"{value} is outside 1..{limit}")
-        return value
-    return parse
+    return _number(int, lambda value: 1 <= value <= limit, f"is outside 1..{limit}")
 
 
 def _positive_ints(limit: int, what: str):
@@ -100,30 +103,13 @@ def _output_directory(text: str) -> pathlib.Path:
 
 
 def _cells(pieces: int):
-    """A cell count of the generated meshes, of ``pieces`` meshes in all (``_`` allowed)."""
-    def parse(text: str) -> int:
-        from .meshes import MAX_CELLS, MIN_CELLS
-
-        value = _convert(text.replace("_", ""), int, "a whole number")
-        if not pieces * MIN_CELLS <= value <= MAX_CELLS:
-            raise argparse.ArgumentTypeError(
-                f"{value} is outside {pieces * MIN_CELLS}..{MAX_CELLS}")
-        return value
-    return parse
+    """A cell count of the generated meshes, of ``pieces`` meshes in all."""
+    low = pieces * MIN_CELLS
+    return _number(int, lambda value: low <= value <= MAX_CELLS, f"is outside {low}..{MAX_CELLS}")
 
 
-def _target_error(text: str) -> float:
-    value = _convert(text, float, "a number")
-    if not 0.0 < value <= 1.0:
-        raise argparse.ArgumentTypeError(f"{value} is outside 0 (exclusive) .. 1")
-    return value
-
-
-def _seed(text: str) -> int:
-    value = _convert(text, int, "a whole number")
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{value} is negative")
-    return value
+_target_error = _number(float, lambda value: 0.0 < value <= 1.0, "is outside 0 (exclusive) .. 1")
+_seed = _number(int, lambda value: value >= 0, "is negative")
 
 
 # The options of the commands, (flag, add_argument's keyword arguments), in the order of --help.

@@ -73,9 +73,7 @@ DATASETS: Dict[str, Tuple[str, str]] = {
 _HIDDEN_ARRAY = "spt_hidden"
 
 
-# --------------------------------------------------------------------------
-# Locating the data
-# --------------------------------------------------------------------------
+# Locating the data --------------------------------------------------------
 
 def data_dir() -> pathlib.Path:
     """The directory holding the real data sets: ``$SPT_DATA_DIR``, and only that (the working
@@ -100,9 +98,7 @@ def _data_file(filename: str) -> str:
     return str(path)
 
 
-# --------------------------------------------------------------------------
-# Readers: each returns a vtkDataSet with the wanted point array present
-# --------------------------------------------------------------------------
+# Readers: each returns a vtkDataSet with the wanted point array present ---
 
 class UnreadableDataError(RuntimeError):
     """VTK's reader could not read a data file that is present."""
@@ -218,9 +214,7 @@ _READERS: Dict[str, Callable[[], vtkDataSet]] = {
 }
 
 
-# --------------------------------------------------------------------------
-# Conversion to a clean (tetrahedral) unstructured grid
-# --------------------------------------------------------------------------
+# Conversion to a clean (tetrahedral) unstructured grid --------------------
 
 def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
     """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``: a cell is hidden when
@@ -304,9 +298,7 @@ def load(name: str, tetrahedralize: bool = True) -> vtkUnstructuredGrid:
     return to_unstructured(dataset, DATASETS[key][1], tetrahedralize)
 
 
-# --------------------------------------------------------------------------
-# The embedded default mesh: a solid tube swept along a helix
-# --------------------------------------------------------------------------
+# The embedded default mesh: a solid tube swept along a helix --------------
 
 # Geometry of the default mesh (model units).
 _HELIX_RADIUS = 1.0
@@ -386,9 +378,7 @@ def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
     return to_unstructured(structured, DEFAULT_FIELD_NAME, tetrahedralize=True)
 
 
-# --------------------------------------------------------------------------
-# Transfer functions
-# --------------------------------------------------------------------------
+# Transfer functions -------------------------------------------------------
 
 def property_from_points(grid: vtkDataSet, colors: Sequence[Tuple[float, float, float, float]],
                          opacities: Sequence[Tuple[float, float]],

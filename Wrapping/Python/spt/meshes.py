@@ -74,9 +74,7 @@ RING_RADIUS, TUBE_RADIUS = 1.0, 0.3
 RING_WAVE, BUMP_HEIGHT, BUMP_WIDTH = 0.15, 0.4, 0.5
 
 
-# --------------------------------------------------------------------------------------------
-# Surfaces from rings
-# --------------------------------------------------------------------------------------------
+# Surfaces from rings ------------------------------------------------------------------------
 
 @dataclass
 class Ring:
@@ -174,9 +172,7 @@ def _meridian_samples(corners: np.ndarray, spacing: float) -> np.ndarray:
     return np.concatenate(samples)
 
 
-# --------------------------------------------------------------------------------------------
-# The shapes
-# --------------------------------------------------------------------------------------------
+# The shapes ---------------------------------------------------------------------------------
 
 def _smoothstep(t: np.ndarray) -> np.ndarray:
     t = np.clip(t, 0.0, 1.0)
@@ -298,9 +294,7 @@ def mesh_parameters(shape: str, cells: int) -> Tuple[int, float]:
     return max(8, int(round(resolution))), MEAN_VOLUME_FACTOR * mean_volume
 
 
-# --------------------------------------------------------------------------------------------
-# The field
-# --------------------------------------------------------------------------------------------
+# The field ----------------------------------------------------------------------------------
 
 def _blob_centres(shape: str, seed: int) -> Tuple[np.ndarray, np.ndarray]:
     """Centres and widths of the field's maxima, inside the shape (on its axis or centre
@@ -334,9 +328,7 @@ def field(shape: str, points: np.ndarray, seed: int = 0) -> np.ndarray:
     return values.astype(np.float32)
 
 
-# --------------------------------------------------------------------------------------------
-# Meshing and the cache
-# --------------------------------------------------------------------------------------------
+# Meshing and the cache ----------------------------------------------------------------------
 
 def _check_arguments(shape: str, cells: int, seed: int) -> None:
     _check_shape(shape)
