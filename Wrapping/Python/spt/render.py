@@ -395,10 +395,9 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
            view: View = View(), size: Tuple[int, int] = (256, 256),
-           window: Optional[vtkRenderWindow] = None,
            actors: Sequence[vtkProp] = (), frames: int = 1) -> Rendering:
-    """Render ``grid`` with ``mapper`` (and any opaque ``actors``) and return the image and
-    the wall time of the render.
+    """Render ``grid`` with ``mapper`` (and any opaque ``actors``) in a window of its own and
+    return the image and the wall time of the render.
 
     The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``), the best of
     ``frames`` such renders; a first, untimed render builds the caches (tables, buffers,
@@ -407,17 +406,12 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     the time is then that of a cold frame.
     """
     reference = is_reference(mapper)
-    own_window = window is None or reference
-    if own_window:
-        scale = REFERENCE_SUPERSAMPLING if reference else 1
-        window, renderer = make_window(size[0] * scale, size[1] * scale)
-    else:
-        renderer = window.GetRenderers().GetFirstRenderer()
-        renderer.RemoveAllViewProps()
+    scale = REFERENCE_SUPERSAMPLING if reference else 1
+    window, renderer = make_window(size[0] * scale, size[1] * scale)
     if reference:
-        volume = add_volume(renderer, reference_grid(grid), reference_property(prop), mapper)
+        add_volume(renderer, reference_grid(grid), reference_property(prop), mapper)
     else:
-        volume = add_volume(renderer, grid, prop, mapper)
+        add_volume(renderer, grid, prop, mapper)
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
@@ -426,11 +420,8 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     image = read_rgba(window)
     if reference:
         image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
-    renderer.RemoveVolume(volume)
-    for actor in actors:
-        renderer.RemoveActor(actor)
-    if own_window:
-        window.Finalize()
+    renderer.RemoveAllViewProps()
+    window.Finalize()
     return Rendering(image=image, seconds=seconds, mapper=mapper, report=report)
 
 
