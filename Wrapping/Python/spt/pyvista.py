@@ -52,11 +52,8 @@ class ClientSideRenderingWarning(UserWarning):
 
 def check_backend(plotter: pyvista.Plotter) -> Optional[str]:
     """Warn (:class:`ClientSideRenderingWarning`) where ``plotter``, in a notebook, would show
-    its scene through vtk.js in the browser: its theme's Jupyter backend is ``'client'`` or
-    ``'html'``, or trame's default view mode is ``'client'``. vtk.js has no SPT mapper, so the
-    volume would be drawn by something else or not at all; the warning names the backend that
-    shows SPT's image, ``'server'``. Returns the warning's text, or None (outside a notebook,
-    where no backend is used, too)."""
+    its scene through vtk.js in the browser, which has no SPT mapper, and name the backend that
+    shows SPT's image; returns the warning's text, or None (outside a notebook too)."""
     if not getattr(plotter, "notebook", False):
         return None
     theme = plotter.theme
