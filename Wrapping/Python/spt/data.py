@@ -255,14 +255,6 @@ def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
     return stripped
 
 
-def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkDataSet:
-    """Drop the cells flagged by the ``spt_hidden`` cell array."""
-    flags = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
-    if flags is None or flags.GetRange(0)[1] <= 0:
-        return grid
-    return _threshold(grid, vtkDataObject.FIELD_ASSOCIATION_CELLS, _HIDDEN_ARRAY, 0.0, 0.0)
-
-
 def to_unstructured(dataset: vtkDataSet, array_name: str,
                     tetrahedralize: bool) -> vtkUnstructuredGrid:
     """Convert a data set to an unstructured grid (tetrahedra when ``tetrahedralize``) whose
@@ -276,7 +268,10 @@ def to_unstructured(dataset: vtkDataSet, array_name: str,
         converter = vtkAppendFilter()
     converter.SetInputData(dataset)
     converter.Update()
-    grid = _remove_hidden(converter.GetOutput())
+    grid = converter.GetOutput()
+    hidden = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
+    if hidden is not None and hidden.GetRange(0)[1] > 0:
+        grid = _threshold(grid, vtkDataObject.FIELD_ASSOCIATION_CELLS, _HIDDEN_ARRAY, 0.0, 0.0)
     result = vtkUnstructuredGrid()
     result.CopyStructure(grid)
     result.GetPointData().ShallowCopy(grid.GetPointData())
