@@ -53,24 +53,19 @@ def _positive_ints(limit: int, what: str):
 _levels = _positive_ints(65536, "repetition level")
 
 
-def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
-    """A comma-separated list of names, each one of ``choices``."""
-    names = [part.strip() for part in text.split(",") if part.strip()]
-    unknown = [name for name in names if name not in choices]
-    if unknown or not names:
-        raise argparse.ArgumentTypeError(
-            f"unknown {what}(s) {', '.join(unknown) or '(none)'}; choose from "
-            f"{', '.join(choices)}")
-    return names
-
-
 def _names_in(module: str, attribute: str, what: str, one: bool = False):
     """A parser of comma-separated names, each one of ``module.attribute`` (a collection of
     names or a function that returns one, imported when the option is parsed); with ``one``,
     of exactly one name, returned alone."""
     def parse(text: str):
         choices = getattr(importlib.import_module(module, __package__), attribute)
-        names = _names(text, list(choices() if callable(choices) else choices), what)
+        choices = list(choices() if callable(choices) else choices)
+        names = [part.strip() for part in text.split(",") if part.strip()]
+        unknown = [name for name in names if name not in choices]
+        if unknown or not names:
+            raise argparse.ArgumentTypeError(
+                f"unknown {what}(s) {', '.join(unknown) or '(none)'}; choose from "
+                f"{', '.join(choices)}")
         if one and len(names) != 1:
             raise argparse.ArgumentTypeError(f"give one {what}, not {len(names)}")
         return names[0] if one else names
