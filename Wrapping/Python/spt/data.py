@@ -258,8 +258,7 @@ def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
 def to_unstructured(dataset: vtkDataSet, array_name: str,
                     tetrahedralize: bool) -> vtkUnstructuredGrid:
     """Convert a data set to an unstructured grid (tetrahedra when ``tetrahedralize``) whose
-    only array is point scalar ``array_name``; cells flagged as hidden are removed (with the
-    flags, as every cell array)."""
+    only array is point scalar ``array_name``, without the cells flagged as hidden."""
     dataset = _strip_arrays(dataset, array_name)
     if tetrahedralize:
         converter = vtkDataSetTriangleFilter()

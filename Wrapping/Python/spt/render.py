@@ -86,12 +86,12 @@ def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                estimator: Optional[str] = None, exact_coverage: Optional[bool] = None,
                target_error: Optional[float] = None,
                depth_slabs: Optional[int] = None) -> vtkSPTVolumeMapper:
-    """An SPT mapper (:func:`_stochastic`); ``stratified``, ``per_pass``, ``estimator``
-    ("survivor" or "visibility"), ``exact_coverage`` and ``depth_slabs`` (1 to 8) set
-    StratifiedSampling, RepetitionsPerPass, Estimator, ExactCoverage and DepthSlabs (None keeps
-    the mapper's defaults). With ``target_error``, rendering stops once the error the mapper
-    estimates (its noise and the rounding to the framebuffer's bits) is at most that, and
-    ``repetitions`` is the cap."""
+    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed, its time budget off;
+    ``stratified``, ``per_pass``, ``estimator`` ("survivor" or "visibility"), ``exact_coverage``
+    and ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
+    ExactCoverage and DepthSlabs (None keeps the mapper's defaults). With ``target_error``,
+    rendering stops once the error the mapper estimates (its noise and the rounding to the
+    framebuffer's bits) is at most that, and ``repetitions`` is the cap."""
     if target_error is not None and not 0.0 <= target_error <= 1.0:
         raise ValueError(f"the target error must be in 0..1, not {target_error}")
     if depth_slabs is not None and not 1 <= depth_slabs <= 8:
@@ -131,7 +131,7 @@ def havs_mapper(kbuffer_size: int = 6) -> "vtkHAVSVolumeMapper":
 
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                 cell_average: bool = False) -> "vtkPBVRVolumeMapper":
-    """A PBVR mapper (:func:`_stochastic`: ``repetitions`` particle sets); ``cell_average``
+    """A PBVR mapper of ``repetitions`` particle sets, as :func:`spt_mapper`; ``cell_average``
     selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
     _require_baselines()
     mapper = _stochastic(vtkPBVRVolumeMapper(), repetitions, subpixels, seed)
