@@ -16,13 +16,14 @@ from vtkmodules.vtkCommonDataModel import (
 
 import spt.data as data
 
-# Tets after vtkDataSetTriangleFilter, from shared/data/README.md.
+# Tets after vtkDataSetTriangleFilter, and some scalar ranges, from shared/data/README.md.
 README_TETS = {
     "tetramesh": 160, "postvtk": 8750, "torus": 9216, "spx": 12936,
     "office": 36100, "disk": 44832, "fire": 62772, "hexa": 63888,
     "ironprot": 66960, "ironprot_full": 1503815, "bluntfin": 187395,
     "post": 513375,
 }
+README_RANGES = {"spx": (0.0, 2.254), "bluntfin": (0.193, 4.978), "post": (0.0, 1.391)}
 
 
 @pytest.fixture(scope="module")
@@ -34,24 +35,23 @@ def _points(grid):
     return vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
 
 
-def _tet_volumes(grid):
-    conn = vtk_to_numpy(grid.GetCells().GetConnectivityArray())
-    corners = _points(grid)[conn.reshape(-1, 4)]
-    edges = corners[:, 1:] - corners[:, :1]
-    return np.linalg.det(edges) / 6.0
-
-
-def test_default_mesh_is_tetrahedral(mesh):
+def test_default_mesh_is_a_deterministic_tube_of_positive_tetrahedra(mesh):
     assert set(vtk_to_numpy(mesh.GetDistinctCellTypesArray())) == {VTK_TETRA}
     assert 40000 <= mesh.GetNumberOfCells() <= 60000
-
-
-def test_default_mesh_tets_positive(mesh):
-    volumes = _tet_volumes(mesh)
+    corners = _points(mesh)[vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 4)]
+    volumes = np.linalg.det(corners[:, 1:] - corners[:, :1]) / 6.0
     assert np.all(volumes > 0.0)
     # Tube of radius 0.3 around a helix of length 2 turns * sqrt(...)
     length = 2 * math.hypot(2 * math.pi, 1.0)
     assert volumes.sum() == pytest.approx(math.pi * 0.09 * length, rel=0.02)
+    again = data.make_default_mesh()
+    np.testing.assert_array_equal(_points(mesh), _points(again))
+    np.testing.assert_array_equal(
+        vtk_to_numpy(mesh.GetPointData().GetScalars()),
+        vtk_to_numpy(again.GetPointData().GetScalars()))
+    assert data.make_default_mesh(2).GetNumberOfCells() == 8 * mesh.GetNumberOfCells()
+    with pytest.raises(ValueError):
+        data.make_default_mesh(0)
 
 
 def test_default_mesh_is_not_convex(mesh):
@@ -79,59 +79,37 @@ def test_default_mesh_scalar(mesh):
     assert values.max() - values.min() > 0.8
 
 
-def test_default_mesh_is_deterministic(mesh):
-    again = data.make_default_mesh()
-    np.testing.assert_array_equal(_points(mesh), _points(again))
-    np.testing.assert_array_equal(
-        vtk_to_numpy(mesh.GetPointData().GetScalars()),
-        vtk_to_numpy(again.GetPointData().GetScalars()))
+# (transfer function, keyword arguments, unit distance as a fraction of the diagonal,
+# [(fraction of the scalar range, opacity there)]).
+TRANSFER_FUNCTIONS = [
+    (data.default_transfer_function, {}, 1.0 / 20.0, [(0.0, (0.0, 0.05)), (1.0, (0.6, 0.8))]),
+    (data.transfer_function, {"opacity_scale": 0.5}, 1.0 / 40.0, [(1.0, 0.4)]),
+    (data.transfer_function, {"preset": "steep", "opacity_scale": 0.5}, 1.0 / 40.0,
+     [(0.5, 0.0), (0.65, 0.45)]),
+    (data.transfer_function, {"preset": "steep", "steep_center": 0.3}, 1.0 / 40.0,
+     [(0.3, 0.9), (0.2, 0.0), (0.4, 0.0), (0.65, 0.0)]),
+]
 
 
-def test_default_mesh_resolution_scaling(mesh):
-    finer = data.make_default_mesh(2)
-    assert finer.GetNumberOfCells() == 8 * mesh.GetNumberOfCells()
-    with pytest.raises(ValueError):
-        data.make_default_mesh(0)
-
-
-def test_default_transfer_function(mesh):
-    prop = data.default_transfer_function(mesh)
-    diagonal = mesh.GetLength()
-    assert prop.GetScalarOpacityUnitDistance() == pytest.approx(
-        diagonal / 20.0)
+@pytest.mark.parametrize("make, keywords, unit, opacities", TRANSFER_FUNCTIONS)
+def test_transfer_functions(mesh, make, keywords, unit, opacities):
+    prop = make(mesh, **keywords)
+    assert prop.GetScalarOpacityUnitDistance() == pytest.approx(unit * mesh.GetLength())
     assert not prop.GetShade()
-    opacity = prop.GetScalarOpacity()
     low, high = mesh.GetPointData().GetScalars().GetRange()
-    assert opacity.GetValue(low) < 0.05
-    assert 0.6 <= opacity.GetValue(high) <= 0.8
+    for t, expected in opacities:
+        value = prop.GetScalarOpacity().GetValue(low + t * (high - low))
+        if isinstance(expected, tuple):
+            assert expected[0] <= value <= expected[1]
+        else:
+            assert value == (pytest.approx(expected) if expected else 0.0)
 
 
-@pytest.mark.parametrize("preset", ["default", "steep"])
-def test_transfer_function_presets(mesh, preset):
-    prop = data.transfer_function(mesh, preset, opacity_scale=0.5)
-    assert prop.GetScalarOpacityUnitDistance() == pytest.approx(
-        mesh.GetLength() / 40.0)
-    low, high = mesh.GetPointData().GetScalars().GetRange()
-    opacity = prop.GetScalarOpacity()
-    if preset == "default":
-        assert opacity.GetValue(high) == pytest.approx(0.4)
-    else:
-        assert opacity.GetValue(low + 0.5 * (high - low)) == 0.0
-        assert opacity.GetValue(low + 0.65 * (high - low)) == \
-            pytest.approx(0.45)
+@pytest.mark.parametrize("keywords", [{"preset": "no-such-preset"},
+                                      {"preset": "steep", "steep_center": 0.99}])
+def test_bad_transfer_function_arguments(mesh, keywords):
     with pytest.raises(ValueError):
-        data.transfer_function(mesh, "no-such-preset")
-
-
-def test_steep_preset_moves_its_peak(mesh):
-    prop = data.transfer_function(mesh, "steep", steep_center=0.3)
-    low, high = mesh.GetPointData().GetScalars().GetRange()
-    opacity = prop.GetScalarOpacity()
-    assert opacity.GetValue(low + 0.3 * (high - low)) == pytest.approx(0.9)
-    for outside in (0.2, 0.4, 0.65):
-        assert opacity.GetValue(low + outside * (high - low)) == 0.0
-    with pytest.raises(ValueError):
-        data.transfer_function(mesh, "steep", steep_center=0.99)
+        data.transfer_function(mesh, **keywords)
 
 
 def _blanked_grid():
@@ -218,15 +196,8 @@ def test_real_dataset_tet_counts(name):
     assert scalars.GetName() == data.DATASETS[name][1]
     assert grid.GetPointData().GetNumberOfArrays() == 1
     assert grid.GetCellData().GetNumberOfArrays() == 0
-
-
-def test_readme_scalar_ranges():
-    _require_data_dir()
-    expected = {"spx": (0.0, 2.254), "bluntfin": (0.193, 4.978),
-                "post": (0.0, 1.391)}
-    for name, (low, high) in expected.items():
-        got = data.load(name).GetPointData().GetScalars().GetRange()
-        assert got == pytest.approx((low, high), abs=1e-3)
+    if name in README_RANGES:
+        assert scalars.GetRange() == pytest.approx(README_RANGES[name], abs=1e-3)
 
 
 def test_structured_load_without_tetrahedralize():

@@ -30,7 +30,7 @@ def test_settings_have_defaults_and_clamps(name, default, low, high):
     check_clamped_setting(spt.vtkSPTVolumeMapper(), name, default, low, high)
 
 
-def test_vector_mode_and_seed():
+def test_vector_mode_seed_estimator_and_exact_coverage():
     mapper = spt.vtkSPTVolumeMapper()
     assert mapper.GetVectorMode() == spt.vtkSPTVolumeMapper.MAGNITUDE
     mapper.SetVectorModeToComponent()
@@ -38,10 +38,6 @@ def test_vector_mode_and_seed():
     assert (mapper.GetVectorMode(), mapper.GetVectorComponent()) == (1, 2)
     mapper.SetSeed(4000000000)
     assert mapper.GetSeed() == 4000000000
-
-
-def test_estimator_and_exact_coverage():
-    mapper = spt.vtkSPTVolumeMapper()
     assert mapper.GetEstimator() == spt.vtkSPTVolumeMapper.VISIBILITY_ESTIMATOR
     assert mapper.GetExactCoverage() == 1
     mapper.SetEstimatorToSurvivor()
@@ -95,34 +91,30 @@ def test_print_self_lists_every_setting():
         assert setting + ":" in text
 
 
-def test_installed_package_imports_from_any_directory(tmp_path):
-    """After `make install`, Debian's python3 finds spt without PYTHONPATH (checked when the
-    Makefile ran the install: SPT_TEST_INSTALLED=1)."""
-    if os.environ.get("SPT_TEST_INSTALLED") != "1":
-        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+def installed_python(wheel: bool = True):
+    """The interpreter and environment of the installed package, without the build tree on
+    PYTHONPATH: the wheel's virtual environment (SPT_WHEEL_VTK_VERSION, where ``wheel``), or
+    Debian's python3 after `make install` (SPT_TEST_INSTALLED=1); else the test is skipped."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    result = subprocess.run(
-        ["/usr/bin/python3", "-c",
-         "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
-        cwd=tmp_path, env=env, capture_output=True, text=True, check=False)
-    assert result.returncode == 0, result.stderr
-    assert result.stdout.strip() == "vtkPSPTVolumeMapper"  # the parallel module's override
-    location = subprocess.run(
-        ["/usr/bin/python3", "-c", "import spt; print(spt.__file__)"], cwd=tmp_path, env=env,
-        capture_output=True, text=True, check=True).stdout
-    assert "dist-packages" in location and "/build/" not in location, location
-
-
-def installed_python():
-    """The interpreter and environment of the installed package: the wheel's virtual
-    environment (SPT_WHEEL_VTK_VERSION), or Debian's python3 after `make install`
-    (SPT_TEST_INSTALLED=1), without the build tree on PYTHONPATH; else the test is skipped."""
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    if os.environ.get("SPT_WHEEL_VTK_VERSION"):
+    if wheel and os.environ.get("SPT_WHEEL_VTK_VERSION"):
         return sys.executable, env
     if os.environ.get("SPT_TEST_INSTALLED") == "1":
         return "/usr/bin/python3", env
     pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+
+
+def test_installed_package_imports_from_any_directory(tmp_path):
+    """After `make install`, Debian's python3 finds spt without PYTHONPATH (checked when the
+    Makefile ran the install: SPT_TEST_INSTALLED=1)."""
+    python, env = installed_python(wheel=False)
+    result = subprocess.run(
+        [python, "-c", "import vtk, spt; print(spt.vtkSPTVolumeMapper().GetClassName())"],
+        cwd=tmp_path, env=env, capture_output=True, text=True, check=False)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "vtkPSPTVolumeMapper"  # the parallel module's override
+    location = subprocess.run([python, "-c", "import spt; print(spt.__file__)"], cwd=tmp_path,
+                              env=env, capture_output=True, text=True, check=True).stdout
+    assert "dist-packages" in location and "/build/" not in location, location
 
 
 def test_installed_package_is_the_library_without_the_experiments(tmp_path):
@@ -169,8 +161,7 @@ def test_installed_cmake_package_builds_a_cxx_program(tmp_path, component):
     """After `make install`, find_package(SPT) gives SPT::RenderingSPT to a C++ project, which
     then links neither MPI nor libEGL, and SPT::RenderingParallel, which brings SPT::RenderingSPT
     with it."""
-    if os.environ.get("SPT_TEST_INSTALLED") != "1":
-        pytest.skip("set SPT_TEST_INSTALLED=1 after installing to check the installed package")
+    installed_python(wheel=False)
     (tmp_path / "CMakeLists.txt").write_text(CONSUMER_CMAKE.format(component=component))
     (tmp_path / "main.cxx").write_text(CONSUMER_MAIN)
     build = tmp_path / "build"

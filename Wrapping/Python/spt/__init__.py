@@ -45,8 +45,9 @@ from .SPTRenderingSPT import vtkSPTFrameStatistics, vtkSPTVolumeMapper
 _opengl_window.choose(_vtkVersion.GetVTKVersion())
 
 __all__ = [
-    "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper", "vtkSPTFrameStatistics",
-    "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper", "vtkTetrahedralVolumeMapper"]
+    "MeshingUnavailable", "vtkHeadlessEGLRenderWindow", "vtkPSPTVolumeMapper",
+    "vtkSPTFrameStatistics", "vtkSPTVolumeMapper", "vtkStochasticVolumeMapper",
+    "vtkTetrahedralVolumeMapper"]
 
 #: Whether the build has the TetGen meshing module (SPT_BUILD_MESHING; the pip wheel has not):
 #: without it, :mod:`spt.meshes` (the generated drill and ring) raises :class:`MeshingUnavailable`.
@@ -67,8 +68,6 @@ class MeshingUnavailable(RuntimeError):
             "meshing (e.g. the generated default mesh, `--dataset default`), or build the project "
             "from source with TetGen (SPT_BUILD_MESHING=ON).")
 
-
-__all__ += ["MeshingUnavailable"]
 
 #: Whether the build has the baselines SPT is compared with (SPT_BUILD_BASELINES).
 HAVE_BASELINES = _importlib_util.find_spec(__name__ + ".SPTRenderingBaselines") is not None

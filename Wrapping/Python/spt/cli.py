@@ -15,24 +15,29 @@ import pathlib
 import sys
 from typing import Dict, List, Optional, Sequence
 
+from . import HAVE_MESHING
+from .meshes import MAX_CELLS, MIN_CELLS
+
 MAX_IMAGE_SIZE = 4096
 
 
-def _convert(text: str, kind, noun: str):
-    """``kind(text)``, or an argument error that says ``text`` is not ``noun``."""
-    try:
-        return kind(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+def _number(kind, accept, refusal: str):
+    """A parser of an int or a float (``kind``, ``_`` allowed between digits) that refuses
+    what is not one, and says "VALUE ``refusal``" where ``accept(value)`` is false."""
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            noun = "a whole number" if kind is int else "a number"
+            raise argparse.ArgumentTypeError(f"'{text}' is not {noun}") from None
+        if not accept(value):
+            raise argparse.ArgumentTypeError(f"{value} {refusal}")
+        return value
+    return parse
 
 
 def _positive_int(limit: int):
-    def parse(text: str) -> int:
-        value = _convert(text, int, "a whole number")
-        if not 1 <= value <= limit:
-            raise argparse.ArgumentTypeError(f"{value} is outside 1..{limit}")
-        return value
-    return parse
+    return _number(int, lambda value: 1 <= value <= limit, f"is outside 1..{limit}")
 
 
 def _positive_ints(limit: int, what: str):
@@ -48,24 +53,19 @@ def _positive_ints(limit: int, what: str):
 _levels = _positive_ints(65536, "repetition level")
 
 
-def _names(text: str, choices: Sequence[str], what: str) -> List[str]:
-    """A comma-separated list of names, each one of ``choices``."""
-    names = [part.strip() for part in text.split(",") if part.strip()]
-    unknown = [name for name in names if name not in choices]
-    if unknown or not names:
-        raise argparse.ArgumentTypeError(
-            f"unknown {what}(s) {', '.join(unknown) or '(none)'}; choose from "
-            f"{', '.join(choices)}")
-    return names
-
-
 def _names_in(module: str, attribute: str, what: str, one: bool = False):
     """A parser of comma-separated names, each one of ``module.attribute`` (a collection of
     names or a function that returns one, imported when the option is parsed); with ``one``,
     of exactly one name, returned alone."""
     def parse(text: str):
         choices = getattr(importlib.import_module(module, __package__), attribute)
-        names = _names(text, list(choices() if callable(choices) else choices), what)
+        choices = list(choices() if callable(choices) else choices)
+        names = [part.strip() for part in text.split(",") if part.strip()]
+        unknown = [name for name in names if name not in choices]
+        if unknown or not names:
+            raise argparse.ArgumentTypeError(
+                f"unknown {what}(s) {', '.join(unknown) or '(none)'}; choose from "
+                f"{', '.join(choices)}")
         if one and len(names) != 1:
             raise argparse.ArgumentTypeError(f"give one {what}, not {len(names)}")
         return names[0] if one else names
@@ -90,13 +90,6 @@ def _data_directory(text: str) -> pathlib.Path:
     return path.resolve()
 
 
-def _add_data_dir(parser: argparse.ArgumentParser) -> None:
-    """The folder of the real data sets; the default is $SPT_DATA_DIR, and nowhere else."""
-    parser.add_argument("--data-dir", type=_data_directory, default=None,
-                        help="the folder holding the real data sets (default: "
-                             "$SPT_DATA_DIR; without either, the generated meshes only)")
-
-
 def _output_directory(text: str) -> pathlib.Path:
     path = pathlib.Path(text)
     if path.exists() and not path.is_dir():
@@ -105,192 +98,99 @@ def _output_directory(text: str) -> pathlib.Path:
 
 
 def _cells(pieces: int):
-    """A cell count of the generated meshes, of ``pieces`` meshes in all (``_`` allowed)."""
-    def parse(text: str) -> int:
-        from .meshes import MAX_CELLS, MIN_CELLS
-
-        value = _convert(text.replace("_", ""), int, "a whole number")
-        if not pieces * MIN_CELLS <= value <= MAX_CELLS:
-            raise argparse.ArgumentTypeError(
-                f"{value} is outside {pieces * MIN_CELLS}..{MAX_CELLS}")
-        return value
-    return parse
+    """A cell count of the generated meshes, of ``pieces`` meshes in all."""
+    low = pieces * MIN_CELLS
+    return _number(int, lambda value: low <= value <= MAX_CELLS, f"is outside {low}..{MAX_CELLS}")
 
 
-def _target_error(text: str) -> float:
-    value = _convert(text, float, "a number")
-    if not 0.0 < value <= 1.0:
-        raise argparse.ArgumentTypeError(f"{value} is outside 0 (exclusive) .. 1")
-    return value
+_target_error = _number(float, lambda value: 0.0 < value <= 1.0, "is outside 0 (exclusive) .. 1")
+_seed = _number(int, lambda value: value >= 0, "is negative")
 
 
-def _seed(text: str) -> int:
-    value = _convert(text, int, "a whole number")
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"{value} is negative")
-    return value
+# The options of the commands, (flag, add_argument's keyword arguments), in the order of --help.
+# The folder of the real data sets: the default is $SPT_DATA_DIR, and nowhere else.
+_DATA_DIR = ("--data-dir", dict(type=_data_directory, default=None,
+                                help="the folder holding the real data sets (default: "
+                                     "$SPT_DATA_DIR; without either, the generated meshes only)"))
+_SIZE = ("--size", dict(type=_positive_int(MAX_IMAGE_SIZE), default=256))
+_REPETITIONS = dict(type=_positive_int(65536), default=144)
 
+_DEMO = [
+    ("--output", dict(type=_output_directory, default=pathlib.Path("out/demo"))),
+    ("--size", dict(_SIZE[1], help="image width and height in pixels (default 256)")),
+    ("--repetitions", dict(type=_positive_int(65536), default=256,
+                           help="SPT's largest repetition level (default 256)")),
+    ("--target-error", dict(type=_target_error, default=None,
+                            help="the error SPT races to besides VTK PT's, RMSE of premultiplied "
+                                 "RGBA (default 0.005)")),
+    ("--dataset", dict(type=_demo_scene, default=None,
+                       help="the large scene (default: ironprot_full, 1.5M tetrahedra, where the "
+                            "data sets are, else drill-1M, the generated drill of 10^6; "
+                            "'default' is the embedded helix mesh)")),
+    ("--pair-cells", dict(type=_cells(2), default=200_000,
+                          help="tetrahedra of the interpenetrating drill and ring, in all "
+                               "(default 200000)")),
+    _DATA_DIR]
 
-def _add_demo(commands) -> None:
-    demo = commands.add_parser(
-        "demo", help="two scenes where sorting fails or costs: SPT against VTK's projected "
-                     "tetrahedra, HAVS-like and the exact reference")
-    demo.add_argument("--output", type=_output_directory, default=pathlib.Path("out/demo"))
-    demo.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256,
-                      help="image width and height in pixels (default 256)")
-    demo.add_argument("--repetitions", type=_positive_int(65536), default=256,
-                      help="SPT's largest repetition level (default 256)")
-    demo.add_argument("--target-error", type=_target_error, default=None,
-                      help="the error SPT races to besides VTK PT's, RMSE of premultiplied "
-                           "RGBA (default 0.005)")
-    demo.add_argument("--dataset", type=_demo_scene, default=None,
-                      help="the large scene (default: ironprot_full, 1.5M tetrahedra, where "
-                           "the data sets are, else drill-1M, the generated drill of 10^6; "
-                           "'default' is the embedded helix mesh)")
-    demo.add_argument("--pair-cells", type=_cells(2), default=200_000,
-                      help="tetrahedra of the interpenetrating drill and ring, in all "
-                           "(default 200000)")
-    _add_data_dir(demo)
+# The options that replace a setting of the benchmark when given (their dest is its name).
+_BENCH_SETTINGS = ("large_cells", "frames", "only_methods", "race_scenes", "race_max_repetitions",
+                   "race_size", "race_sizes", "paraview_scenes")
+_BENCH = [
+    ("--output", dict(type=pathlib.Path, default=pathlib.Path("out/bench"))),
+    _DATA_DIR,
+    ("--sections", dict(type=_sections, default=None,
+                        help="comma-separated sections to run (default: all): race,cells,"
+                             "repetitions,subpixels,image,quality,host,large,parallel,paraview")),
+    ("--shape", dict(choices=("drill", "torus", "helix"),
+                     default="drill" if HAVE_MESHING else "helix",
+                     help="generated mesh of the sweeps (default drill; helix, which needs no "
+                          "TetGen, in builds without the meshing module)")),
+    ("--max-cells", dict(type=_positive_int(10 ** 9), default=None,
+                         help="largest mesh of the cell sweep (default 10,000,000)")),
+    ("--large-cells", dict(type=_positive_int(10 ** 9), default=None,
+                           help="cells of the paper's large case (default 13,000,000)")),
+    ("--methods", dict(type=_methods, default=None, dest="only_methods", metavar="METHODS",
+                       help="comma-separated methods to run (default: all); the other methods' "
+                            "results in OUTPUT/bench.json are kept")),
+    ("--frames", dict(type=_positive_int(100), default=None,
+                      help="timed frames per point, their median is reported (default 3)")),
+    ("--scenes", dict(type=_race_scenes, default=None, dest="race_scenes", metavar="SCENES",
+                      help="comma-separated scenes of the race (default: spx,torus,bluntfin,"
+                           "post,drill-0.2M,drill-1M,drill-3M); the other scenes of a race "
+                           "measured alike in OUTPUT/bench.json are kept")),
+    ("--max-repetitions", dict(type=_positive_int(65536), default=None,
+                               dest="race_max_repetitions", metavar="MAX_REPETITIONS",
+                               help="the race's largest repetition level (default 256)")),
+    ("--race-size", dict(type=_positive_int(MAX_IMAGE_SIZE), default=None,
+                         help="the race's image width and height (default 256)")),
+    ("--size", dict(type=_positive_ints(MAX_IMAGE_SIZE, "image size"), default=None,
+                    dest="race_sizes",
+                    help="comma-separated image sizes of the race, each width and height, e.g. "
+                         "256,1024 (default 256); the races at other sizes in OUTPUT/bench.json "
+                         "are kept")),
+    ("--paraview-scenes", dict(type=_paraview_scenes, default=None,
+                               help="comma-separated scenes of the paraview section (default: "
+                                    "disk,drill-0.2M,drill-1M)")),
+    ("--quick", dict(action="store_true",
+                     help="every section at small sizes, a smoke run of a few minutes"))]
 
+_REPORT = [
+    ("--input", dict(type=pathlib.Path, default=pathlib.Path("Documentation/bench/bench.json"),
+                     help="a bench.json written by `spt-python -m spt bench`")),
+    ("--output", dict(type=pathlib.Path, default=pathlib.Path("Documentation/results.md"),
+                      help="the Markdown file to write")),
+    ("--figures", dict(action="store_true",
+                       help="also draw the figures again next to the input, from its results"))]
 
-def _add_figure(figure, name: str, help_text: str) -> argparse.ArgumentParser:
-    """The subcommand of a figure, with its output folder (default out/figures/NAME)."""
-    parser = figure.add_parser(name, help=help_text)
-    parser.add_argument("--output", type=_output_directory,
-                        default=pathlib.Path("out/figures") / name)
-    _add_data_dir(parser)
-    return parser
-
-
-def _add_figure_size(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--size", type=_positive_int(MAX_IMAGE_SIZE), default=256)
-
-
-def _add_convergence_and_pbvr(figure) -> None:
-    convergence = _add_figure(
-        figure, "convergence", "RMSE against repetitions on SPX, Blunt Fin and Oxygen Post")
-    convergence.add_argument("--datasets", type=_datasets, default=["spx", "bluntfin", "post"])
-    convergence.add_argument("--levels", type=_levels, default=[4, 16, 64, 256, 1024])
-    _add_figure_size(convergence)
-    pbvr = _add_figure(
-        figure, "pbvr", "PBVR against SPT and the reference with a steep transfer function")
-    pbvr.add_argument("--datasets", type=_steep_datasets, default=["bluntfin", "post"])
-    pbvr.add_argument("--repetitions", type=_positive_int(65536), default=144,
-                      help="RepetitionLevel of the images and the table (default 144)")
-    pbvr.add_argument("--levels", type=_levels, default=[4, 16, 64, 144],
-                      help="repetition levels of the convergence curves (default 4,16,64,144)")
-    _add_figure_size(pbvr)
-
-
-def _add_sampling_sorting_accuracy(figure) -> None:
-    sampling = _add_figure(
-        figure, "sampling", "several repetitions per pass and stratified thresholds, measured")
-    sampling.add_argument("--dataset", type=_dataset, default="default")
-    sampling.add_argument("--levels", type=_levels, default=[16, 32, 64, 128, 256])
-    _add_figure_size(sampling)
-    sorting = _add_figure(
-        figure, "sorting", "SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)")
-    sorting.add_argument("--datasets", type=_datasets,
-                         default=["spx", "bluntfin", "post", "torus", "default"])
-    sorting.add_argument("--repetitions", type=_positive_int(65536), default=144,
-                         help="SPT RepetitionLevel (default 144, as in the paper)")
-    _add_figure_size(sorting)
-    accuracy = _add_figure(
-        figure, "accuracy", "stochastic against exact brightness along random rays")
-    accuracy.add_argument("--rays", type=_positive_int(10 ** 6), default=1000)
-    readme = _add_figure(
-        figure, "readme", "the README's picture (interpenetrating volumes) and race plot")
-    readme.add_argument("--bench", type=pathlib.Path,
-                        default=pathlib.Path("Documentation/bench/bench.json"),
-                        help="the benchmark's results whose race is plotted")
-    _add_figure_size(readme)
-
-
-def _add_bench(commands) -> None:
-    bench = commands.add_parser(
-        "bench", help="time and GPU memory of every method, fitted models and a report "
-                      "(long: about an hour; --quick takes minutes)")
-    bench.add_argument("--output", type=pathlib.Path, default=pathlib.Path("out/bench"))
-    _add_data_dir(bench)
-    bench.add_argument("--sections", type=_sections, default=None,
-                       help="comma-separated sections to run (default: all): "
-                            "race,cells,repetitions,subpixels,image,quality,host,large,parallel,"
-                            "paraview")
-    from . import HAVE_MESHING
-    bench.add_argument("--shape", choices=("drill", "torus", "helix"),
-                       default="drill" if HAVE_MESHING else "helix",
-                       help="generated mesh of the sweeps (default drill; helix, which needs "
-                            "no TetGen, in builds without the meshing module)")
-    bench.add_argument("--max-cells", type=_positive_int(10 ** 9), default=None,
-                       help="largest mesh of the cell sweep (default 10,000,000)")
-    bench.add_argument("--large-cells", type=_positive_int(10 ** 9), default=None,
-                       help="cells of the paper's large case (default 13,000,000)")
-    bench.add_argument("--methods", type=_methods, default=None,
-                       help="comma-separated methods to run (default: all); the other "
-                            "methods' results in OUTPUT/bench.json are kept")
-    bench.add_argument("--frames", type=_positive_int(100), default=None,
-                       help="timed frames per point, their median is reported (default 3)")
-    bench.add_argument("--scenes", type=_race_scenes, default=None,
-                       help="comma-separated scenes of the race (default: spx,torus,bluntfin,"
-                            "post,drill-0.2M,drill-1M,drill-3M); the other scenes of a race "
-                            "measured alike in OUTPUT/bench.json are kept")
-    bench.add_argument("--max-repetitions", type=_positive_int(65536), default=None,
-                       help="the race's largest repetition level (default 256)")
-    bench.add_argument("--race-size", type=_positive_int(MAX_IMAGE_SIZE), default=None,
-                       help="the race's image width and height (default 256)")
-    bench.add_argument("--size", type=_positive_ints(MAX_IMAGE_SIZE, "image size"), default=None,
-                       dest="race_sizes",
-                       help="comma-separated image sizes of the race, each width and height, "
-                            "e.g. 256,1024 (default 256); the races at other sizes in "
-                            "OUTPUT/bench.json are kept")
-    bench.add_argument("--paraview-scenes", type=_paraview_scenes, default=None,
-                       help="comma-separated scenes of the paraview section (default: disk,"
-                            "drill-0.2M,drill-1M)")
-    bench.add_argument("--quick", action="store_true",
-                       help="every section at small sizes, a smoke run of a few minutes")
-
-
-def _add_report(commands) -> None:
-    report = commands.add_parser(
-        "report", help="write results.md (and the full tables, bench.md, next to the input) "
-                       "from a benchmark's bench.json, without measuring")
-    report.add_argument("--input", type=pathlib.Path,
-                        default=pathlib.Path("Documentation/bench/bench.json"),
-                        help="a bench.json written by `spt-python -m spt bench`")
-    report.add_argument("--output", type=pathlib.Path,
-                        default=pathlib.Path("Documentation/results.md"),
-                        help="the Markdown file to write")
-    report.add_argument("--figures", action="store_true",
-                        help="also draw the figures again next to the input, from its results")
-
-
-def _add_mesh(commands) -> None:
-    mesh = commands.add_parser(
-        "mesh", help="write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file")
-    mesh.add_argument("--shape", choices=("drill", "torus"), default="drill")
-    mesh.add_argument("--cells", type=_cells(1), default=1_000_000,
-                      help="number of tetrahedra, within 25 %% (default 1000000)")
-    mesh.add_argument("--seed", type=_seed, default=0, help="places the field's maxima")
-    mesh.add_argument("--output", type=pathlib.Path, required=True,
-                      help="the .vtk file to write (VTK legacy binary)")
-    mesh.add_argument("--no-cache", action="store_true",
-                      help="mesh again instead of reading SPT_CACHE_DIR (which is not written)")
-
-
-def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="python3 -m spt",
-        description="Sorting-free pre-integrated projected tetrahedra (SPT) for VTK.")
-    commands = parser.add_subparsers(dest="command", required=True)
-    _add_demo(commands)
-    figures = commands.add_parser("figures", help="reproduce the paper's figures")
-    figure = figures.add_subparsers(dest="figure", required=True)
-    _add_convergence_and_pbvr(figure)
-    _add_sampling_sorting_accuracy(figure)
-    _add_bench(commands)
-    _add_report(commands)
-    _add_mesh(commands)
-    return parser
+_MESH = [
+    ("--shape", dict(choices=("drill", "torus"), default="drill")),
+    ("--cells", dict(type=_cells(1), default=1_000_000,
+                     help="number of tetrahedra, within 25 %% (default 1000000)")),
+    ("--seed", dict(type=_seed, default=0, help="places the field's maxima")),
+    ("--output", dict(type=pathlib.Path, required=True,
+                      help="the .vtk file to write (VTK legacy binary)")),
+    ("--no-cache", dict(action="store_true",
+                        help="mesh again instead of reading SPT_CACHE_DIR (which is not written)"))]
 
 
 def _print_table(header: Sequence[str], rows: Sequence[Sequence[object]]) -> None:
@@ -309,16 +209,10 @@ def _bench(arguments: argparse.Namespace) -> None:
     if arguments.max_cells is not None:
         changes["cells"] = tuple(c for c in settings.cells if c < arguments.max_cells) + (
             arguments.max_cells,)
-    # Each option given replaces its setting: (option, setting, a tuple of values).
-    for option, setting, many in (
-            ("large_cells", "large_cells", False), ("frames", "frames", False),
-            ("methods", "only_methods", True), ("scenes", "race_scenes", True),
-            ("max_repetitions", "race_max_repetitions", False),
-            ("race_size", "race_size", False), ("race_sizes", "race_sizes", True),
-            ("paraview_scenes", "paraview_scenes", True)):
-        value = getattr(arguments, option)
+    for setting in _BENCH_SETTINGS:  # each option given replaces its setting
+        value = getattr(arguments, setting)
         if value is not None:
-            changes[setting] = tuple(value) if many else value
+            changes[setting] = tuple(value) if isinstance(value, list) else value
     settings = dataclasses.replace(settings, **changes)
     sections = arguments.sections or list(bench.SECTIONS)
     bench.run(arguments.output, sections, settings)
@@ -425,9 +319,67 @@ def _readme(arguments: argparse.Namespace) -> None:
         print(f"{path} ({path.stat().st_size // 1024} KiB)")
 
 
-_COMMANDS = {"demo": _demo, "bench": _bench, "report": _report, "mesh": _mesh}
-_FIGURES = {"convergence": _convergence, "pbvr": _pbvr, "sampling": _sampling,
-            "sorting": _sorting, "accuracy": _accuracy, "readme": _readme}
+# command -> (its function, its help, its options), figures apart: in the order of --help.
+_COMMANDS = {
+    "demo": (_demo, "two scenes where sorting fails or costs: SPT against VTK's projected "
+                    "tetrahedra, HAVS-like and the exact reference", _DEMO),
+    "bench": (_bench, "time and GPU memory of every method, fitted models and a report (long: "
+                      "about an hour; --quick takes minutes)", _BENCH),
+    "report": (_report, "write results.md (and the full tables, bench.md, next to the input) "
+                        "from a benchmark's bench.json, without measuring", _REPORT),
+    "mesh": (_mesh, "write a generated tetrahedral mesh (drill or torus) as a legacy .vtk file",
+             _MESH),
+}
+# Each figure's options come after --output (default out/figures/NAME) and --data-dir.
+_FIGURES = {
+    "convergence": (_convergence, "RMSE against repetitions on SPX, Blunt Fin and Oxygen Post", [
+        ("--datasets", dict(type=_datasets, default=["spx", "bluntfin", "post"])),
+        ("--levels", dict(type=_levels, default=[4, 16, 64, 256, 1024])), _SIZE]),
+    "pbvr": (_pbvr, "PBVR against SPT and the reference with a steep transfer function", [
+        ("--datasets", dict(type=_steep_datasets, default=["bluntfin", "post"])),
+        ("--repetitions", dict(_REPETITIONS,
+                               help="RepetitionLevel of the images and the table (default 144)")),
+        ("--levels", dict(type=_levels, default=[4, 16, 64, 144], help="repetition levels of "
+                          "the convergence curves (default 4,16,64,144)")),
+        _SIZE]),
+    "sampling": (_sampling, "several repetitions per pass and stratified thresholds, measured", [
+        ("--dataset", dict(type=_dataset, default="default")),
+        ("--levels", dict(type=_levels, default=[16, 32, 64, 128, 256])), _SIZE]),
+    "sorting": (_sorting, "SPT against sorted renderers (HAVS-like k=2 and 6, VTK PT)", [
+        ("--datasets", dict(type=_datasets,
+                            default=["spx", "bluntfin", "post", "torus", "default"])),
+        ("--repetitions", dict(_REPETITIONS,
+                               help="SPT RepetitionLevel (default 144, as in the paper)")),
+        _SIZE]),
+    "accuracy": (_accuracy, "stochastic against exact brightness along random rays", [
+        ("--rays", dict(type=_positive_int(10 ** 6), default=1000))]),
+    "readme": (_readme, "the README's picture (interpenetrating volumes) and race plot", [
+        ("--bench", dict(type=pathlib.Path, default=pathlib.Path("Documentation/bench/bench.json"),
+                         help="the benchmark's results whose race is plotted")), _SIZE]),
+}
+
+
+def _add(commands, name: str, help_text: str, options) -> None:
+    parser = commands.add_parser(name, help=help_text)
+    for flag, keywords in options:
+        parser.add_argument(flag, **keywords)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python3 -m spt",
+        description="Sorting-free pre-integrated projected tetrahedra (SPT) for VTK.")
+    commands = parser.add_subparsers(dest="command", required=True)
+    _add(commands, "demo", *_COMMANDS["demo"][1:])
+    figures = commands.add_parser("figures", help="reproduce the paper's figures")
+    figure = figures.add_subparsers(dest="figure", required=True)
+    for name, (_, help_text, options) in _FIGURES.items():
+        output = ("--output", dict(type=_output_directory,
+                                   default=pathlib.Path("out/figures") / name))
+        _add(figure, name, help_text, [output, _DATA_DIR, *options])
+    for name in ("bench", "report", "mesh"):
+        _add(commands, name, *_COMMANDS[name][1:])
+    return parser
 
 
 def _without_experiments(argv: Sequence[str]) -> Optional[str]:
@@ -456,7 +408,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         # ParaView and MPI ranks) read the same data sets.
         os.environ["SPT_DATA_DIR"] = str(arguments.data_dir)
     command = (_COMMANDS[arguments.command] if arguments.command in _COMMANDS
-               else _FIGURES[arguments.figure])
+               else _FIGURES[arguments.figure])[0]
     try:
         command(arguments)
     except (OSError, ValueError, RuntimeError) as error:

@@ -73,9 +73,7 @@ DATASETS: Dict[str, Tuple[str, str]] = {
 _HIDDEN_ARRAY = "spt_hidden"
 
 
-# --------------------------------------------------------------------------
-# Locating the data
-# --------------------------------------------------------------------------
+# Locating the data --------------------------------------------------------
 
 def data_dir() -> pathlib.Path:
     """The directory holding the real data sets: ``$SPT_DATA_DIR``, and only that (the working
@@ -100,36 +98,25 @@ def _data_file(filename: str) -> str:
     return str(path)
 
 
-# --------------------------------------------------------------------------
-# Readers: each returns a vtkDataSet with the wanted point array present
-# --------------------------------------------------------------------------
+# Readers: each returns a vtkDataSet with the wanted point array present ---
 
 class UnreadableDataError(RuntimeError):
     """VTK's reader could not read a data file that is present."""
 
 
-def _read_legacy(reader, filename: str, all_scalars: bool = True) -> vtkDataSet:
-    """The output of one of VTK's legacy readers; UnreadableDataError, naming the file, when
-    the reader fails or reads no cells (a truncated file, or a Git LFS pointer in its place)."""
+def _read(reader, filename: str, all_scalars: bool = True) -> vtkDataSet:
+    """The output of one of VTK's file readers (a legacy reader reads all scalars if
+    ``all_scalars``); UnreadableDataError, naming the file, when the reader fails or reads no
+    cells (a truncated file, or a Git LFS pointer in its place)."""
     path = _data_file(filename)
     reader.SetFileName(path)
-    if all_scalars:
+    if all_scalars and hasattr(reader, "ReadAllScalarsOn"):
         reader.ReadAllScalarsOn()
     reader.Update()
     output = reader.GetOutput()
-    if reader.GetErrorCode() or output is None or output.GetNumberOfCells() == 0:
-        raise UnreadableDataError(
-            f"VTK's legacy reader read no cells from {path}: the file is damaged, truncated, "
-            "or not the data set itself (a Git LFS pointer, for one)")
-    return output
-
-
-def _read_xml_ug(filename: str) -> vtkDataSet:
-    path = _data_file(filename)
-    reader = vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    if reader.GetErrorCode() or reader.GetOutput().GetNumberOfCells() == 0:
+    if not (reader.GetErrorCode() or output is None or output.GetNumberOfCells() == 0):
+        return output
+    if isinstance(reader, vtkXMLUnstructuredGridReader):
         # Seen on Debian 12: VTK 9.2's XML parser hands expat its input in pieces around the
         # appended data, which expat rejects as "not well-formed" since its security updates:
         # reading worked with 2.5.0-1+deb12u1 and fails with 2.5.0-1+deb12u5.
@@ -138,7 +125,9 @@ def _read_xml_ug(filename: str) -> vtkDataSet:
             "with appended data under the security updates of the system's expat (Debian 12: "
             "2.5.0-1+deb12u5 fails, 2.5.0-1+deb12u1 worked); convert the file with a newer "
             "VTK or ParaView.")
-    return reader.GetOutput()
+    raise UnreadableDataError(
+        f"VTK's legacy reader read no cells from {path}: the file is damaged, truncated, "
+        "or not the data set itself (a Git LFS pointer, for one)")
 
 
 def _read_exodus(filename: str, array: str) -> vtkDataSet:
@@ -186,42 +175,46 @@ def _read_plot3d(stem: str, function: Optional[int], iblanking: bool) -> vtkData
     return grid
 
 
-def _read_iron_protein(threshold: bool) -> vtkDataSet:
-    """ironProt.vtk; with ``threshold`` keep voxels with all values in 80..255, like VTK's own
-    projected-tetrahedra test."""
-    image = _read_legacy(vtkStructuredPointsReader(), "ironProt.vtk", all_scalars=False)
-    if not threshold:
-        return image
+def _threshold(dataset: vtkDataSet, association: int, array: str, low: float,
+               high: float) -> vtkDataSet:
+    """The cells of ``dataset`` whose values of ``array`` all lie in low..high."""
     thresh = vtkThreshold()
-    thresh.SetInputData(image)
-    thresh.SetInputArrayToProcess(0, 0, 0, 0, "scalars")  # point scalars
-    thresh.SetLowerThreshold(80.0)
-    thresh.SetUpperThreshold(255.0)
+    thresh.SetInputData(dataset)
+    thresh.SetInputArrayToProcess(0, 0, 0, association, array)
+    thresh.SetLowerThreshold(low)
+    thresh.SetUpperThreshold(high)
     thresh.SetThresholdFunction(vtkThreshold.THRESHOLD_BETWEEN)
     thresh.Update()
     return thresh.GetOutput()
 
 
+def _read_iron_protein(threshold: bool) -> vtkDataSet:
+    """ironProt.vtk; with ``threshold`` keep voxels with all values in 80..255, like VTK's own
+    projected-tetrahedra test."""
+    image = _read(vtkStructuredPointsReader(), "ironProt.vtk", all_scalars=False)
+    if not threshold:
+        return image
+    return _threshold(image, vtkDataObject.FIELD_ASSOCIATION_POINTS, "scalars", 80.0, 255.0)
+
+
 # name -> function reading the (not yet converted) data set.
 _READERS: Dict[str, Callable[[], vtkDataSet]] = {
-    "spx": lambda: _read_legacy(vtkUnstructuredGridReader(), "spx.vtk"),
+    "spx": lambda: _read(vtkUnstructuredGridReader(), "spx.vtk"),
     "bluntfin": lambda: _read_plot3d("bluntfin", None, False),
     "post": lambda: _read_plot3d("post", 153, True),
-    "torus": lambda: _read_legacy(vtkUnstructuredGridReader(), "torus.vtk"),
-    "tetramesh": lambda: _read_legacy(vtkUnstructuredGridReader(), "tetraMesh.vtk"),
-    "postvtk": lambda: _read_legacy(vtkUnstructuredGridReader(), "post.vtk"),
-    "office": lambda: _read_legacy(vtkStructuredGridReader(), "office.binary.vtk"),
-    "fire": lambda: _read_xml_ug("fire_ug.vtu"),
-    "hexa": lambda: _read_legacy(vtkUnstructuredGridReader(), "hexa.vtk"),
+    "torus": lambda: _read(vtkUnstructuredGridReader(), "torus.vtk"),
+    "tetramesh": lambda: _read(vtkUnstructuredGridReader(), "tetraMesh.vtk"),
+    "postvtk": lambda: _read(vtkUnstructuredGridReader(), "post.vtk"),
+    "office": lambda: _read(vtkStructuredGridReader(), "office.binary.vtk"),
+    "fire": lambda: _read(vtkXMLUnstructuredGridReader(), "fire_ug.vtu"),
+    "hexa": lambda: _read(vtkUnstructuredGridReader(), "hexa.vtk"),
     "disk": lambda: _read_exodus("disk_out_ref.ex2", "Temp"),
     "ironprot": lambda: _read_iron_protein(threshold=True),
     "ironprot_full": lambda: _read_iron_protein(threshold=False),
 }
 
 
-# --------------------------------------------------------------------------
-# Conversion to a clean (tetrahedral) unstructured grid
-# --------------------------------------------------------------------------
+# Conversion to a clean (tetrahedral) unstructured grid --------------------
 
 def flag_hidden_cells(grid: vtkStructuredGrid) -> None:
     """Add a uint8 cell array ``spt_hidden`` (1 = blanked) to ``grid``: a cell is hidden when
@@ -262,31 +255,10 @@ def _strip_arrays(dataset: vtkDataSet, array_name: str) -> vtkDataSet:
     return stripped
 
 
-def _remove_hidden(grid: vtkUnstructuredGrid) -> vtkUnstructuredGrid:
-    """Drop the cells flagged by the ``spt_hidden`` cell array and the array itself."""
-    flags = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
-    if flags is None:
-        return grid
-    if flags.GetRange(0)[1] > 0:
-        thresh = vtkThreshold()
-        thresh.SetInputData(grid)
-        thresh.SetInputArrayToProcess(
-            0, 0, 0, vtkDataObject.FIELD_ASSOCIATION_CELLS, _HIDDEN_ARRAY)
-        thresh.SetLowerThreshold(0.0)
-        thresh.SetUpperThreshold(0.0)
-        thresh.SetThresholdFunction(vtkThreshold.THRESHOLD_BETWEEN)
-        thresh.Update()
-        grid = thresh.GetOutput()
-    result = vtkUnstructuredGrid()
-    result.ShallowCopy(grid)
-    result.GetCellData().RemoveArray(_HIDDEN_ARRAY)
-    return result
-
-
 def to_unstructured(dataset: vtkDataSet, array_name: str,
                     tetrahedralize: bool) -> vtkUnstructuredGrid:
     """Convert a data set to an unstructured grid (tetrahedra when ``tetrahedralize``) whose
-    only array is point scalar ``array_name``; cells flagged as hidden are removed."""
+    only array is point scalar ``array_name``, without the cells flagged as hidden."""
     dataset = _strip_arrays(dataset, array_name)
     if tetrahedralize:
         converter = vtkDataSetTriangleFilter()
@@ -295,7 +267,10 @@ def to_unstructured(dataset: vtkDataSet, array_name: str,
         converter = vtkAppendFilter()
     converter.SetInputData(dataset)
     converter.Update()
-    grid = _remove_hidden(converter.GetOutput())
+    grid = converter.GetOutput()
+    hidden = grid.GetCellData().GetArray(_HIDDEN_ARRAY)
+    if hidden is not None and hidden.GetRange(0)[1] > 0:
+        grid = _threshold(grid, vtkDataObject.FIELD_ASSOCIATION_CELLS, _HIDDEN_ARRAY, 0.0, 0.0)
     result = vtkUnstructuredGrid()
     result.CopyStructure(grid)
     result.GetPointData().ShallowCopy(grid.GetPointData())
@@ -317,9 +292,7 @@ def load(name: str, tetrahedralize: bool = True) -> vtkUnstructuredGrid:
     return to_unstructured(dataset, DATASETS[key][1], tetrahedralize)
 
 
-# --------------------------------------------------------------------------
-# The embedded default mesh: a solid tube swept along a helix
-# --------------------------------------------------------------------------
+# The embedded default mesh: a solid tube swept along a helix --------------
 
 # Geometry of the default mesh (model units).
 _HELIX_RADIUS = 1.0
@@ -328,13 +301,6 @@ _HELIX_TURNS = 2.0
 _TUBE_RADIUS = 0.3
 _SEGMENTS_ALONG = 150    # per unit resolution
 _SEGMENTS_ACROSS = 8     # per unit resolution, each of u and v
-
-
-def _square_to_disk(u: np.ndarray, v: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
-    """Elliptical grid mapping of [-1, 1]^2 onto the unit disk."""
-    x = u * np.sqrt(1.0 - 0.5 * v * v)
-    y = v * np.sqrt(1.0 - 0.5 * u * u)
-    return x, y
 
 
 def helix_center(theta: np.ndarray) -> np.ndarray:
@@ -348,32 +314,23 @@ def helix_center(theta: np.ndarray) -> np.ndarray:
                      c * theta - z0], axis=-1)
 
 
-def _helix_frame(theta: np.ndarray) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Frenet frame (T, N, B) of the helix, each of shape (n, 3). N points towards the helix
-    axis and (N, B, T) is right-handed, so a grid indexed (u along N, v along B, t along T) has
-    positive cells."""
-    r, c = _HELIX_RADIUS, _HELIX_PITCH / (2.0 * math.pi)
-    norm = math.hypot(r, c)
-    cos, sin = np.cos(theta), np.sin(theta)
-    zeros = np.zeros_like(theta)
-    tangent = np.stack([-r * sin, r * cos, np.full_like(theta, c)], -1)
-    normal = np.stack([-cos, -sin, zeros], -1)
-    binormal = np.stack([c * sin, -c * cos, np.full_like(theta, r)], -1)
-    return tangent / norm, normal, binormal / norm
-
-
 def _helix_points(n_along: int, n_across: int) -> np.ndarray:
     """Point coordinates of the tube, shape (n_along, n_across, n_across, 3) in VTK structured
-    order (u fastest, then v, then along)."""
+    order (u fastest, then v, then along). The cross-section is the elliptical grid mapping of
+    [-1, 1]^2 onto the unit disk, spanned by the helix's normal (towards its axis) and binormal:
+    (normal, binormal, tangent) is right-handed, so the grid's cells are positive."""
     theta = np.linspace(0.0, 2.0 * math.pi * _HELIX_TURNS, n_along)
     s = np.linspace(-1.0, 1.0, n_across)
     v, u = np.meshgrid(s, s, indexing="ij")
-    x, y = _square_to_disk(u, v)
-    _, normal, binormal = _helix_frame(theta)
-    center = helix_center(theta)
+    x = u * np.sqrt(1.0 - 0.5 * v * v)
+    y = v * np.sqrt(1.0 - 0.5 * u * u)
+    r, c = _HELIX_RADIUS, _HELIX_PITCH / (2.0 * math.pi)
+    cos, sin = np.cos(theta), np.sin(theta)
+    normal = np.stack([-cos, -sin, np.zeros_like(theta)], -1)
+    binormal = np.stack([c * sin, -c * cos, np.full_like(theta, r)], -1) / math.hypot(r, c)
     offset = (x[None, :, :, None] * normal[:, None, None, :]
               + y[None, :, :, None] * binormal[:, None, None, :])
-    return center[:, None, None, :] + _TUBE_RADIUS * offset
+    return helix_center(theta)[:, None, None, :] + _TUBE_RADIUS * offset
 
 
 def default_field(points: np.ndarray) -> np.ndarray:
@@ -415,27 +372,19 @@ def make_default_mesh(resolution: int = 1) -> vtkUnstructuredGrid:
     return to_unstructured(structured, DEFAULT_FIELD_NAME, tetrahedralize=True)
 
 
-# --------------------------------------------------------------------------
-# Transfer functions
-# --------------------------------------------------------------------------
-
-def _scalar_range(grid: vtkDataSet) -> Tuple[float, float]:
-    """Range of the active point scalars, widened if degenerate."""
-    scalars = grid.GetPointData().GetScalars()
-    if scalars is None:
-        raise ValueError("grid has no active point scalars")
-    low, high = scalars.GetRange(0)
-    if high <= low:
-        low, high = low - 0.5, high + 0.5
-    return float(low), float(high)
-
+# Transfer functions -------------------------------------------------------
 
 def property_from_points(grid: vtkDataSet, colors: Sequence[Tuple[float, float, float, float]],
                          opacities: Sequence[Tuple[float, float]],
                          unit_fraction: float) -> vtkVolumeProperty:
     """Volume property from (t, r, g, b) and (t, opacity) control points, t in 0..1 of the
     active scalar range; unit distance is ``unit_fraction`` of the bounding diagonal."""
-    low, high = _scalar_range(grid)
+    scalars = grid.GetPointData().GetScalars()
+    if scalars is None:
+        raise ValueError("grid has no active point scalars")
+    low, high = scalars.GetRange(0)
+    if high <= low:  # a constant field: widened
+        low, high = low - 0.5, high + 0.5
     color = vtkColorTransferFunction()
     for t, red, green, blue in colors:
         color.AddRGBPoint(low + t * (high - low), red, green, blue)

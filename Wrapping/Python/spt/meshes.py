@@ -74,9 +74,7 @@ RING_RADIUS, TUBE_RADIUS = 1.0, 0.3
 RING_WAVE, BUMP_HEIGHT, BUMP_WIDTH = 0.15, 0.4, 0.5
 
 
-# --------------------------------------------------------------------------------------------
-# Surfaces from rings
-# --------------------------------------------------------------------------------------------
+# Surfaces from rings ------------------------------------------------------------------------
 
 @dataclass
 class Ring:
@@ -174,9 +172,7 @@ def _meridian_samples(corners: np.ndarray, spacing: float) -> np.ndarray:
     return np.concatenate(samples)
 
 
-# --------------------------------------------------------------------------------------------
-# The shapes
-# --------------------------------------------------------------------------------------------
+# The shapes ---------------------------------------------------------------------------------
 
 def _smoothstep(t: np.ndarray) -> np.ndarray:
     t = np.clip(t, 0.0, 1.0)
@@ -251,12 +247,16 @@ def _check_shape(shape: str) -> None:
         raise ValueError(f"unknown shape {shape!r}; choose from {', '.join(SHAPES)}")
 
 
+def _check_whole(name: str, value) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be a whole number, not {value!r}")
+
+
 def surface_arrays(shape: str, resolution: int) -> Tuple[np.ndarray, np.ndarray]:
     """Points (n, 3) and outward triangles (m, 3) of the shape's surface; ``resolution`` is the
     number of points around the shape's widest circumference (at least 8)."""
     _check_shape(shape)
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, np.integer)):
-        raise ValueError(f"resolution must be a whole number, not {resolution!r}")
+    _check_whole("resolution", resolution)
     if not 8 <= resolution <= 100_000:
         raise ValueError(f"resolution {resolution} is outside 8..100000")
     rings, closed = _RINGS[shape](2.0 * math.pi * _WIDEST[shape] / resolution)
@@ -294,9 +294,7 @@ def mesh_parameters(shape: str, cells: int) -> Tuple[int, float]:
     return max(8, int(round(resolution))), MEAN_VOLUME_FACTOR * mean_volume
 
 
-# --------------------------------------------------------------------------------------------
-# The field
-# --------------------------------------------------------------------------------------------
+# The field ----------------------------------------------------------------------------------
 
 def _blob_centres(shape: str, seed: int) -> Tuple[np.ndarray, np.ndarray]:
     """Centres and widths of the field's maxima, inside the shape (on its axis or centre
@@ -330,15 +328,12 @@ def field(shape: str, points: np.ndarray, seed: int = 0) -> np.ndarray:
     return values.astype(np.float32)
 
 
-# --------------------------------------------------------------------------------------------
-# Meshing and the cache
-# --------------------------------------------------------------------------------------------
+# Meshing and the cache ----------------------------------------------------------------------
 
 def _check_arguments(shape: str, cells: int, seed: int) -> None:
     _check_shape(shape)
-    for name, value in (("cells", cells), ("seed", seed)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-            raise ValueError(f"{name} must be a whole number, not {value!r}")
+    _check_whole("cells", cells)
+    _check_whole("seed", seed)
     if not MIN_CELLS <= cells <= MAX_CELLS:
         raise ValueError(f"cells {cells} is outside {MIN_CELLS}..{MAX_CELLS}")
     if seed < 0:

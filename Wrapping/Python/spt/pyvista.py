@@ -52,11 +52,8 @@ class ClientSideRenderingWarning(UserWarning):
 
 def check_backend(plotter: pyvista.Plotter) -> Optional[str]:
     """Warn (:class:`ClientSideRenderingWarning`) where ``plotter``, in a notebook, would show
-    its scene through vtk.js in the browser: its theme's Jupyter backend is ``'client'`` or
-    ``'html'``, or trame's default view mode is ``'client'``. vtk.js has no SPT mapper, so the
-    volume would be drawn by something else or not at all; the warning names the backend that
-    shows SPT's image, ``'server'``. Returns the warning's text, or None (outside a notebook,
-    where no backend is used, too)."""
+    its scene through vtk.js in the browser, which has no SPT mapper, and name the backend that
+    shows SPT's image; returns the warning's text, or None (outside a notebook too)."""
     if not getattr(plotter, "notebook", False):
         return None
     theme = plotter.theme
@@ -143,24 +140,14 @@ def _scalars(grid: pyvista.UnstructuredGrid, scalars: Any, preference: str
     return values, title
 
 
-def _clim(values: np.ndarray, clim: Union[None, float, Sequence[float]], log_scale: bool
-          ) -> Tuple[float, float]:
-    if clim is None:
-        clim = (float(np.nanmin(values)), float(np.nanmax(values)))
-    elif isinstance(clim, (int, float)):
-        clim = (-float(clim), float(clim))
-    low, high = float(clim[0]), float(clim[1])
-    if log_scale and low <= 0.0:
-        low = sys.float_info.min
-    return low, high
-
-
-def lookup_table(values: np.ndarray, clim=None, cmap=None, opacity: Any = "linear",
+def lookup_table(values: np.ndarray, clim: Union[None, float, Sequence[float]] = None,
+                 cmap=None, opacity: Any = "linear",
                  n_colors: int = 256, flip_scalars: bool = False, log_scale: bool = False,
                  theme: Optional[pyvista.themes.Theme] = None) -> pyvista.LookupTable:
     """The lookup table PyVista's ``add_volume`` builds: ``cmap`` (a name, a matplotlib
     colour map or a ``pyvista.LookupTable``, default the theme's) with ``opacity`` (a preset of
-    ``pyvista.opacity_transfer_function`` or an array) over ``clim``."""
+    ``pyvista.opacity_transfer_function`` or an array) over ``clim`` (default the values'
+    range; a number c means -c..c)."""
     if isinstance(cmap, pyvista.LookupTable):
         table = cmap
     else:
@@ -168,7 +155,14 @@ def lookup_table(values: np.ndarray, clim=None, cmap=None, opacity: Any = "linea
         table = pyvista.LookupTable()
         table.apply_cmap(theme.cmap if cmap is None else cmap, n_colors, flip=flip_scalars)
         table.apply_opacity(opacity)
-    table.scalar_range = _clim(values, clim, log_scale)
+    if clim is None:
+        clim = (float(np.nanmin(values)), float(np.nanmax(values)))
+    elif isinstance(clim, (int, float)):
+        clim = (-float(clim), float(clim))
+    low, high = float(clim[0]), float(clim[1])
+    if log_scale and low <= 0.0:
+        low = sys.float_info.min
+    table.scalar_range = (low, high)
     table.log_scale = log_scale
     return table
 

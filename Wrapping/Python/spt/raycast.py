@@ -13,8 +13,8 @@ convention: the side that a plane's normal points to is kept) cut each ray to th
 all of them keep, so that a segment is cut where the ray crosses a plane.
 
 It is slow (seconds per hundred thousand tetrahedra) but has no approximation beyond the
-quadrature, which makes it a check of VTK's ray caster: ``tests/test_raycast.py`` compares the
-two on small meshes, and :func:`spt.render.reference_image` can use either.
+quadrature, which makes it a check of VTK's ray caster (``Testing/test_raycast.py`` compares the
+two on small meshes); :func:`spt.render.reference` can use either.
 """
 
 from __future__ import annotations
@@ -209,10 +209,8 @@ def _projected_bounds(homogeneous: np.ndarray) -> Tuple[np.ndarray, np.ndarray, 
     min and max) of its part beyond the near plane, and whether it has one: its vertices
     there, and where its edges cross the plane (clip z = -w, where w > 0)."""
     beyond_near = homogeneous[..., 2] + homogeneous[..., 3]      # >= 0: on the visible side
-    points, valid = [], []
-    for i in range(4):
-        points.append(homogeneous[:, i])
-        valid.append(beyond_near[:, i] >= 0.0)
+    points = [homogeneous[:, i] for i in range(4)]
+    valid = [beyond_near[:, i] >= 0.0 for i in range(4)]
     for i, j in ((0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)):
         a, b = beyond_near[:, i], beyond_near[:, j]
         crosses = (a >= 0.0) != (b >= 0.0)
@@ -316,29 +314,28 @@ def _composite(pixel: np.ndarray, enter: np.ndarray, depth: np.ndarray, color: n
 
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, camera: vtkCamera,
-           size: Tuple[int, int], mesh: Optional[_Mesh] = None,
-           matrix: Optional[vtkMatrix4x4] = None,
+           size: Tuple[int, int], matrix: Optional[vtkMatrix4x4] = None,
            clipping_planes: Optional[Iterable[vtkPlane]] = None) -> np.ndarray:
     """The exact image of ``grid`` seen by ``camera`` at ``size`` (width, height): float
     premultiplied RGBA, row 0 at the top, as :func:`spt.render.read_rgba` returns it.
     ``matrix`` is the volume's (vtkVolume.GetMatrix(), data to world), ``clipping_planes``
     the mapper's (vtkPlane objects or a vtkPlaneCollection, world coordinates, at most six)."""
-    return render_volumes([(mesh or _Mesh(grid), prop, matrix, clipping_planes)], camera, size)
+    return render_volumes([(grid, prop, matrix, clipping_planes)], camera, size)
 
 
 def render_volumes(volumes: Sequence[tuple], camera: vtkCamera,
                    size: Tuple[int, int]) -> np.ndarray:
-    """The exact image of several volumes, each a grid (or its prepared mesh) with a
-    property of its own, and optionally its matrix and clipping planes (as :func:`render`
-    takes them), in one space: every ray's segments of all of them composited front to back,
-    wherever they interpenetrate (as :func:`render` does for one). A ray's parameter is the
-    same in every volume's data coordinates, so the segments sort across volumes."""
+    """The exact image of several volumes, each a grid with a property of its own, and
+    optionally its matrix and clipping planes (as :func:`render` takes them), in one space:
+    every ray's segments of all of them composited front to back, wherever they
+    interpenetrate. A ray's parameter is the same in every volume's data coordinates, so the
+    segments sort across volumes."""
     width, height = size
     parts = []
     for grid, prop, *placement in volumes:
         matrix, planes = (list(placement) + [None, None])[:2]
         tf = TransferFunction(prop)
-        mesh = grid if isinstance(grid, _Mesh) else _Mesh(grid)
+        mesh = _Mesh(grid)
         model = _matrix(matrix)
         m, origin, direction = _camera_rays(camera, width, height, model)
         kept = _kept_interval(_data_planes(planes, model), origin, direction)

@@ -17,7 +17,6 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import (
     VTK_TETRA,
-    vtkCellArray,
     vtkDataSet,
     vtkUnstructuredGrid,
 )
@@ -38,7 +37,7 @@ from vtkmodules.vtkRenderingVolume import (
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (OpenGL render window factories)
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401  (vtkOpenGLProjectedTetrahedraMapper)
 
-from . import metrics, raycast
+from . import meshes, metrics, raycast
 from . import HAVE_BASELINES, vtkHeadlessEGLRenderWindow, vtkSPTVolumeMapper
 
 if HAVE_BASELINES:
@@ -72,28 +71,32 @@ _ESTIMATORS = {"survivor": vtkSPTVolumeMapper.SURVIVOR_ESTIMATOR,
 DEFAULT_TARGET_ERROR = 0.005
 
 
+def _stochastic(mapper, repetitions: int, subpixels: int, seed: int):
+    """``mapper`` with the given RepetitionLevel, SubpixelLevel and Seed, and the time budget
+    off: its image has exactly ``repetitions`` repetitions (unless an error target stops it)."""
+    mapper.SetRepetitionLevel(repetitions)
+    mapper.SetSubpixelLevel(subpixels)
+    mapper.SetSeed(seed)
+    mapper.SetAutoAdjustRepetitions(False)
+    return mapper
+
+
 def spt_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                stratified: Optional[bool] = None, per_pass: Optional[int] = None,
                estimator: Optional[str] = None, exact_coverage: Optional[bool] = None,
                target_error: Optional[float] = None,
                depth_slabs: Optional[int] = None) -> vtkSPTVolumeMapper:
-    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``stratified``,
-    ``per_pass``, ``estimator`` ("survivor" or "visibility"), ``exact_coverage`` and
-    ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
-    ExactCoverage and DepthSlabs (None keeps the mapper's defaults). The time budget is off.
-    Without ``target_error`` the image has exactly ``repetitions`` repetitions; with it,
+    """An SPT mapper with the given RepetitionLevel, SubpixelLevel and Seed, its time budget off;
+    ``stratified``, ``per_pass``, ``estimator`` ("survivor" or "visibility"), ``exact_coverage``
+    and ``depth_slabs`` (1 to 8) set StratifiedSampling, RepetitionsPerPass, Estimator,
+    ExactCoverage and DepthSlabs (None keeps the mapper's defaults). With ``target_error``,
     rendering stops once the error the mapper estimates (its noise and the rounding to the
-    framebuffer's bits) is at most ``target_error``, and
-    ``repetitions`` is the cap."""
+    framebuffer's bits) is at most that, and ``repetitions`` is the cap."""
     if target_error is not None and not 0.0 <= target_error <= 1.0:
         raise ValueError(f"the target error must be in 0..1, not {target_error}")
     if depth_slabs is not None and not 1 <= depth_slabs <= 8:
         raise ValueError(f"the depth slabs must be 1 to 8, not {depth_slabs}")
-    mapper = vtkSPTVolumeMapper()
-    mapper.SetRepetitionLevel(repetitions)
-    mapper.SetSubpixelLevel(subpixels)
-    mapper.SetSeed(seed)
-    mapper.SetAutoAdjustRepetitions(False)
+    mapper = _stochastic(vtkSPTVolumeMapper(), repetitions, subpixels, seed)
     if estimator is not None:
         if estimator not in _ESTIMATORS:
             raise ValueError(f"unknown estimator {estimator!r}; choose from "
@@ -128,15 +131,10 @@ def havs_mapper(kbuffer_size: int = 6) -> "vtkHAVSVolumeMapper":
 
 def pbvr_mapper(repetitions: int = 32, subpixels: int = 1, seed: int = 0,
                 cell_average: bool = False) -> "vtkPBVRVolumeMapper":
-    """A PBVR mapper with the given RepetitionLevel, SubpixelLevel and Seed; ``cell_average``
-    selects the papers' one-density-per-cell sampling instead of exact rejection sampling.
-    The time budget is off: the image has exactly ``repetitions`` particle sets."""
+    """A PBVR mapper of ``repetitions`` particle sets, as :func:`spt_mapper`; ``cell_average``
+    selects the papers' one-density-per-cell sampling instead of exact rejection sampling."""
     _require_baselines()
-    mapper = vtkPBVRVolumeMapper()
-    mapper.SetRepetitionLevel(repetitions)
-    mapper.SetSubpixelLevel(subpixels)
-    mapper.SetSeed(seed)
-    mapper.SetAutoAdjustRepetitions(False)
+    mapper = _stochastic(vtkPBVRVolumeMapper(), repetitions, subpixels, seed)
     if cell_average:
         mapper.SetSamplingModeToCellAverage()
     return mapper
@@ -217,14 +215,9 @@ def reference_grid(grid: vtkDataSet) -> vtkDataSet:
         return grid
     repaired = cells.copy()
     repaired[inverted, 0], repaired[inverted, 1] = cells[inverted, 1], cells[inverted, 0]
-    repaired = repaired[~flat]
-    connectivity = vtkCellArray()
-    connectivity.SetData(
-        numpy_to_vtk(np.arange(0, 4 * len(repaired) + 1, 4, dtype=np.int64), deep=True),
-        numpy_to_vtk(repaired.ravel().astype(np.int64), deep=True))
     copy = vtkUnstructuredGrid()
     copy.SetPoints(grid.GetPoints())
-    copy.SetCells(VTK_TETRA, connectivity)
+    copy.SetCells(VTK_TETRA, meshes.cell_array(repaired[~flat]))
     copy.GetPointData().ShallowCopy(grid.GetPointData())
     cell_data = grid.GetCellData()
     for index in range(cell_data.GetNumberOfArrays()):
@@ -334,13 +327,7 @@ def after_another_view(mapper: vtkSPTVolumeMapper, grid: vtkDataSet, prop: vtkVo
     image is then a new one, whose error target aims at once with the noise per repetition
     this render measured, as when a user turns the camera and the view renders still."""
     turned = dataclasses.replace(view, azimuth=view.azimuth + ANOTHER_VIEW_AZIMUTH)
-    window, renderer = make_window(*size)
-    add_volume(renderer, grid, prop, mapper)
-    place_camera(renderer, grid.GetBounds(), turned)
-    window.Render()
-    window.WaitForCompletion()
-    renderer.RemoveAllViewProps()
-    window.Finalize()
+    render(grid, prop, mapper, turned, size, frames=0)
     return mapper
 
 
@@ -408,10 +395,9 @@ def mapper_report(mapper: vtkAbstractVolumeMapper) -> Dict[str, float]:
 
 def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeMapper,
            view: View = View(), size: Tuple[int, int] = (256, 256),
-           window: Optional[vtkRenderWindow] = None,
            actors: Sequence[vtkProp] = (), frames: int = 1) -> Rendering:
-    """Render ``grid`` with ``mapper`` (and any opaque ``actors``) and return the image and
-    the wall time of the render.
+    """Render ``grid`` with ``mapper`` (and any opaque ``actors``) in a window of its own and
+    return the image and the wall time of the render.
 
     The time covers one ``Render()`` finished on the GPU (``WaitForCompletion``), the best of
     ``frames`` such renders; a first, untimed render builds the caches (tables, buffers,
@@ -420,17 +406,12 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     the time is then that of a cold frame.
     """
     reference = is_reference(mapper)
-    own_window = window is None or reference
-    if own_window:
-        scale = REFERENCE_SUPERSAMPLING if reference else 1
-        window, renderer = make_window(size[0] * scale, size[1] * scale)
-    else:
-        renderer = window.GetRenderers().GetFirstRenderer()
-        renderer.RemoveAllViewProps()
+    scale = REFERENCE_SUPERSAMPLING if reference else 1
+    window, renderer = make_window(size[0] * scale, size[1] * scale)
     if reference:
-        volume = add_volume(renderer, reference_grid(grid), reference_property(prop), mapper)
+        add_volume(renderer, reference_grid(grid), reference_property(prop), mapper)
     else:
-        volume = add_volume(renderer, grid, prop, mapper)
+        add_volume(renderer, grid, prop, mapper)
     for actor in actors:
         renderer.AddActor(actor)
     place_camera(renderer, grid.GetBounds(), view)
@@ -439,11 +420,8 @@ def render(grid: vtkDataSet, prop: vtkVolumeProperty, mapper: vtkAbstractVolumeM
     image = read_rgba(window)
     if reference:
         image = np.ascontiguousarray(image[0::REFERENCE_SUPERSAMPLING, 1::REFERENCE_SUPERSAMPLING])
-    renderer.RemoveVolume(volume)
-    for actor in actors:
-        renderer.RemoveActor(actor)
-    if own_window:
-        window.Finalize()
+    renderer.RemoveAllViewProps()
+    window.Finalize()
     return Rendering(image=image, seconds=seconds, mapper=mapper, report=report)
 
 
@@ -469,10 +447,17 @@ def reference(grid: vtkDataSet, prop: vtkVolumeProperty, view: View = View(),
         return render(grid, prop, reference_mapper(), view, size, actors=actors)
     if actors:
         raise ValueError("the exact reference cannot draw opaque actors; use method='vtk'")
+    return exact_reference([(grid, prop)], grid.GetBounds(), view, size)
+
+
+def exact_reference(volumes: Sequence[tuple], bounds: Sequence[float], view: View,
+                    size: Tuple[int, int]) -> Rendering:
+    """The exact image of ``volumes`` (:func:`spt.raycast.render_volumes`), with the camera
+    that :func:`place_camera` places around ``bounds``."""
     window, renderer = make_window(*size)
-    place_camera(renderer, grid.GetBounds(), view)
+    place_camera(renderer, bounds, view)
     start = time.perf_counter()
-    image = raycast.render(grid, prop, renderer.GetActiveCamera(), size)
+    image = raycast.render_volumes(volumes, renderer.GetActiveCamera(), size)
     seconds = time.perf_counter() - start
     window.Finalize()
     return Rendering(image=image, seconds=seconds, mapper=None)

@@ -13,7 +13,6 @@ interpenetrate; the SPT volumes of a renderer share one set of buffers and compo
 from __future__ import annotations
 
 import dataclasses
-import time
 from typing import Callable, Iterator, List, Sequence, Tuple
 
 from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
@@ -21,7 +20,7 @@ from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersGeneral import vtkTransformFilter
 from vtkmodules.vtkRenderingCore import vtkAbstractVolumeMapper, vtkVolumeProperty
 
-from . import data, raycast, render
+from . import data, render
 
 Volume = Tuple[vtkUnstructuredGrid, vtkVolumeProperty]
 
@@ -126,15 +125,8 @@ def draw_levels(s: VolumesScene, levels: Sequence[int], size: Tuple[int, int] = 
 
 
 def reference(s: VolumesScene, size: Tuple[int, int] = (256, 256)) -> render.Rendering:
-    """The exact image of every volume of ``s`` (:func:`spt.raycast.render_volumes`), with
-    the camera that :func:`draw` uses."""
-    window, renderer = render.make_window(*size)
-    render.place_camera(renderer, s.bounds(), s.view)
-    start = time.perf_counter()
-    image = raycast.render_volumes(s.volumes, renderer.GetActiveCamera(), size)
-    seconds = time.perf_counter() - start
-    window.Finalize()
-    return render.Rendering(image=image, seconds=seconds, mapper=None)
+    """The exact image of every volume of ``s``, with the camera that :func:`draw` uses."""
+    return render.exact_reference(s.volumes, s.bounds(), s.view, size)
 
 
 def single(grid: vtkUnstructuredGrid, prop: vtkVolumeProperty, name: str,

@@ -3,7 +3,12 @@ the wheel is one the wheel was built for. VTK keeps no C++ ABI between releases 
 wheel's libraries carry no version in their names, so another vtk would load and then fail on a
 missing symbol, or worse; this says which vtk is needed instead."""
 
-from typing import List, Tuple
+import operator
+from typing import Tuple
+
+# The comparisons of a requirement, the two-character ones first (they start with the others).
+_OPERATORS = {"==": operator.eq, ">=": operator.ge, "<=": operator.le, "<": operator.lt,
+              ">": operator.gt}
 
 
 def _version(text: str) -> Tuple[int, ...]:
@@ -16,24 +21,16 @@ def _version(text: str) -> Tuple[int, ...]:
     return tuple(parts)
 
 
-def _clauses(requirement: str) -> List[Tuple[str, Tuple[int, ...]]]:
-    """The comparisons of a requirement such as ``vtk==9.5.0`` or ``vtk>=9.7.0,<9.8``."""
+def satisfies(version: str, requirement: str) -> bool:
+    """Whether a vtk version (``9.7.2``) meets the requirement (``vtk>=9.7.0,<9.8``)."""
     specifiers = requirement.strip()
     if specifiers.startswith("vtk"):
         specifiers = specifiers[3:]
-    clauses = []
     for clause in specifiers.replace(" ", "").split(","):
-        operator = next(o for o in ("==", ">=", "<=", "<", ">") if clause.startswith(o))
-        clauses.append((operator, _version(clause[len(operator):])))
-    return clauses
-
-
-def satisfies(version: str, requirement: str) -> bool:
-    """Whether a vtk version (``9.7.2``) meets the requirement (``vtk>=9.7.0,<9.8``)."""
-    have = _version(version)
-    tests = {"==": lambda v: have == v, ">=": lambda v: have >= v, "<=": lambda v: have <= v,
-             "<": lambda v: have < v, ">": lambda v: have > v}
-    return all(tests[operator](bound) for operator, bound in _clauses(requirement))
+        symbol = next(o for o in _OPERATORS if clause.startswith(o))
+        if not _OPERATORS[symbol](_version(version), _version(clause[len(symbol):])):
+            return False
+    return True
 
 
 def check(installed: str, built: str, requirement: str) -> None:
