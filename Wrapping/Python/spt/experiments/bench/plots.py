@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import plots
 from .methods import METHODS, label
-from .models import Fit, time_key
+from .models import time_key
 from .race import STOCHASTIC_METHODS
 
 Entry = Dict[str, object]
@@ -41,8 +41,8 @@ def plot_sweep(entries: Sequence[Entry], sweep: str, x_key: str, xlabel: str,
     plots.save(figure, path)
 
 
-def plot_residuals(models: Dict[str, Fit], path: pathlib.Path, unit: str) -> None:
-    """The relative residuals of every fitted model."""
+def plot_residuals(models: Dict[str, Entry], path: pathlib.Path, unit: str) -> None:
+    """The relative residuals of every fitted model (as bench.json holds them)."""
     if not models:
         return
     columns = min(4, len(models))
@@ -50,11 +50,11 @@ def plot_residuals(models: Dict[str, Fit], path: pathlib.Path, unit: str) -> Non
     figure = plots.figure(3.2 * columns, 2.8 * rows)
     for index, (name, model) in enumerate(models.items()):
         axes = figure.add_subplot(rows, columns, index + 1)
-        observed, predicted = np.array(model.observed), np.array(model.predicted)
+        observed, predicted = np.array(model["observed"]), np.array(model["predicted"])
         axes.semilogx(predicted, (observed - predicted) / observed, "o", markersize=3)
         axes.axhline(0.0, color="gray", linewidth=0.8)
         plots.finish_axes(axes, f"predicted [{unit}]", "relative residual",
-                          f"{name} (R^2 {model.r2:.3f})", legend=False)
+                          f"{name} (R^2 {model['r2']:.3f})", legend=False)
     plots.save(figure, path)
 
 
