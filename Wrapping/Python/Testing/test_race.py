@@ -145,9 +145,8 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     assert reference.shape == (48, 48, 4) and reference[..., 3].max() > 0.1
     again = race.cached_reference(race.race_scene("default"), 48, tmp_path / "references")
     assert np.array_equal(again, reference)
-    assert len(result["summary"]) == 4 + 3 * race.has_error_target()
-    if race.has_error_target():
-        for name in ("spt-target", "spt-target-turned"):
-            target = next(r for r in rows if r["method"] == name)
-            assert target["target_error"] == pytest.approx(rows[0]["rmse"])
+    assert len(result["summary"]) == 4 + 3
+    for name in ("spt-target", "spt-target-turned", "spt-slabs-target"):
+        target = next(r for r in rows if r["method"] == name)
+        assert target["target_error"] == pytest.approx(rows[0]["rmse"])
     assert (tmp_path / "default_pt_1.png").stat().st_size > 100

@@ -29,7 +29,6 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from ... import meshes, metrics, render, scenes
 from ...progress import Progress
-from ... import vtkSPTVolumeMapper
 from . import host
 from .methods import METHODS, Method, havs_method
 from .settings import RACE_SCENES, Settings
@@ -101,14 +100,10 @@ def time_to_error(points: Sequence[Tuple[int, float, float]], target: float
 
 def race_targets(rows: Sequence[Entry]) -> Dict[str, float]:
     """The errors the stochastic methods race to, by label."""
-    by_method = {row["method"]: row for row in rows}
-    targets = {}
-    if "pt" in by_method:
-        targets["VTK PT's error"] = by_method["pt"]["rmse"]
-    if "havs6" in by_method:
-        targets["HAVS-like k=6's error"] = by_method["havs6"]["rmse"]
-    for target in TARGETS:
-        targets[f"RMSE {target:g}"] = target
+    errors = {row["method"]: row["rmse"] for row in rows}
+    targets = {label: errors[method] for method, label in (
+        ("pt", "VTK PT's error"), ("havs6", "HAVS-like k=6's error")) if method in errors}
+    targets.update((f"RMSE {target:g}", target) for target in TARGETS)
     return targets
 
 
@@ -238,11 +233,6 @@ def _run_stochastic(lap: Lap, method: Method, cap: int, goal: float,
     return rows
 
 
-def has_error_target() -> bool:
-    """Whether this build's SPT mapper can stop at an error target."""
-    return hasattr(vtkSPTVolumeMapper, "SetTargetError")
-
-
 def race_scene_rows(name: str, settings: Settings, progress: Progress, output: pathlib.Path,
                     use_perf: bool, references: Optional[pathlib.Path] = None) -> List[Entry]:
     """Every method of the race on one scene; its images go to ``output``, the cached
@@ -260,36 +250,35 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
     goal = min(race_targets(rows).values())
     for method in STOCHASTIC_METHODS:
         rows += _run_stochastic(lap, method, settings.race_max_repetitions, goal, progress)
-    if has_error_target():
-        pt_error = rows[0]["rmse"]
-        size = (settings.race_size, settings.race_size)
-        # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
-        # another view, whose first step aims with the noise per repetition measured there (as
-        # while a user turns the camera); and a new mapper with depth slabs.
-        for method in (
-                Method("spt-target", "SPT at VTK PT's error (error target)",
-                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
-                Method("spt-target-turned",
-                       "SPT at VTK PT's error, after another view (error target)",
-                       lambda r, sp: render.after_another_view(
-                           render.spt_mapper(r, sp, target_error=pt_error), s.grid,
-                           s.property, s.view, size), True),
-                Method("spt-slabs-target",
-                       f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
-                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
-                                                       depth_slabs=RACE_DEPTH_SLABS), True)):
-            row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
-            # the repetitions it drew before its noise estimate reached the target
-            row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-            rows.append(row)
-            progress.step(f"{name} {method.label}")
+    pt_error = rows[0]["rmse"]
+    size = (settings.race_size, settings.race_size)
+    # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
+    # another view, whose first step aims with the noise per repetition measured there (as
+    # while a user turns the camera); and a new mapper with depth slabs.
+    for method in (
+            Method("spt-target", "SPT at VTK PT's error (error target)",
+                   lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
+            Method("spt-target-turned",
+                   "SPT at VTK PT's error, after another view (error target)",
+                   lambda r, sp: render.after_another_view(
+                       render.spt_mapper(r, sp, target_error=pt_error), s.grid,
+                       s.property, s.view, size), True),
+            Method("spt-slabs-target",
+                   f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
+                   lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
+                                                   depth_slabs=RACE_DEPTH_SLABS), True)):
+        row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
+        # the repetitions it drew before its noise estimate reached the target
+        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
+        rows.append(row)
+        progress.step(f"{name} {method.label}")
     return rows
 
 
 def steps(settings: Settings) -> int:
     """The progress steps of the race."""
     per_scene = (1 + len(EXACT_METHODS) + len(STOCHASTIC_METHODS)
-                 * len(levels(settings.race_max_repetitions)) + 3 * int(has_error_target()))
+                 * len(levels(settings.race_max_repetitions)) + 3)
     return len(settings.race_scenes) * per_scene * len(settings.race_image_sizes())
 
 
