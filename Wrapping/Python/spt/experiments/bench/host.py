@@ -18,9 +18,8 @@ import time
 from typing import Callable, Dict, List, Optional, Tuple
 
 from ...progress import Progress
-from .methods import METHODS, generated_scene
+from .methods import FramesHook, METHODS, Timing, generated_scene, time_method
 from .settings import Settings
-from .timing import FramesHook, Timing, time_method
 
 #: Where the emulated GPU runs: llvmpipe's JIT-compiled shaders, Mesa's driver, and LLVM, the
 #: driver's shader compiler (it compiles a shader variant on the application thread the first

@@ -8,10 +8,10 @@ the best of two frames. A stochastic method's time to reach an error is the time
 smallest L measured whose RMSE (premultiplied RGBA against the reference) is at most that
 error, as a multiple of VTK PT's frame; "not reached" if none is. Each method's host CPU time
 per frame (the application thread outside the OpenGL driver) comes with it: the part a GPU
-would not take over. Where the mapper has an error target, SPT also runs with VTK PT's error as
-its target: a new mapper, whose first image estimates its noise from 16 repetitions per half, a
-mapper that has drawn the scene from another view (azimuth 10 degrees further), whose first
-step aims with the noise per repetition measured there, and a new mapper with 8 depth slabs.
+would not take over. SPT also runs with VTK PT's error as its error target: a new mapper,
+whose first image estimates its noise from 16 repetitions per half, a mapper that has drawn the
+scene from another view (azimuth 10 degrees further), whose first step aims with the noise per
+repetition measured there, and a new mapper with 8 depth slabs.
 Every image is read back through 8 bits per channel, so each row also records the least error
 an 8-bit image can have against the reference (``read_back_floor``): a method whose error is
 near it is exact to the read-back.
@@ -30,9 +30,8 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from ... import meshes, metrics, render, scenes
 from ...progress import Progress
 from . import host
-from .methods import METHODS, Method, havs_method
+from .methods import METHODS, Method, havs_method, time_method
 from .settings import RACE_SCENES, Settings
-from .timing import time_method
 
 Entry = Dict[str, object]
 
@@ -304,19 +303,16 @@ def merge_runs(measured: Dict[str, object], previous: Optional[Dict[str, object]
     runs = [run] if run["scenes"] else []
     rows = list(measured["rows"])
     if previous and all(previous.get(key) == measured[key] for key in SAME_RACE):
-        kept = [row for row in previous.get("rows", []) if row["scene"] not in run["scenes"]]
+        rows += [row for row in previous.get("rows", []) if row["scene"] not in run["scenes"]]
         earlier = previous.get("runs") or [
             {"scenes": list(dict.fromkeys(row["scene"] for row in previous.get("rows", [])))}]
         for other in earlier:
             scenes_left = [name for name in other["scenes"] if name not in run["scenes"]]
             if scenes_left:
                 runs.append({"scenes": scenes_left})
-        rows += kept
     rows.sort(key=lambda row: position(row["scene"]))  # stable: a scene's rows keep their order
     runs.sort(key=lambda r: min(position(name) for name in r["scenes"]))
-    merged = dict(measured)
-    merged.update(rows=rows, summary=summarize(rows), runs=runs)
-    return merged
+    return dict(measured, rows=rows, summary=summarize(rows), runs=runs)
 
 
 def race(settings: Settings, progress: Progress, output: pathlib.Path,

@@ -14,11 +14,10 @@ from ... import render
 from ...progress import Progress
 from . import camera, host, parallel, paraview_view, race, sweeps
 from .crossovers import crossovers, floor_ratios
-from .methods import METHODS, generated_scene
+from .methods import METHODS, generated_scene, record, time_method
 from .models import memory_models, predict_large, time_models
 from .results import write_results
 from .settings import SECTIONS, Settings
-from .timing import record, time_method
 
 Entry = Dict[str, object]
 

@@ -10,9 +10,8 @@ from typing import Dict, List, Sequence
 from ... import metrics, render, scenes
 from ...progress import Progress
 from ...scenes import Scene
-from .methods import METHODS, generated_scene
+from .methods import METHODS, generated_scene, record, time_method
 from .settings import Settings
-from .timing import record, time_method
 
 Entry = Dict[str, object]
 
