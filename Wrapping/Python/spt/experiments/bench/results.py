@@ -18,9 +18,13 @@ import subprocess
 from typing import List
 
 from .plots import plot_results
-from .sections import SECTIONS
+from .sections import host, models, parallel, race, sweeps, views
 from .sections.markdown import BENCH_COMMAND, SPT, Results
 from .sections.views import attach
+
+#: The sections in the order of both documents.
+SECTIONS = (race.RACE, views.VIEWS, views.CAMERA, sweeps.CELLS, sweeps.LEVELS, models.MODELS,
+            models.CROSSOVERS, sweeps.QUALITY, host.HOST, models.LARGE, parallel.PARALLEL)
 
 #: The headings of ``results.md``, in order: each is written whether or not the run measured
 #: it (a section that was not measured says how to measure it).
