@@ -41,15 +41,10 @@ def test_fit_needs_more_points_than_terms():
     assert bench.fit("T", ["a", "b"], [[1.0, 2.0], [3.0, 4.0]], [1.0, 2.0]) is None
 
 
-def entry(method, cells, size, repetitions, seconds, memory=None, particles=None, **extra):
-    e = {"scene": f"s{cells}", "method": method, "cells": cells, "width": size, "height": size,
-         "repetitions": repetitions, "subpixels": 1, "seconds": seconds, "sweep": "cells"}
-    if memory is not None:
-        e["gpu_memory"] = memory
-    if particles is not None:
-        e["particles"] = particles
-    e.update(extra)
-    return e
+def entry(method, cells, size, repetitions, seconds, **extra):
+    return dict({"scene": f"s{cells}", "method": method, "cells": cells, "width": size,
+                 "height": size, "repetitions": repetitions, "subpixels": 1,
+                 "seconds": seconds, "sweep": "cells"}, **extra)
 
 
 def quality(method, level, seconds, rmse):
@@ -65,15 +60,15 @@ def test_models_and_memory_crossover_from_synthetic_runs():
                 pixels = size * size
                 entries.append(entry("spt-paper", cells, size, level,
                                      level * (1e-7 * cells + 2e-8 * pixels),
-                                     memory=20.0 * cells + 40.0 * pixels + 1e6))
+                                     gpu_memory=20.0 * cells + 40.0 * pixels + 1e6))
                 # PBVR reports the particles of all its sets, 0.5 n_c per repetition here
                 entries.append(entry("pbvr", cells, size, level, level * 3e-9 * cells,
-                                     memory=16.0 * 0.5 * cells * level + 20.0 * pixels,
+                                     gpu_memory=16.0 * 0.5 * cells * level + 20.0 * pixels,
                                      particles=0.5 * cells * level, particle_sets=level))
     for size in (256, 512, 1024):
         for cells in (1e4, 1e5, 1e6):
             entries.append(entry("spt", cells, size, 16, 1e-7 * cells,
-                                 memory=20.0 * cells + 100.0 * size * size + 1e6))
+                                 gpu_memory=20.0 * cells + 100.0 * size * size + 1e6))
     times = bench.time_models(entries)
     assert times["spt-paper"].coefficients[0] == pytest.approx(1e-4, rel=1e-3)  # ms
     assert times["spt-paper"].coefficients[1] == pytest.approx(2e-5, rel=1e-3)
