@@ -108,14 +108,13 @@ def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
 def plot_results(results: Dict[str, object], output: pathlib.Path) -> None:
     """Draw the benchmark's figures from its results into ``output``."""
     entries = results["entries"]
-    plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
-    plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
-               output / "repetitions.png")
-    plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
-    plot_sweep(entries, "image", "width", "pixels", output / "image.png")
-    plot_residuals(results["time_models"], output / "time_residuals.png", "ms")
-    plot_residuals(results["cpu_time_models"], output / "cpu_time_residuals.png", "ms")
-    plot_residuals(results["memory_models"], output / "memory_residuals.png", "bytes")
+    for sweep, x_key, xlabel in (("cells", "cells", "tetrahedra"),
+                                 ("repetitions", "repetitions", "RepetitionLevel"),
+                                 ("subpixels", "subpixels", "SubpixelLevel"),
+                                 ("image", "width", "pixels")):
+        plot_sweep(entries, sweep, x_key, xlabel, output / f"{sweep}.png")
+    for kind, unit in (("time", "ms"), ("cpu_time", "ms"), ("memory", "bytes")):
+        plot_residuals(results[f"{kind}_models"], output / f"{kind}_residuals.png", unit)
     plot_error_against_time(
         [e for e in entries if e.get("sweep") == "quality" and "rmse" in e],
         output / "quality.png", ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"))
