@@ -63,11 +63,8 @@ def ratios_of(runs: Sequence[Record], scene: str, method: str = HEADLINE
               ) -> List[Optional[float]]:
     """The ratio of ``method`` on ``scene`` in each of ``runs`` (run records of one side),
     None where that run did not reach VTK PT's error."""
-    values = []
-    for run in runs:
-        reached = run["scenes"][scene]["ratios"].get(method)
-        values.append(None if reached is None else float(reached["ratio"]))
-    return values
+    reached = [run["scenes"][scene]["ratios"].get(method) for run in runs]
+    return [None if r is None else float(r["ratio"]) for r in reached]
 
 
 def median(values: Sequence[Optional[float]]) -> Optional[float]:

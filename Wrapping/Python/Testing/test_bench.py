@@ -41,15 +41,10 @@ def test_fit_needs_more_points_than_terms():
     assert bench.fit("T", ["a", "b"], [[1.0, 2.0], [3.0, 4.0]], [1.0, 2.0]) is None
 
 
-def entry(method, cells, size, repetitions, seconds, memory=None, particles=None, **extra):
-    e = {"scene": f"s{cells}", "method": method, "cells": cells, "width": size, "height": size,
-         "repetitions": repetitions, "subpixels": 1, "seconds": seconds, "sweep": "cells"}
-    if memory is not None:
-        e["gpu_memory"] = memory
-    if particles is not None:
-        e["particles"] = particles
-    e.update(extra)
-    return e
+def entry(method, cells, size, repetitions, seconds, **extra):
+    return dict({"scene": f"s{cells}", "method": method, "cells": cells, "width": size,
+                 "height": size, "repetitions": repetitions, "subpixels": 1,
+                 "seconds": seconds, "sweep": "cells"}, **extra)
 
 
 def quality(method, level, seconds, rmse):
@@ -65,15 +60,15 @@ def test_models_and_memory_crossover_from_synthetic_runs():
                 pixels = size * size
                 entries.append(entry("spt-paper", cells, size, level,
                                      level * (1e-7 * cells + 2e-8 * pixels),
-                                     memory=20.0 * cells + 40.0 * pixels + 1e6))
+                                     gpu_memory=20.0 * cells + 40.0 * pixels + 1e6))
                 # PBVR reports the particles of all its sets, 0.5 n_c per repetition here
                 entries.append(entry("pbvr", cells, size, level, level * 3e-9 * cells,
-                                     memory=16.0 * 0.5 * cells * level + 20.0 * pixels,
+                                     gpu_memory=16.0 * 0.5 * cells * level + 20.0 * pixels,
                                      particles=0.5 * cells * level, particle_sets=level))
     for size in (256, 512, 1024):
         for cells in (1e4, 1e5, 1e6):
             entries.append(entry("spt", cells, size, 16, 1e-7 * cells,
-                                 memory=20.0 * cells + 100.0 * size * size + 1e6))
+                                 gpu_memory=20.0 * cells + 100.0 * size * size + 1e6))
     times = bench.time_models(entries)
     assert times["spt-paper"].coefficients[0] == pytest.approx(1e-4, rel=1e-3)  # ms
     assert times["spt-paper"].coefficients[1] == pytest.approx(2e-5, rel=1e-3)
@@ -86,15 +81,20 @@ def test_models_and_memory_crossover_from_synthetic_runs():
         assert item["repetitions_at_equal_memory"] == pytest.approx(20.0 / 8.0, rel=1e-3)
 
 
-def test_time_at_equal_error_interpolates_the_spt_curve():
-    entries = [quality("spt", level, 0.01 * level, 0.2 / math.sqrt(level))
-               for level in (4, 16, 64, 256)]
+@pytest.mark.parametrize("name, scale, levels, at_most, expected", [
+    # interpolated on the SPT curve's log-log line
+    ("spt", 0.2, (4, 16, 64, 256), False,
+     {"spt_repetitions": 64.0, "spt_seconds": 0.64, "spt_over_havs": 1.28}),
+    # already below HAVS-like's error at the lowest level: that level and its measured time,
+    # marked as an upper bound (no extrapolation below it)
+    ("spt-visibility", 0.002, (4, 16, 64), True, {"spt_repetitions": 4, "spt_seconds": 0.04})])
+def test_time_at_equal_error_interpolates_the_spt_curve(name, scale, levels, at_most, expected):
+    entries = [quality(name, level, 0.01 * level, scale / math.sqrt(level)) for level in levels]
     entries.append(quality("havs6", 1, 0.5, 0.025))
-    result = bench.crossovers(entries, {})["time_at_equal_error"]
-    assert len(result) == 1
-    assert result[0]["spt_repetitions"] == pytest.approx(64.0, rel=1e-6)
-    assert result[0]["spt_seconds"] == pytest.approx(0.64, rel=1e-6)
-    assert result[0]["spt_over_havs"] == pytest.approx(1.28, rel=1e-6)
+    [result] = bench.crossovers(entries, {})["time_at_equal_error"]
+    assert result["spt"] == name and result["at_most"] is at_most
+    for key, value in expected.items():
+        assert result[key] == pytest.approx(value, rel=1e-6), key
 
 
 def test_floor_draws_every_face_of_every_tetrahedron():
@@ -171,18 +171,6 @@ def test_sampling_gains_from_synthetic_curves():
     # stratified error 0.2 / L reaches independent's 0.2 / 8 at L = 8
     assert gain["stratified_repetitions"] == pytest.approx(8.0, rel=1e-6)
     assert gain["stratified_slope"] == pytest.approx(-1.0, rel=1e-6)
-
-
-def test_time_at_equal_error_does_not_extrapolate_below_the_lowest_level():
-    """An SPT curve already below HAVS-like's error at its lowest level: that level and its
-    measured time, marked as an upper bound."""
-    entries = [quality("spt-visibility", level, 0.01 * level, 0.002 / math.sqrt(level))
-               for level in (4, 16, 64)]
-    entries.append(quality("havs6", 1, 0.5, 0.025))
-    [result] = bench.crossovers(entries, {})["time_at_equal_error"]
-    assert result["at_most"] and result["spt"] == "spt-visibility"
-    assert result["spt_repetitions"] == 4
-    assert result["spt_seconds"] == pytest.approx(0.04)
 
 
 def test_host_time_adds_every_application_thread_and_leaves_out_the_rasterizer():

@@ -18,16 +18,12 @@ ROWS = [(1, 0.040, 0.10), (2, 0.020, 0.12), (4, 0.011, 0.15), (8, 0.006, 0.22),
         (16, 0.004, 0.35)]
 
 
-def test_time_to_error_takes_the_smallest_level_at_or_below_the_target():
-    assert race.time_to_error(ROWS, 0.020) == (2, 0.12)   # exactly at the target counts
-    assert race.time_to_error(ROWS, 0.019) == (4, 0.15)
-    assert race.time_to_error(ROWS, 0.5) == (1, 0.10)
-    assert race.time_to_error(list(reversed(ROWS)), 0.005) == (16, 0.35)
-
-
-def test_time_to_error_not_reached():
-    assert race.time_to_error(ROWS, 0.002) is None
-    assert race.time_to_error([], 0.1) is None
+@pytest.mark.parametrize("rows, target, expected", [
+    (ROWS, 0.020, (2, 0.12)),  # exactly at the target counts
+    (ROWS, 0.019, (4, 0.15)), (ROWS, 0.5, (1, 0.10)), (ROWS[::-1], 0.005, (16, 0.35)),
+    (ROWS, 0.002, None), ([], 0.1, None)])  # None: not reached
+def test_time_to_error_takes_the_smallest_level_at_or_below_the_target(rows, target, expected):
+    assert race.time_to_error(rows, target) == expected
 
 
 def test_levels_double_up_to_the_cap():
@@ -145,9 +141,8 @@ def test_a_small_race_on_the_default_scene(tmp_path, have_display):
     assert reference.shape == (48, 48, 4) and reference[..., 3].max() > 0.1
     again = race.cached_reference(race.race_scene("default"), 48, tmp_path / "references")
     assert np.array_equal(again, reference)
-    assert len(result["summary"]) == 4 + 3 * race.has_error_target()
-    if race.has_error_target():
-        for name in ("spt-target", "spt-target-turned"):
-            target = next(r for r in rows if r["method"] == name)
-            assert target["target_error"] == pytest.approx(rows[0]["rmse"])
+    assert len(result["summary"]) == 4 + 3
+    for name in ("spt-target", "spt-target-turned", "spt-slabs-target"):
+        target = next(r for r in rows if r["method"] == name)
+        assert target["target_error"] == pytest.approx(rows[0]["rmse"])
     assert (tmp_path / "default_pt_1.png").stat().st_size > 100

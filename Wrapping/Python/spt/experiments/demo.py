@@ -84,13 +84,11 @@ def _digest(s: volumes.VolumesScene, size: int) -> str:
     return hashlib.sha1("-".join([text] + parts).encode()).hexdigest()[:16]
 
 
-def cached_reference(s: volumes.VolumesScene, size: int,
-                     directory: Optional[pathlib.Path] = None) -> render.Rendering:
-    """The exact reference of ``s`` at ``size`` x ``size``, read from ``directory`` (default:
-    ``references`` in the mesh cache) if a run rendered it before, else rendered and kept
-    there (keyed by the scene's meshes, scalars, transfer functions, view and size)."""
-    directory = directory or meshes.cache_dir() / "references"
-    path = directory / f"{s.name}-{size}-{_digest(s, size)}.npy"
+def cached_reference(s: volumes.VolumesScene, size: int) -> render.Rendering:
+    """The exact reference of ``s`` at ``size`` x ``size``, read from ``references`` in the
+    mesh cache if a run rendered it before, else rendered and kept there (keyed by the scene's
+    meshes, scalars, transfer functions, view and size)."""
+    path = meshes.cache_dir() / "references" / f"{s.name}-{size}-{_digest(s, size)}.npy"
     if path.exists():
         return render.Rendering(image=np.load(path), seconds=0.0, mapper=None)
     rendering = volumes.reference(s, (size, size))

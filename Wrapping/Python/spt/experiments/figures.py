@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import math
 import pathlib
-from typing import Callable, Dict, List, Optional, Sequence
+from typing import Callable, Dict, List, Sequence
 
 import numpy as np
 from .. import data, metrics, render
@@ -21,12 +21,10 @@ from ..scenes import Scene, scene
 PathLike = pathlib.Path
 
 
-def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike,
-            seed: int = 0, progress: Optional[Progress] = None) -> Dict[str, object]:
+def compare(s: Scene, levels: Sequence[int], size: int, output: PathLike, seed: int,
+            progress: Progress) -> Dict[str, object]:
     """Reference, VTK's projected tetrahedra and SPT at each repetition level on one scene:
     images, difference images, footprint RMSE and PSNR, and render times."""
-    output.mkdir(parents=True, exist_ok=True)
-    progress = progress or Progress.silent()
     shape = (size, size)
     reference = render.reference(s.grid, s.property, s.view, shape)
     progress.step(f"{s.name} reference")
@@ -121,11 +119,10 @@ def _sorting_methods(repetitions: int, seed: int) -> List[tuple]:
     ]
 
 
-def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int = 144,
-                  seed: int = 0, progress: Optional[Progress] = None) -> Dict[str, object]:
+def sorting_scene(s: Scene, size: int, output: PathLike, repetitions: int, seed: int,
+                  progress: Progress) -> Dict[str, object]:
     """One scene of the sorting figure: the reference, SPT, HAVS-like with k = 2 and 6 and
     VTK's projected tetrahedra, each with its difference image, error and render time."""
-    progress = progress or Progress.silent()
     shape = (size, size)
     reference = render.reference(s.grid, s.property, s.view, shape)
     metrics.write_png(output / f"{s.name}_reference.png", reference.image)
@@ -234,13 +231,10 @@ def _method_entry(rendering: render.Rendering, reference: np.ndarray, level: int
 
 
 def pbvr_compare(s: Scene, repetitions: int, levels: Sequence[int], size: int,
-                 output: PathLike, seed: int = 0, progress: Optional[Progress] = None
-                 ) -> Dict[str, object]:
-    """The reference and every method of PBVR_METHODS on one scene:
-    images and difference images at `repetitions`, and the RMSE at every level of `levels`
-    (which gets `repetitions` added) for the convergence curves."""
-    output.mkdir(parents=True, exist_ok=True)
-    progress = progress or Progress.silent()
+                 output: PathLike, seed: int, progress: Progress) -> Dict[str, object]:
+    """The reference and every method of PBVR_METHODS on one scene: images and difference
+    images at `repetitions`, and the RMSE at every level of `levels` (which gets `repetitions`
+    added) for the convergence curves."""
     shape = (size, size)
     levels = sorted(set(levels) | {repetitions})
     reference = render.reference(s.grid, s.property, s.view, shape)

@@ -25,6 +25,7 @@ import pyvista as pv
 import spt.pyvista
 from .. import data, metrics, raycast
 from ..render import DEFAULT_TARGET_ERROR
+from .tables import markdown
 from .bench.runner import renderer_name
 
 #: Frames timed after the first (which builds the caches); the best is reported.
@@ -89,16 +90,13 @@ def compare(mesh: pv.DataSet, size: int = 200, cmap: str = "viridis", opacity: s
 def table(results: Sequence[Dict], mesh: pv.DataSet, size: int) -> str:
     """The results as a Markdown table, with the ratio of times to PyVista's."""
     base = results[0]["seconds"]
-    lines = [f"{mesh.n_cells:,} cells, {size} x {size} pixels, {results[0]['renderer']}, "
-             f"best of {FRAMES} frames after the first", "",
-             "| method | mapper | repetitions | first frame (s) | frame (s) | "
-             "time / PyVista's | RMSE vs exact |",
-             "|---|---|---|---|---|---|---|"]
-    for r in results:
-        repetitions = "" if r["repetitions"] is None else str(r["repetitions"])
-        lines.append(f"| {r['label']} | {r['mapper']} | {repetitions} | {r['first']:.3f} | "
-                     f"{r['seconds']:.3f} | {r['seconds'] / base:.3f} | {r['rmse']:.4f} |")
-    return "\n".join(lines) + "\n"
+    return (f"{mesh.n_cells:,} cells, {size} x {size} pixels, {results[0]['renderer']}, "
+            f"best of {FRAMES} frames after the first\n\n" + markdown(
+                ["method", "mapper", "repetitions", "first frame (s)", "frame (s)",
+                 "time / PyVista's", "RMSE vs exact"],
+                [[r["label"], r["mapper"], "" if r["repetitions"] is None else r["repetitions"],
+                  f"{r['first']:.3f}", f"{r['seconds']:.3f}", f"{r['seconds'] / base:.3f}",
+                  f"{r['rmse']:.4f}"] for r in results]))
 
 
 def _mesh(name: str) -> pv.DataSet:

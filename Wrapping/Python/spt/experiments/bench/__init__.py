@@ -4,10 +4,10 @@ VTK's projected tetrahedra.
 ``build/bin/spt-python -m spt bench`` measures, on this machine and in one process, the
 sections of :data:`SECTIONS`, each in its module: the race (:mod:`.race`), the camera anywhere
 (:mod:`.camera`), the sweeps of the cell count, repetition level, subpixel level and image size
-(:mod:`.sweeps`, with the *floor*: every face drawn opaque by ``vtkPolyDataMapper``), time to
-quality on the real data (:mod:`.quality`), host time per frame (:mod:`.host`), the paper's
-large case, MPI ranks (:mod:`.parallel`) and the ParaView view (:mod:`.paraview_view`); then it
-fits the time and memory models (:mod:`.models`) and finds the crossovers (:mod:`.crossovers`).
+and time to quality on the real data (:mod:`.sweeps`, with the *floor*: every face drawn opaque
+by ``vtkPolyDataMapper``), host time per frame (:mod:`.host`), the paper's large case, MPI
+ranks (:mod:`.parallel`) and the ParaView view (:mod:`.paraview_view`); then it fits the time
+and memory models (:mod:`.models`) and finds the crossovers (:mod:`.crossovers`).
 
 Sweep times are the median of several frames after one untimed warm-up frame, taken with the
 pipeline finished (``WaitForCompletion``); the race keeps the best of two. The results go to

@@ -15,9 +15,8 @@ import numpy as np
 
 from ... import metrics, raycast, render, scenes
 from ...progress import Progress
-from .methods import METHODS, Method, havs_method
+from .methods import METHODS, Method, havs_method, timed_frames
 from .settings import Settings
-from .timing import timed_frames
 
 Entry = Dict[str, object]
 

@@ -4,7 +4,7 @@ sampling modes gain; SPT's time against the floor."""
 from __future__ import annotations
 
 import math
-from typing import Dict, List, Sequence
+from typing import Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -32,12 +32,19 @@ def memory_crossover(entries: Sequence[Entry], memory: Dict[str, Fit]) -> List[E
     return rows
 
 
+def _level_at(curve: Sequence[Entry], error: float) -> Tuple[float, float]:
+    """Where the line fitted to ``curve``'s log error against log L reaches ``error`` (inf
+    where the error does not fall), and the line's slope."""
+    slope, intercept = np.polyfit(np.log([e["repetitions"] for e in curve]),
+                                  np.log([e["rmse"] for e in curve]), 1)
+    return (math.exp((math.log(error) - intercept) / slope) if slope < 0 else math.inf), slope
+
+
 def _equal_error(scene: str, name: str, spt: List[Entry], havs: Entry) -> Entry:
     key = time_key(spt)
-    levels = np.log([e["repetitions"] for e in spt])
-    slope, intercept = np.polyfit(levels, np.log([e["rmse"] for e in spt]), 1)
-    time_slope, time_intercept = np.polyfit(levels, np.log([e[key] for e in spt]), 1)
-    level = math.exp((math.log(havs["rmse"]) - intercept) / slope) if slope < 0 else math.inf
+    level = _level_at(spt, havs["rmse"])[0]
+    time_slope, time_intercept = np.polyfit(np.log([e["repetitions"] for e in spt]),
+                                            np.log([e[key] for e in spt]), 1)
     spt_seconds = math.exp(time_intercept + time_slope * math.log(max(level, 1.0)))
     # Already below HAVS-like's error at the lowest level measured: that level and its
     # measured time are an upper bound, not an extrapolation.
@@ -100,10 +107,7 @@ def sampling_gains(entries: Sequence[Entry]) -> List[Entry]:
             row["per_pass_speedup"] = p[key] / i[key]
             row["per_pass_rmse"] = (p["rmse"], i["rmse"])
         target = independent[-1]
-        levels = np.log([e["repetitions"] for e in stratified])
-        errors = np.log([e["rmse"] for e in stratified])
-        slope, intercept = np.polyfit(levels, errors, 1)
-        needed = math.exp((math.log(target["rmse"]) - intercept) / slope) if slope < 0 else math.inf
+        needed, slope = _level_at(stratified, target["rmse"])
         row.update({"independent_repetitions": target["repetitions"],
                     "independent_rmse": target["rmse"], "stratified_repetitions": needed,
                     "stratified_slope": slope})

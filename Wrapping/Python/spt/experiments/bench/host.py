@@ -18,9 +18,8 @@ import time
 from typing import Callable, Dict, List, Optional, Tuple
 
 from ...progress import Progress
-from .methods import METHODS, generated_scene
+from .methods import FramesHook, METHODS, Timing, generated_scene, time_method
 from .settings import Settings
-from .timing import FramesHook, Timing, time_method
 
 #: Where the emulated GPU runs: llvmpipe's JIT-compiled shaders, Mesa's driver, and LLVM, the
 #: driver's shader compiler (it compiles a shader variant on the application thread the first
@@ -122,12 +121,19 @@ def timed_with_host(run: Callable[[Optional[FramesHook]], Timing], frames: int,
     if not use_perf:
         timing = run(None)
         return timing, timing.thread_median, "thread_time", {}
+    timing, by_object = profiled(run)
+    return (timing, split_by_role(by_object)["host"] / frames, "perf",
+            host_objects(by_object, frames))
+
+
+def profiled(run: Callable[[Optional[FramesHook]], Timing]
+             ) -> Tuple[Timing, Dict[Tuple[str, str], float]]:
+    """``run(on_frames)`` with perf sampling the timed frames: its timing and the CPU seconds
+    per (thread name, shared object)."""
     with tempfile.TemporaryDirectory() as directory:
         path = os.path.join(directory, "perf.data")
         timing = run(perf_attach(path))
-        by_object = perf_seconds_by_object(path)
-    return (timing, split_by_role(by_object)["host"] / frames, "perf",
-            host_objects(by_object, frames))
+        return timing, perf_seconds_by_object(path)
 
 
 def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]:
@@ -142,11 +148,8 @@ def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]
     frames = max(settings.frames, 3)
     for cells in settings.host_cells:
         s = generated_scene(settings.shape, cells)
-        with tempfile.TemporaryDirectory() as directory:
-            path = os.path.join(directory, "perf.data")
-            timing = time_method(s, METHODS["spt"], settings.size, 16, 1, frames,
-                                 on_frames=perf_attach(path))
-            by_object = perf_seconds_by_object(path)
+        timing, by_object = profiled(lambda hook: time_method(
+            s, METHODS["spt"], settings.size, 16, 1, frames, on_frames=hook))
         roles = split_by_role(by_object)
         main = application_objects(by_object)
         results.append({

@@ -35,9 +35,6 @@ class Fit:
         columns = list(columns) + [1.0] * (len(self.coefficients) - len(columns))
         return float(np.dot(self.coefficients, columns))
 
-    def as_dict(self) -> Dict[str, object]:
-        return dataclasses.asdict(self)
-
 
 def fit(name: str, terms: Sequence[str], rows: Sequence[Sequence[float]],
         observed: Sequence[float], constant: bool = True) -> Optional[Fit]:

@@ -44,7 +44,13 @@ def mpiexec(ranks: int) -> List[str]:
     return command
 
 
-def _run(command: List[str]) -> None:
+def _run(command: List[str], output: pathlib.Path, settings: Settings) -> None:
+    """``command`` with the section's settings of a frame and ``output``, as both the ranks'
+    scripts take them."""
+    command = command + [
+        "--output", str(output), "--size", str(settings.parallel_size),
+        "--repetitions", str(settings.parallel_repetitions),
+        "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]
     result = subprocess.run(command, capture_output=True, text=True, timeout=TIMEOUT,
                             check=False)
     if result.returncode != 0:
@@ -54,12 +60,8 @@ def _run(command: List[str]) -> None:
 def run_ranks(scene: str, ranks: int, settings: Settings, directory: pathlib.Path) -> Row:
     """One run of ``ranks`` ranks: its report and rank 0's image."""
     output = directory / f"{scene}-{ranks}"
-    command = mpiexec(ranks) + [
-        sys.executable, "-m", "spt.experiments.bench.parallel_rank", "--scene", scene,
-        "--output", str(output), "--size", str(settings.parallel_size),
-        "--repetitions", str(settings.parallel_repetitions),
-        "--target-error", str(settings.parallel_target_error), "--frames", str(settings.frames)]
-    _run(command)
+    _run(mpiexec(ranks) + [sys.executable, "-m", "spt.experiments.bench.parallel_rank",
+                           "--scene", scene], output, settings)
     report = json.loads(output.with_suffix(".json").read_text())
     report["image"] = np.load(output.with_suffix(".npy"))
     return report
@@ -118,23 +120,10 @@ def paraview_row(scene: str, ranks: int, representation: str, settings: Settings
         command += ["-x", f"LD_PRELOAD={preload}"]
     command += [shutil.which("pvbatch") or "pvbatch", "--symmetric",
                 str(pathlib.Path(__file__).with_name("pvbatch_frames.py")),
-                "--data", str(index), "--representation", representation,
-                "--output", str(output), "--size", str(settings.parallel_size),
-                "--frames", str(settings.frames),
-                "--repetitions", str(settings.parallel_repetitions),
-                "--target-error", str(settings.parallel_target_error)]
-    _run(command)
-    report = json.loads(output.read_text())
-    return {"scene": scene, "ranks": ranks, "representation": representation,
-            "read_wall_seconds": report["read_seconds"],
-            "read_cpu_seconds": report["read_cpu_seconds"],
-            "first_wall_seconds": report["frames"][0],
-            "later_wall_seconds": median(report["frames"][1:]) if len(report["frames"]) > 1
-            else float("nan"),
-            "first_cpu_seconds": report["cpu_frames"][0],
-            "spt_counts": report.get("spt_counts"),
-            "later_cpu_seconds": median(report["cpu_frames"][1:])
-            if len(report["cpu_frames"]) > 1 else float("nan")}
+                "--data", str(index), "--representation", representation]
+    _run(command, output, settings)
+    return dict({"scene": scene, "ranks": ranks, "representation": representation},
+                **json.loads(output.read_text()))
 
 
 def paraview_rows(settings: Settings, progress: Progress, output: pathlib.Path) -> List[Row]:

@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import plots
 from .methods import METHODS, label
-from .models import Fit, time_key
+from .models import time_key
 from .race import STOCHASTIC_METHODS
 
 Entry = Dict[str, object]
@@ -41,8 +41,8 @@ def plot_sweep(entries: Sequence[Entry], sweep: str, x_key: str, xlabel: str,
     plots.save(figure, path)
 
 
-def plot_residuals(models: Dict[str, Fit], path: pathlib.Path, unit: str) -> None:
-    """The relative residuals of every fitted model."""
+def plot_residuals(models: Dict[str, Entry], path: pathlib.Path, unit: str) -> None:
+    """The relative residuals of every fitted model (as bench.json holds them)."""
     if not models:
         return
     columns = min(4, len(models))
@@ -50,11 +50,11 @@ def plot_residuals(models: Dict[str, Fit], path: pathlib.Path, unit: str) -> Non
     figure = plots.figure(3.2 * columns, 2.8 * rows)
     for index, (name, model) in enumerate(models.items()):
         axes = figure.add_subplot(rows, columns, index + 1)
-        observed, predicted = np.array(model.observed), np.array(model.predicted)
+        observed, predicted = np.array(model["observed"]), np.array(model["predicted"])
         axes.semilogx(predicted, (observed - predicted) / observed, "o", markersize=3)
         axes.axhline(0.0, color="gray", linewidth=0.8)
         plots.finish_axes(axes, f"predicted [{unit}]", "relative residual",
-                          f"{name} (R^2 {model.r2:.3f})", legend=False)
+                          f"{name} (R^2 {model['r2']:.3f})", legend=False)
     plots.save(figure, path)
 
 
@@ -108,14 +108,13 @@ def plot_error_against_time(entries: Sequence[Entry], path: pathlib.Path,
 def plot_results(results: Dict[str, object], output: pathlib.Path) -> None:
     """Draw the benchmark's figures from its results into ``output``."""
     entries = results["entries"]
-    plot_sweep(entries, "cells", "cells", "tetrahedra", output / "cells.png")
-    plot_sweep(entries, "repetitions", "repetitions", "RepetitionLevel",
-               output / "repetitions.png")
-    plot_sweep(entries, "subpixels", "subpixels", "SubpixelLevel", output / "subpixels.png")
-    plot_sweep(entries, "image", "width", "pixels", output / "image.png")
-    plot_residuals(results["time_models"], output / "time_residuals.png", "ms")
-    plot_residuals(results["cpu_time_models"], output / "cpu_time_residuals.png", "ms")
-    plot_residuals(results["memory_models"], output / "memory_residuals.png", "bytes")
+    for sweep, x_key, xlabel in (("cells", "cells", "tetrahedra"),
+                                 ("repetitions", "repetitions", "RepetitionLevel"),
+                                 ("subpixels", "subpixels", "SubpixelLevel"),
+                                 ("image", "width", "pixels")):
+        plot_sweep(entries, sweep, x_key, xlabel, output / f"{sweep}.png")
+    for kind, unit in (("time", "ms"), ("cpu_time", "ms"), ("memory", "bytes")):
+        plot_residuals(results[f"{kind}_models"], output / f"{kind}_residuals.png", unit)
     plot_error_against_time(
         [e for e in entries if e.get("sweep") == "quality" and "rmse" in e],
         output / "quality.png", ("spt-visibility", "spt", "spt-independent", "spt-paper", "pbvr"))

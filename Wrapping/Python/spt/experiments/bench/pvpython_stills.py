@@ -73,11 +73,6 @@ def place_camera(view, azimuth, elevation):
     simple.ResetCamera(view)
 
 
-def active_mapper(display):
-    active = display.GetClientSideObject().GetActiveRepresentation()
-    return active.GetActiveVolumeMapper(), active.GetActor()
-
-
 def timed(render, window):
     start = time.perf_counter()
     render()
@@ -152,7 +147,8 @@ def measure(view, display, representation, size, output):
     window = view.GetRenderWindow()
     still = [timed(view.StillRender, window) for _ in range(2)]
     shown = view_image(window)
-    mapper, actor = active_mapper(display)
+    active = display.GetClientSideObject().GetActiveRepresentation()
+    mapper, actor = active.GetActiveVolumeMapper(), active.GetActor()
     row = {"representation": representation, "mapper": mapper.GetClassName(),
            "still": spt_state(mapper)}
     still += [timed(view.StillRender, window) for _ in range(STILL_RENDERS - 2)]

@@ -8,10 +8,10 @@ the best of two frames. A stochastic method's time to reach an error is the time
 smallest L measured whose RMSE (premultiplied RGBA against the reference) is at most that
 error, as a multiple of VTK PT's frame; "not reached" if none is. Each method's host CPU time
 per frame (the application thread outside the OpenGL driver) comes with it: the part a GPU
-would not take over. Where the mapper has an error target, SPT also runs with VTK PT's error as
-its target: a new mapper, whose first image estimates its noise from 16 repetitions per half, a
-mapper that has drawn the scene from another view (azimuth 10 degrees further), whose first
-step aims with the noise per repetition measured there, and a new mapper with 8 depth slabs.
+would not take over. SPT also runs with VTK PT's error as its error target: a new mapper,
+whose first image estimates its noise from 16 repetitions per half, a mapper that has drawn the
+scene from another view (azimuth 10 degrees further), whose first step aims with the noise per
+repetition measured there, and a new mapper with 8 depth slabs.
 Every image is read back through 8 bits per channel, so each row also records the least error
 an 8-bit image can have against the reference (``read_back_floor``): a method whose error is
 near it is exact to the read-back.
@@ -29,11 +29,9 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 
 from ... import meshes, metrics, render, scenes
 from ...progress import Progress
-from ... import vtkSPTVolumeMapper
 from . import host
-from .methods import METHODS, Method, havs_method
+from .methods import METHODS, Method, havs_method, time_method
 from .settings import RACE_SCENES, Settings
-from .timing import time_method
 
 Entry = Dict[str, object]
 
@@ -101,14 +99,10 @@ def time_to_error(points: Sequence[Tuple[int, float, float]], target: float
 
 def race_targets(rows: Sequence[Entry]) -> Dict[str, float]:
     """The errors the stochastic methods race to, by label."""
-    by_method = {row["method"]: row for row in rows}
-    targets = {}
-    if "pt" in by_method:
-        targets["VTK PT's error"] = by_method["pt"]["rmse"]
-    if "havs6" in by_method:
-        targets["HAVS-like k=6's error"] = by_method["havs6"]["rmse"]
-    for target in TARGETS:
-        targets[f"RMSE {target:g}"] = target
+    errors = {row["method"]: row["rmse"] for row in rows}
+    targets = {label: errors[method] for method, label in (
+        ("pt", "VTK PT's error"), ("havs6", "HAVS-like k=6's error")) if method in errors}
+    targets.update((f"RMSE {target:g}", target) for target in TARGETS)
     return targets
 
 
@@ -238,11 +232,6 @@ def _run_stochastic(lap: Lap, method: Method, cap: int, goal: float,
     return rows
 
 
-def has_error_target() -> bool:
-    """Whether this build's SPT mapper can stop at an error target."""
-    return hasattr(vtkSPTVolumeMapper, "SetTargetError")
-
-
 def race_scene_rows(name: str, settings: Settings, progress: Progress, output: pathlib.Path,
                     use_perf: bool, references: Optional[pathlib.Path] = None) -> List[Entry]:
     """Every method of the race on one scene; its images go to ``output``, the cached
@@ -260,36 +249,35 @@ def race_scene_rows(name: str, settings: Settings, progress: Progress, output: p
     goal = min(race_targets(rows).values())
     for method in STOCHASTIC_METHODS:
         rows += _run_stochastic(lap, method, settings.race_max_repetitions, goal, progress)
-    if has_error_target():
-        pt_error = rows[0]["rmse"]
-        size = (settings.race_size, settings.race_size)
-        # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
-        # another view, whose first step aims with the noise per repetition measured there (as
-        # while a user turns the camera); and a new mapper with depth slabs.
-        for method in (
-                Method("spt-target", "SPT at VTK PT's error (error target)",
-                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
-                Method("spt-target-turned",
-                       "SPT at VTK PT's error, after another view (error target)",
-                       lambda r, sp: render.after_another_view(
-                           render.spt_mapper(r, sp, target_error=pt_error), s.grid,
-                           s.property, s.view, size), True),
-                Method("spt-slabs-target",
-                       f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
-                       lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
-                                                       depth_slabs=RACE_DEPTH_SLABS), True)):
-            row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
-            # the repetitions it drew before its noise estimate reached the target
-            row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
-            rows.append(row)
-            progress.step(f"{name} {method.label}")
+    pt_error = rows[0]["rmse"]
+    size = (settings.race_size, settings.race_size)
+    # SPT with VTK PT's error as its target: a new mapper; one that has drawn an image from
+    # another view, whose first step aims with the noise per repetition measured there (as
+    # while a user turns the camera); and a new mapper with depth slabs.
+    for method in (
+            Method("spt-target", "SPT at VTK PT's error (error target)",
+                   lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error), True),
+            Method("spt-target-turned",
+                   "SPT at VTK PT's error, after another view (error target)",
+                   lambda r, sp: render.after_another_view(
+                       render.spt_mapper(r, sp, target_error=pt_error), s.grid,
+                       s.property, s.view, size), True),
+            Method("spt-slabs-target",
+                   f"SPT at VTK PT's error, {RACE_DEPTH_SLABS} depth slabs (error target)",
+                   lambda r, sp: render.spt_mapper(r, sp, target_error=pt_error,
+                                                   depth_slabs=RACE_DEPTH_SLABS), True)):
+        row = measure(lap, method, settings.race_max_repetitions, target_error=pt_error)
+        # the repetitions it drew before its noise estimate reached the target
+        row["repetitions"] = int(row.get("repetitions_drawn", row["repetitions"]))
+        rows.append(row)
+        progress.step(f"{name} {method.label}")
     return rows
 
 
 def steps(settings: Settings) -> int:
     """The progress steps of the race."""
     per_scene = (1 + len(EXACT_METHODS) + len(STOCHASTIC_METHODS)
-                 * len(levels(settings.race_max_repetitions)) + 3 * int(has_error_target()))
+                 * len(levels(settings.race_max_repetitions)) + 3)
     return len(settings.race_scenes) * per_scene * len(settings.race_image_sizes())
 
 
@@ -315,19 +303,16 @@ def merge_runs(measured: Dict[str, object], previous: Optional[Dict[str, object]
     runs = [run] if run["scenes"] else []
     rows = list(measured["rows"])
     if previous and all(previous.get(key) == measured[key] for key in SAME_RACE):
-        kept = [row for row in previous.get("rows", []) if row["scene"] not in run["scenes"]]
+        rows += [row for row in previous.get("rows", []) if row["scene"] not in run["scenes"]]
         earlier = previous.get("runs") or [
             {"scenes": list(dict.fromkeys(row["scene"] for row in previous.get("rows", [])))}]
         for other in earlier:
             scenes_left = [name for name in other["scenes"] if name not in run["scenes"]]
             if scenes_left:
                 runs.append({"scenes": scenes_left})
-        rows += kept
     rows.sort(key=lambda row: position(row["scene"]))  # stable: a scene's rows keep their order
     runs.sort(key=lambda r: min(position(name) for name in r["scenes"]))
-    merged = dict(measured)
-    merged.update(rows=rows, summary=summarize(rows), runs=runs)
-    return merged
+    return dict(measured, rows=rows, summary=summarize(rows), runs=runs)
 
 
 def race(settings: Settings, progress: Progress, output: pathlib.Path,

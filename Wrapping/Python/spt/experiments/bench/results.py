@@ -15,13 +15,16 @@ import json
 import os
 import pathlib
 import subprocess
-from typing import Dict, List, Optional
+from typing import List
 
-from .models import Fit
 from .plots import plot_results
-from .sections import SECTIONS
+from .sections import host, models, parallel, race, sweeps, views
 from .sections.markdown import BENCH_COMMAND, SPT, Results
 from .sections.views import attach
+
+#: The sections in the order of both documents.
+SECTIONS = (race.RACE, views.VIEWS, views.CAMERA, sweeps.CELLS, sweeps.LEVELS, models.MODELS,
+            models.CROSSOVERS, sweeps.QUALITY, host.HOST, models.LARGE, parallel.PARALLEL)
 
 #: The headings of ``results.md``, in order: each is written whether or not the run measured
 #: it (a section that was not measured says how to measure it).
@@ -122,32 +125,24 @@ def load(path: pathlib.Path) -> Results:
     return attach(results, path)
 
 
-def _with_fits(results: Results) -> Results:
-    fitted = dict(results)
-    for key in ("time_models", "cpu_time_models", "memory_models"):
-        fitted[key] = {k: Fit(**v) for k, v in (results.get(key) or {}).items()}
-    return fitted
-
-
 def _relative(path: pathlib.Path, start: pathlib.Path) -> str:
     return pathlib.Path(os.path.relpath(path.resolve(), start.resolve())).as_posix()
 
 
-def write_results(source: pathlib.Path, output: pathlib.Path,
-                  results: Optional[Dict[str, object]] = None, figures: bool = False) -> str:
+def write_results(source: pathlib.Path, output: pathlib.Path, figures: bool = False) -> str:
     """Write ``output`` (results.md) and the appendix ``bench.md`` next to ``source``, from
     the run in ``source`` (bench.json), and with ``figures`` the figures there too; returns
     the text of ``output``."""
-    results = load(source) if results is None else attach(results, source)
-    plain = json.loads(json.dumps(results, default=lambda v: v.as_dict()))
-    (source.parent / "bench.md").write_text(compose_full(plain), encoding="utf-8")
+    results = load(source)
+    (source.parent / "bench.md").write_text(compose_full(results), encoding="utf-8")
     if figures:
-        plot_results(_with_fits(plain), source.parent)
+        plot_results(results, source.parent)
     folder = _relative(source.parent, output.parent)
     folder = "" if folder == "." else folder + "/"
     command = REPORT_COMMAND.format(input=_relative(source, pathlib.Path.cwd()),
                                     output=_relative(output, pathlib.Path.cwd()))
-    text = compose(plain, measured_date(source, plain), command, folder, folder + "bench.md")
+    text = compose(results, measured_date(source, results), command, folder,
+                   folder + "bench.md")
     output.write_text(text, encoding="utf-8")
     return text
 

@@ -12,14 +12,12 @@ from typing import Dict, List, Optional, Sequence
 
 from ... import render
 from ...progress import Progress
-from . import camera, host, parallel, paraview_view, quality, race, sweeps
+from . import camera, host, parallel, paraview_view, race, sweeps
 from .crossovers import crossovers, floor_ratios
-from .methods import METHODS, generated_scene
+from .methods import METHODS, generated_scene, record, time_method
 from .models import memory_models, predict_large, time_models
-from .plots import plot_results
 from .results import write_results
 from .settings import SECTIONS, Settings
-from .timing import record, time_method
 
 Entry = Dict[str, object]
 
@@ -63,7 +61,7 @@ def steps(settings: Settings, section: str) -> int:
         "repetitions": swept * len(settings.repetitions),
         "subpixels": swept * len(settings.subpixels),
         "image": len(settings.sizes) * methods,
-        "quality": quality.steps(settings),
+        "quality": sweeps.quality_steps(settings),
         "host": len(settings.host_cells),
         "large": 1,
         "parallel": parallel.steps(settings),
@@ -88,7 +86,7 @@ def _measure(sections: Sequence[str], settings: Settings, previous: Dict[str, ob
         if section in SWEEPS:
             entries += SWEEPS[section](settings, progress)
         elif section == "quality":
-            entries += quality.quality(settings, progress, output)
+            entries += sweeps.quality(settings, progress, output)
         elif section == "race":
             earlier = [previous.get("race")] + list(previous.get("race_sizes") or [])
             measured["race"], *others = race.races(settings, progress, output / "race",
@@ -137,8 +135,6 @@ def run(output: pathlib.Path, sections: Sequence[str] = SECTIONS,
                       results["memory_models"])
     results["crossovers"] = crossovers(entries, results["memory_models"])
     results["floor_ratios"] = floor_ratios(entries)
-    plot_results(results, output)
-    (output / "bench.json").write_text(json.dumps(results, indent=1,
-                                                  default=lambda fit: fit.as_dict()))
-    write_results(output / "bench.json", output / "results.md", results)
+    (output / "bench.json").write_text(json.dumps(results, indent=1, default=dataclasses.asdict))
+    write_results(output / "bench.json", output / "results.md", figures=True)
     return results

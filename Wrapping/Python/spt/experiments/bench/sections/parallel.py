@@ -4,7 +4,7 @@ redistribution, and pvbatch with the plugin against the methods ParaView redistr
 from __future__ import annotations
 
 import os
-from typing import List, Sequence, Tuple
+from typing import List, Sequence
 
 from ...tables import markdown
 from .markdown import Entry, Results, Section, short, short_table
@@ -13,17 +13,8 @@ MIB = 2.0 ** 20
 NAN = float("nan")
 
 
-def _measured(results: Results) -> Tuple[List[Entry], List[Entry]]:
-    """The VTK rows and the pvbatch rows (the section's first version kept a list of the
-    VTK rows only)."""
-    measured = results.get("parallel") or {}
-    if not isinstance(measured, dict):
-        return measured, []
-    return measured.get("vtk", []), measured.get("paraview", [])
-
-
 def summary(results: Results, folder: str) -> List[str]:
-    vtk, paraview = _measured(results)
+    vtk, paraview = results["parallel"]["vtk"], results["parallel"]["paraview"]
     if not vtk and not paraview:
         return []
     lines = [f"Ranks on this machine's {os.cpu_count()} cores, each with an interleaved "
@@ -85,7 +76,7 @@ def _vtk_rows(rows: Sequence[Entry]) -> List[List[object]]:
 
 
 def full(results: Results) -> List[str]:
-    rows, paraview = _measured(results)
+    rows, paraview = results["parallel"]["vtk"], results["parallel"]["paraview"]
     target = rows[0].get("target_error", 0.0) if rows else 0.0
     return ["## Parallel: ranks with interleaved pieces, no redistribution", "",
             f"The ranks share this machine's {os.cpu_count()} cores, so more ranks than cores "

@@ -221,13 +221,16 @@ def views_full(results: Results) -> List[str]:
 VIEWS = Section("Larger views and ParaView", "race,paraview", views_summary, views_full)
 
 
+def _camera_rows(results: Results, *columns: str) -> List[List[object]]:
+    return [[r["scene"], r["label"], r["camera"]] + [r[c] for c in columns]
+            for r in results["camera"]["rows"]]
+
+
 def camera_summary(results: Results, folder: str) -> List[str]:
-    camera = results["camera"]
     return ["The camera dollies from the framed view into the mesh; ratio: the frame "
             "over the same method's from outside.", "",
             short_table(["scene", "method", "camera", "frame [s]", "ratio", "RMSE"],
-                        [[r["scene"], r["label"], r["camera"], r["seconds"],
-                          r["ratio_to_outside"], r["rmse"]] for r in camera["rows"]])]
+                        _camera_rows(results, "seconds", "ratio_to_outside", "rmse"))]
 
 
 def camera_full(results: Results) -> List[str]:
@@ -238,8 +241,8 @@ def camera_full(results: Results) -> List[str]:
             "camera dollies from the framed view into the mesh. Ratio: the frame time over "
             "the same method's with the camera outside.", "",
             markdown(["scene", "method", "camera", "dolly", "frame [s]", "ratio", "RMSE"],
-                     [[r["scene"], r["label"], r["camera"], r["dolly"], r["seconds"],
-                       r["ratio_to_outside"], r["rmse"]] for r in camera["rows"]]), ""]
+                     _camera_rows(results, "dolly", "seconds", "ratio_to_outside", "rmse")),
+            ""]
 
 
 CAMERA = Section("The camera anywhere", "camera", camera_summary, camera_full, key="camera")
