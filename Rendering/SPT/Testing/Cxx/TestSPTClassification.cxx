@@ -362,16 +362,16 @@ void UploadTetrahedra(
     }
   }
   glBindVertexArray(vao);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, points.size() * sizeof(float), points.data(), GL_STATIC_DRAW);
-  GLint location = glGetAttribLocation(program, "vertexMC");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ARRAY_BUFFER, scalars.size() * sizeof(float), scalars.data(), GL_STATIC_DRAW);
-  location = glGetAttribLocation(program, "scalarTF");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  auto attribute = [&](GLuint buffer, const char* name, int size, const std::vector<float>& values)
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, values.size() * sizeof(float), values.data(), GL_STATIC_DRAW);
+    const GLint location = glGetAttribLocation(program, name);
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, 0, nullptr);
+  };
+  attribute(buffers[0], "vertexMC", 3, points);
+  attribute(buffers[1], "scalarTF", 1, scalars);
   const size_t capacity = tetrahedra.size() * 2 * 3; // at most two triangles each
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
   glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
@@ -402,14 +402,11 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
 {
   Checker checker(parallel);
   glUseProgram(program);
-  const glm::mat4 identity(1.0f);
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
-  const glm::mat4 inverse = glm::inverse(checker.Projection);
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "DCVCMatrix"), 1, GL_FALSE, glm::value_ptr(inverse));
+  auto matrix = [program](const char* name, const glm::mat4& value)
+  { glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(value)); };
+  matrix("MCVCMatrix", glm::mat4(1.0f));
+  matrix("VCDCMatrix", checker.Projection);
+  matrix("DCVCMatrix", glm::inverse(checker.Projection));
   glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
   for (size_t n = 0; n < tetrahedra.size(); ++n)
   {
