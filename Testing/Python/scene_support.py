@@ -18,6 +18,13 @@ def scene(name: str) -> scenes.Scene:
     return scenes.scene(name)
 
 
+def scene_image(name: str, mapper, size: int, **options) -> np.ndarray:
+    """The named scene through ``mapper`` from its view at size x size pixels
+    (spt.render.render with ``options``)."""
+    s = scene(name)
+    return render.render(s.grid, s.property, mapper, s.view, (size, size), **options).image
+
+
 @lru_cache(maxsize=None)
 def reference(name: str, size: int):
     """The exact reference image of the scene at size x size pixels."""

@@ -25,7 +25,7 @@ from spt import metrics, render
 
 import image_statistics
 from scene_support import (bilinear_upsampled, opaque_plane, reference, render_at_still_rate,
-                           scene, window_with)
+                           scene, scene_image, window_with)
 
 SIZE = 128
 
@@ -37,10 +37,9 @@ SAMPLING = {"survivor": {"estimator": "survivor", "exact_coverage": False}, "def
 
 @lru_cache(maxsize=None)
 def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
-    s = scene("default")
     mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
                                **SAMPLING[sampling])
-    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    return scene_image("default", mapper, SIZE, frames=0)
 
 
 @pytest.mark.parametrize("sampling", list(SAMPLING))
@@ -61,10 +60,9 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     """SetSamplingToPaper() is the paper's method: the image of the survivor estimator with
     independent thresholds, no exact coverage and one repetition per pass, set one by one; the
     frame statistics report what the render drew."""
-    s = scene("default")
     mapper = render.spt_mapper(12, seed=7)
     mapper.SetSamplingToPaper()
-    paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    paper = scene_image("default", mapper, SIZE, frames=0)
     assert paper[..., 3].max() > 0.2, "the image is empty"
     one_by_one = _image(12, 7, False, per_pass=1, sampling="survivor")
     assert np.array_equal(paper, one_by_one)
@@ -75,7 +73,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     assert statistics.GetParallelBytes() == 0
     # The defaults' image is another one: the same expectation, less noise.
     mapper.SetSamplingToDefault()
-    default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    default = scene_image("default", mapper, SIZE, frames=0)
     exact = reference("default", SIZE)
     assert metrics.rmse(default, exact) < metrics.rmse(paper, exact)
 
@@ -148,9 +146,8 @@ def test_progressive_refinement_accumulates_until_something_changes(have_display
         window.Render()
         assert mapper.GetLastRepetitionCount() == expected
     accumulated = render.read_rgba(window)
-    s = scene("default")
-    once = render.render(s.grid, s.property, render.spt_mapper(32, seed=5, stratified=False),
-                         s.view, (SIZE, SIZE), frames=0).image
+    once = scene_image("default", render.spt_mapper(32, seed=5, stratified=False), SIZE,
+                       frames=0)
     assert np.abs(accumulated - once).max() <= 1.0 / 255.0 + 1e-6
     renderer.GetActiveCamera().Azimuth(10.0)
     window.Render()

@@ -50,7 +50,7 @@ import pytest
 
 from spt import metrics, render
 
-from scene_support import reference, scene, window_with
+from scene_support import reference, scene, scene_image, window_with
 from statistics_checks import (SCENE_CHECKS, SceneRenders,
                                check_noise_falls_as_one_over_repetitions,
                                check_opaque_geometry_hides_and_cuts_the_volume,
@@ -65,11 +65,9 @@ SCENES = list(LEVELS)
 def _rmse(name, method):
     """The RMSE of a sorted method's image: HAVS-like with k = 2 or 6, or VTK's projected
     tetrahedra."""
-    s = scene(name)
     mapper = {"havs2": lambda: render.havs_mapper(2), "havs6": lambda: render.havs_mapper(6),
               "pt": render.projected_tetrahedra_mapper}[method]()
-    return metrics.rmse(render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image,
-                        reference(name, SIZE))
+    return metrics.rmse(scene_image(name, mapper, SIZE), reference(name, SIZE))
 
 
 #: "paper": the paper's sampling, whose noise model the tests check; "default": the mapper
