@@ -62,6 +62,8 @@ COMPUTE_CASES = ["cell scalars", "opaque", "zoomed", "parallel", "survivor", "er
 
 
 class Drawn(NamedTuple):
+    """A render and what its frame statistics and mapper report."""
+
     image: np.ndarray
     points: int  # cells drawn as points
     computed: int  # cells whose points the compute pass visited
@@ -71,7 +73,8 @@ class Drawn(NamedTuple):
 
 @lru_cache(maxsize=None)
 def _render(name, seed, small_cell_size=ALL_SMALL, compute=AUTO, case="", level=16, size=SIZE):
-    """The scene in a case of CASES; ``small_cell_size`` None keeps the mapper's default."""
+    """The named scene in a case of POINT_CASES or COMPUTE_CASES ("": none), through a mapper
+    with ``seed``; ``small_cell_size`` None keeps the mapper's default."""
     s = scene(name)
     grid = with_cell_scalars(s.grid) if case == "cell scalars" else s.grid
     view = s.view
