@@ -79,14 +79,6 @@ RENDERS = {mode: SceneRenders(lambda level, seed, sampling=sampling:
            for mode, sampling in MODES.items()}
 
 
-def _spt(name, level, seed, mode="paper"):
-    return RENDERS[mode].image(name, level, seed)
-
-
-def _estimate(name, level, mode="paper"):
-    return RENDERS[mode].estimate(name, level)
-
-
 @pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("check", SCENE_CHECKS)
 def test_scene_statistics(check, name, have_display):
@@ -103,7 +95,7 @@ def test_default_estimator_is_unbiased(name, have_display):
     control variate's coefficient does not depend on the random numbers), so its RMSE falls
     to the same small bias floor, with noise falling as 1 / L (its repetitions are
     independent)."""
-    estimates = [_estimate(name, level, "independent") for level in DEFAULT_LEVELS]
+    estimates = [RENDERS["independent"].estimate(name, level) for level in DEFAULT_LEVELS]
     check_noise_falls_as_one_over_repetitions(estimates)
     assert estimates[-1].bias <= 0.012, f"bias {estimates[-1].bias:.4f}"
 
@@ -113,9 +105,9 @@ def test_default_estimator_has_exact_alpha_and_less_noise(name, have_display):
     """Exact coverage: two seeds give the same alpha (to 8-bit rounding); the colour noise
     left is a fraction of the paper's estimator's at the same repetitions (measured 5-60 %
     of its RMSE at 4 to 256 repetitions on these scenes; required: under half its noise)."""
-    first, second = (_spt(name, 4, seed, "independent") for seed in (1, 2))
+    first, second = (RENDERS["independent"].image(name, 4, seed) for seed in (1, 2))
     assert np.abs(first[..., 3] - second[..., 3]).max() <= 1.0 / 255.0 + 1e-6
-    default, paper = _estimate(name, 4, "independent"), _estimate(name, 4)
+    default, paper = RENDERS["independent"].estimate(name, 4), RENDERS["paper"].estimate(name, 4)
     assert default.alpha_noise <= 1e-6
     assert default.noise < 0.5 * paper.noise, (
         f"noise at L=4: default {default.noise:.3g}, paper {paper.noise:.3g}")
@@ -123,7 +115,7 @@ def test_default_estimator_has_exact_alpha_and_less_noise(name, have_display):
 
 def _spt_1024_rmse(name):
     """The RMSE of the mapper as users get it (the defaults) at 1024 repetitions."""
-    return metrics.rmse(_spt(name, 1024, 3, "default"), reference(name, SIZE))
+    return metrics.rmse(RENDERS["default"].image(name, 1024, 3), reference(name, SIZE))
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin", "post"])
@@ -134,7 +126,7 @@ def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_dis
     survivor random.)"""
     pt_rmse, measured = _rmse(name, "pt"), _spt_1024_rmse(name)
     assert measured <= pt_rmse, f"SPT at 1024 {measured:.4f}, VTK PT {pt_rmse:.4f}"
-    paper = _estimate(name, LEVELS[name][-1]).predicted_rmse(1024)
+    paper = RENDERS["paper"].estimate(name, LEVELS[name][-1]).predicted_rmse(1024)
     assert measured < paper, (
         f"the default {measured:.4f} is no better than the paper's sampling {paper:.4f}")
 
@@ -148,7 +140,7 @@ def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method, hav
 
 def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
     """Blunt Fin: measured HAVS-like k=6 0.083 and SPT (144) 0.026 at 256 x 256."""
-    spt_144 = _estimate("bluntfin", 16).predicted_rmse(144)
+    spt_144 = RENDERS["paper"].estimate("bluntfin", 16).predicted_rmse(144)
     havs = _rmse("bluntfin", "havs6")
     assert havs > 2.0 * spt_144, f"HAVS-like k=6 {havs:.4f}, SPT at 144 {spt_144:.4f}"
     assert _rmse("bluntfin", "havs2") > havs, "k = 2 repairs less of the order than k = 6"

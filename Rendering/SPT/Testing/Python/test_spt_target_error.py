@@ -68,9 +68,7 @@ PER_PASS = 4
 
 
 def _mapper(level, seed, target, per_pass=PER_PASS):
-    mapper = render.spt_mapper(level, seed=seed, per_pass=per_pass)
-    mapper.SetTargetError(target)
-    return mapper
+    return render.spt_mapper(level, seed=seed, per_pass=per_pass, target_error=target)
 
 
 @lru_cache(maxsize=None)
