@@ -28,7 +28,6 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSphereSource.h"
-#include "vtkStructuredGrid.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -46,8 +45,6 @@ namespace SPTTestScene
 inline vtkSmartPointer<vtkUnstructuredGrid> MakeShell()
 {
   const int nr = 4, nt = 24, nz = 8;
-  vtkNew<vtkStructuredGrid> grid;
-  grid->SetDimensions(nr, nt, nz);
   vtkNew<vtkPoints> points;
   vtkNew<vtkFloatArray> field;
   field->SetName("pointField");
@@ -65,30 +62,30 @@ inline vtkSmartPointer<vtkUnstructuredGrid> MakeShell()
       }
     }
   }
-  grid->SetPoints(points);
-  grid->GetPointData()->SetScalars(field);
-  vtkNew<vtkFloatArray> cellField;
-  cellField->SetName("cellField");
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
-  {
-    cellField->InsertNextValue(static_cast<float>((c * 7) % 11) / 10.0f);
-  }
-  grid->GetCellData()->AddArray(cellField);
-
   auto shell = vtkSmartPointer<vtkUnstructuredGrid>::New();
   shell->SetPoints(points);
-  shell->Allocate(grid->GetNumberOfCells());
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  shell->GetPointData()->SetScalars(field);
+  vtkNew<vtkFloatArray> cellField;
+  cellField->SetName("cellField");
+  auto id = [&](int i, int j, int k) { return vtkIdType(i + nr * (j + nt * k)); };
+  for (int k = 0; k + 1 < nz; ++k)
   {
-    grid->GetCellPoints(c, ids);
-    // Structured hexahedra in VTK_HEXAHEDRON order.
-    const vtkIdType hex[8] = { ids->GetId(0), ids->GetId(1), ids->GetId(3), ids->GetId(2),
-      ids->GetId(4), ids->GetId(5), ids->GetId(7), ids->GetId(6) };
-    shell->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+    for (int j = 0; j + 1 < nt; ++j)
+    {
+      for (int i = 0; i + 1 < nr; ++i)
+      {
+        // The corners of each face in the order (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1):
+        // not VTK_HEXAHEDRON's, so each cell is a twisted hexahedron, split by the mappers as
+        // given (the baselines are of this mesh).
+        const vtkIdType hex[8] = { id(i, j, k), id(i + 1, j, k), id(i, j + 1, k),
+          id(i + 1, j + 1, k), id(i, j, k + 1), id(i + 1, j, k + 1), id(i, j + 1, k + 1),
+          id(i + 1, j + 1, k + 1) };
+        const vtkIdType c = shell->InsertNextCell(VTK_HEXAHEDRON, 8, hex);
+        cellField->InsertNextValue(static_cast<float>((c * 7) % 11) / 10.0f);
+      }
+    }
   }
-  shell->GetPointData()->ShallowCopy(grid->GetPointData());
-  shell->GetCellData()->ShallowCopy(grid->GetCellData());
+  shell->GetCellData()->AddArray(cellField);
   return shell;
 }
 

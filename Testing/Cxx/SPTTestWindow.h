@@ -23,15 +23,10 @@
 
 namespace SPTTestWindow
 {
-inline bool HasXDisplay()
-{
-  const char* display = std::getenv("DISPLAY");
-  return display && *display;
-}
-
 inline vtkSmartPointer<vtkRenderWindow> New()
 {
-  if (HasXDisplay())
+  const char* display = std::getenv("DISPLAY");
+  if (display && *display)
   {
     return vtkSmartPointer<vtkRenderWindow>::New();
   }

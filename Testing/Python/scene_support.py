@@ -7,6 +7,7 @@ import vtk
 
 from spt import data, render, scenes
 
+from robustness_support import plane_actor
 from spt_pytest_fixtures import load_or_skip
 
 
@@ -16,6 +17,13 @@ def scene(name: str) -> scenes.Scene:
     if name != "default":
         load_or_skip(name)
     return scenes.scene(name)
+
+
+def scene_image(name: str, mapper, size: int, **options) -> np.ndarray:
+    """The named scene through ``mapper`` from its view at size x size pixels
+    (spt.render.render with ``options``)."""
+    s = scene(name)
+    return render.render(s.grid, s.property, mapper, s.view, (size, size), **options).image
 
 
 @lru_cache(maxsize=None)
@@ -38,17 +46,9 @@ def with_cell_scalars(grid):
 
 def opaque_plane(grid):
     """An opaque plane actor through the middle of the mesh, across the view."""
-    bounds = grid.GetBounds()
-    plane = vtk.vtkPlaneSource()
-    cx = 0.5 * (bounds[0] + bounds[1])
-    plane.SetOrigin(cx, bounds[2] - 1, bounds[4] - 1)
-    plane.SetPoint1(cx, bounds[3] + 1, bounds[4] - 1)
-    plane.SetPoint2(cx, bounds[2] - 1, bounds[5] + 1)
-    mapper = vtk.vtkPolyDataMapper()
-    mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(mapper)
-    return actor
+    b = grid.GetBounds()
+    x = 0.5 * (b[0] + b[1])
+    return plane_actor((x, b[2] - 1, b[4] - 1), (x, b[3] + 1, b[4] - 1), (x, b[2] - 1, b[5] + 1))
 
 
 def moved_copy(grid, offset):

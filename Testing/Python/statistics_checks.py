@@ -14,7 +14,7 @@ from spt import metrics, render, scenes
 
 import image_statistics
 from robustness_support import opaque_plane
-from scene_support import reference, scene
+from scene_support import reference, scene_image
 
 #: A stochastic mapper at a repetition level, subpixel level and seed.
 MapperMaker = Callable[[int, int, int], object]
@@ -82,8 +82,7 @@ def check_subpixel_level_averages_subpixels(make: MapperMaker, size: int,
     s = scenes.scene("default")
     fine = render.reference(s.grid, s.property, s.view, (2 * size, 2 * size)).image
     reference = block_mean(fine, 2)
-    first, second = (render.render(s.grid, s.property, make(level, 2, seed), s.view,
-                                   (size, size), frames=0).image
+    first, second = (scene_image("default", make(level, 2, seed), size, frames=0)
                      for seed in (1, 2))
     e = image_statistics.estimate(first, second, reference, level)
     mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
@@ -105,11 +104,9 @@ def check_opaque_geometry_hides_and_cuts_the_volume(make: MapperMaker, size: int
     actor = opaque_plane()
     reference = render.reference(s.grid, s.property, s.view, (size, size), method="vtk",
                                  actors=[actor]).image
-    first, second = (render.render(s.grid, s.property, make(level, 1, seed), s.view,
-                                   (size, size), actors=[actor], frames=0).image
-                     for seed in (1, 2))
-    without = render.render(s.grid, s.property, make(level, 1, 1), s.view, (size, size),
-                            frames=0).image
+    first, second = (scene_image("default", make(level, 1, seed), size, actors=[actor],
+                                 frames=0) for seed in (1, 2))
+    without = scene_image("default", make(level, 1, 1), size, frames=0)
     plane_pixels = np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1)
     assert plane_pixels.mean() > 0.3, "the plane is not in the picture"
     assert metrics.rmse(first, without) > 0.05, "the plane changes nothing"
@@ -134,10 +131,7 @@ class SceneRenders:
     def image(self, name: str, level: int, seed: int) -> np.ndarray:
         key = (name, level, seed)
         if key not in self._images:
-            s = scene(name)
-            self._images[key] = render.render(s.grid, s.property, self.make(level, seed),
-                                              s.view, (self.size, self.size),
-                                              frames=0).image
+            self._images[key] = scene_image(name, self.make(level, seed), self.size, frames=0)
         return self._images[key]
 
     def reference(self, name: str) -> np.ndarray:

@@ -44,7 +44,8 @@ def parse() -> argparse.Namespace:
                         help="keep VTK's frustum culler, which may skip a rank's render")
     parser.add_argument("--depth-slabs", type=int, default=1, help="DepthSlabs")
     parser.add_argument("--clipping-plane", action="store_true",
-                        help="every rank's mapper clipped by one oblique plane")
+                        help="every rank's mapper clipped by the plane of clipping_support's "
+                             "case 'one oblique'")
     parser.add_argument("--frames", type=int, default=2)
     parser.add_argument("--per-pass", type=int, default=None, help="RepetitionsPerPass")
     parser.add_argument("--target-error", type=float, default=None,
@@ -110,24 +111,13 @@ def halved_opacity(volume_property):
     return copy
 
 
-def oblique_plane():
-    """A plane through the default mesh, as the ranks' mappers all have it."""
-    import vtk
-
-    plane = vtk.vtkPlane()
-    plane.SetOrigin(0.2, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.3, 0.2)
-    return plane
-
-
-def add_volumes(arguments, renderer, controller, scene):
+def add_volumes(arguments, renderer, controller, rank, ranks, scene):
     """This rank's SPT volumes of the scene (two with --second-volume) in ``renderer``, each
     with its piece of the mesh; returns their mappers and pieces."""
     import scene_support
+    from clipping_support import CASES
     from spt import meshes, render
 
-    rank = controller.GetLocalProcessId() if controller else 0
-    ranks = controller.GetNumberOfProcesses() if controller else 1
     grid = scene.grid
 
     def piece_of(grid, renamed):
@@ -155,7 +145,8 @@ def add_volumes(arguments, renderer, controller, scene):
         if controller is not None:
             mapper.SetController(controller)
         if arguments.clipping_plane:
-            mapper.AddClippingPlane(oblique_plane())
+            for plane in CASES["one oblique"].vtk_planes():
+                mapper.AddClippingPlane(plane)
         piece = piece_of(grid, renamed=second == arguments.second_volume)
         volume = render.add_volume(renderer, piece, volume_property, mapper)
         if second:
@@ -195,7 +186,7 @@ def main() -> None:
         renderer.GetCullers().RemoveAllItems()
     if arguments.empty_viewport_on in ("all", str(rank)):
         renderer.SetViewport(0.0, 0.0, 0.0, 0.0)
-    mappers, pieces = add_volumes(arguments, renderer, controller, scene)
+    mappers, pieces = add_volumes(arguments, renderer, controller, rank, ranks, scene)
     if rank == arguments.opaque_on:
         renderer.AddActor(opaque_sphere(grid.GetBounds()))
     bounds = (scene_support.union("default") if arguments.second_volume else grid).GetBounds()

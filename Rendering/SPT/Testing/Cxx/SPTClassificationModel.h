@@ -40,34 +40,27 @@ inline float Cross2(glm::vec2 a, glm::vec2 b, glm::vec2 c)
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
 }
 
-// Convex hull of four points, counter-clockwise (gift wrapping is plenty for four).
-inline std::vector<glm::vec2> Hull(const std::array<glm::vec2, 4>& p)
+// Convex hull of four points, counter-clockwise, without collinear points (Andrew's monotone
+// chain: the lower hull from left to right, then the upper hull back).
+inline std::vector<glm::vec2> Hull(std::array<glm::vec2, 4> p)
 {
+  std::sort(p.begin(), p.end(),
+    [](glm::vec2 a, glm::vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   std::vector<glm::vec2> hull;
-  int start = 0;
-  for (int i = 1; i < 4; ++i)
+  for (int pass = 0; pass < 2; ++pass)
   {
-    if (p[i].x < p[start].x || (p[i].x == p[start].x && p[i].y < p[start].y))
+    const size_t start = hull.size();
+    for (int n = 0; n < 4; ++n)
     {
-      start = i;
-    }
-  }
-  int current = start;
-  do
-  {
-    hull.push_back(p[current]);
-    int next = (current + 1) % 4;
-    for (int i = 0; i < 4; ++i)
-    {
-      const float turn = Cross2(p[current], p[next], p[i]);
-      if (turn < 0.0f ||
-        (turn == 0.0f && glm::length(p[i] - p[current]) > glm::length(p[next] - p[current])))
+      const glm::vec2 q = p[pass == 0 ? n : 3 - n];
+      while (hull.size() >= start + 2 && Cross2(hull[hull.size() - 2], hull.back(), q) <= 0.0f)
       {
-        next = i;
+        hull.pop_back();
       }
+      hull.push_back(q);
     }
-    current = next;
-  } while (current != start && hull.size() < 5);
+    hull.pop_back(); // the first point of the other half
+  }
   return hull;
 }
 

@@ -194,177 +194,144 @@ bool Weights(const ScreenGeometry& screen, glm::vec2 q, std::vector<glm::vec3>& 
   return ambiguous;
 }
 
+// The checks of one projection, perspective or parallel.
 class Checker
 {
 public:
   Checker(bool parallel)
-    : Parallel(parallel)
+    : Projection(parallel ? glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 1.0f, 20.0f)
+                          : glm::perspective(glm::radians(40.0f), 1.0f, 1.0f, 20.0f))
+    , Name(parallel ? " (parallel)" : " (perspective)")
   {
-    this->Projection = parallel ? glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 1.0f, 20.0f)
-                                : glm::perspective(glm::radians(40.0f), 1.0f, 1.0f, 20.0f);
   }
 
-  // The view ray through an NDC point.
-  void Ray(glm::vec2 ndc, glm::vec3& origin, glm::vec3& direction) const
+  int Check(const Tetrahedron& t, const std::vector<Captured>& vertices, std::mt19937& random) const
   {
-    const glm::mat4 inverse = glm::inverse(this->Projection);
-    glm::vec4 nearPoint = inverse * glm::vec4(ndc, -1.0f, 1.0f);
-    glm::vec4 farPoint = inverse * glm::vec4(ndc, 1.0f, 1.0f);
-    origin = glm::vec3(nearPoint) / nearPoint.w;
-    direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+    const ScreenGeometry screen = this->Screen(t, vertices);
+    int failures = CheckArea(t, screen);
+
+    // Sample the outline's bounding box: coverage and the interpolated segment.
+    glm::vec2 lo(1.0e30f), hi(-1.0e30f);
+    for (const glm::vec2& p : screen.Hull)
+    {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    std::uniform_real_distribution<float> ux(lo.x, hi.x), uy(lo.y, hi.y);
+    const float scale = std::max(hi.x - lo.x, hi.y - lo.y);
+    for (int n = 0; n < 60; ++n)
+    {
+      const glm::vec2 q(ux(random), uy(random));
+      failures += this->CheckPoint(t, vertices, screen, q, scale);
+    }
+    return failures;
   }
 
-  int Check(
-    const Tetrahedron& t, const std::vector<Captured>& triangles, std::mt19937& random) const;
-
-  bool Parallel;
-  glm::mat4 Projection;
+  const glm::mat4 Projection;
 
 private:
-  ScreenGeometry Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const;
-  int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
-    const ScreenGeometry& screen, glm::vec2 q, float scale) const;
-  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const;
-  int CheckEarlyDepth(
-    const Tetrahedron& t, const Captured* triangle, glm::vec2 q, glm::vec3 exactFront) const;
-  const char* ProjectionName() const { return this->Parallel ? " (parallel)" : " (perspective)"; }
-};
+  ScreenGeometry Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const
+  {
+    ScreenGeometry screen;
+    std::array<glm::vec2, 4> projected;
+    for (int v = 0; v < 4; ++v)
+    {
+      const glm::vec4 clip = this->Projection * glm::vec4(t.Points[v], 1.0f);
+      projected[v] = glm::vec2(clip) / clip.w;
+    }
+    screen.Hull = Hull(projected);
+    for (size_t i = 1; i + 1 < screen.Hull.size(); ++i)
+    {
+      screen.HullArea += 0.5f * Cross2(screen.Hull[0], screen.Hull[i], screen.Hull[i + 1]);
+    }
+    screen.Triangles.resize(vertices.size() / 3);
+    for (size_t i = 0; i < vertices.size(); ++i)
+    {
+      screen.Triangles[i / 3][i % 3] = glm::vec2(vertices[i].Position) / vertices[i].Position.w;
+    }
+    return screen;
+  }
 
-ScreenGeometry Checker::Screen(const Tetrahedron& t, const std::vector<Captured>& vertices) const
-{
-  ScreenGeometry screen;
-  std::array<glm::vec2, 4> projected;
-  for (int v = 0; v < 4; ++v)
+  // A point inside the outline lies in exactly one triangle, a point outside in none.
+  int CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
+    const ScreenGeometry& screen, glm::vec2 q, float scale) const
   {
-    const glm::vec4 clip = this->Projection * glm::vec4(t.Points[v], 1.0f);
-    projected[v] = glm::vec2(clip) / clip.w;
+    const float margin = InsideMargin(screen.Hull, q);
+    std::vector<glm::vec3> weights;
+    if (std::abs(margin) < 1.0e-3f * scale || Weights(screen, q, weights))
+    {
+      return 0; // too close to the outline or to an edge to call
+    }
+    int failures = 0;
+    int containing = 0;
+    for (size_t i = 0; i < weights.size(); ++i)
+    {
+      if (std::min(weights[i].x, std::min(weights[i].y, weights[i].z)) >= 0.0f)
+      {
+        ++containing;
+        failures += this->CheckSegment(t, &vertices[3 * i], q);
+      }
+    }
+    const int expected = margin > 0.0f ? 1 : 0;
+    if (containing != expected)
+    {
+      std::cerr << t.Name << this->Name << ": point (" << q.x << ", " << q.y << ") "
+                << (expected ? "inside" : "outside") << " the outline lies in " << containing
+                << " triangles\n";
+      ++failures;
+    }
+    return failures;
   }
-  screen.Hull = Hull(projected);
-  for (size_t i = 1; i + 1 < screen.Hull.size(); ++i)
+
+  // What the fragment shader finds at q from the triangle's planes is the exact entry and exit
+  // of the view ray, and the triangle's vertices lie no deeper than the entry (the early depth
+  // test).
+  int CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const
   {
-    screen.HullArea += 0.5f * Cross2(screen.Hull[0], screen.Hull[i], screen.Hull[i + 1]);
-  }
-  screen.Triangles.resize(vertices.size() / 3);
-  for (size_t i = 0; i < screen.Triangles.size(); ++i)
-  {
+    const glm::mat4 inverse = glm::inverse(this->Projection);
+    const glm::vec4 nearPoint = inverse * glm::vec4(q, -1.0f, 1.0f);
+    const glm::vec4 farPoint = inverse * glm::vec4(q, 1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
+    const glm::vec3 direction = glm::normalize(glm::vec3(farPoint) / farPoint.w - origin);
+    Segment exact;
+    if (!ExactSegment(t, origin, direction, exact))
+    {
+      return 0; // grazing ray
+    }
+    const Segment found =
+      PlaneSegment(triangle[0].FacePlanes, triangle[0].ScalarPlane, q, this->Projection);
+    const float tolerance = 2.0e-3f;
+    int failures = 0;
+    if (glm::distance(found.Front, exact.Front) > tolerance ||
+      glm::distance(found.Back, exact.Back) > tolerance ||
+      std::abs(found.Thickness - exact.Thickness) > tolerance ||
+      std::abs(found.FrontScalar - exact.FrontScalar) > tolerance ||
+      std::abs(found.BackScalar - exact.BackScalar) > tolerance)
+    {
+      std::cerr << t.Name << this->Name << " at (" << q.x << ", " << q.y << "): thickness "
+                << found.Thickness << " vs exact " << exact.Thickness << ", scalars "
+                << found.FrontScalar << " " << found.BackScalar << " vs exact " << exact.FrontScalar
+                << " " << exact.BackScalar << "\n";
+      ++failures;
+    }
+    const glm::vec4 exactFrontDC = this->Projection * glm::vec4(exact.Front, 1.0f);
+    const float exactFrontDepth = exactFrontDC.z / exactFrontDC.w;
     for (int v = 0; v < 3; ++v)
     {
-      screen.Triangles[i][v] =
-        glm::vec2(vertices[3 * i + v].Position) / vertices[3 * i + v].Position.w;
+      const float depth = triangle[v].Position.z / triangle[v].Position.w;
+      if (depth > exactFrontDepth + 1.0e-5f)
+      {
+        std::cerr << t.Name << this->Name << " at (" << q.x << ", " << q.y
+                  << "): a triangle at depth " << depth << " behind the segment's front at "
+                  << exactFrontDepth << "\n";
+        return failures + 1;
+      }
     }
+    return failures;
   }
-  return screen;
-}
 
-int Checker::Check(
-  const Tetrahedron& t, const std::vector<Captured>& vertices, std::mt19937& random) const
-{
-  const ScreenGeometry screen = this->Screen(t, vertices);
-  int failures = CheckArea(t, screen);
-
-  // Sample the outline's bounding box: coverage and the interpolated segment.
-  glm::vec2 lo(1.0e30f), hi(-1.0e30f);
-  for (const glm::vec2& p : screen.Hull)
-  {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  std::uniform_real_distribution<float> ux(lo.x, hi.x), uy(lo.y, hi.y);
-  const float scale = std::max(hi.x - lo.x, hi.y - lo.y);
-  for (int n = 0; n < 60; ++n)
-  {
-    const glm::vec2 q(ux(random), uy(random));
-    failures += this->CheckPoint(t, vertices, screen, q, scale);
-  }
-  return failures;
-}
-
-// A point inside the outline lies in exactly one triangle, a point outside in none.
-int Checker::CheckPoint(const Tetrahedron& t, const std::vector<Captured>& vertices,
-  const ScreenGeometry& screen, glm::vec2 q, float scale) const
-{
-  const float margin = InsideMargin(screen.Hull, q);
-  if (std::abs(margin) < 1.0e-3f * scale)
-  {
-    return 0; // too close to the outline to call
-  }
-  std::vector<glm::vec3> weights;
-  if (Weights(screen, q, weights))
-  {
-    return 0;
-  }
-  int failures = 0;
-  int containing = 0;
-  for (size_t i = 0; i < weights.size(); ++i)
-  {
-    const glm::vec3 w = weights[i];
-    if (std::min(w.x, std::min(w.y, w.z)) < 0.0f)
-    {
-      continue;
-    }
-    ++containing;
-    failures += this->CheckSegment(t, &vertices[3 * i], q);
-  }
-  const int expected = margin > 0.0f ? 1 : 0;
-  if (containing != expected)
-  {
-    std::cerr << t.Name << this->ProjectionName() << ": point (" << q.x << ", " << q.y << ") "
-              << (expected ? "inside" : "outside") << " the outline lies in " << containing
-              << " triangles\n";
-    ++failures;
-  }
-  return failures;
-}
-
-// What the fragment shader finds at q from the triangle's planes is the exact entry and exit
-// of the view ray, and the triangle lies no deeper than the entry.
-int Checker::CheckSegment(const Tetrahedron& t, const Captured* triangle, glm::vec2 q) const
-{
-  glm::vec3 origin, direction;
-  this->Ray(q, origin, direction);
-  Segment exact;
-  if (!ExactSegment(t, origin, direction, exact))
-  {
-    return 0; // grazing ray
-  }
-  const Segment found =
-    PlaneSegment(triangle[0].FacePlanes, triangle[0].ScalarPlane, q, this->Projection);
-  const float tolerance = 2.0e-3f;
-  int failures = 0;
-  if (glm::distance(found.Front, exact.Front) > tolerance ||
-    glm::distance(found.Back, exact.Back) > tolerance ||
-    std::abs(found.Thickness - exact.Thickness) > tolerance ||
-    std::abs(found.FrontScalar - exact.FrontScalar) > tolerance ||
-    std::abs(found.BackScalar - exact.BackScalar) > tolerance)
-  {
-    std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
-              << "): thickness " << found.Thickness << " vs exact " << exact.Thickness
-              << ", scalars " << found.FrontScalar << " " << found.BackScalar << " vs exact "
-              << exact.FrontScalar << " " << exact.BackScalar << "\n";
-    ++failures;
-  }
-  return failures + this->CheckEarlyDepth(t, triangle, q, exact.Front);
-}
-
-// The triangle's vertices lie no deeper than the segment's exact front (the early depth test).
-int Checker::CheckEarlyDepth(
-  const Tetrahedron& t, const Captured* triangle, glm::vec2 q, glm::vec3 exactFront) const
-{
-  const glm::vec4 exactFrontDC = this->Projection * glm::vec4(exactFront, 1.0f);
-  const float exactFrontDepth = exactFrontDC.z / exactFrontDC.w;
-  for (int v = 0; v < 3; ++v)
-  {
-    const float depth = triangle[v].Position.z / triangle[v].Position.w;
-    if (depth > exactFrontDepth + 1.0e-5f)
-    {
-      std::cerr << t.Name << this->ProjectionName() << " at (" << q.x << ", " << q.y
-                << "): a triangle at depth " << depth << " behind the segment's front at "
-                << exactFrontDepth << "\n";
-      return 1;
-    }
-  }
-  return 0;
-}
+  const char* Name;
+};
 
 // The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
 GLuint LinkProgram(GLuint vs, GLuint gs)
@@ -395,16 +362,16 @@ void UploadTetrahedra(
     }
   }
   glBindVertexArray(vao);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
-  glBufferData(GL_ARRAY_BUFFER, points.size() * sizeof(float), points.data(), GL_STATIC_DRAW);
-  GLint location = glGetAttribLocation(program, "vertexMC");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glBindBuffer(GL_ARRAY_BUFFER, buffers[1]);
-  glBufferData(GL_ARRAY_BUFFER, scalars.size() * sizeof(float), scalars.data(), GL_STATIC_DRAW);
-  location = glGetAttribLocation(program, "scalarTF");
-  glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+  auto attribute = [&](GLuint buffer, const char* name, int size, const std::vector<float>& values)
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, values.size() * sizeof(float), values.data(), GL_STATIC_DRAW);
+    const GLint location = glGetAttribLocation(program, name);
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, 0, nullptr);
+  };
+  attribute(buffers[0], "vertexMC", 3, points);
+  attribute(buffers[1], "scalarTF", 1, scalars);
   const size_t capacity = tetrahedra.size() * 2 * 3; // at most two triangles each
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, buffers[2]);
   glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, capacity * sizeof(Captured), nullptr, GL_STATIC_READ);
@@ -435,14 +402,11 @@ int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>
 {
   Checker checker(parallel);
   glUseProgram(program);
-  const glm::mat4 identity(1.0f);
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "MCVCMatrix"), 1, GL_FALSE, glm::value_ptr(identity));
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "VCDCMatrix"), 1, GL_FALSE, glm::value_ptr(checker.Projection));
-  const glm::mat4 inverse = glm::inverse(checker.Projection);
-  glUniformMatrix4fv(
-    glGetUniformLocation(program, "DCVCMatrix"), 1, GL_FALSE, glm::value_ptr(inverse));
+  auto matrix = [program](const char* name, const glm::mat4& value)
+  { glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(value)); };
+  matrix("MCVCMatrix", glm::mat4(1.0f));
+  matrix("VCDCMatrix", checker.Projection);
+  matrix("DCVCMatrix", glm::inverse(checker.Projection));
   glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
   for (size_t n = 0; n < tetrahedra.size(); ++n)
   {

@@ -28,6 +28,7 @@ from spt import metrics, raycast, render
 
 import image_statistics
 from scene_support import draw_once, scene
+from statistics_checks import Z
 
 SIZE = 96
 REPETITIONS = 16
@@ -44,20 +45,15 @@ SCENE_CAMERAS = [(name, camera) for name in SCENES for camera in CAMERAS
                  if camera != "outside" and (name == "default" or camera == "inside")]
 
 
-def _place(renderer, name, dolly, parallel=False):
+def _render(name, mapper, dolly, parallel=False):
+    """The image and the camera that drew it: the scene's view dollied in by ``dolly``."""
     s = scene(name)
+    window, renderer = render.make_window(SIZE, SIZE)
+    render.add_volume(renderer, s.grid, s.property, mapper)
     view = render.View(s.view.azimuth, s.view.elevation, s.view.zoom, parallel)
     render.place_camera(renderer, s.grid.GetBounds(), view)
     renderer.GetActiveCamera().Dolly(dolly)
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
-
-
-def _render(name, mapper, dolly, parallel=False):
-    """The image and the camera that drew it."""
-    s = scene(name)
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    _place(renderer, name, dolly, parallel)
     window.Render()
     image = render.read_rgba(window)
     camera = vtk.vtkCamera()
@@ -115,18 +111,20 @@ def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera, ha
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     if camera == "zoomed in":
         assert _planes_cutting(seen_by, scene(name).grid.GetBounds()) == (False, True)
-    tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
-    assert error <= outside + tolerance, (
-        f"{camera}: {error:.4f} against {outside:.4f} outside (tolerance {tolerance:.4f})")
+    _check_error_within_noise(error, outside, estimate, camera)
     # Unbiased: what is left once the noise is taken out is the small floor of the outside view.
     assert estimate.bias <= max(2.0 * outside, 0.004), f"bias {estimate.bias:.4f}"
-    bias2_tolerance = Z_NOISE * np.hypot(estimate.bias2_error, outside_estimate.bias2_error)
+    bias2_tolerance = Z * np.hypot(estimate.bias2_error, outside_estimate.bias2_error)
     assert estimate.bias2 <= max(outside_estimate.bias2, 0.0) + bias2_tolerance, (
         f"squared bias {estimate.bias2:.2e} against {outside_estimate.bias2:.2e} outside")
 
 
-#: Standard errors allowed for the noise of one render.
-Z_NOISE = 4.0
+def _check_error_within_noise(error, outside, estimate, camera):
+    """The error is the view from outside's, to within Z standard errors of the noise of one
+    render."""
+    tolerance = Z * np.sqrt(estimate.noise + estimate.noise_error)
+    assert error <= outside + tolerance, (
+        f"{camera}: {error:.4f} against {outside:.4f} outside (tolerance {tolerance:.4f})")
 
 
 @pytest.mark.parametrize("method", MAPPERS)
@@ -134,8 +132,7 @@ Z_NOISE = 4.0
 def test_inside_in_parallel_projection(method, name, have_display):
     outside, _ = _error_and_noise(name, CAMERAS["outside"], True, method)
     error, estimate = _error_and_noise(name, CAMERAS["inside"], True, method)
-    tolerance = Z_NOISE * np.sqrt(estimate.noise + estimate.noise_error)
-    assert error <= outside + tolerance, f"{error:.4f} against {outside:.4f} outside"
+    _check_error_within_noise(error, outside, estimate, "inside, parallel")
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -187,14 +184,6 @@ def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, paral
     assert not holes.any(), f"{int(holes.sum())} empty pixels"
 
 
-def _camera_on(point, direction):
-    camera = vtk.vtkCamera()
-    camera.SetPosition(*point)
-    camera.SetFocalPoint(*(np.asarray(point) + np.asarray(direction)))
-    camera.SetViewUp(0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else camera.SetViewUp(0, 1, 0)
-    return camera
-
-
 @pytest.mark.parametrize("where", ["vertex", "edge", "face"])
 @pytest.mark.parametrize("method", ["spt", "pbvr", "havs"])
 def test_camera_exactly_on_the_mesh_gives_no_nan(method, where, have_display):
@@ -210,7 +199,10 @@ def test_camera_exactly_on_the_mesh_gives_no_nan(method, where, have_display):
     window, renderer = render.make_window(SIZE, SIZE)
     mapper = render.havs_mapper(6) if method == "havs" else MAPPERS[method](1)
     render.add_volume(renderer, s.grid, s.property, mapper)
-    renderer.SetActiveCamera(_camera_on(spot, direction))
+    camera = renderer.GetActiveCamera()
+    camera.SetPosition(*spot)
+    camera.SetFocalPoint(*(spot + direction))
+    camera.SetViewUp((0.0, 0.0, 1.0) if abs(direction[2]) < 0.9 else (0.0, 1.0, 0.0))
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
     image = draw_once(window)
     assert np.isfinite(image).all()

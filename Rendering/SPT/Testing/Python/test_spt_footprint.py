@@ -16,32 +16,25 @@ import pytest
 
 import image_statistics
 import scene_support
+from statistics_checks import Z
 from spt import raycast, render
-from vtkmodules.vtkRenderingCore import vtkVolume
 
 SIZE = 192
 REPETITIONS = 16
-Z = 4.0  # standard errors
 #: The bias floor of SPT's statistical tests (statistics_checks).
 BIAS_FLOOR = 0.012
 
 
-def _volumes(grid, prop, apart):
-    """The mesh as one volume, or as two volumes far apart (the second moved by its own
-    transform): their mappers and the bounds of what they show."""
-    mappers = [render.spt_mapper(REPETITIONS, seed=3)]
-    volumes = [vtkVolume()]
+def _volumes(renderer, grid, prop, apart, seed=3):
+    """The mesh as one volume in ``renderer``, or as two volumes far apart (the second, of
+    seed 4, moved by its own transform): the volumes and the bounds of what they show."""
     bounds = list(grid.GetBounds())
+    volumes = [render.add_volume(renderer, grid, prop, render.spt_mapper(REPETITIONS, seed=each))
+               for each in ((seed, 4) if apart else (seed,))]
     if apart:
-        mappers.append(render.spt_mapper(REPETITIONS, seed=4))
-        volumes.append(vtkVolume())
         shift = 3.0 * (bounds[1] - bounds[0])
         volumes[1].SetPosition(shift, 0.0, 0.0)
         bounds[1] += shift
-    for mapper, volume in zip(mappers, volumes):
-        mapper.SetInputData(grid)
-        volume.SetMapper(mapper)
-        volume.SetProperty(prop)
     return volumes, bounds
 
 
@@ -62,9 +55,7 @@ def _small_view(apart, first_fills):
     each one's pixels hold keys of the same depths as its own."""
     s = scene_support.scene("default")
     window, renderer = render.make_window(SIZE, SIZE)
-    volumes, bounds = _volumes(s.grid, s.property, apart)
-    for volume in volumes:
-        renderer.AddVolume(volume)
+    volumes, bounds = _volumes(renderer, s.grid, s.property, apart)
     zoom = 0.5 if apart else 0.45
     if first_fills and not apart:
         filled = _draw(window, renderer, s.grid.GetBounds(), s.view, 4.0, (0.0, 0.0))
@@ -105,9 +96,7 @@ def _unbiased_estimate(centre):
     images = []
     for seed in (3, 5):
         window, renderer = render.make_window(SIZE, SIZE)
-        volumes, bounds = _volumes(s.grid, s.property, False)
-        volumes[0].GetMapper().SetSeed(seed)
-        renderer.AddVolume(volumes[0])
+        _, bounds = _volumes(renderer, s.grid, s.property, False, seed)
         images.append(_draw(window, renderer, bounds, s.view, 0.45, centre))
         exact = raycast.render(s.grid, s.property, renderer.GetActiveCamera(), (SIZE, SIZE))
         window.Finalize()

@@ -1,5 +1,5 @@
 """Beyond the paper: several repetitions per pass, stratified thresholds, progressive
-refinement and the time budget of vtkSPTVolumeMapper.
+refinement, the time budget and the image's sample distance of vtkSPTVolumeMapper.
 
 - Several repetitions per pass use the same random numbers as single passes, so the image is
   the same image, not only the same expectation.
@@ -7,6 +7,12 @@ refinement and the time budget of vtkSPTVolumeMapper.
   floor) and lower the error at equal repetitions.
 - Progressive refinement adds repetitions while nothing changes and restarts on a change.
 - The time budget cuts the repetitions when the allocated render time is short.
+- An interactive render that cannot fit even one repetition in its time draws fewer pixels and
+  interpolates them to the viewport (AutoAdjustSampleDistances); a still render draws every
+  pixel. A render at sample distance 2 in a viewport of 2n x 2n pixels draws the image a
+  viewport of n x n pixels draws (the same projection, the same samples and random numbers),
+  interpolated bilinearly: the tests compare the two exactly, up to the 8-bit framebuffer's
+  rounding.
 """
 
 import os
@@ -18,7 +24,8 @@ import pytest
 from spt import metrics, render
 
 import image_statistics
-from scene_support import reference, render_at_still_rate, scene, window_with
+from scene_support import (bilinear_upsampled, opaque_plane, reference, render_at_still_rate,
+                           scene, scene_image, window_with)
 
 SIZE = 128
 
@@ -30,10 +37,9 @@ SAMPLING = {"survivor": {"estimator": "survivor", "exact_coverage": False}, "def
 
 @lru_cache(maxsize=None)
 def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
-    s = scene("default")
     mapper = render.spt_mapper(level, seed=seed, stratified=stratified, per_pass=per_pass,
                                **SAMPLING[sampling])
-    return render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    return scene_image("default", mapper, SIZE, frames=0)
 
 
 @pytest.mark.parametrize("sampling", list(SAMPLING))
@@ -54,10 +60,9 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     """SetSamplingToPaper() is the paper's method: the image of the survivor estimator with
     independent thresholds, no exact coverage and one repetition per pass, set one by one; the
     frame statistics report what the render drew."""
-    s = scene("default")
     mapper = render.spt_mapper(12, seed=7)
     mapper.SetSamplingToPaper()
-    paper = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    paper = scene_image("default", mapper, SIZE, frames=0)
     assert paper[..., 3].max() > 0.2, "the image is empty"
     one_by_one = _image(12, 7, False, per_pass=1, sampling="survivor")
     assert np.array_equal(paper, one_by_one)
@@ -68,7 +73,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     assert statistics.GetParallelBytes() == 0
     # The defaults' image is another one: the same expectation, less noise.
     mapper.SetSamplingToDefault()
-    default = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE), frames=0).image
+    default = scene_image("default", mapper, SIZE, frames=0)
     exact = reference("default", SIZE)
     assert metrics.rmse(default, exact) < metrics.rmse(paper, exact)
 
@@ -141,9 +146,8 @@ def test_progressive_refinement_accumulates_until_something_changes(have_display
         window.Render()
         assert mapper.GetLastRepetitionCount() == expected
     accumulated = render.read_rgba(window)
-    s = scene("default")
-    once = render.render(s.grid, s.property, render.spt_mapper(32, seed=5, stratified=False),
-                         s.view, (SIZE, SIZE), frames=0).image
+    once = scene_image("default", render.spt_mapper(32, seed=5, stratified=False), SIZE,
+                       frames=0)
     assert np.abs(accumulated - once).max() <= 1.0 / 255.0 + 1e-6
     renderer.GetActiveCamera().Azimuth(10.0)
     window.Render()
@@ -229,9 +233,16 @@ def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
     window.Finalize()
 
 
-def _budget_frame(mapper):
-    """The image one render of the default scene gives through ``mapper``, at the still rate."""
-    window, _ = window_with(mapper, SIZE)
+def _still_image(mapper, size=SIZE, plane=False):
+    """The image one render of the default scene gives through ``mapper``, at the still rate;
+    with ``plane``, behind a black unlit plane, over the black background: the image is the
+    volume's alone, where the plane does not hide it."""
+    window, renderer = window_with(mapper, size)
+    if plane:
+        actor = opaque_plane(scene("default").grid)
+        actor.GetProperty().SetColor(0.0, 0.0, 0.0)
+        actor.GetProperty().LightingOff()
+        renderer.AddActor(actor)
     render_at_still_rate(window)
     image = render.read_rgba(window)
     window.Finalize()
@@ -255,8 +266,8 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
     single = render.read_rgba(window)
     window.Finalize()
     assert pair[..., 3].max() > 0.2 and single[..., 3].max() > 0.2, "an empty image"
-    one_pair = _budget_frame(render.spt_mapper(1, seed=1, per_pass=16))
-    one_single = _budget_frame(render.spt_mapper(1, seed=1, per_pass=16, **SAMPLING["survivor"]))
+    one_pair = _still_image(render.spt_mapper(1, seed=1, per_pass=16))
+    one_single = _still_image(render.spt_mapper(1, seed=1, per_pass=16, **SAMPLING["survivor"]))
     assert np.abs(pair - one_pair).max() <= 1.0 / 255.0 + 1e-6
     assert np.abs(single - one_single).max() <= 1.0 / 255.0 + 1e-6
     pair_error = metrics.rmse(pair, reference("default", SIZE))
@@ -282,3 +293,77 @@ def test_depth_keys_follow_the_device_memory(have_display):
     if "llvmpipe" not in capabilities or host // 8 < size * size * 4 * level:
         pytest.skip("the budget follows the host's memory on llvmpipe with 2 GiB or more")
     assert memory[256] - memory[16] == size * size * 4 * (level - 16)
+
+
+def _fixed_distance(mapper, distance):
+    mapper.AutoAdjustSampleDistancesOff()
+    mapper.SetImageSampleDistance(distance)
+    return mapper
+
+
+def test_a_sample_distance_of_two_draws_the_image_of_half_the_pixels_interpolated(have_display):
+    fine = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE)
+    coarse = _still_image(render.spt_mapper(16, seed=2), SIZE)
+    assert coarse[..., 3].max() > 0.2, "an empty image"
+    difference = np.abs(fine - bilinear_upsampled(coarse, 2))
+    # Each image is rounded to 8 bits: the interpolated rounding and the fine image's own.
+    assert difference.max() <= 1.0 / 255.0 + 1e-6, f"{difference.max() * 255:.2f} / 255"
+
+
+def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers(have_display):
+    """The opaque scene's depth is read at the center of each image pixel: behind an opaque
+    plane, the image at sample distance 2 is that of half the pixels, interpolated, but where
+    the plane cuts the volume (there the depth is read half a pixel of the smaller image
+    apart)."""
+    fine = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE, True)
+    coarse = bilinear_upsampled(_still_image(render.spt_mapper(16, seed=2), SIZE, True), 2)
+    without = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE)
+    hidden = np.abs(fine[..., :3] - without[..., :3]).max(axis=-1) > 0.05
+    assert hidden.mean() > 0.05, "the plane hides nothing"
+    difference = np.abs(fine[..., :3] - coarse[..., :3]).max(axis=-1)
+    assert np.median(difference[hidden]) <= 1.0 / 255.0 + 1e-6
+    error, hiding = metrics.rmse(fine, coarse), metrics.rmse(fine, without)
+    print(f"RMSE {error:.4f} from half the pixels, {hiding:.4f} from the image without the plane")
+    assert error < 0.25 * hiding, f"RMSE {error:.4f} against {hiding:.4f}"
+
+
+def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel(have_display):
+    """With a budget of 1 us not even one repetition fits, so the sample distance is its
+    maximum from the first interactive render on (planned from the still render's time, not
+    drawn at every pixel first); a lower maximum caps it; a still render draws every pixel, the
+    image of a mapper that never rendered interactively, bit for bit."""
+    mapper = render.spt_mapper(16, seed=4)
+    mapper.AutoAdjustRepetitionsOn()
+    window, _ = window_with(mapper, SIZE)
+    render_at_still_rate(window)
+    still = render.read_rgba(window)
+    assert mapper.GetImageSampleDistance() == 1.0
+    window.SetDesiredUpdateRate(1.0e6)
+    distances = []
+    for _ in range(4):
+        window.Render()
+        distances.append(mapper.GetImageSampleDistance())
+        assert render.read_rgba(window)[..., 3].max() > 0.2, "an empty interactive image"
+    assert distances == [mapper.GetMaximumImageSampleDistance()] * 4 == [4.0] * 4, distances
+    mapper.SetMaximumImageSampleDistance(2.5)
+    window.Render()
+    assert mapper.GetImageSampleDistance() == 2.5
+    render_at_still_rate(window)
+    assert mapper.GetImageSampleDistance() == 1.0
+    assert mapper.GetLastRepetitionCount() == 16
+    assert np.array_equal(render.read_rgba(window), still)
+    window.Finalize()
+
+
+def test_without_the_adjustment_the_distance_is_the_one_set(have_display):
+    mapper = _fixed_distance(render.spt_mapper(4, seed=4), 3.0)
+    mapper.AutoAdjustRepetitionsOn()
+    window, _ = window_with(mapper, SIZE)
+    render_at_still_rate(window)
+    window.SetDesiredUpdateRate(1000.0)
+    window.Render()
+    window.Render()
+    assert mapper.GetImageSampleDistance() == pytest.approx(3.0)
+    mapper.SetImageSampleDistance(0.5)
+    assert mapper.GetImageSampleDistance() == 1.0, "clamped to every pixel"
+    window.Finalize()

@@ -25,7 +25,7 @@ from spt import metrics, render
 
 import image_statistics
 from robustness_support import watch
-from scene_support import reference, render_at_still_rate, scene, window_with
+from scene_support import reference, render_at_still_rate, scene, scene_image, window_with
 from statistics_checks import Z
 
 SIZE = 128
@@ -49,19 +49,13 @@ def _largest_tile(values, mask):
     return max(means)
 
 
-def tile_error(image, name):
+def tile_error(image, name, other=None):
     """The largest tile's root mean square error against the exact reference (premultiplied
-    RGBA over the footprint of either image)."""
+    RGBA over the footprint of either image); with ``other``, a render with another seed,
+    the largest tile's noise of one render instead (half their mean squared difference)."""
     image, exact = metrics.as_float(image), metrics.as_float(reference(name, SIZE))
-    mask = metrics.footprint(image, exact)
-    return np.sqrt(_largest_tile(((image - exact) ** 2).mean(axis=2), mask))
-
-
-def tile_noise(first, second, name):
-    """The largest tile's noise of one render, from two renders with other seeds."""
-    first, second = metrics.as_float(first), metrics.as_float(second)
-    mask = metrics.footprint(first, metrics.as_float(reference(name, SIZE)))
-    return np.sqrt(_largest_tile((0.5 * (first - second) ** 2).mean(axis=2), mask))
+    squared = (image - exact) ** 2 if other is None else 0.5 * (image - other) ** 2
+    return np.sqrt(_largest_tile(squared.mean(axis=2), metrics.footprint(image, exact)))
 
 
 #: Repetitions per traversal for the tests of the estimate. A first image's first step is at
@@ -74,40 +68,24 @@ PER_PASS = 4
 
 
 def _mapper(level, seed, target, per_pass=PER_PASS):
-    mapper = render.spt_mapper(level, seed=seed, per_pass=per_pass)
-    mapper.SetTargetError(target)
-    return mapper
-
-
-@lru_cache(maxsize=None)
-def _stopped(name, seed):
-    """The image at the scene's target, the estimate and the repetitions it took."""
-    s = scene(name)
-    mapper = _mapper(CAP, seed, TARGETS[name])
-    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
-    return image, mapper.GetEstimatedError(), mapper.GetLastRepetitionCount()
+    return render.spt_mapper(level, seed=seed, per_pass=per_pass, target_error=target)
 
 
 @lru_cache(maxsize=None)
 def _fixed(name, level, seed):
-    s = scene(name)
-    return render.render(s.grid, s.property, render.spt_mapper(level, seed=seed), s.view,
-                         (SIZE, SIZE)).image
+    return scene_image(name, render.spt_mapper(level, seed=seed), SIZE)
 
 
 @pytest.mark.parametrize("name", SCENES)
 def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
         name, have_display):
-    image, estimated, level = _stopped(name, 1)
-    assert image[..., 3].max() > 0.2, "the image is (almost) empty"
-    assert 2 <= level < CAP, f"stopped at {level} repetitions"
-    assert 0.0 < estimated <= TARGETS[name]
-    measured = tile_error(image, name)
+    _, level, estimated, measured = _stopped(name, 1)
+    assert 2 <= level, f"stopped at {level} repetitions"
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
         f"estimated {estimated:.4f}, measured {measured:.4f} at {level} repetitions")
     # The noise, from two seeds at the same count (half their mean squared difference), and
     # the rounding to 8 bits, which the estimate counts too.
-    noise = tile_noise(_fixed(name, level, 1), _fixed(name, level, 2), name)
+    noise = tile_error(_fixed(name, level, 1), name, metrics.as_float(_fixed(name, level, 2)))
     shown = np.hypot(noise, ROUNDING_8_BITS)
     assert shown / 1.5 <= estimated <= 1.5 * shown, (
         f"estimated {estimated:.4f}, two-seed noise {noise:.4f} with the rounding {shown:.4f}")
@@ -119,14 +97,18 @@ def test_every_tile_meets_the_target_and_quiet_tiles_stop_first(name, have_displ
     the target: the image's quietest tiles hold fewer than its noisiest, and every tile's error
     against the exact reference meets the target (within a tenth: the measured error is
     itself that of one image)."""
-    s = scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name])
-    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    _check_tiles_meet_the_target(mapper, scene_image(name, mapper, SIZE), name, TARGETS[name])
+
+
+def _check_tiles_meet_the_target(mapper, image, name, target):
+    """The quietest tiles of ``mapper``'s last image hold fewer repetitions than its noisiest,
+    and every tile's error against the exact reference is at most 1.1 x ``target``."""
     statistics = mapper.GetFrameStatistics()
     most, fewest = statistics.GetRepetitionCount(), statistics.GetFewestRepetitionCount()
     assert 2 <= fewest < most < CAP, f"tiles hold {fewest} to {most} repetitions"
     measured = tile_error(image, name)
-    assert measured <= 1.1 * TARGETS[name], (
+    assert measured <= 1.1 * target, (
         f"largest tile's error {measured:.4f} at {fewest} to {most} repetitions")
 
 
@@ -141,12 +123,8 @@ def test_a_new_image_aims_its_first_step_at_the_median_tile(have_display):
     window.Render()
     mapper.SetSeed(2)
     window.Render()
-    statistics = mapper.GetFrameStatistics()
-    most, fewest = statistics.GetRepetitionCount(), statistics.GetFewestRepetitionCount()
-    assert 2 <= fewest < most < CAP, f"tiles hold {fewest} to {most} repetitions"
-    measured = tile_error(render.read_rgba(window), "post")
+    _check_tiles_meet_the_target(mapper, render.read_rgba(window), "post", target)
     window.Finalize()
-    assert measured <= 1.1 * target, f"largest tile's error {measured:.4f}"
 
 
 def _render_to_target(mapper, name, target=None):
@@ -154,14 +132,19 @@ def _render_to_target(mapper, name, target=None):
     or below ``target`` (the scene's by default) and below the cap: the image, the repetitions
     drawn, the estimate and the largest tile's error measured against the reference."""
     target = TARGETS[name] if target is None else target
-    s = scene(name)
-    image = render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE)).image
+    image = scene_image(name, mapper, SIZE)
     level = mapper.GetLastRepetitionCount()
     estimated = mapper.GetEstimatedError()
     assert image[..., 3].max() > 0.2, "the image is (almost) empty"
     assert level < CAP, f"drew the cap of {CAP} repetitions"
     assert 0.0 < estimated <= target
     return image, level, estimated, tile_error(image, name)
+
+
+@lru_cache(maxsize=None)
+def _stopped(name, seed):
+    """_render_to_target() of the scene at its target, from a mapper of ``seed``."""
+    return _render_to_target(_mapper(CAP, seed, TARGETS[name]), name)
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
@@ -196,9 +179,8 @@ def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_d
     meshes' own. A new image (the same view with another seed) draws at once as many as the
     last image's noise per repetition predicts for the target: fewer here, and its estimate
     still meets the target and the error measured against the reference."""
-    s = scene(name)
     mapper = _mapper(CAP, 1, TARGETS[name], per_pass=None)
-    render.render(s.grid, s.property, mapper, s.view, (SIZE, SIZE))
+    scene_image(name, mapper, SIZE)
     first_level = mapper.GetLastRepetitionCount()
     mapper.SetSeed(2)
     _, level, estimated, measured = _render_to_target(mapper, name)
@@ -246,8 +228,8 @@ def test_without_reusing_the_noise_every_image_starts_alike(have_display):
 @pytest.mark.parametrize("name", SCENES)
 def test_stopped_images_are_unbiased(name, have_display):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""
-    first, _, level = _stopped(name, 1)
-    second, _, second_level = _stopped(name, 2)
+    first, level, _, _ = _stopped(name, 1)
+    second, second_level, _, _ = _stopped(name, 2)
     stopped = image_statistics.estimate(first, second, reference(name, SIZE),
                                         min(level, second_level))
     fixed = image_statistics.estimate(_fixed(name, level, 1), _fixed(name, level, 2),
