@@ -30,7 +30,7 @@ SIZE = (64, 64)
 VIEW = render.View(30, 30)
 KINDS = ["havs", "pbvr"]
 #: For the cases that every mapper meets alike, among them those the fuzz test found
-#: (fuzz_worker.py). SPT's own cases: test_spt_robustness.py.
+#: (test_fuzz.py). SPT's own cases: test_spt_robustness.py.
 ALL_KINDS = ["spt"] + KINDS
 PBVR_LEVEL = 64  # repetitions of the renders compared with the reference
 Z = 4.0  # standard errors
