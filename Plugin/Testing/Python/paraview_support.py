@@ -8,6 +8,7 @@ PYTHONPATH; a test is skipped when they or the executables are missing.
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import shutil
@@ -23,8 +24,9 @@ import pytest
 SCRIPTS = pathlib.Path(__file__).resolve().parent / "paraview"
 SUBPROCESS_TIMEOUT = 900  # seconds; llvmpipe on two shared cores is slow
 
-# Debian's xvfb-run, as the Makefile uses it.
-XVFB_SERVER_ARGS = "-screen 0 1280x1024x24 -noreset"
+SPT, HAVS, PBVR = "Volume (SPT)", "Volume (HAVS-like)", "Volume (PBVR)"
+#: The mapper of each representation type (SPT's is the parallel subclass, on one rank too).
+MAPPERS = {SPT: "vtkPSPTVolumeMapper", HAVS: "vtkHAVSVolumeMapper", PBVR: "vtkPBVRVolumeMapper"}
 
 
 def executable(name: str) -> str:
@@ -70,6 +72,26 @@ def run(command: Sequence[str], env: Optional[Dict[str, str]] = None,
     assert "OpenGL errors detected" not in result.stderr, (
         f"{' '.join(map(str, command))} left OpenGL errors:\n{result.stderr[-4000:]}")
     return result
+
+
+def scene(data: os.PathLike, output: pathlib.Path, *options) -> list:
+    """render_volume.py's arguments for one scene: ``data`` rendered into ``output``, with its
+    reports beside it (read_report()), then ``options``."""
+    return ["--data", data, "--output", output, "--report", output.with_suffix(""), *options]
+
+
+def render_command(*scenes: Sequence, program: str = "pvpython") -> List:
+    """``program`` running render_volume.py on the scenes (each a scene()), one after the
+    other in one process."""
+    command = [executable(program), SCRIPTS / "render_volume.py"]
+    for index, arguments in enumerate(scenes):
+        command += (["--then"] if index else []) + list(arguments)
+    return command
+
+
+def read_report(output: pathlib.Path) -> dict:
+    """Rank 0's report on the scene rendered into ``output``."""
+    return json.loads(output.with_suffix(".rank0.json").read_text())
 
 
 def mpirun(ranks: int, command: Sequence[str], preload: Optional[str] = None) -> List[str]:

@@ -43,7 +43,8 @@ def parse_arguments(argv):
     parser.add_argument("--size", type=int, default=200)
     parser.add_argument("--representation", default="Volume (SPT)")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="an integer setting of the representation, by its name")
+                        type=lambda item: item.split("=", 1),
+                        help="a setting of the representation, by its name")
     parser.add_argument("--repetitions", type=int, default=16)
     parser.add_argument("--target-error", type=float, default=0.0,
                         help="SPT's Target Error (default 0: exactly --repetitions)")
@@ -51,8 +52,6 @@ def parse_arguments(argv):
     parser.add_argument("--other-seed", type=int,
                         help="then draw the view again with this seed (every volume's), into "
                         "OUTPUT with .seedN before its suffix")
-    parser.add_argument("--use-data-partitions", action="store_true",
-                        help="keep the pieces where they were read (no redistribution)")
     parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
                         help="look along this axis (ParaView's default: z)")
     parser.add_argument("--like", help="an earlier report (JSON) whose camera, scalar range and "
@@ -120,26 +119,18 @@ def setup_view(size):
     return view
 
 
-def settings_to_set(args):
-    return {name: value for name, value in (item.split("=", 1) for item in args.set)}
-
-
-def method(args):
-    return METHODS.get(args.representation, {})
-
-
 def mapper_settings(display, args):
     """Exposed name: the mapper's own name, of every setting in the representation's group."""
-    chosen = method(args)
-    prefix = chosen.get("prefix", "")
+    chosen = METHODS[args.representation]
+    prefix = chosen["prefix"]
     return {name: name[len(prefix):] if prefix and name.startswith(prefix) else name
-            for name in property_groups(display).get(chosen.get("group"), [])}
+            for name in property_groups(display)[chosen["group"]]}
 
 
 def setting_names(display, args):
     """Exposed name: the mapper's name, of every setting to report."""
     names = mapper_settings(display, args)
-    for name in settings_to_set(args):
+    for name, _ in args.set:
         names.setdefault(name, name)
     return names
 
@@ -173,15 +164,14 @@ def show_volume(reader, view, args, like):
     display.SetRepresentationType(args.representation)
     # What the representation starts with: the defaults the plugin's XML declares.
     defaults = {name: get_setting(display, name) for name in setting_names(display, args)}
-    chosen = method(args)
+    chosen = METHODS[args.representation]
     if "target" in chosen:
         set_setting(display, chosen["target"], args.target_error)
     if "repetitions" in chosen:
         set_setting(display, chosen["repetitions"], args.repetitions)
         set_setting(display, chosen["seed"], args.seed)
-    for name, value in settings_to_set(args).items():
+    for name, value in args.set:
         set_setting(display, name, value)
-    display.UseDataPartitions = int(args.use_data_partitions)
     return display, defaults
 
 
@@ -281,39 +271,20 @@ def render_plain(display, view, args):
     and the settings), drawn again by a new mapper of the same class in a plain VTK render
     window over black: what a VTK user of the spt package gets."""
     import spt
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import (vtkRenderWindow, vtkRenderer, vtkVolume,
-                                             vtkWindowToImageFilter)
+    from spt import metrics, render
 
     representation = display.GetClientSideObject().GetActiveRepresentation()
     drawn = representation.GetActiveVolumeMapper()
     mapper = getattr(spt, drawn.GetClassName())()
     for own in mapper_settings(display, args).values():
         getattr(mapper, "Set" + own)(getattr(drawn, "Get" + own)())
-    mapper.SetInputData(drawn.GetInput())
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(representation.GetActor().GetProperty())
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(args.size, args.size)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.0, 0.0, 0.0)
+    window, renderer = render.make_window(args.size, args.size)
+    volume = render.add_volume(renderer, drawn.GetInput(), representation.GetActor().GetProperty(),
+                               mapper)
     renderer.GetActiveCamera().DeepCopy(view.GetRenderer().GetActiveCamera())
-    window.AddRenderer(renderer)
-    renderer.AddVolume(volume)
     renderer.ResetCameraClippingRange()
     window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.ShouldRerenderOff()
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.plain)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    metrics.write_png(args.plain, render.read_rgba(window)[..., :3])
     renderer.RemoveVolume(volume)
     window.Finalize()
 
@@ -321,7 +292,7 @@ def render_plain(display, view, args):
 def save_with_other_seed(displays, view, args):
     """The view once more, each volume with Seed --other-seed: an image independent of the
     first, of the same scene."""
-    chosen = method(args)
+    chosen = METHODS[args.representation]
     if "seed" not in chosen:
         raise SystemExit(f"--other-seed: {args.representation} has no seed")
     for display in displays:
