@@ -231,17 +231,13 @@ def write_pieces(directory: pathlib.Path, cells_of_piece) -> pathlib.Path:
 
 def read_png(path: os.PathLike) -> np.ndarray:
     """An RGB(A) PNG as float in [0, 1], row 0 at the top."""
-    from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOImage import vtkPNGReader
+    from spt import metrics
 
     reader = vtkPNGReader()
     reader.SetFileName(str(path))
     reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    scalars = image.GetPointData().GetScalars()
-    pixels = vtk_to_numpy(scalars).reshape(height, width, scalars.GetNumberOfComponents())
-    return pixels[::-1].astype(np.float64) / 255.0
+    return metrics.from_vtk_image(reader.GetOutput(), as_float_rgba=True)
 
 
 def read_xwd(path: os.PathLike) -> np.ndarray:
