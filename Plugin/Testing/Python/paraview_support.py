@@ -49,14 +49,8 @@ def plugin_path() -> pathlib.Path:
 
 def environment(**overrides: str) -> Dict[str, str]:
     """This process's environment (PYTHONPATH with the build tree's spt, DISPLAY) plus
-    ``overrides``; an override of "" removes the variable."""
-    env = os.environ.copy()
-    for key, value in overrides.items():
-        if value == "":
-            env.pop(key, None)
-        else:
-            env[key] = value
-    return env
+    ``overrides``."""
+    return {**os.environ, **overrides}
 
 
 def run(command: Sequence[str], env: Optional[Dict[str, str]] = None,
@@ -266,10 +260,11 @@ def footprint(image: np.ndarray, background=(0.0, 0.0, 0.0), threshold: float = 
     return np.abs(image[..., :3] - np.asarray(background)).max(axis=-1) > threshold
 
 
-def check_volume_image(image: np.ndarray) -> None:
-    """A volume over black, not an empty view: part of the view is covered, with varied
-    colors."""
-    covered = footprint(image)
+def check_volume_image(image: np.ndarray, background=(0.0, 0.0, 0.0),
+                       threshold: float = 2.5 / 255.0) -> None:
+    """A volume over the background, not an empty view: part of the view differs from the
+    background (by more than ``threshold``), with varied colors."""
+    covered = footprint(image, background, threshold)
     assert 0.05 < covered.mean() < 0.8, f"{covered.mean():.3f} of the view is covered"
     colors = image[covered][:, :3]
     assert colors.mean() > 0.1
