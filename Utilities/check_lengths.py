@@ -58,10 +58,6 @@ class SourceError(ValueError):
     """A file the counter cannot read as the language its name says."""
 
 
-# --------------------------------------------------------------------------------------------
-# Python
-# --------------------------------------------------------------------------------------------
-
 def python_functions(text: str) -> List[Function]:
     """Every function and method of a Python source, nested ones included."""
     try:
@@ -76,60 +72,23 @@ def python_functions(text: str) -> List[Function]:
 # C++ and GLSL: blank what braces in it must not count, then match the braces
 # --------------------------------------------------------------------------------------------
 
-_RAW_STRING = re.compile(r'R"([^()\\\s]{0,16})\(')
-
-
-def _skip_quoted(text: str, start: int, quote: str) -> int:
-    """The index after the literal that opens with ``quote`` at ``start``."""
-    i = start + 1
-    while i < len(text) and text[i] != quote:
-        i += 2 if text[i] == "\\" else 1
-    return i + 1
-
-
-def _literal_end(text: str, i: int) -> Optional[int]:
-    """The end of the comment, literal or preprocessor line at ``i``, or None if none is."""
-    if text.startswith("//", i):
-        end = text.find("\n", i)
-        return len(text) if end < 0 else end
-    if text.startswith("/*", i):
-        end = text.find("*/", i + 2)
-        return len(text) if end < 0 else end + 2
-    char = text[i]
-    if char == '"':
-        raw = _RAW_STRING.match(text, i - 1) if i > 0 else None
-        if raw:
-            end = text.find(")" + raw.group(1) + '"', raw.end())
-            return len(text) if end < 0 else end + len(raw.group(1)) + 2
-        return _skip_quoted(text, i, '"')
-    if char == "'":
-        # A digit separator (1'000) is not a character literal.
-        token = re.search(r"[\w.]*$", text[max(0, i - 64):i]).group(0)
-        return None if token[:1].isdigit() else _skip_quoted(text, i, "'")
-    if char == "#" and text[text.rfind("\n", 0, i) + 1:i].strip() == "":
-        end = i
-        while True:
-            end = text.find("\n", end)
-            if end < 0 or text[end - 1] != "\\":
-                return len(text) if end < 0 else end
-            end += 1
-    return None
+# Whatever starts first wins, so that a comment's quote or a string's slashes do not count.
+# A number is matched only to keep its digit separators (1'000) from opening a character
+# literal.
+_NON_CODE = re.compile(r"""
+    (?P<number>\b\d[\w.']*)
+  | //[^\n]* | /\*.*?(?:\*/|\Z)
+  | R"(?P<delimiter>[^()\\\s]{0,16})\(.*?(?:\)(?P=delimiter)"|\Z)
+  | "(?:\\.|[^"\\])*"? | '(?:\\.|[^'\\])*'?
+  | ^[ \t]*\#(?:[^\n]*\\\n)*[^\n]*
+""", re.VERBOSE | re.DOTALL | re.MULTILINE)
 
 
 def blank_non_code(text: str) -> str:
     """``text`` with its comments, string and character literals and preprocessor lines
     replaced by spaces (newlines kept, so that offsets and line numbers stay)."""
-    out = []
-    i = 0
-    while i < len(text):
-        end = _literal_end(text, i)
-        if end is None:
-            out.append(text[i])
-            i += 1
-        else:
-            out.append(re.sub(r"[^\n]", " ", text[i:end]))
-            i = end
-    return "".join(out)
+    return _NON_CODE.sub(lambda match: match.group() if match.group("number")
+                         else re.sub(r"[^\n]", " ", match.group()), text)
 
 
 def _depth_zero(head: str) -> str:
@@ -170,14 +129,13 @@ def _initializer_list(head: str) -> bool:
 
 def classify(head: str) -> str:
     """What a brace at file, namespace or class scope opens, from the text before it:
-    ``namespace``, ``class``, ``function`` or ``other``."""
+    ``scope`` (a namespace, class or ``extern`` block), ``function`` or ``other``."""
     head = _strip_template(head)
     flat = _depth_zero(re.sub(r"\boperator\s*[^\s(]+", "operator", head))
     before_call = flat.split("(", 1)[0]
-    if re.search(r"\bnamespace\b", before_call) or re.fullmatch(r"\s*extern\s*", flat):
-        return "namespace"
-    if re.search(r"\b(class|struct|union)\b", before_call):
-        return "class"
+    if (re.search(r"\b(namespace|class|struct|union)\b", before_call)
+            or re.fullmatch(r"\s*extern\s*", flat)):
+        return "scope"
     if re.search(r"\benum\b", before_call) or "(" not in flat or _ASSIGNMENT.search(flat):
         return "other"
     if _QUALIFIER_END.search(flat) or "->" in flat or _initializer_list(head):
@@ -194,63 +152,48 @@ def _function_name(head: str) -> str:
     return match.group(1) if match else "(unnamed)"
 
 
-class _Scanner:
-    """Matches the braces of blanked C++ or GLSL and collects the functions."""
-
-    def __init__(self, code: str):
-        self.code = code
-        self.newlines = [i for i, char in enumerate(code) if char == "\n"]
-        self.stack: List[tuple] = [("file", 0, "")]
-        self.head_start = 0
-        self.functions: List[Function] = []
-
-    def line(self, offset: int) -> int:
-        return bisect.bisect_left(self.newlines, offset) + 1
-
-    def open(self, i: int) -> None:
-        kind = self.stack[-1][0]
-        if kind in ("function", "inner", "other", "initializer"):
-            self.stack.append(("inner", i, ""))
-            return
-        head = self.code[self.head_start:i]
-        previous = head.rstrip()[-1:]
-        if _initializer_list(head) and (previous.isalnum() or previous in "_>"):
-            self.stack.append(("initializer", i, ""))
-            return
-        start = self.head_start + len(head) - len(_strip_access(head).lstrip())
-        self.stack.append((classify(head), start, _function_name(head)))
-        self.head_start = i + 1
-
-    def close(self, i: int) -> None:
-        if len(self.stack) == 1:
-            raise SourceError(f"a closing brace without an opening one at line {self.line(i)}")
-        kind, start, name = self.stack.pop()
-        if kind == "function":
-            self.functions.append(Function(name, self.line(start), self.line(i)))
-        if kind != "initializer" and self.stack[-1][0] in ("file", "namespace", "class"):
-            self.head_start = i + 1
-
-    def scan(self) -> List[Function]:
-        for i, char in enumerate(self.code):
-            if char == "{":
-                self.open(i)
-            elif char == "}":
-                self.close(i)
-            elif char == ";" and self.stack[-1][0] in ("file", "namespace", "class"):
-                self.head_start = i + 1
-        if len(self.stack) > 1:
-            kind, start, _ = self.stack[-1]
-            raise SourceError(f"the block from line {self.line(start)} is never closed")
-        return self.functions
-
-
-def _strip_access(head: str) -> str:
-    return re.sub(r"^\s*((public|protected|private)\s*:(?!:)\s*)+", "", head)
-
-
 def cxx_functions(text: str) -> List[Function]:
-    """Every function body at file, namespace or class scope of a C++ or GLSL source."""
-    return _Scanner(blank_non_code(text)).scan()
+    """Every function body at file, namespace or class scope of a C++ or GLSL source.
+
+    A stack of the open blocks, each (kind, first offset, name): ``scope`` for the file, a
+    namespace or a class, where a block's head (the text since the last ``;``, ``{`` or
+    ``}``) says what it opens; ``function``, ``other``, and ``inner`` for every block inside
+    those two; ``initializer`` for a brace initializer in a constructor's signature, which
+    does not end that signature."""
+    code = blank_non_code(text)
+    newlines = [i for i, char in enumerate(code) if char == "\n"]
+
+    def line(offset: int) -> int:
+        return bisect.bisect_left(newlines, offset) + 1
+
+    stack = [("scope", 0, "")]
+    functions: List[Function] = []
+    head_start = 0
+    for match in re.finditer(r"[{};]", code):
+        i, char, at_scope = match.start(), match.group(), stack[-1][0] == "scope"
+        head = code[head_start:i]
+        if char == ";" and at_scope:
+            head_start = i + 1
+        elif char == "{" and not at_scope:
+            stack.append(("inner", i, ""))
+        elif char == "{" and _initializer_list(head) and re.search(r"[\w>]\s*$", head):
+            stack.append(("initializer", i, ""))
+        elif char == "{":
+            signature = re.sub(r"^\s*((public|protected|private)\s*:(?!:)\s*)+", "", head)
+            start = head_start + len(head) - len(signature.lstrip())
+            stack.append((classify(head), start, _function_name(head)))
+            head_start = i + 1
+        elif char == "}":
+            if len(stack) == 1:
+                raise SourceError(f"a closing brace without an opening one at line {line(i)}")
+            kind, start, name = stack.pop()
+            if kind == "function":
+                functions.append(Function(name, line(start), line(i)))
+            if kind != "initializer" and stack[-1][0] == "scope":
+                head_start = i + 1
+    if len(stack) > 1:
+        raise SourceError(f"the block from line {line(stack[-1][1])} is never closed")
+    return functions
 
 
 # --------------------------------------------------------------------------------------------

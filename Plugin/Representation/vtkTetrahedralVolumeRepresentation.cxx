@@ -1,15 +1,14 @@
 #include "vtkTetrahedralVolumeRepresentation.h"
 
 #include "vtkAbstractVolumeMapper.h"
-#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPSPTVolumeMapper.h"
 #include "vtkPVRenderView.h"
-#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkTetrahedralVolumeMapper.h"
 #include "vtkUnstructuredGrid.h"
@@ -31,16 +30,12 @@ void vtkTetrahedralVolumeRepresentation::SetVolumeMapper(vtkAbstractVolumeMapper
     return;
   }
   this->VolumeMapper = mapper;
+  // The superclass keeps its mappers by name and draws with the active one.
   if (mapper)
   {
-    // The superclass keeps its mappers by name and draws with the active one.
     this->AddVolumeMapper(mapper->GetClassName(), mapper);
-    this->Superclass::SetActiveVolumeMapper(mapper->GetClassName());
   }
-  else
-  {
-    this->Superclass::SetActiveVolumeMapper(nullptr);
-  }
+  this->Superclass::SetActiveVolumeMapper(mapper ? mapper->GetClassName() : nullptr);
   this->Modified();
 }
 
@@ -89,14 +84,8 @@ void vtkTetrahedralVolumeRepresentation::KeepPieceDrawn(
   vtkNew<vtkUnstructuredGrid> empty;
   empty->SetPoints(vtkNew<vtkPoints>());
   empty->Allocate(0);
-  if (mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA)
-  {
-    empty->GetCellData()->AddArray(scalars);
-  }
-  else
-  {
-    empty->GetPointData()->AddArray(scalars);
-  }
+  const bool cellScalars = mapper->GetScalarMode() == VTK_SCALAR_MODE_USE_CELL_FIELD_DATA;
+  empty->GetAttributes(cellScalars ? vtkDataObject::CELL : vtkDataObject::POINT)->AddArray(scalars);
   mapper->SetInputDataObject(empty);
 }
 

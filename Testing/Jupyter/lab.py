@@ -16,7 +16,7 @@ import sys
 import time
 import urllib.request
 from pathlib import Path
-from typing import Iterator
+from typing import Callable, Iterator
 
 CHROMIUM = os.environ.get("SPT_CHROMIUM", "/usr/bin/chromium")
 CHROMEDRIVER = os.environ.get("SPT_CHROMEDRIVER", "/usr/bin/chromedriver")
@@ -42,24 +42,12 @@ def _stop_group(process: subprocess.Popen, grace: float = 10.0) -> None:
     process.wait()
 
 
-class Lab:
-    """A running JupyterLab: ``url(path)`` is a page of it with the token."""
-
-    def __init__(self, root: Path, port: int, token: str, log: Path):
-        self.root, self.port, self.token, self.log = root, port, token, log
-
-    def url(self, path: str) -> str:
-        return f"http://127.0.0.1:{self.port}/{path}?token={self.token}"
-
-    def log_tail(self) -> str:
-        return self.log.read_text(errors="replace")[-4000:] if self.log.exists() else ""
-
-
 @contextlib.contextmanager
-def jupyter_lab(root: Path, startup: float = 180.0) -> Iterator[Lab]:
+def jupyter_lab(root: Path, startup: float = 180.0) -> Iterator[Callable[[str], str]]:
     """JupyterLab serving ``root``, with its own runtime, configuration and data folders under
     ``root/.jupyter-*`` (nothing of the user's), a random token, on 127.0.0.1 and a free port;
-    ``window.jupyterapp`` exposed to the page. Yields once /api answers."""
+    ``window.jupyterapp`` exposed to the page. Yields ``url(path)``, a page of it with the
+    token, once /api answers."""
     home = root / ".jupyter-home"
     environment = {**os.environ, "JUPYTER_RUNTIME_DIR": str(home / "runtime"),
                    "JUPYTER_CONFIG_DIR": str(home / "config"),
@@ -76,23 +64,27 @@ def jupyter_lab(root: Path, startup: float = 180.0) -> Iterator[Lab]:
     with open(log, "wb") as output:
         process = subprocess.Popen(command, cwd=root, env=environment, stdout=output,
                                    stderr=subprocess.STDOUT, start_new_session=True)
-    lab = Lab(root, port, token, log)
+
+    def url(path: str) -> str:
+        return f"http://127.0.0.1:{port}/{path}?token={token}"
+
     try:
         deadline = time.monotonic() + startup
         while True:
             if process.poll() is not None:
                 raise RuntimeError(f"jupyter lab exited ({process.returncode}):\n"
-                                   + lab.log_tail())
+                                   + log.read_text(errors="replace")[-4000:])
             try:
-                with urllib.request.urlopen(lab.url("api"), timeout=5) as answer:
+                with urllib.request.urlopen(url("api"), timeout=5) as answer:
                     json.load(answer)
                 break
             except OSError:
                 if time.monotonic() > deadline:
                     raise RuntimeError(f"jupyter lab did not answer on port {port} in "
-                                       f"{startup:.0f} s:\n" + lab.log_tail())
+                                       f"{startup:.0f} s:\n"
+                                       + log.read_text(errors="replace")[-4000:])
                 time.sleep(0.5)
-        yield lab
+        yield url
     finally:
         _stop_group(process)
 

@@ -17,7 +17,6 @@ import pytest
 from PIL import Image
 
 import lab
-from camera_state import vtk_camera
 
 TARGET_ERROR = 0.005
 QUALITY = 98  # trame's still-image JPEG quality (trame_vtk's VtkRemoteView still_quality)
@@ -31,17 +30,21 @@ from spt import data
 mesh = pv.wrap(data.make_default_mesh())
 plotter = pv.Plotter(window_size=(400, 400))
 plotter.background_color = "black"
-spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False,
-                       target_error=%r)
+actor = spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False,
+                               target_error=%r)
 plotter.camera_position = "iso"
 """ % TARGET_ERROR, "plotter.show()"]
 
-# Read back from the kernel: the camera and the size of the image it last rendered.
+# Read back from the kernel: the camera's position and the size of the image it last rendered,
+# and into the file named here, the exact image of the notebook's scene at that camera and size
+# (premultiplied RGBA, its RGB the color over the black background).
 STATE = """import json
-_c = plotter.camera
-print(json.dumps({"position": _c.position, "focal_point": _c.focal_point, "view_up": _c.up,
-                  "view_angle": _c.view_angle, "clipping_range": _c.clipping_range,
-                  "size": list(plotter.render_window.GetSize())}))
+import numpy as np
+from spt import raycast
+_size = tuple(plotter.render_window.GetSize())
+np.save(%r, raycast.render(actor.mapper.GetInput(), actor.prop,
+                           plotter.renderer.GetActiveCamera(), _size))
+print(json.dumps({"position": plotter.camera.position, "size": _size}))
 """
 
 EXECUTE = """const [code, done] = arguments;
@@ -49,7 +52,7 @@ const kernel = jupyterapp.shell.currentWidget.sessionContext.session.kernel;
 const future = kernel.requestExecute({code});
 let text = "";
 future.onIOPub = (m) => {
-  if (m.header.msg_type === "stream") text += m.content.text;
+  if (m.header.msg_type === "stream" && m.content.name === "stdout") text += m.content.text;
   if (m.header.msg_type === "error") text += "ERROR " + m.content.evalue;
 };
 future.done.then(() => done(text), (e) => done("ERROR " + e));"""
@@ -102,21 +105,6 @@ def _frame(driver, frame_element, previous=None, settle=3.0):
     return seen[0], np.asarray(Image.open(io.BytesIO(png)).convert("RGB"))
 
 
-def _reference(state):
-    """The exact image of the notebook's scene at the kernel's camera and image size, as
-    8-bit RGB over the black background (premultiplied RGB), and as floats."""
-    import pyvista as pv
-    import spt.pyvista
-    from spt import data, raycast
-    plotter = pv.Plotter(off_screen=True, window_size=state["size"])
-    actor = spt.pyvista.add_volume(plotter, pv.wrap(data.make_default_mesh()), cmap="viridis",
-                                   show_scalar_bar=False)
-    exact = raycast.render(actor.mapper.GetInput(), actor.prop, vtk_camera(state),
-                           tuple(state["size"]))
-    plotter.close()
-    return exact
-
-
 def _jpeg_error(rgb8: np.ndarray, mask: np.ndarray) -> float:
     """The RMSE that a JPEG of ``rgb8`` at trame's quality adds, encoded as trame encodes it
     (VTK's vtkJPEGWriter, through vtkWebApplication) and decoded."""
@@ -142,8 +130,14 @@ def _rmse(a, b, mask):
     return float(np.sqrt(np.mean(difference * difference)))
 
 
-def _check_is_spt(image, state, name):
-    exact = _reference(state)
+def _state(driver, directory, name):
+    """The kernel's camera position and image size, and the exact image of its scene."""
+    path = directory / f"{name}-exact.npy"
+    state = json.loads(_kernel(driver, STATE % str(path)))
+    return state, np.load(path)
+
+
+def _check_is_spt(image, state, exact, name):
     assert image.shape[:2] == exact.shape[:2], (image.shape, state["size"])
     mask = exact[..., 3] > 0.5 / 255.0
     assert mask.mean() > 0.05, "the exact image is (nearly) empty"
@@ -158,25 +152,25 @@ def _check_is_spt(image, state, name):
     print(f"{name}: RMSE {error:.4f} against the exact image, tolerance {tolerance:.4f} "
           f"(JPEG {jpeg:.4f}), {image.shape[1]}x{image.shape[0]}")
     assert error <= tolerance, (name, error, tolerance)
-    return exact, mask
+    return mask
 
 
 @pytest.fixture
 def notebook_page(tmp_path):
     path = lab.notebook(tmp_path / "spt.ipynb", CELLS)
-    with lab.jupyter_lab(tmp_path) as server, lab.chromium() as driver:
-        driver.get(server.url(f"lab/tree/{path.name}"))
+    with lab.jupyter_lab(tmp_path) as url, lab.chromium() as driver:
+        driver.get(url(f"lab/tree/{path.name}"))
         _wait(lambda: driver.execute_script(
             "const w = window.jupyterapp && jupyterapp.shell.currentWidget;"
             "return !!(w && w.sessionContext && w.sessionContext.session"
             " && w.sessionContext.session.kernel"
             " && w.sessionContext.session.kernel.connectionStatus === 'connected');"),
             "the notebook open with its kernel")
-        yield driver, server
+        yield driver
 
 
-def test_notebook_shows_spt_and_turns_with_the_camera(notebook_page):
-    driver, server = notebook_page
+def test_notebook_shows_spt_and_turns_with_the_camera(notebook_page, tmp_path):
+    driver = notebook_page
     OUTPUT.mkdir(parents=True, exist_ok=True)
     driver.execute_script("jupyterapp.commands.execute('notebook:run-all-cells');")
     iframe = _wait(lambda: driver.find_elements("css selector", ".jp-OutputArea-output iframe"),
@@ -185,8 +179,8 @@ def test_notebook_shows_spt_and_turns_with_the_camera(notebook_page):
     cell = iframe  # the output cell's view, as the page shows it (trame's menu included)
     cell.screenshot(str(OUTPUT / "notebook.png"))
     Image.fromarray(first).save(OUTPUT / "frame.png")
-    before = json.loads(_kernel(driver, STATE))
-    _check_is_spt(first, before, "frame")
+    before, exact = _state(driver, tmp_path, "frame")
+    _check_is_spt(first, before, exact, "frame")
 
     # One drag across the image: the camera turns, trame asks the kernel for new images.
     from selenium.webdriver import ActionChains
@@ -200,9 +194,9 @@ def test_notebook_shows_spt_and_turns_with_the_camera(notebook_page):
     _, turned = _frame(driver, iframe, previous=source)
     cell.screenshot(str(OUTPUT / "notebook-dragged.png"))
     Image.fromarray(turned).save(OUTPUT / "frame-dragged.png")
-    after = json.loads(_kernel(driver, STATE))
+    after, exact = _state(driver, tmp_path, "frame-dragged")
     assert not np.allclose(after["position"], before["position"]), "the camera did not turn"
-    exact, mask = _check_is_spt(turned, after, "frame-dragged")
+    mask = _check_is_spt(turned, after, exact, "frame-dragged")
     # The image changed, by more than the tolerance of either comparison.
     moved = _rmse(first / 255.0, turned / 255.0, mask | (first.max(axis=2) > 0))
     print(f"the drag changed the image by an RMSE of {moved:.4f}")

@@ -10,8 +10,7 @@ import sys
 
 import numpy as np
 
-from camera_state import vtk_camera
-from spt import metrics, opengl_window, raycast
+from spt import metrics, opengl_window
 
 SIZE = (120, 120)
 
@@ -20,49 +19,39 @@ import json, os, sys
 import numpy as np
 import pyvista as pv
 import spt.pyvista
-from spt import data
+from spt import data, raycast
 
 plotter = pv.Plotter(off_screen=True, window_size=(%d, %d))
 plotter.background_color = "black"
 actor = spt.pyvista.add_volume(plotter, pv.wrap(data.make_default_mesh()), cmap="viridis",
                                show_scalar_bar=False, target_error=0.005)
 plotter.camera_position = "iso"
-image = plotter.screenshot(transparent_background=True, return_img=True)
-np.save(sys.argv[1], image)
-camera = plotter.camera
+np.save(sys.argv[1], plotter.screenshot(transparent_background=True, return_img=True))
+# The same scene's exact reference, at the camera of the screenshot.
+np.save(sys.argv[2], raycast.render(actor.mapper.GetInput(), actor.prop,
+                                    plotter.renderer.GetActiveCamera(), (%d, %d)))
 json.dump({"window": type(plotter.render_window).__name__,
-           "variable": os.environ.get("VTK_DEFAULT_OPENGL_WINDOW"),
-           "position": camera.position, "focal_point": camera.focal_point,
-           "view_up": camera.up, "view_angle": camera.view_angle,
-           "clipping_range": camera.clipping_range}, sys.stdout)
-""" % SIZE
+           "variable": os.environ.get("VTK_DEFAULT_OPENGL_WINDOW")}, sys.stdout)
+""" % (SIZE + SIZE)
 
 
-def _run(tmp_path, **environment):
-    base = {k: v for k, v in os.environ.items()
-            if k not in ("DISPLAY", "XAUTHORITY", opengl_window.VARIABLE)}
-    result = subprocess.run([sys.executable, "-c", SCRIPT, str(tmp_path / "image.npy")],
-                            capture_output=True, text=True, timeout=600,
-                            env={**base, **environment})
+def _run(tmp_path):
+    environment = {k: v for k, v in os.environ.items()
+                   if k not in ("DISPLAY", "XAUTHORITY", opengl_window.VARIABLE)}
+    image, exact = tmp_path / "image.npy", tmp_path / "exact.npy"
+    result = subprocess.run([sys.executable, "-c", SCRIPT, str(image), str(exact)],
+                            capture_output=True, text=True, timeout=600, env=environment)
     assert result.returncode == 0, result.stderr
-    return json.loads(result.stdout), result.stderr, np.load(tmp_path / "image.npy")
+    return json.loads(result.stdout), result.stderr, np.load(image), np.load(exact)
 
 
 def test_off_screen_plot_without_display_prints_nothing_about_x(tmp_path):
-    state, stderr, image = _run(tmp_path)
+    state, stderr, image, exact = _run(tmp_path)
     assert "X server" not in stderr and "vtkXOpenGLRenderWindow" not in stderr, stderr
     assert state["variable"] == "vtkEGLRenderWindow"
     assert state["window"] == "vtkEGLRenderWindow"
     # The image is SPT's: the same scene's exact reference, within the target error and the
     # 8-bit rounding, and not empty.
-    import pyvista as pv
-    import spt.pyvista
-    from spt import data
-    mesh = pv.wrap(data.make_default_mesh())
-    plotter = pv.Plotter(off_screen=True, window_size=SIZE)
-    actor = spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False)
-    exact = raycast.render(actor.mapper.GetInput(), actor.prop, vtk_camera(state), SIZE)
-    plotter.close()
     assert exact[..., 3].max() > 0.5
     assert metrics.rmse(image / 255.0, exact) <= 0.005 + 1.0 / 255.0 / np.sqrt(12.0)
 

@@ -11,6 +11,14 @@ import spt.pyvista
 from spt import data, metrics, raycast
 
 SIZE = (160, 160)
+TARGET_ERROR = 0.005
+# The target error, plus the 8-bit screenshot's rounding (1/255 / sqrt(12) RMSE).
+TOLERANCE = TARGET_ERROR + 1.0 / 255.0 / np.sqrt(12.0)
+
+
+@pytest.fixture
+def mesh():
+    return pv.wrap(data.make_default_mesh())
 
 
 def _plotter():
@@ -25,11 +33,10 @@ def _screenshot(plotter) -> np.ndarray:
 
 
 @pytest.mark.parametrize("opacity, cmap", [("linear", "viridis"), ("sigmoid", "coolwarm")])
-def test_screenshot_is_within_the_target_error_of_the_exact_reference(opacity, cmap):
-    mesh = pv.wrap(data.make_default_mesh())
+def test_screenshot_is_within_the_target_error_of_the_exact_reference(mesh, opacity, cmap):
     plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, mesh, cmap=cmap, opacity=opacity,
-                                   show_scalar_bar=False, target_error=0.005)
+                                   show_scalar_bar=False, target_error=TARGET_ERROR)
     assert isinstance(actor.mapper, spt.vtkSPTVolumeMapper)
     plotter.camera_position = "iso"
     image = _screenshot(plotter)
@@ -37,12 +44,10 @@ def test_screenshot_is_within_the_target_error_of_the_exact_reference(opacity, c
                            plotter.renderer.GetActiveCamera(), SIZE)
     plotter.close()
     assert exact[..., 3].max() > 0.5
-    # The target error, plus the 8-bit screenshot's rounding (1/255 / sqrt(12) RMSE).
-    assert metrics.rmse(image, exact) <= 0.005 + 1.0 / 255.0 / np.sqrt(12.0)
+    assert metrics.rmse(image, exact) <= TOLERANCE
 
 
-def test_presets_and_colour_maps_are_pyvistas():
-    mesh = pv.wrap(data.make_default_mesh())
+def test_presets_and_colour_maps_are_pyvistas(mesh):
     low, high = mesh.get_data_range()
     plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, mesh, cmap="coolwarm", opacity="sigmoid",
@@ -59,7 +64,7 @@ def test_presets_and_colour_maps_are_pyvistas():
     plotter.close()
 
 
-def test_opacity_unit_distance_follows_pyvistas_rule_for_images():
+def test_opacity_unit_distance_follows_pyvistas_rule_for_images(mesh):
     image = pv.ImageData(dimensions=(9, 9, 9))
     image.point_data["x"] = image.points[:, 0]
     pyvistas = image.length / (np.mean(image.dimensions) - 1)
@@ -68,7 +73,6 @@ def test_opacity_unit_distance_follows_pyvistas_rule_for_images():
     # An image's unit distance is PyVista's, from its own cells, not from the tetrahedra.
     drawn = spt.pyvista.add_volume(plotter, image, show_scalar_bar=False)
     assert drawn.prop.GetScalarOpacityUnitDistance() == pytest.approx(pyvistas)
-    mesh = pv.wrap(data.make_default_mesh())
     actor = spt.pyvista.add_volume(plotter, mesh, show_scalar_bar=False)
     assert actor.prop.GetScalarOpacityUnitDistance() == \
         pytest.approx(mesh.length / np.cbrt(mesh.n_cells))
@@ -95,8 +99,7 @@ def test_any_mesh_is_split_into_tetrahedra_and_left_as_it_was():
     plotter.close()
 
 
-def test_baselines_through_the_same_function():
-    mesh = pv.wrap(data.make_default_mesh())
+def test_baselines_through_the_same_function(mesh):
     plotter = _plotter()
     assert isinstance(spt.pyvista.add_volume(plotter, mesh, method="havs").mapper,
                       spt.vtkHAVSVolumeMapper)
@@ -107,7 +110,7 @@ def test_baselines_through_the_same_function():
     plotter.close()
 
 
-def test_bad_input_gets_a_clear_error():
+def test_bad_input_gets_a_clear_error(mesh):
     plotter = _plotter()
     with pytest.raises(TypeError, match="no volume"):
         spt.pyvista.add_volume(plotter, pv.Sphere())
@@ -115,19 +118,18 @@ def test_bad_input_gets_a_clear_error():
     with pytest.raises(ValueError, match="no active scalars"):
         spt.pyvista.add_volume(plotter, bare)
     with pytest.raises(ValueError, match="scalars for a mesh"):
-        spt.pyvista.add_volume(plotter, pv.wrap(data.make_default_mesh()), scalars=[1.0, 2.0])
+        spt.pyvista.add_volume(plotter, mesh, scalars=[1.0, 2.0])
     with pytest.raises(TypeError, match="unexpected"):
-        spt.pyvista.add_volume(plotter, pv.wrap(data.make_default_mesh()), colour="red")
+        spt.pyvista.add_volume(plotter, mesh, colour="red")
     plotter.close()
 
 
-def test_pyvistas_clip_plane_widget_cuts_the_volume():
+def test_pyvistas_clip_plane_widget_cuts_the_volume(mesh):
     """PyVista's add_volume_clip_plane adds a plane to the volume's mapper and moves it in place
     as the widget moves: SPT cuts the volume there exactly, without re-meshing."""
-    mesh = pv.wrap(data.make_default_mesh())
     plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False,
-                                   target_error=0.005)
+                                   target_error=TARGET_ERROR)
     plotter.camera_position = "iso"
     widget = plotter.add_volume_clip_plane(actor, normal="-x", origin=mesh.center)
     widget.Off()  # the widget's own outline is not the volume's
@@ -135,7 +137,6 @@ def test_pyvistas_clip_plane_widget_cuts_the_volume():
     assert planes.GetNumberOfItems() == 1
     plane = planes.GetItemAsObject(0)
     camera = plotter.renderer.GetActiveCamera()
-    tolerance = 0.005 + 1.0 / 255.0 / np.sqrt(12.0)
     for origin in (mesh.center, np.add(mesh.center, (0.4, 0.0, 0.0))):
         plane.SetOrigin(origin)  # what the widget's callback does
         plotter.render()
@@ -144,6 +145,6 @@ def test_pyvistas_clip_plane_widget_cuts_the_volume():
         exact = raycast.render(grid, actor.prop, camera, SIZE, clipping_planes=[plane])
         unclipped = raycast.render(grid, actor.prop, camera, SIZE)
         assert exact[..., 3].max() > 0.3
-        assert metrics.rmse(image, exact) <= tolerance
-        assert metrics.rmse(image, unclipped) > 3 * tolerance
+        assert metrics.rmse(image, exact) <= TOLERANCE
+        assert metrics.rmse(image, unclipped) > 3 * TOLERANCE
     plotter.close()

@@ -8,6 +8,7 @@ PYTHONPATH; a test is skipped when they or the executables are missing.
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import shutil
@@ -23,8 +24,9 @@ import pytest
 SCRIPTS = pathlib.Path(__file__).resolve().parent / "paraview"
 SUBPROCESS_TIMEOUT = 900  # seconds; llvmpipe on two shared cores is slow
 
-# Debian's xvfb-run, as the Makefile uses it.
-XVFB_SERVER_ARGS = "-screen 0 1280x1024x24 -noreset"
+SPT, HAVS, PBVR = "Volume (SPT)", "Volume (HAVS-like)", "Volume (PBVR)"
+#: The mapper of each representation type (SPT's is the parallel subclass, on one rank too).
+MAPPERS = {SPT: "vtkPSPTVolumeMapper", HAVS: "vtkHAVSVolumeMapper", PBVR: "vtkPBVRVolumeMapper"}
 
 
 def executable(name: str) -> str:
@@ -47,14 +49,8 @@ def plugin_path() -> pathlib.Path:
 
 def environment(**overrides: str) -> Dict[str, str]:
     """This process's environment (PYTHONPATH with the build tree's spt, DISPLAY) plus
-    ``overrides``; an override of "" removes the variable."""
-    env = os.environ.copy()
-    for key, value in overrides.items():
-        if value == "":
-            env.pop(key, None)
-        else:
-            env[key] = value
-    return env
+    ``overrides``."""
+    return {**os.environ, **overrides}
 
 
 def run(command: Sequence[str], env: Optional[Dict[str, str]] = None,
@@ -70,6 +66,26 @@ def run(command: Sequence[str], env: Optional[Dict[str, str]] = None,
     assert "OpenGL errors detected" not in result.stderr, (
         f"{' '.join(map(str, command))} left OpenGL errors:\n{result.stderr[-4000:]}")
     return result
+
+
+def scene(data: os.PathLike, output: pathlib.Path, *options) -> list:
+    """render_volume.py's arguments for one scene: ``data`` rendered into ``output``, with its
+    reports beside it (read_report()), then ``options``."""
+    return ["--data", data, "--output", output, "--report", output.with_suffix(""), *options]
+
+
+def render_command(*scenes: Sequence, program: str = "pvpython") -> List:
+    """``program`` running render_volume.py on the scenes (each a scene()), one after the
+    other in one process."""
+    command = [executable(program), SCRIPTS / "render_volume.py"]
+    for index, arguments in enumerate(scenes):
+        command += (["--then"] if index else []) + list(arguments)
+    return command
+
+
+def read_report(output: pathlib.Path) -> dict:
+    """Rank 0's report on the scene rendered into ``output``."""
+    return json.loads(output.with_suffix(".rank0.json").read_text())
 
 
 def mpirun(ranks: int, command: Sequence[str], preload: Optional[str] = None) -> List[str]:
@@ -209,17 +225,13 @@ def write_pieces(directory: pathlib.Path, cells_of_piece) -> pathlib.Path:
 
 def read_png(path: os.PathLike) -> np.ndarray:
     """An RGB(A) PNG as float in [0, 1], row 0 at the top."""
-    from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOImage import vtkPNGReader
+    from spt import metrics
 
     reader = vtkPNGReader()
     reader.SetFileName(str(path))
     reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    scalars = image.GetPointData().GetScalars()
-    pixels = vtk_to_numpy(scalars).reshape(height, width, scalars.GetNumberOfComponents())
-    return pixels[::-1].astype(np.float64) / 255.0
+    return metrics.from_vtk_image(reader.GetOutput(), as_float_rgba=True)
 
 
 def read_xwd(path: os.PathLike) -> np.ndarray:
@@ -248,10 +260,11 @@ def footprint(image: np.ndarray, background=(0.0, 0.0, 0.0), threshold: float = 
     return np.abs(image[..., :3] - np.asarray(background)).max(axis=-1) > threshold
 
 
-def check_volume_image(image: np.ndarray) -> None:
-    """A volume over black, not an empty view: part of the view is covered, with varied
-    colors."""
-    covered = footprint(image)
+def check_volume_image(image: np.ndarray, background=(0.0, 0.0, 0.0),
+                       threshold: float = 2.5 / 255.0) -> None:
+    """A volume over the background, not an empty view: part of the view differs from the
+    background (by more than ``threshold``), with varied colors."""
+    covered = footprint(image, background, threshold)
     assert 0.05 < covered.mean() < 0.8, f"{covered.mean():.3f} of the view is covered"
     colors = image[covered][:, :3]
     assert colors.mean() > 0.1

@@ -21,6 +21,7 @@ import json
 import os
 import subprocess
 import sys
+from typing import NamedTuple, Optional
 
 import numpy as np
 import pytest
@@ -88,9 +89,7 @@ def pieces(tmp_path_factory):
     return pvs.write_pieces(tmp_path_factory.mktemp("pieces"), interleaved)
 
 
-SPT = "Volume (SPT)"
-HAVS = "Volume (HAVS-like)"
-PBVR = "Volume (PBVR)"
+SPT, HAVS, PBVR = pvs.SPT, pvs.HAVS, pvs.PBVR
 # How far the 2-rank HAVS-like image may be from the 1-rank image, in 8-bit levels of the
 # premultiplied color over black. Each rank's piece is drawn exactly as on one rank, but its image
 # is rounded to 8 bits before IceT blends the front piece over the back one, which moves a pixel
@@ -104,57 +103,59 @@ HAVS_ROUNDING_LEVELS = 2
 HAVS_MAX_MEAN_LEVELS = 0.5
 HAVS_MAX_RMSE_LEVELS = 0.5
 HAVS_OUTLIER_SHARE = 0.005
+#: The seed of the independent 1-rank image that a 1-rank run draws after its own, if asked.
+OTHER_SEED = 1
 
 
-def render(pieces, output, ranks=1, seed=0, preload=None, extra=(), representation=SPT):
-    command = [pvs.executable("pvbatch"), pvs.SCRIPTS / "render_volume.py",
-               "--data", pieces, "--output", output, "--report", output.with_suffix(""),
-               "--size", SIZE, "--repetitions", REPETITIONS, "--seed", seed,
-               "--view-axis", VIEW_AXIS, "--representation", representation, *extra]
+def scene(data, output, representation, *extra):
+    return pvs.scene(data, output, "--size", SIZE, "--repetitions", REPETITIONS,
+                     "--view-axis", VIEW_AXIS, "--representation", representation, *extra)
+
+
+class Rendered(NamedTuple):
+    image: np.ndarray
+    report: dict  # rank 0's, with the run's stderr
+    other_seed: Optional[np.ndarray] = None  # the same view drawn with OTHER_SEED
+
+
+def render(data, output, ranks=1, preload=None, extra=(), representation=SPT, other_seed=False):
+    """pvbatch on ``ranks`` ranks renders ``data`` into ``output`` (kept as mpi_NAME.png), and
+    with ``other_seed`` once more with OTHER_SEED (kept as mpi_NAME_seed1.png)."""
+    if other_seed:
+        extra = (*extra, "--other-seed", OTHER_SEED)
+    command = pvs.render_command(scene(data, output, representation, *extra), program="pvbatch")
     if ranks > 1:
         command = pvs.mpirun(ranks, command, preload)
     # PV_PLUGIN_PATH makes every rank load the plugin at start-up.
     plugins = pvs.plugin_path().parents[1]
     result = pvs.run(command, env=pvs.environment(PV_PLUGIN_PATH=str(plugins)))
-    report = json.loads(output.with_suffix(".rank0.json").read_text())
-    report["stderr"] = result.stderr
-    return pvs.read_png(output), report
-
-
-#: The seed of the independent 1-rank image that the 1-rank run draws after its own.
-OTHER_SEED = 1
-
-
-def other_seed_image(output):
-    """The image that render_volume.py --other-seed wrote next to ``output``, kept too."""
-    path = output.with_name(f"{output.stem}.seed{OTHER_SEED}{output.suffix}")
-    pvs.keep(path, f"mpi_{output.stem}_seed{OTHER_SEED}.png")
-    return pvs.read_png(path)
-
-
-def render_set(pieces, preload, directory, representation, prefix, other_seed=True,
-               one_rank_data=None):
-    """The 2-rank image, the 1-rank image and (for the stochastic methods) a 1-rank image with
-    another seed, drawn by the same process, kept as mpi_PREFIXNAME.png. The 1-rank images are
-    of ``one_rank_data``, if given, instead of the pieces."""
-    one_rank = dict(extra=("--other-seed", OTHER_SEED)) if other_seed else {}
-    runs = {"two_ranks": (pieces, dict(ranks=2, preload=preload)),
-            "one_rank": (one_rank_data or pieces, one_rank)}
-    result = {}
-    for name, (data, options) in runs.items():
-        output = directory / f"{prefix}{name}.png"
-        result[name] = render(data, output, representation=representation, **options)
-        pvs.keep(output, f"mpi_{prefix}{name}.png")
+    report = dict(pvs.read_report(output), stderr=result.stderr)
+    pvs.keep(output, f"mpi_{output.stem}.png")
+    second = None
     if other_seed:
-        output = directory / f"{prefix}one_rank.png"
-        result["one_rank_seed1"] = (other_seed_image(output), result["one_rank"][1])
-    return result
+        path = output.with_name(f"{output.stem}.seed{OTHER_SEED}{output.suffix}")
+        pvs.keep(path, f"mpi_{output.stem}_seed{OTHER_SEED}.png")
+        second = pvs.read_png(path)
+    return Rendered(pvs.read_png(output), report, second)
+
+
+def two_ranks_and_one(directory, pieces, preload, one_rank_data=None, other_seed=True,
+                      prefix="", **options):
+    """The pieces drawn on two ranks (PREFIXtwo_ranks), and ``one_rank_data`` (default: the
+    pieces) on one (PREFIXone_rank), with another seed's image if ``other_seed``."""
+    return {"two_ranks": render(pieces, directory / f"{prefix}two_ranks.png", ranks=2,
+                                preload=preload, **options),
+            "one_rank": render(one_rank_data or pieces, directory / f"{prefix}one_rank.png",
+                               other_seed=other_seed, **options)}
+
+
+FIXTURES = {SPT: "images", HAVS: "havs_images", PBVR: "pbvr_images"}
 
 
 @pytest.fixture(scope="module")
 def images(have_x_display, pieces, preload, tmp_path_factory):
     """SPT."""
-    return render_set(pieces, preload, tmp_path_factory.mktemp("mpi"), SPT, "")
+    return two_ranks_and_one(tmp_path_factory.mktemp("mpi"), pieces, preload)
 
 
 @pytest.fixture(scope="module")
@@ -166,13 +167,14 @@ def havs_images(have_x_display, pieces, preload, tmp_path_factory):
     connectivity."""
     directory = tmp_path_factory.mktemp("mpi_havs")
     whole = pvs.write_mesh(directory / "mesh.vtk")
-    return render_set(pieces, preload, directory, HAVS, "havs_", other_seed=False,
-                      one_rank_data=whole)
+    return two_ranks_and_one(directory, pieces, preload, one_rank_data=whole, other_seed=False,
+                             prefix="havs_", representation=HAVS)
 
 
 @pytest.fixture(scope="module")
 def pbvr_images(have_x_display, pieces, preload, tmp_path_factory):
-    return render_set(pieces, preload, tmp_path_factory.mktemp("mpi_pbvr"), PBVR, "pbvr_")
+    return two_ranks_and_one(tmp_path_factory.mktemp("mpi_pbvr"), pieces, preload,
+                             prefix="pbvr_", representation=PBVR)
 
 
 def premultiplied(rgba):
@@ -228,19 +230,26 @@ def within_noise(measures):
                                     measures["smoothed_rms_other_seed"])))
 
 
-def test_spt_draws_the_pieces_as_read(images):
-    """No redistribution for SPT: rank 0 draws the 36,000 cells it read, which span the whole
-    mesh."""
-    _, two = images["two_ranks"]
-    _, one = images["one_rank"]
-    assert two["ranks"] == 2 and two["representation"] == SPT
-    assert two["mapper_class"] == "vtkPSPTVolumeMapper"
-    assert two["cells"] == one["tetrahedra"] == 48000
-    assert two["tetrahedra"] == 36000
-    whole = np.array(one["mapper_input_bounds"]).reshape(3, 2)
-    piece = np.array(two["mapper_input_bounds"]).reshape(3, 2)
+@pytest.mark.parametrize("method", [SPT, HAVS, PBVR])
+def test_what_rank_0_draws(request, method):
+    """Each rank reads one piece. SPT: no redistribution, rank 0 draws the 36,000 cells it
+    read, which span the whole mesh. HAVS-like and PBVR: for rendering, ParaView moves cells so
+    that rank 0 holds a spatially compact half of the mesh."""
+    rendered = request.getfixturevalue(FIXTURES[method])
+    two, one = rendered["two_ranks"].report, rendered["one_rank"].report
+    assert two["ranks"] == 2 and two["process_ids"] == [0.0, 1.0]
+    assert two["cells"] == one["cells"] == one["tetrahedra"] == 48000
+    assert two["representation"] == one["representation"] == method
+    assert two["mapper_class"] == pvs.MAPPERS[method] and two["mapper_is_wrapped"]
+    whole, piece = (np.array(r["mapper_input_bounds"]).reshape(3, 2) for r in (one, two))
     extent_ratio = (piece[:, 1] - piece[:, 0]) / (whole[:, 1] - whole[:, 0])
-    assert extent_ratio.min() > 0.95, extent_ratio
+    if method == SPT:
+        assert two["tetrahedra"] == 36000
+        assert extent_ratio.min() > 0.95, extent_ratio
+    else:
+        # Rank 0 read 36,000 cells; it renders about half of the mesh, one side of a cut.
+        assert 0.4 * 48000 < two["tetrahedra"] < 0.6 * 48000
+        assert extent_ratio.min() < 0.6, extent_ratio
 
 
 def test_spt_rank_with_an_empty_piece_takes_part(images, preload, tmp_path):
@@ -248,10 +257,9 @@ def test_spt_rank_with_an_empty_piece_takes_part(images, preload, tmp_path):
     reductions (no hang, the run has a timeout) and the image is the 1-rank image."""
     index = pvs.write_pieces(
         tmp_path, lambda grid: [np.arange(grid.GetNumberOfCells()), np.array([], dtype=int)])
-    two, report = render(index, tmp_path / "empty_rank.png", ranks=2, preload=preload)
-    one, _ = images["one_rank"]
-    assert report["ranks"] == 2 and report["tetrahedra"] == 48000
-    assert levels(one, two)["max_levels"] <= 1
+    two = render(index, tmp_path / "empty_rank.png", ranks=2, preload=preload)
+    assert two.report["ranks"] == 2 and two.report["tetrahedra"] == 48000
+    assert levels(images["one_rank"].image, two.image)["max_levels"] <= 1
 
 
 def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, tmp_path):
@@ -266,11 +274,17 @@ def test_spt_rank_without_the_array_gives_an_error_not_a_hang(images, preload, t
     reader.Update()
     reader.GetOutput().GetPointData().GetArray("field").SetName("another name")
     pvs.write_mesh(tmp_path / "pieces.1.vtk", reader.GetOutput())
-    two, report = render(index, tmp_path / "other_array.png", ranks=2, preload=preload)
-    one, _ = images["one_rank"]
-    assert "Rank 1's piece has no array 'field'; it is not drawn." in report["stderr"]
-    measures = levels(one, two)
+    two = render(index, tmp_path / "other_array.png", ranks=2, preload=preload)
+    assert "Rank 1's piece has no array 'field'; it is not drawn." in two.report["stderr"]
+    measures = levels(images["one_rank"].image, two.image)
     assert measures["covered_pixels"] > 0.1 and measures["max_levels"] > 8
+
+
+def check_clean_stderr(rendered):
+    for run in rendered.values():
+        assert "ERR" not in run.report["stderr"], run.report["stderr"][-4000:]
+        # ParaView's parallel rendering culls nothing itself, so no rank can be left out.
+        assert "cullers" not in run.report["stderr"]
 
 
 def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tmp_path):
@@ -281,24 +295,14 @@ def test_spt_two_representations_in_one_view(have_x_display, pieces, preload, tm
     representation comes first (drawn one after the other, the overlap would be far beyond the
     noise), and the 2-rank image is the 1-rank image."""
     extra = ("--second-offset", "0.0,0.35,0.25")
-    runs = {"two_ranks": dict(ranks=2, preload=preload),
-            "one_rank": dict(extra=extra + ("--other-seed", OTHER_SEED)),
-            "one_rank_second_first": dict(extra=extra + ("--second-before",))}
-    rendered = {}
-    for name, options in runs.items():
-        output = tmp_path / f"two_volumes_{name}.png"
-        options.setdefault("extra", extra)
-        rendered[name] = render(pieces, output, **options)
-        pvs.keep(output, f"mpi_two_volumes_{name}.png")
-        assert "ERR" not in rendered[name][1]["stderr"], rendered[name][1]["stderr"][-4000:]
-        # ParaView's parallel rendering culls nothing itself, so no rank can be left out.
-        assert "cullers" not in rendered[name][1]["stderr"]
-    one, _ = rendered["one_rank"]
-    two, report = rendered["two_ranks"]
-    assert report["tetrahedra"] == 36000
-    assert levels(one, two)["max_levels"] <= 1
-    other_seed = other_seed_image(tmp_path / "two_volumes_one_rank.png")
-    swapped = compare(one, rendered["one_rank_second_first"][0], other_seed)
+    rendered = two_ranks_and_one(tmp_path, pieces, preload, prefix="two_volumes_", extra=extra)
+    rendered["second_first"] = render(pieces, tmp_path / "two_volumes_one_rank_second_first.png",
+                                      extra=extra + ("--second-before",))
+    check_clean_stderr(rendered)
+    one, two = rendered["one_rank"], rendered["two_ranks"]
+    assert two.report["tetrahedra"] == 36000
+    assert levels(one.image, two.image)["max_levels"] <= 1
+    swapped = compare(one.image, rendered["second_first"].image, one.other_seed)
     assert within_noise(swapped), swapped
 
 
@@ -306,40 +310,12 @@ def test_spt_opaque_geometry_of_every_rank(images, pieces, preload, tmp_path):
     """An opaque sphere in the middle of the data, of which each rank makes a part (ParaView's
     Sphere source): each part hides the volume behind it on every rank, and shows through
     the translucent volume in front of it, so the 2-rank image is the 1-rank image."""
-    extra = ("--opaque-sphere",)
-    rendered = {}
-    for name, options in {"two_ranks": dict(ranks=2, preload=preload), "one_rank": {}}.items():
-        output = tmp_path / f"sphere_{name}.png"
-        rendered[name] = render(pieces, output, extra=extra, **options)
-        pvs.keep(output, f"mpi_sphere_{name}.png")
-        assert "ERR" not in rendered[name][1]["stderr"], rendered[name][1]["stderr"][-4000:]
-    one, _ = rendered["one_rank"]
-    two, _ = rendered["two_ranks"]
-    assert levels(one, two)["max_levels"] <= 1
-    without, _ = images["one_rank"]
-    assert levels(without, one)["max_levels"] > 32
-
-
-@pytest.mark.parametrize("method", [HAVS, PBVR])
-def test_data_is_read_distributed_and_redistributed(request, method):
-    """Each rank reads one piece; for rendering, ParaView moves cells so that rank 0 holds a
-    spatially compact half of the mesh."""
-    rendered = request.getfixturevalue(
-        {HAVS: "havs_images", PBVR: "pbvr_images"}[method])
-    _, two = rendered["two_ranks"]
-    _, one = rendered["one_rank"]
-    assert two["ranks"] == 2 and two["process_ids"] == [0.0, 1.0]
-    assert two["cells"] == one["cells"] == one["tetrahedra"] == 48000
-    assert two["representation"] == one["representation"] == method
-    assert two["mapper_class"] == {HAVS: "vtkHAVSVolumeMapper",
-                                   PBVR: "vtkPBVRVolumeMapper"}[method]
-    assert two["mapper_is_wrapped"]
-    # Rank 0 read 36,000 cells; it renders about half of the mesh, one side of a cut.
-    assert 0.4 * 48000 < two["tetrahedra"] < 0.6 * 48000
-    whole = np.array(one["mapper_input_bounds"]).reshape(3, 2)
-    piece = np.array(two["mapper_input_bounds"]).reshape(3, 2)
-    extent_ratio = (piece[:, 1] - piece[:, 0]) / (whole[:, 1] - whole[:, 0])
-    assert extent_ratio.min() < 0.6, extent_ratio
+    rendered = two_ranks_and_one(tmp_path, pieces, preload, other_seed=False, prefix="sphere_",
+                                 extra=("--opaque-sphere",))
+    check_clean_stderr(rendered)
+    one = rendered["one_rank"].image
+    assert levels(one, rendered["two_ranks"].image)["max_levels"] <= 1
+    assert levels(images["one_rank"].image, one)["max_levels"] > 32
 
 
 def levels(one, two):
@@ -359,39 +335,31 @@ def levels(one, two):
                 (difference.max(axis=-1) > HAVS_ROUNDING_LEVELS)[covered].mean())}
 
 
-def keep_comparison(name, one, two, *others):
-    """one | two | others | the difference, amplified 2x around grey, for a person to look at."""
+def measured(rendered, prefix):
+    """levels() of the 2-rank image against the 1-rank one, and where there is another seed's
+    image, compare() and that image's levels(): kept as mpi_PREFIXdifference.json, with one |
+    two | the other seed | the difference (amplified 2x around grey) for a person to look at."""
+    one, two = rendered["one_rank"], rendered["two_ranks"]
+    measures = levels(one.image, two.image)
+    others = [] if one.other_seed is None else [one.other_seed]
+    for other in others:
+        measures.update(compare(one.image, two.image, other))
+        measures["other_seed"] = levels(one.image, other)
+    pvs.keep_text(json.dumps(measures, indent=1), f"mpi_{prefix}difference.json")
     if pvs.artifacts():
         from spt import metrics
 
-        difference = np.clip(0.5 + 2.0 * (two - one), 0.0, 1.0)
-        metrics.write_png(pvs.artifacts() / name,
-                          np.concatenate([one, two, *others, difference], axis=1))
-
-
-def check_within_noise(rendered, prefix):
-    one, _ = rendered["one_rank"]
-    two, _ = rendered["two_ranks"]
-    other_seed, _ = rendered["one_rank_seed1"]
-    measures = compare(one, two, other_seed)
-    measures.update(levels(one, two))
-    measures["other_seed"] = levels(one, other_seed)
-    pvs.keep_text(json.dumps(measures, indent=1), f"mpi_{prefix}difference.json")
-    keep_comparison(f"mpi_{prefix}comparison.png", one, two, other_seed)
-    assert within_noise(measures), json.dumps(measures, indent=1)
+        difference = np.clip(0.5 + 2.0 * (two.image - one.image), 0.0, 1.0)
+        metrics.write_png(pvs.artifacts() / f"mpi_{prefix}comparison.png",
+                          np.concatenate([one.image, two.image, *others, difference], axis=1))
+    return measures
 
 
 def test_spt_two_ranks_equal_one_rank(images):
     """The same random numbers on 1 and 2 ranks: the images differ by at most one 8-bit level
     (float sums added in another order round differently), and by far less than another seed's
     image does."""
-    one, _ = images["one_rank"]
-    two, _ = images["two_ranks"]
-    other_seed, _ = images["one_rank_seed1"]
-    measures = levels(one, two)
-    measures["other_seed"] = levels(one, other_seed)
-    pvs.keep_text(json.dumps(measures, indent=1), "mpi_difference.json")
-    keep_comparison("mpi_comparison.png", one, two, other_seed)
+    measures = measured(images, "")
     assert measures["covered_pixels"] > 0.1
     assert measures["max_levels"] <= 1, measures
     assert measures["pixels_that_differ"] < 0.01, measures
@@ -399,17 +367,14 @@ def test_spt_two_ranks_equal_one_rank(images):
 
 
 def test_pbvr_two_ranks_match_one_rank_within_noise(pbvr_images):
-    check_within_noise(pbvr_images, "pbvr_")
+    measures = measured(pbvr_images, "pbvr_")
+    assert within_noise(measures), json.dumps(measures, indent=1)
 
 
 def test_havs_two_ranks_match_one_rank_up_to_rounding(havs_images):
     """No noise: the 2-rank image is the 1-rank image but for the rounding of the ranks' 8-bit
     images before they are composited, and a few pixels at the cut (HAVS_*)."""
-    one, _ = havs_images["one_rank"]
-    two, _ = havs_images["two_ranks"]
-    measures = levels(one, two)
-    pvs.keep_text(json.dumps(measures, indent=1), "mpi_havs_difference.json")
-    keep_comparison("mpi_havs_comparison.png", one, two)
+    measures = measured(havs_images, "havs_")
     assert measures["covered_pixels"] > 0.1
     assert measures["rmse_levels"] <= HAVS_MAX_RMSE_LEVELS, measures
     assert all(abs(mean) <= HAVS_MAX_MEAN_LEVELS for mean in measures["mean_levels"]), measures
@@ -424,19 +389,14 @@ def client_images(have_x_display, pieces, preload, tmp_path_factory):
     outputs = {SPT: directory / "client.png", HAVS: directory / "havs_client.png"}
     port = pvs.free_port()
     plugins = str(pvs.plugin_path().parents[1])
-    scenes = [["--data", pieces, "--output", output, "--report", output.with_suffix(""),
-               "--size", SIZE, "--repetitions", REPETITIONS, "--view-axis", VIEW_AXIS,
-               "--representation", method, "--connect", f"localhost:{port}"]
-              for method, output in outputs.items()]
     pvs.run_client_of_server(
         pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload),
-        [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py",
-         *scenes[0], "--then", *scenes[1]],
+        pvs.render_command(*[scene(pieces, output, method, "--connect", f"localhost:{port}")
+                             for method, output in outputs.items()]),
         pvs.environment(PV_PLUGIN_PATH=plugins), 180)
-    for method, output in outputs.items():
+    for output in outputs.values():
         pvs.keep(output, f"mpi_{output.stem.replace('client', 'pvserver_client')}.png")
-    return {method: (pvs.read_png(output),
-                     json.loads(output.with_suffix(".rank0.json").read_text()))
+    return {method: Rendered(pvs.read_png(output), pvs.read_report(output))
             for method, output in outputs.items()}
 
 
@@ -444,21 +404,20 @@ def client_images(have_x_display, pieces, preload, tmp_path_factory):
 def test_mpi_pvserver_with_a_pvpython_client(request, method, client_images):
     """The client of `mpirun -np 2 pvserver` gets the image that pvbatch renders on two
     ranks."""
-    rendered = request.getfixturevalue({SPT: "images", HAVS: "havs_images"}[method])
-    two, _ = rendered["two_ranks"]
-    image, report = client_images[method]
-    assert report["process_ids"] == [0.0, 1.0] and report["representation"] == method
-    assert np.abs(image - two).max() <= 2.0 / 255.0
+    rendered = request.getfixturevalue(FIXTURES[method])
+    client = client_images[method]
+    assert client.report["process_ids"] == [0.0, 1.0]
+    assert client.report["representation"] == method
+    assert np.abs(client.image - rendered["two_ranks"].image).max() <= 2.0 / 255.0
 
 
 def test_a_wrong_compositing_order_would_not_match(images, tmp_path):
     """The comparison notices a wrong order: the front and the back half of the mesh (as the
     camera sees it), rendered one by one with the same camera and transfer functions, match
     the one-rank image when composited front over back, and do not the other way round."""
-    one, one_report = images["one_rank"]
-    other_seed, _ = images["one_rank_seed1"]
+    one = images["one_rank"]
     like = tmp_path / "one_rank.json"
-    like.write_text(json.dumps(one_report))
+    like.write_text(json.dumps(one.report))
     axis = "xyz".index(VIEW_AXIS)
 
     def halves(grid):
@@ -469,10 +428,10 @@ def test_a_wrong_compositing_order_would_not_match(images, tmp_path):
     index = pvs.write_pieces(tmp_path, halves)
     front, back = (
         premultiplied(render(index.parent / f"pieces.{piece}.vtk", tmp_path / f"half{piece}.png",
-                             extra=["--like", like, "--transparent"])[0])
+                             extra=["--like", like, "--transparent"]).image)
         for piece in (0, 1))
-    right = compare(one, over(front, back)[..., :3], other_seed)
-    wrong = compare(one, over(back, front)[..., :3], other_seed)
+    right = compare(one.image, over(front, back)[..., :3], one.other_seed)
+    wrong = compare(one.image, over(back, front)[..., :3], one.other_seed)
     pvs.keep_text(json.dumps({"front_over_back": right, "back_over_front": wrong}, indent=1),
                   "mpi_order_control.json")
     assert within_noise(right), json.dumps(right, indent=1)

@@ -5,7 +5,6 @@ ParaView's Python, the same through a pvserver over loopback, and (after `make i
 installed plugin found by PV_PLUGIN_PATH.
 """
 
-import json
 import os
 import pathlib
 
@@ -14,9 +13,7 @@ import pytest
 
 import paraview_support as pvs
 
-SPT = "Volume (SPT)"
-HAVS = "Volume (HAVS-like)"
-PBVR = "Volume (PBVR)"
+SPT, HAVS, PBVR = pvs.SPT, pvs.HAVS, pvs.PBVR
 METHODS = (SPT, HAVS, PBVR)
 ARTIFACT = {SPT: "spt", HAVS: "havs", PBVR: "pbvr"}
 REPETITIONS = 8
@@ -51,7 +48,6 @@ SET_BY_NAME = {SPT: ["ReuseNoiseEstimate=0", "ComputeTraversal=1"],
                PBVR: ["MaximumParticleMemory=512"]}
 GROUPS = {SPT: "SPT Volume Rendering", HAVS: "HAVS-like Volume Rendering",
           PBVR: "PBVR Volume Rendering"}
-MAPPERS = {SPT: "vtkPSPTVolumeMapper", HAVS: "vtkHAVSVolumeMapper", PBVR: "vtkPBVRVolumeMapper"}
 
 
 @pytest.fixture(scope="module")
@@ -59,25 +55,12 @@ def mesh(tmp_path_factory):
     return pvs.write_mesh(tmp_path_factory.mktemp("data") / "mesh.vtk")
 
 
-def scene_arguments(mesh, output, *extra, representation=SPT):
-    return ["--data", mesh, "--output", output, "--report", output.with_suffix(""),
-            "--repetitions", REPETITIONS, "--seed", SEED, "--representation", representation,
-            "--target-error", TARGET_ERROR,
-            *[argument for item in SET_BY_NAME[representation] for argument in ("--set", item)],
-            *extra]
-
-
-def render_command(*scenes):
-    """pvpython drawing the scenes (each its scene_arguments()) one after the other, in one
-    process."""
-    command = [pvs.executable("pvpython"), pvs.SCRIPTS / "render_volume.py"]
-    for index, scene in enumerate(scenes):
-        command += (["--then"] if index else []) + scene
-    return command
-
-
-def read_report(output):
-    return json.loads(output.with_suffix(".rank0.json").read_text())
+def scene(mesh, output, *extra, representation=SPT):
+    return pvs.scene(
+        mesh, output, "--repetitions", REPETITIONS, "--seed", SEED,
+        "--representation", representation, "--target-error", TARGET_ERROR,
+        *[argument for item in SET_BY_NAME[representation] for argument in ("--set", item)],
+        *extra)
 
 
 @pytest.fixture(scope="module")
@@ -87,10 +70,10 @@ def rendered(have_x_display, mesh, tmp_path_factory):
     and the same scene drawn by a plain VTK pipeline (--plain)."""
     directory = tmp_path_factory.mktemp("builtin")
     outputs = {method: directory / f"{ARTIFACT[method]}.png" for method in METHODS}
-    pvs.run(render_command(*[
-        scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
-                        "--plain", output.with_name(output.stem + "_plain.png"),
-                        representation=method) for method, output in outputs.items()]))
+    pvs.run(pvs.render_command(*[
+        scene(mesh, output, "--plugin", pvs.plugin_path(),
+              "--plain", output.with_name(output.stem + "_plain.png"), representation=method)
+        for method, output in outputs.items()]))
     for method, output in outputs.items():
         pvs.keep(output, f"pvpython_{ARTIFACT[method]}.png")
     return outputs
@@ -103,17 +86,17 @@ def builtin(rendered):
 
 def test_representation_types_are_listed(rendered):
     for method in METHODS:
-        report = read_report(rendered[method])
+        report = pvs.read_report(rendered[method])
         assert report["representation"] == method
         assert {"Volume", "Surface", *METHODS} <= set(report["representation_types"])
 
 
 @pytest.mark.parametrize("method", METHODS)
 def test_settings_reach_the_mapper_on_the_server(rendered, method):
-    report = read_report(rendered[method])
+    report = pvs.read_report(rendered[method])
     expected = SETTINGS[method]
     assert report["settings"] == expected
-    assert report["mapper_class"] == MAPPERS[method] and report["mapper_is_wrapped"]
+    assert report["mapper_class"] == pvs.MAPPERS[method] and report["mapper_is_wrapped"]
     assert report["mapper_is_spt"] == (method == SPT)
     assert report["mapper_settings"] == expected
     assert report["tetrahedra"] == report["cells"] == 48000
@@ -121,7 +104,7 @@ def test_settings_reach_the_mapper_on_the_server(rendered, method):
 
 def test_spt_has_an_error_target_by_default(builtin):
     """The Properties panel shows Target Error next to Repetition Level, which is its cap."""
-    report = read_report(builtin)
+    report = pvs.read_report(builtin)
     assert report["defaults"]["TargetError"] == TARGET_ERROR
     assert report["defaults"]["RepetitionLevel"] == 256
     assert report["defaults"]["ReuseNoiseEstimate"] == 1
@@ -132,7 +115,7 @@ def test_spt_has_an_error_target_by_default(builtin):
 def test_spt_panel_shows_quality_and_refinement_the_rest_is_advanced(rendered):
     """What a user decides in the panel: the target error, its cap and progressive
     refinement; every other SPT setting is behind the panel's advanced toggle."""
-    visibility = read_report(rendered[SPT])["panel_visibility"]
+    visibility = pvs.read_report(rendered[SPT])["panel_visibility"]
     shown = [name for name in SETTINGS[SPT] if visibility[name] != "advanced"]
     assert shown == ["TargetError", "RepetitionLevel", "ProgressiveRefinement"], visibility
 
@@ -141,7 +124,7 @@ def test_spt_panel_shows_quality_and_refinement_the_rest_is_advanced(rendered):
 def test_settings_are_documented_and_grouped(rendered, method):
     """The XML documentation is what the Properties panel shows as tooltips; each method's
     group is shown only for its own representation type."""
-    report = read_report(rendered[method])
+    report = pvs.read_report(rendered[method])
     for name in SETTINGS[method]:
         text = report["documentation"][name]
         assert len(text) > 60 and "default" in text.lower(), (name, text)
@@ -153,7 +136,7 @@ def test_settings_are_documented_and_grouped(rendered, method):
 def test_spt_imports_inside_pvpython_from_this_build(builtin):
     """`import spt` works in ParaView's Python, wraps the plugin's mapper, and both come from
     the build tree under test, one copy of the library."""
-    report = read_report(builtin)
+    report = pvs.read_report(builtin)
     build = pathlib.Path(pvs.plugin_path()).parents[4]
     assert pathlib.Path(report["spt_file"]).resolve().is_relative_to(build.resolve())
     libraries = [pathlib.Path(p) for p in report["spt_libraries"]]
@@ -200,9 +183,9 @@ def client_images(have_x_display, mesh, tmp_path_factory):
     port = pvs.free_port()
     pvs.run_client_of_server(
         [pvs.executable("pvserver"), f"--server-port={port}"],
-        render_command(*[scene_arguments(mesh, output, "--plugin", pvs.plugin_path(),
-                                         "--connect", f"localhost:{port}", representation=method)
-                         for method, output in outputs.items()]),
+        pvs.render_command(*[scene(mesh, output, "--plugin", pvs.plugin_path(),
+                                   "--connect", f"localhost:{port}", representation=method)
+                             for method, output in outputs.items()]),
         pvs.environment(), 120)
     for method, output in outputs.items():
         pvs.keep(output, f"pvserver_client_{ARTIFACT[method]}.png")
@@ -213,7 +196,7 @@ def client_images(have_x_display, mesh, tmp_path_factory):
 def test_pvserver_with_a_pvpython_client_over_loopback(rendered, client_images, method):
     """The client gets the same image as pvpython on its own."""
     output = client_images[method]
-    report = read_report(output)
+    report = pvs.read_report(output)
     assert report["representation"] == method
     assert report["settings"] == SETTINGS[method]
     remote, local = pvs.read_png(output), pvs.read_png(rendered[method])
@@ -233,9 +216,9 @@ def test_installed_plugin_is_found_by_pv_plugin_path(have_x_display, mesh, tmp_p
     python = prefix / os.environ["SPT_PYTHON_SITE_DIR"]
     assert (plugins / "SPT" / "SPT.so").is_file()
     output = tmp_path / "installed.png"
-    pvs.run(render_command(scene_arguments(mesh, output)),
+    pvs.run(pvs.render_command(scene(mesh, output)),
             env=pvs.environment(PV_PLUGIN_PATH=str(plugins), PYTHONPATH=str(python)))
-    report = read_report(output)
+    report = pvs.read_report(output)
     assert report["representation"] == SPT and report["tetrahedra"] == 48000
     assert set(METHODS) <= set(report["representation_types"])
     assert all(pathlib.Path(p).is_relative_to(prefix) for p in report["spt_libraries"]), \

@@ -6,7 +6,8 @@ under mpirun). Writes the view as a PNG over a black background, so that its RGB
 volume's premultiplied color (or, with --transparent, as RGBA over a transparent background),
 and a JSON report of what was rendered. With --plain, the same data, camera, transfer functions
 and settings rendered once more by a new mapper of the same class in a plain VTK window, for
-comparison.
+comparison. With --fly-in, the camera then flies into the data in steps, each with a screenshot
+and the exact image of its camera.
 
     pvpython render_volume.py --data mesh.vtk --output spt.png --report report [--plugin SPT.so]
 
@@ -43,7 +44,8 @@ def parse_arguments(argv):
     parser.add_argument("--size", type=int, default=200)
     parser.add_argument("--representation", default="Volume (SPT)")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="an integer setting of the representation, by its name")
+                        type=lambda item: item.split("=", 1),
+                        help="a setting of the representation, by its name")
     parser.add_argument("--repetitions", type=int, default=16)
     parser.add_argument("--target-error", type=float, default=0.0,
                         help="SPT's Target Error (default 0: exactly --repetitions)")
@@ -51,8 +53,6 @@ def parse_arguments(argv):
     parser.add_argument("--other-seed", type=int,
                         help="then draw the view again with this seed (every volume's), into "
                         "OUTPUT with .seedN before its suffix")
-    parser.add_argument("--use-data-partitions", action="store_true",
-                        help="keep the pieces where they were read (no redistribution)")
     parser.add_argument("--view-axis", choices=("x", "y", "z"), default="z",
                         help="look along this axis (ParaView's default: z)")
     parser.add_argument("--like", help="an earlier report (JSON) whose camera, scalar range and "
@@ -67,21 +67,14 @@ def parse_arguments(argv):
     parser.add_argument("--opaque-sphere", action="store_true",
                         help="also show an opaque sphere in the middle of the data: ParaView's "
                         "Sphere source, of which each rank makes a part")
+    parser.add_argument("--fly-in", type=float, nargs="+", metavar="DOLLY",
+                        help="then turn the camera and dolly it in by these factors from the "
+                        "framed view, increasing: for each, a screenshot over a transparent "
+                        "background (OUTPUT with .dollyDOLLY before its suffix) and the exact "
+                        "image of its camera by spt.raycast (the same with .npy)")
     parser.add_argument("--plain", help="also write this PNG: the same scene rendered by a "
                         "plain VTK pipeline (pvpython on its own only)")
     return parser.parse_args(argv)
-
-
-def load_plugin(path, connected):
-    """Load the plugin where ParaView needs it: the server (if any) and this process."""
-    if connected:
-        simple.LoadPlugin(path, remote=True)
-    simple.LoadPlugin(path, remote=False)
-
-
-def rank_and_ranks():
-    module = servermanager.vtkProcessModule.GetProcessModule()
-    return module.GetPartitionId(), module.GetNumberOfLocalPartitions()
 
 
 def documentation(display, name):
@@ -120,26 +113,18 @@ def setup_view(size):
     return view
 
 
-def settings_to_set(args):
-    return {name: value for name, value in (item.split("=", 1) for item in args.set)}
-
-
-def method(args):
-    return METHODS.get(args.representation, {})
-
-
 def mapper_settings(display, args):
     """Exposed name: the mapper's own name, of every setting in the representation's group."""
-    chosen = method(args)
-    prefix = chosen.get("prefix", "")
+    chosen = METHODS[args.representation]
+    prefix = chosen["prefix"]
     return {name: name[len(prefix):] if prefix and name.startswith(prefix) else name
-            for name in property_groups(display).get(chosen.get("group"), [])}
+            for name in property_groups(display)[chosen["group"]]}
 
 
 def setting_names(display, args):
     """Exposed name: the mapper's name, of every setting to report."""
     names = mapper_settings(display, args)
-    for name in settings_to_set(args):
+    for name, _ in args.set:
         names.setdefault(name, name)
     return names
 
@@ -173,15 +158,14 @@ def show_volume(reader, view, args, like):
     display.SetRepresentationType(args.representation)
     # What the representation starts with: the defaults the plugin's XML declares.
     defaults = {name: get_setting(display, name) for name in setting_names(display, args)}
-    chosen = method(args)
+    chosen = METHODS[args.representation]
     if "target" in chosen:
         set_setting(display, chosen["target"], args.target_error)
     if "repetitions" in chosen:
         set_setting(display, chosen["repetitions"], args.repetitions)
         set_setting(display, chosen["seed"], args.seed)
-    for name, value in settings_to_set(args).items():
+    for name, value in args.set:
         set_setting(display, name, value)
-    display.UseDataPartitions = int(args.use_data_partitions)
     return display, defaults
 
 
@@ -281,39 +265,20 @@ def render_plain(display, view, args):
     and the settings), drawn again by a new mapper of the same class in a plain VTK render
     window over black: what a VTK user of the spt package gets."""
     import spt
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import (vtkRenderWindow, vtkRenderer, vtkVolume,
-                                             vtkWindowToImageFilter)
+    from spt import metrics, render
 
     representation = display.GetClientSideObject().GetActiveRepresentation()
     drawn = representation.GetActiveVolumeMapper()
     mapper = getattr(spt, drawn.GetClassName())()
     for own in mapper_settings(display, args).values():
         getattr(mapper, "Set" + own)(getattr(drawn, "Get" + own)())
-    mapper.SetInputData(drawn.GetInput())
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(representation.GetActor().GetProperty())
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetMultiSamples(0)
-    window.SetSize(args.size, args.size)
-    renderer = vtkRenderer()
-    renderer.SetBackground(0.0, 0.0, 0.0)
+    window, renderer = render.make_window(args.size, args.size)
+    volume = render.add_volume(renderer, drawn.GetInput(), representation.GetActor().GetProperty(),
+                               mapper)
     renderer.GetActiveCamera().DeepCopy(view.GetRenderer().GetActiveCamera())
-    window.AddRenderer(renderer)
-    renderer.AddVolume(volume)
     renderer.ResetCameraClippingRange()
     window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    grab.ShouldRerenderOff()
-    grab.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.plain)
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.Write()
+    metrics.write_png(args.plain, render.read_rgba(window)[..., :3])
     renderer.RemoveVolume(volume)
     window.Finalize()
 
@@ -321,7 +286,7 @@ def render_plain(display, view, args):
 def save_with_other_seed(displays, view, args):
     """The view once more, each volume with Seed --other-seed: an image independent of the
     first, of the same scene."""
-    chosen = method(args)
+    chosen = METHODS[args.representation]
     if "seed" not in chosen:
         raise SystemExit(f"--other-seed: {args.representation} has no seed")
     for display in displays:
@@ -332,11 +297,12 @@ def save_with_other_seed(displays, view, args):
                           TransparentBackground=int(args.transparent))
 
 
-def report(display, defaults, reader, view, args):
+def report(display, defaults, reader, view, args, flight):
     """Every rank makes the same ParaView calls (some gather over the ranks); each writes its
     own file."""
-    rank, ranks = rank_and_ranks()
-    info = {"rank": rank, "ranks": ranks}
+    module = servermanager.vtkProcessModule.GetProcessModule()
+    rank = module.GetPartitionId()
+    info = {"rank": rank, "ranks": module.GetNumberOfLocalPartitions(), "fly_in": flight}
     info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
     info["representation_types"] = list(display.GetProperty("Representation").Available)
     names = setting_names(display, args)
@@ -365,8 +331,41 @@ def report(display, defaults, reader, view, args):
         json.dump(info, stream, indent=1)
 
 
-def render_scene(args):
-    """Show, screenshot and report one scene, then delete what it made."""
+def fly_in(display, view, args, references):
+    """Turn the camera, then dolly it in by each --fly-in factor, with a screenshot and the
+    exact image of each step (``references`` keeps those by camera, for the next scene); each
+    step's dolly factor and clipping range, as ParaView reset it."""
+    import numpy as np
+    from spt import raycast
+
+    camera = view.GetActiveCamera()
+    camera.Elevation(25.0)
+    camera.Azimuth(35.0)
+    simple.ResetCamera(view)
+    stem, _ = os.path.splitext(args.output)
+    steps, done = [], 1.0
+    for dolly in args.fly_in:
+        camera.Dolly(dolly / done)
+        done = dolly
+        simple.SaveScreenshot(f"{stem}.dolly{dolly:g}.png", view,
+                              ImageResolution=[args.size, args.size], TransparentBackground=1)
+        drawn = view.GetRenderer().GetActiveCamera()
+        # What places the camera's rays: the same key, the same exact image.
+        key = (drawn.GetPosition(), drawn.GetFocalPoint(), drawn.GetViewUp(),
+               drawn.GetViewAngle(), drawn.GetClippingRange(), drawn.GetParallelProjection(),
+               drawn.GetParallelScale())
+        if key not in references:
+            volume = display.GetClientSideObject().GetActiveRepresentation().GetActor()
+            references[key] = raycast.render(mapper_object(display).GetInput(),
+                                             volume.GetProperty(), drawn, (args.size, args.size))
+        np.save(f"{stem}.dolly{dolly:g}.npy", references[key])
+        steps.append({"dolly": dolly, "clipping_range": list(drawn.GetClippingRange())})
+    return steps
+
+
+def render_scene(args, references):
+    """Show, screenshot and report one scene, then delete what it made; ``references`` holds
+    the exact images of the fly-ins so far."""
     reader = simple.LegacyVTKReader(FileNames=[args.data])
     view = setup_view(args.size)
     like = None
@@ -384,7 +383,8 @@ def render_scene(args):
         look_along(view, args.view_axis)
     simple.SaveScreenshot(args.output, view, ImageResolution=[args.size, args.size],
                           TransparentBackground=int(args.transparent))
-    report(display, defaults, reader, view, args)
+    flight = fly_in(display, view, args, references) if args.fly_in else None
+    report(display, defaults, reader, view, args, flight)
     if args.other_seed is not None:
         save_with_other_seed([display] + ([second[1]] if second else []), view, args)
     if args.plain:
@@ -418,9 +418,13 @@ def main(argv):
         host, port = first.connect.rsplit(":", 1)
         simple.Connect(host, int(port))
     if first.plugin:
-        load_plugin(first.plugin, connected)
+        # Where ParaView needs it: on the server, if any, and in this process.
+        if connected:
+            simple.LoadPlugin(first.plugin, remote=True)
+        simple.LoadPlugin(first.plugin, remote=False)
+    references = {}
     for args in scenes:
-        render_scene(args)
+        render_scene(args, references)
     if connected:
         simple.Disconnect()
 
