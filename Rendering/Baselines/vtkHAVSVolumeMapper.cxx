@@ -112,9 +112,7 @@ public:
     {
       return false;
     }
-    this->Faces->Bind(program);
-    this->Faces->Draw();
-    this->Faces->Unbind();
+    this->Faces->Draw(program);
     this->KBuffer->EndPass();
     return true;
   }
@@ -150,6 +148,10 @@ public:
   {
     // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
     // first, as faces where the rays enter the mesh, which the shader tells by their facing.
+    if (!this->Matrices.NearPlaneCutsBounds)
+    {
+      return true;
+    }
     double modelToClip[4][4];
     vtkMatrix4x4::Multiply4x4(
       &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
