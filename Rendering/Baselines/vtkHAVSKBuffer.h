@@ -9,7 +9,8 @@
  *
  * A fragment reads, changes and writes its pixel's targets. That read-modify-write is correct
  * only if the fragments of one pixel do it one at a time and in the order of their primitives
- * (the sorted order of the faces). The access modes:
+ * (the sorted order of the faces). The access modes (vtkHAVSVolumeMapper's
+ * KBufferSynchronizationType):
  * - FRAGMENT_SHADER_INTERLOCK: image load/store inside a pixel_interlock_ordered critical
  *   section (GL_ARB_fragment_shader_interlock): guaranteed by the extension.
  * - FRAMEBUFFER_FETCH: the targets are color attachments read as inout outputs
@@ -52,13 +53,6 @@ public:
   static vtkHAVSKBuffer* New();
   vtkTypeMacro(vtkHAVSKBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  enum Access
-  {
-    FRAGMENT_SHADER_INTERLOCK = 1,
-    FRAMEBUFFER_FETCH = 2,
-    RASTERIZATION_ORDER = 3
-  };
 
   /// Whether the context has the OpenGL extension (core profile extension list).
   static bool HasExtension(const char* name);
