@@ -170,18 +170,6 @@ public:
     }
     return true;
   }
-
-  void ReleaseGraphicsResources(vtkWindow* window, bool current)
-  {
-    this->Faces->ReleaseGraphicsResources(window);
-    this->Table->ReleaseGraphicsResources(window);
-    this->KBuffer->ReleaseGraphicsResources(window);
-    this->NearCap.ReleaseGraphicsResources();
-    this->Flush.reset();
-    this->FlushSource.clear();
-    this->Timer.Release(current);
-    this->InterlockFailed = false;
-  }
 };
 
 vtkStandardNewMacro(vtkHAVSVolumeMapper);
@@ -327,7 +315,15 @@ void vtkHAVSVolumeMapper::DrawKBuffer(const RenderTarget& target, int access)
 
 void vtkHAVSVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internals->ReleaseGraphicsResources(window, this->GetContext() != nullptr);
+  vtkInternals& internals = *this->Internals;
+  internals.Faces->ReleaseGraphicsResources(window);
+  internals.Table->ReleaseGraphicsResources(window);
+  internals.KBuffer->ReleaseGraphicsResources(window);
+  internals.NearCap.ReleaseGraphicsResources();
+  internals.Flush.reset();
+  internals.FlushSource.clear();
+  internals.Timer.Release(this->GetContext() != nullptr);
+  internals.InterlockFailed = false;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
