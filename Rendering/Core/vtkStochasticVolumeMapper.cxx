@@ -139,17 +139,11 @@ public:
 };
 
 vtkStochasticVolumeMapper::vtkStochasticVolumeMapper()
-  : Ensemble(vtkSmartPointer<vtkEnsembleBuffer>::New())
-  , Schedule(new vtkSchedule)
+  : Schedule(new vtkSchedule)
 {
 }
 
 vtkStochasticVolumeMapper::~vtkStochasticVolumeMapper() = default;
-
-vtkEnsembleBuffer* vtkStochasticVolumeMapper::GetEnsemble() const
-{
-  return this->Ensemble;
-}
 
 int vtkStochasticVolumeMapper::ChooseRepetitions(
   vtkVolume* vol, int level, int& perPass, Traversal& kind) const
