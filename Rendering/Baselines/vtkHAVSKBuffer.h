@@ -66,10 +66,8 @@ public:
   /// The lines that the shaders' //HAVS::Defines::Dec tag becomes for this size and access.
   std::string GetShaderDefinitions() const;
 
-  /**
-   * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
-   * corner is (x, y), into the scene depth texture (the far plane without a depth buffer).
-   */
+  /// The scene depth of the viewport at (x, y) of what is bound for reading
+  /// (vtkSceneDepthTexture::Capture()).
   void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**

@@ -56,11 +56,8 @@ public:
   bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel,
     double sampleDistance = 1.0);
 
-  /**
-   * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
-   * corner is (x, y), into the scene depth texture. Without a readable depth buffer, the scene
-   * depth is the far plane.
-   */
+  /// The scene depth of the viewport at (x, y) of what is bound for reading
+  /// (vtkSceneDepthTexture::Capture()).
   void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**
