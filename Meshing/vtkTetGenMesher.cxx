@@ -13,6 +13,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkTetra.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <tetgen.h> // TETLIBRARY comes with the TetGen::TetGen target: errors throw an int
@@ -290,16 +291,6 @@ bool RunTetGen(const std::string& switches, tetgenio& in, tetgenio& out, std::st
   return true;
 }
 
-double SignedSixVolume(const double* a, const double* b, const double* c, const double* d)
-{
-  double u[3], v[3], w[3], vw[3];
-  vtkMath::Subtract(b, a, u);
-  vtkMath::Subtract(c, a, v);
-  vtkMath::Subtract(d, a, w);
-  vtkMath::Cross(v, w, vw);
-  return vtkMath::Dot(u, vw);
-}
-
 /// TetGen's tetrahedra as VTK_TETRA cells, each turned positive if TetGen's is not.
 void CopyTetGenOutput(const tetgenio& out, vtkUnstructuredGrid* output)
 {
@@ -323,7 +314,7 @@ void CopyTetGenOutput(const tetgenio& out, vtkUnstructuredGrid* output)
     const int* tet = out.tetrahedronlist + stride * t;
     vtkIdType* cell = ids + 4 * t;
     std::copy_n(tet, 4, cell);
-    if (SignedSixVolume(out.pointlist + 3 * tet[0], out.pointlist + 3 * tet[1],
+    if (vtkTetra::ComputeVolume(out.pointlist + 3 * tet[0], out.pointlist + 3 * tet[1],
           out.pointlist + 3 * tet[2], out.pointlist + 3 * tet[3]) < 0.0)
     {
       std::swap(cell[2], cell[3]);

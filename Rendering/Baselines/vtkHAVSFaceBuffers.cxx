@@ -255,23 +255,15 @@ bool vtkHAVSFaceBuffers::Upload(vtkOpenGLRenderWindow* renWin)
   return true;
 }
 
-void vtkHAVSFaceBuffers::Bind(vtkShaderProgram* program)
+void vtkHAVSFaceBuffers::Draw(vtkShaderProgram* program)
 {
   this->VertexArray.Bind(program,
     { { "vertexMC", this->PointBuffer, 3 * sizeof(float), VTK_FLOAT, 3, false },
       { "scalarTF", this->ScalarBuffer, sizeof(float), VTK_FLOAT, 1, false } },
     this->IndexBuffer);
-}
-
-void vtkHAVSFaceBuffers::Unbind()
-{
-  this->VertexArray.Release();
-}
-
-void vtkHAVSFaceBuffers::Draw()
-{
   const vtkIdType numberOfFaces = static_cast<vtkIdType>(this->SortedTriangles.size() / 3);
   vtkBatchedVertexArray::DrawElements(GL_TRIANGLES, 3, 0, numberOfFaces, MaxFacesPerDraw);
+  this->VertexArray.Release();
 }
 
 size_t vtkHAVSFaceBuffers::GetGPUMemorySize() const

@@ -96,12 +96,10 @@ public:
   bool Upload(vtkOpenGLRenderWindow* renWin);
 
   /**
-   * Bind the vertex arrays to the attributes `vertexMC` and `scalarTF` of the program, and
-   * the sorted triangles; draw them all as GL_TRIANGLES.
+   * Draw the sorted triangles of the last Upload(), with the vertices bound to the program's
+   * attributes `vertexMC` and `scalarTF`.
    */
-  void Bind(vtkShaderProgram* program);
-  void Unbind();
-  void Draw();
+  void Draw(vtkShaderProgram* program);
 
   size_t GetGPUMemorySize() const;
   void ReleaseGraphicsResources(vtkWindow* window);

@@ -11,6 +11,7 @@
 #include "vtkTextureObject.h"
 
 #include "vtkFramebufferTextures.h"
+#include "vtkHAVSVolumeMapper.h"
 #include "vtkSavedGLState.h"
 #include "vtkSceneDepthTexture.h"
 
@@ -39,7 +40,7 @@ bool vtkHAVSKBuffer::HasExtension(const char* name)
 std::string vtkHAVSKBuffer::GetShaderDefinitions() const
 {
   std::ostringstream defines;
-  if (this->AccessMode == FRAMEBUFFER_FETCH)
+  if (this->AccessMode == vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH)
   {
     defines << "#extension GL_EXT_shader_framebuffer_fetch : require\n"
                "#extension GL_ARB_explicit_attrib_location : require\n"
@@ -50,7 +51,7 @@ std::string vtkHAVSKBuffer::GetShaderDefinitions() const
     defines << "#extension GL_ARB_shader_image_load_store : require\n"
                "#define HAVS_IMAGE\n";
   }
-  if (this->AccessMode == FRAGMENT_SHADER_INTERLOCK)
+  if (this->AccessMode == vtkHAVSVolumeMapper::FRAGMENT_SHADER_INTERLOCK)
   {
     defines << "#extension GL_ARB_fragment_shader_interlock : require\n"
                "#define HAVS_INTERLOCK\n"
@@ -150,7 +151,7 @@ void vtkHAVSKBuffer::BeginPass(vtkShaderProgram* program)
   ostate->vtkglDisable(GL_BLEND);
   ostate->vtkglViewport(0, 0, this->Width, this->Height);
   const int targets = this->GetNumberOfTargets();
-  if (this->AccessMode == FRAMEBUFFER_FETCH)
+  if (this->AccessMode == vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH)
   {
     this->Framebuffer->ActivateDrawBuffers(targets);
     ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -182,7 +183,7 @@ void vtkHAVSKBuffer::EndPass()
     this->SceneDepth->GetTexture()->Deactivate();
     this->SceneDepthActive = false;
   }
-  if (this->AccessMode != FRAMEBUFFER_FETCH)
+  if (this->AccessMode != vtkHAVSVolumeMapper::FRAMEBUFFER_FETCH)
   {
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     for (int t = 0; t < this->GetNumberOfTargets(); ++t)

@@ -9,7 +9,8 @@
  *
  * A fragment reads, changes and writes its pixel's targets. That read-modify-write is correct
  * only if the fragments of one pixel do it one at a time and in the order of their primitives
- * (the sorted order of the faces). The access modes:
+ * (the sorted order of the faces). The access modes (vtkHAVSVolumeMapper's
+ * KBufferSynchronizationType):
  * - FRAGMENT_SHADER_INTERLOCK: image load/store inside a pixel_interlock_ordered critical
  *   section (GL_ARB_fragment_shader_interlock): guaranteed by the extension.
  * - FRAMEBUFFER_FETCH: the targets are color attachments read as inout outputs
@@ -53,13 +54,6 @@ public:
   vtkTypeMacro(vtkHAVSKBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Access
-  {
-    FRAGMENT_SHADER_INTERLOCK = 1,
-    FRAMEBUFFER_FETCH = 2,
-    RASTERIZATION_ORDER = 3
-  };
-
   /// Whether the context has the OpenGL extension (core profile extension list).
   static bool HasExtension(const char* name);
 
@@ -72,10 +66,8 @@ public:
   /// The lines that the shaders' //HAVS::Defines::Dec tag becomes for this size and access.
   std::string GetShaderDefinitions() const;
 
-  /**
-   * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
-   * corner is (x, y), into the scene depth texture (the far plane without a depth buffer).
-   */
+  /// The scene depth of the viewport at (x, y) of what is bound for reading
+  /// (vtkSceneDepthTexture::Capture()).
   void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**

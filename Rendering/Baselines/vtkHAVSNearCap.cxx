@@ -52,29 +52,12 @@ double ScreenArea(const double m[4][4], const float (*polygon)[4], int count)
 vtkHAVSNearCap::vtkHAVSNearCap() = default;
 vtkHAVSNearCap::~vtkHAVSNearCap() = default;
 
-bool vtkHAVSNearCap::CutsBounds(const vtkTetrahedralMesh* mesh, const double m[4][4]) const
-{
-  const double* bounds = mesh->GetNormalizedBounds();
-  bool front = false, behind = false;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const float p[3] = { float(bounds[corner & 1]), float(bounds[2 + ((corner >> 1) & 1)]),
-      float(bounds[4 + ((corner >> 2) & 1)]) };
-    (NearDistance(m, p) > 0.0 ? front : behind) = true;
-  }
-  return front && behind;
-}
-
 vtkIdType vtkHAVSNearCap::Build(const vtkTetrahedralMesh* mesh, const std::vector<float>& points,
   const std::vector<float>& scalars, const double modelToClip[4][4], float boundaryOffset,
   bool counterClockwise)
 {
   this->Vertices.clear();
   this->Scalars.clear();
-  if (!this->CutsBounds(mesh, modelToClip))
-  {
-    return 0;
-  }
   this->Points = &points;
   this->PointScalars = &scalars;
   this->BoundaryOffset = boundaryOffset;

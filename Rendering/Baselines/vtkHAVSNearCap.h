@@ -44,7 +44,8 @@ public:
    * to clip coordinates). `points` and `scalars` are the mesh's vertices (3 floats each) and
    * their scalars in [0, 1]; the cap's scalars are offset by `boundaryOffset`. The triangles
    * wind counterclockwise on the screen when `counterClockwise`, else clockwise. Returns the
-   * number of triangles (0 when the near plane misses the mesh's bounds).
+   * number of triangles. Worth calling only where the near plane cuts the mesh's bounds
+   * (vtkVolumeViewMatrices::NearPlaneCutsBounds).
    */
   vtkIdType Build(const vtkTetrahedralMesh* mesh, const std::vector<float>& points,
     const std::vector<float>& scalars, const double modelToClip[4][4], float boundaryOffset,
@@ -62,7 +63,6 @@ public:
   void ReleaseGraphicsResources();
 
 private:
-  bool CutsBounds(const vtkTetrahedralMesh* mesh, const double modelToClip[4][4]) const;
   void CutTetrahedron(const unsigned int ids[4], const double distance[4], bool counterClockwise);
   void AddCutPoint(unsigned int a, unsigned int b, double da, double db, float cut[4]) const;
 

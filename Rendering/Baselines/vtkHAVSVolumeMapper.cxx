@@ -112,9 +112,7 @@ public:
     {
       return false;
     }
-    this->Faces->Bind(program);
-    this->Faces->Draw();
-    this->Faces->Unbind();
+    this->Faces->Draw(program);
     this->KBuffer->EndPass();
     return true;
   }
@@ -150,6 +148,10 @@ public:
   {
     // Where the near plane cuts the mesh, the rays start inside it: the cut enters the k-buffer
     // first, as faces where the rays enter the mesh, which the shader tells by their facing.
+    if (!this->Matrices.NearPlaneCutsBounds)
+    {
+      return true;
+    }
     double modelToClip[4][4];
     vtkMatrix4x4::Multiply4x4(
       &this->Matrices.ViewToClip[0][0], &this->Matrices.ModelToView[0][0], &modelToClip[0][0]);
@@ -167,18 +169,6 @@ public:
       vtkGenericWarningMacro("Could not upload the near plane's cut through the mesh.");
     }
     return true;
-  }
-
-  void ReleaseGraphicsResources(vtkWindow* window, bool current)
-  {
-    this->Faces->ReleaseGraphicsResources(window);
-    this->Table->ReleaseGraphicsResources(window);
-    this->KBuffer->ReleaseGraphicsResources(window);
-    this->NearCap.ReleaseGraphicsResources();
-    this->Flush.reset();
-    this->FlushSource.clear();
-    this->Timer.Release(current);
-    this->InterlockFailed = false;
   }
 };
 
@@ -325,7 +315,15 @@ void vtkHAVSVolumeMapper::DrawKBuffer(const RenderTarget& target, int access)
 
 void vtkHAVSVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internals->ReleaseGraphicsResources(window, this->GetContext() != nullptr);
+  vtkInternals& internals = *this->Internals;
+  internals.Faces->ReleaseGraphicsResources(window);
+  internals.Table->ReleaseGraphicsResources(window);
+  internals.KBuffer->ReleaseGraphicsResources(window);
+  internals.NearCap.ReleaseGraphicsResources();
+  internals.Flush.reset();
+  internals.FlushSource.clear();
+  internals.Timer.Release(this->GetContext() != nullptr);
+  internals.InterlockFailed = false;
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

@@ -10,7 +10,6 @@
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
-#include "vtkSmartPointer.h"
 #include "vtkTextureObject.h"
 #include "vtkTimeStamp.h"
 #include "vtkVolume.h"
@@ -66,7 +65,7 @@ public:
   // calls for new particles; colors are looked up when drawn.
   vtkTransferFunctionSamples Samples;
   vtkTimeStamp ColorUploadTime;
-  vtkSmartPointer<vtkTextureObject> ColorTexture;
+  vtkNew<vtkTextureObject> ColorTexture;
 
   // The mesh's bounding sphere about its normalized origin.
   double MeshRadius = 0.0;
@@ -84,14 +83,11 @@ public:
 
   vtkTextureObject* GetColorTexture(vtkOpenGLRenderWindow* renWin)
   {
-    if (this->ColorTexture && this->ColorTexture->GetContext() == renWin &&
+    vtkTextureObject* texture = this->ColorTexture;
+    if (texture->GetHandle() && texture->GetContext() == renWin &&
       this->ColorUploadTime > this->Samples.GetColorTime())
     {
-      return this->ColorTexture;
-    }
-    if (!this->ColorTexture)
-    {
-      this->ColorTexture = vtkSmartPointer<vtkTextureObject>::New();
+      return texture;
     }
     std::vector<float> rgba(4 * TransferFunctionSamples, 1.0f);
     for (int i = 0; i < TransferFunctionSamples; ++i)
@@ -101,7 +97,6 @@ public:
         rgba[4 * i + c] = static_cast<float>(this->Samples.GetColor()[3 * i + c]);
       }
     }
-    vtkTextureObject* texture = this->ColorTexture;
     texture->SetContext(renWin);
     texture->SetWrapS(vtkTextureObject::ClampToEdge);
     texture->SetWrapT(vtkTextureObject::ClampToEdge);
@@ -109,7 +104,7 @@ public:
     texture->SetMagnificationFilter(vtkTextureObject::Linear);
     if (!texture->Create2DFromRaw(TransferFunctionSamples, 1, 4, VTK_FLOAT, rgba.data()))
     {
-      this->ColorTexture = nullptr;
+      texture->ReleaseGraphicsResources(renWin);
       return nullptr;
     }
     this->ColorUploadTime.Modified();
@@ -313,9 +308,8 @@ double vtkPBVRVolumeMapper::GetParticleSize()
 vtkIdType vtkPBVRVolumeMapper::GetGPUMemorySize()
 {
   const vtkInternals& internals = *this->Internals;
-  const size_t colors = internals.ColorTexture && internals.ColorTexture->GetHandle()
-    ? size_t(4) * sizeof(float) * TransferFunctionSamples
-    : 0;
+  const size_t colors =
+    internals.ColorTexture->GetHandle() ? size_t(4) * sizeof(float) * TransferFunctionSamples : 0;
   return static_cast<vtkIdType>(
     internals.UploadedBytes + colors + internals.Ensemble->GetGPUMemorySize());
 }
@@ -504,11 +498,7 @@ void vtkPBVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   vtkInternals& internals = *this->Internals;
   internals.ReleaseParticles();
-  if (internals.ColorTexture)
-  {
-    internals.ColorTexture->ReleaseGraphicsResources(window);
-    internals.ColorTexture = nullptr;
-  }
+  internals.ColorTexture->ReleaseGraphicsResources(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

@@ -25,6 +25,38 @@
 #include <string>
 #include <vector>
 
+namespace
+{
+// The program of `quad`, a quad over the viewport that draws `fragmentShader`, made on first
+// use, ready to draw; null when it does not compile.
+vtkShaderProgram* ReadyQuad(std::unique_ptr<vtkOpenGLQuadHelper>& quad,
+  vtkOpenGLRenderWindow* context, const char* fragmentShader)
+{
+  if (!quad)
+  {
+    quad.reset(new vtkOpenGLQuadHelper(context, nullptr, fragmentShader, ""));
+  }
+  if (quad->Program)
+  {
+    context->GetShaderCache()->ReadyShaderProgram(quad->Program);
+  }
+  return quad->Program;
+}
+
+// A quad that replaces the depth bound for drawing in the viewport at (x, y), and its color
+// with `color`: the depth test passes everywhere, without blending.
+void SetReplacingState(vtkOpenGLState* ostate, int x, int y, int width, int height, bool color)
+{
+  const GLboolean colorMask = color ? GL_TRUE : GL_FALSE;
+  ostate->vtkglViewport(x, y, width, height);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglColorMask(colorMask, colorMask, colorMask, colorMask);
+  ostate->vtkglDisable(GL_BLEND);
+}
+}
+
 vtkStandardNewMacro(vtkEnsembleBuffer);
 
 vtkEnsembleBuffer::vtkEnsembleBuffer() = default;
@@ -127,10 +159,8 @@ void vtkEnsembleBuffer::ClearSum()
 {
   this->Tiles.Reset();
   vtkOpenGLState* ostate = this->Context->GetState();
-  vtkOpenGLState::ScopedglClearColor clearColor(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkSavedGLState saved(ostate);
   // The renderer leaves the scissor box on its viewport, which need not cover these buffers.
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->PushDrawFramebufferBinding();
   this->SumsFramebuffer(this->Halves)->Bind(GL_DRAW_FRAMEBUFFER);
@@ -246,11 +276,7 @@ std::vector<float> vtkEnsembleBuffer::DrawNoise(
   vtkShaderProgram* program, int halfCount, bool exactCoverage)
 {
   vtkOpenGLState* ostate = this->Context->GetState();
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
+  vtkSavedGLState saved(ostate);
   ostate->PushFramebufferBindings();
   this->NoiseFramebuffer->Bind();
   this->NoiseFramebuffer->ActivateDrawBuffers(1);
@@ -259,7 +285,6 @@ std::vector<float> vtkEnsembleBuffer::DrawNoise(
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglViewport(0, 0, this->Width, this->Height);
-  this->Context->GetShaderCache()->ReadyShaderProgram(program);
   this->Sum->Activate();
   this->SecondHalf->Activate();
   vtkTextureObject* coverage = exactCoverage ? this->Coverage.Get() : this->Sum.Get();
@@ -291,11 +316,7 @@ std::vector<double> vtkEnsembleBuffer::EstimateTileNoise(int halfCount, bool exa
   {
     return {};
   }
-  if (!this->NoiseQuad)
-  {
-    this->NoiseQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleNoiseFS, ""));
-  }
-  vtkShaderProgram* program = this->NoiseQuad->Program;
+  vtkShaderProgram* program = ReadyQuad(this->NoiseQuad, this->Context, vtkEnsembleNoiseFS);
   if (!program)
   {
     vtkErrorMacro("Could not compile the shader of the noise estimate.");
@@ -411,32 +432,17 @@ void vtkEnsembleBuffer::Resolve(int x, int y, int numberOfPasses, bool exactCove
 
 void vtkEnsembleBuffer::MarkFootprint(int x, int y)
 {
-  vtkOpenGLState* ostate = this->Context->GetState();
-  if (!this->Footprint)
-  {
-    this->Footprint.reset(
-      new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleFootprintFS, ""));
-  }
-  if (!this->Footprint->Program)
+  vtkShaderProgram* program = ReadyQuad(this->Footprint, this->Context, vtkEnsembleFootprintFS);
+  if (!program)
   {
     return;
   }
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  ostate->vtkglViewport(x, y, this->ViewportWidth, this->ViewportHeight);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  ostate->vtkglDisable(GL_BLEND);
-  this->Context->GetShaderCache()->ReadyShaderProgram(this->Footprint->Program);
+  vtkOpenGLState* ostate = this->Context->GetState();
+  vtkSavedGLState saved(ostate);
+  SetReplacingState(ostate, x, y, this->ViewportWidth, this->ViewportHeight, false);
   this->Sum->Activate();
-  this->Footprint->Program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
-  this->Footprint->Program->SetUniformi("subpixelLevel", this->SubpixelLevel);
+  program->SetUniformi("sumTexture", this->Sum->GetTextureUnit());
+  program->SetUniformi("subpixelLevel", this->SubpixelLevel);
   this->Footprint->Render();
   this->Sum->Deactivate();
 }
@@ -461,11 +467,8 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
   {
     return false;
   }
-  if (!this->SceneQuad)
-  {
-    this->SceneQuad.reset(new vtkOpenGLQuadHelper(this->Context, nullptr, vtkEnsembleSceneFS, ""));
-  }
-  if (!this->SceneQuad->Program)
+  vtkShaderProgram* program = ReadyQuad(this->SceneQuad, this->Context, vtkEnsembleSceneFS);
+  if (!program)
   {
     return false;
   }
@@ -485,23 +488,11 @@ bool vtkEnsembleBuffer::DrawScene(int x, int y, const std::vector<unsigned char>
     GL_RGBA, GL_UNSIGNED_BYTE, color.data());
   vtkTextureObject* depth = this->SceneDepth->GetTexture();
   depth->Activate();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglDepthFunc depthFunction(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
-  vtkOpenGLState::ScopedglColorMask colorMask(ostate);
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglEnableDisable scissor(ostate, GL_SCISSOR_TEST);
-  vtkOpenGLState::ScopedglViewport viewport(ostate);
-  ostate->vtkglViewport(x, y, this->ViewportWidth, this->ViewportHeight);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  ostate->vtkglDisable(GL_BLEND);
+  vtkSavedGLState saved(ostate);
+  SetReplacingState(ostate, x, y, this->ViewportWidth, this->ViewportHeight, true);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
-  this->Context->GetShaderCache()->ReadyShaderProgram(this->SceneQuad->Program);
-  this->SceneQuad->Program->SetUniformi("sceneColorTexture", this->SceneColor->GetTextureUnit());
-  this->SceneQuad->Program->SetUniformi("sceneDepthTexture", depth->GetTextureUnit());
+  program->SetUniformi("sceneColorTexture", this->SceneColor->GetTextureUnit());
+  program->SetUniformi("sceneDepthTexture", depth->GetTextureUnit());
   this->SceneQuad->Render();
   depth->Deactivate();
   this->SceneColor->Deactivate();

@@ -56,11 +56,8 @@ public:
   bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int subpixelLevel,
     double sampleDistance = 1.0);
 
-  /**
-   * Copy the depth of the framebuffer bound for reading, from the viewport whose lower left
-   * corner is (x, y), into the scene depth texture. Without a readable depth buffer, the scene
-   * depth is the far plane.
-   */
+  /// The scene depth of the viewport at (x, y) of what is bound for reading
+  /// (vtkSceneDepthTexture::Capture()).
   void CaptureSceneDepth(int x, int y) { this->SceneDepth->Capture(x, y); }
 
   /**
@@ -171,7 +168,7 @@ public:
 
   ///@{
   /**
-   * The scene depth texture, the size of one pass in samples, and the subpixel level.
+   * The scene depth texture and the size of one pass in samples.
    */
   vtkTextureObject* GetSceneDepthTexture() { return this->SceneDepth->GetTexture(); }
   /// The sum of the repetitions and the coverage (float RGBA, one texel per sample); the
@@ -181,14 +178,10 @@ public:
   /// The second half's sum (SetHalves()); the sum holds both halves.
   vtkTextureObject* GetSecondHalfTexture() { return this->SecondHalf; }
   int GetPassWidth() const { return this->Width * this->SubpixelLevel; }
-  /// The image's pixels (the viewport's at a sample distance of 1), and the viewport's.
-  int GetImageWidth() const { return this->Width; }
-  int GetImageHeight() const { return this->Height; }
+  int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
   double GetSampleDistance() const { return this->SampleDistance; }
   /// The viewport's pixels per image pixel along x and y: 1 at a sample distance of 1.
   void GetPixelScale(float scale[2]) const;
-  int GetPassHeight() const { return this->Height * this->SubpixelLevel; }
-  int GetSubpixelLevel() const { return this->SubpixelLevel; }
   ///@}
 
   /**

@@ -241,12 +241,9 @@ void vtkEnsembleTiles::GetSampleBox(int box[4]) const
 
 int vtkEnsembleTiles::GetMostMissed() const
 {
-  float most = 0.0f;
-  for (float missed : this->Missed)
-  {
-    most = std::max(most, missed);
-  }
-  return static_cast<int>(most);
+  return this->Missed.empty()
+    ? 0
+    : static_cast<int>(*std::max_element(this->Missed.begin(), this->Missed.end()));
 }
 
 bool vtkEnsembleTiles::UploadMissed(vtkOpenGLRenderWindow* context)

@@ -49,10 +49,6 @@ public:
   /// The whole image is drawn, and no tile has missed a repetition.
   void Reset();
 
-  int GetColumns() const { return this->Columns; }
-  int GetRows() const { return this->Rows; }
-  bool IsRestricted() const { return this->Restricted; }
-
   /**
    * Per tile (row after row from the bottom), the root mean square of `values` over the
    * tile's pixels where `inside` holds (pairs per pixel of the image: value, inside flag), times

@@ -349,12 +349,9 @@ vtkTextureObject* vtkPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* renW
   {
     return nullptr;
   }
-  if (!this->Texture || this->Texture->GetContext() != renWin || this->UploadTime < this->BuildTime)
+  if (!this->Texture->GetHandle() || this->Texture->GetContext() != renWin ||
+    this->UploadTime < this->BuildTime)
   {
-    if (!this->Texture)
-    {
-      this->Texture = vtkSmartPointer<vtkTextureObject>::New();
-    }
     this->Texture->SetContext(renWin);
     this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
     this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
@@ -367,7 +364,7 @@ vtkTextureObject* vtkPreIntegrationTable::GetTexture(vtkOpenGLRenderWindow* renW
     {
       vtkErrorMacro("Could not upload the " << ns << "x" << ns << "x" << this->LengthResolution
                                             << " pre-integration table as a 3D texture.");
-      this->Texture = nullptr;
+      this->Texture->ReleaseGraphicsResources(renWin);
       return nullptr;
     }
     this->UploadTime.Modified();
@@ -392,16 +389,12 @@ void vtkPreIntegrationTable::SetUniforms(
 
 size_t vtkPreIntegrationTable::GetGPUMemorySize() const
 {
-  return this->Texture && this->Texture->GetHandle() ? this->Table.size() * sizeof(float) : 0;
+  return this->Texture->GetHandle() ? this->Table.size() * sizeof(float) : 0;
 }
 
 void vtkPreIntegrationTable::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Texture)
-  {
-    this->Texture->ReleaseGraphicsResources(window);
-    this->Texture = nullptr;
-  }
+  this->Texture->ReleaseGraphicsResources(window);
 }
 
 void vtkPreIntegrationTable::PrintSelf(ostream& os, vtkIndent indent)

@@ -20,8 +20,8 @@
 #define vtkPreIntegrationTable_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
+#include "vtkNew.h"                 // For the texture
 #include "vtkObject.h"
-#include "vtkSmartPointer.h"            // For the texture
 #include "vtkTimeStamp.h"               // For the build time
 #include "vtkTransferFunctionSamples.h" // For the samples
 
@@ -173,7 +173,7 @@ private:
   int IntegrationCount = 0;
   vtkTimeStamp BuildTime; // the contents last changed
   vtkTimeStamp UploadTime;
-  vtkSmartPointer<vtkTextureObject> Texture;
+  vtkNew<vtkTextureObject> Texture;
 };
 
 #endif

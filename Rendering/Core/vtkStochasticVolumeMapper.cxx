@@ -95,16 +95,12 @@ public:
       return std::max(1, static_cast<int>(allotted / time));
     }
 
-    // The time of the best frame of one repetition measured, or 0: a pair of traversals
-    // where the mapper draws them (far less noise than a single pass), else a single pass.
+    // The time of the best frame of one repetition measured, or 0 before one was: a pair of
+    // traversals where the mapper draws them (far less noise than a single pass), else a
+    // single pass.
     double OneRepetition() const
     {
       return this->TimePerPair > 0.0 ? this->TimePerPair : this->TimePerSinglePass;
-    }
-
-    bool TimedOneRepetition() const
-    {
-      return this->TimePerPair > 0.0 || this->TimePerSinglePass > 0.0;
     }
 
     // The times predicted when the image's pixels change by `factor`: a repetition's time is
@@ -143,17 +139,11 @@ public:
 };
 
 vtkStochasticVolumeMapper::vtkStochasticVolumeMapper()
-  : Ensemble(vtkSmartPointer<vtkEnsembleBuffer>::New())
-  , Schedule(new vtkSchedule)
+  : Schedule(new vtkSchedule)
 {
 }
 
 vtkStochasticVolumeMapper::~vtkStochasticVolumeMapper() = default;
-
-vtkEnsembleBuffer* vtkStochasticVolumeMapper::GetEnsemble() const
-{
-  return this->Ensemble;
-}
 
 int vtkStochasticVolumeMapper::ChooseRepetitions(
   vtkVolume* vol, int level, int& perPass, Traversal& kind) const
@@ -186,7 +176,7 @@ double vtkStochasticVolumeMapper::ChooseSampleDistance(vtkVolume* vol)
   // draw every pixel), a group of the still renders stands for it: it draws more, so that
   // first image is planned no finer than it can afford, not drawn at every pixel blind.
   const double atEveryPixel =
-    budget.TimedOneRepetition() ? budget.OneRepetition() * current * current : budget.TimePerGroup;
+    budget.OneRepetition() > 0.0 ? budget.OneRepetition() * current * current : budget.TimePerGroup;
   const double allotted = vol->GetAllocatedRenderTime();
   double distance = 1.0;
   if (atEveryPixel > 0.0 && allotted > 0.0 && atEveryPixel > allotted)
@@ -202,7 +192,7 @@ double vtkStochasticVolumeMapper::ChooseSampleDistance(vtkVolume* vol)
     // predicted times, and the render after it measures. A group's time that stands for a
     // repetition's stays that of every pixel: scaled, it would let the coarser image draw
     // whole groups.
-    if (budget.TimedOneRepetition())
+    if (budget.OneRepetition() > 0.0)
     {
       budget.Scale((current * current) / (distance * distance));
     }
@@ -302,11 +292,9 @@ void vtkStochasticVolumeMapper::AddRepetitions(
 void vtkStochasticVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Ensemble->ReleaseGraphicsResources(window);
-  vtkSchedule& schedule = *this->Schedule;
-  schedule.Signature.clear();
-  schedule.Accumulated = 0;
-  schedule.Budget = vtkSchedule::RepetitionBudget();
-  schedule.Timer.Release(window != nullptr);
+  this->ForgetAccumulation();
+  this->Schedule->Budget = vtkSchedule::RepetitionBudget();
+  this->Schedule->Timer.Release(window != nullptr);
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

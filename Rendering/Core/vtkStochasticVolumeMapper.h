@@ -17,7 +17,7 @@
 #define vtkStochasticVolumeMapper_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
-#include "vtkSmartPointer.h"        // For the ensemble
+#include "vtkNew.h"                 // For the ensemble
 #include "vtkTetrahedralVolumeMapper.h"
 
 #include <memory> // For the schedule
@@ -136,7 +136,7 @@ protected:
   ~vtkStochasticVolumeMapper() override;
 
   /// The framebuffers the repetitions are summed in and resolved from.
-  vtkEnsembleBuffer* GetEnsemble() const;
+  vtkEnsembleBuffer* GetEnsemble() const { return this->Ensemble; }
 
   /// How a render draws its repetitions.
   enum class Traversal
@@ -215,7 +215,7 @@ private:
   vtkStochasticVolumeMapper(const vtkStochasticVolumeMapper&) = delete;
   void operator=(const vtkStochasticVolumeMapper&) = delete;
 
-  vtkSmartPointer<vtkEnsembleBuffer> Ensemble;
+  vtkNew<vtkEnsembleBuffer> Ensemble;
   class vtkSchedule;
   std::unique_ptr<vtkSchedule> Schedule;
 };

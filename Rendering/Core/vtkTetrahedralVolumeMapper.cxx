@@ -16,17 +16,9 @@
 #include <cmath>
 #include <string>
 
-vtkTetrahedralVolumeMapper::vtkTetrahedralVolumeMapper()
-  : Mesh(vtkSmartPointer<vtkTetrahedralMesh>::New())
-{
-}
+vtkTetrahedralVolumeMapper::vtkTetrahedralVolumeMapper() = default;
 
 vtkTetrahedralVolumeMapper::~vtkTetrahedralVolumeMapper() = default;
-
-vtkTetrahedralMesh* vtkTetrahedralVolumeMapper::GetMesh() const
-{
-  return this->Mesh;
-}
 
 vtkIdType vtkTetrahedralVolumeMapper::GetNumberOfTetrahedra()
 {

@@ -18,7 +18,7 @@
 #define vtkTetrahedralVolumeMapper_h
 
 #include "SPTRenderingCoreModule.h" // For export macro
-#include "vtkSmartPointer.h"        // For the mesh
+#include "vtkNew.h"                 // For the mesh
 #include "vtkUnstructuredGridVolumeMapper.h"
 
 class vtkOpenGLRenderWindow;
@@ -141,7 +141,7 @@ protected:
   static bool HasOpaqueScene(vtkRenderer* ren);
 
   /// The input as tetrahedra, as the last PrepareMesh() built it.
-  vtkTetrahedralMesh* GetMesh() const;
+  vtkTetrahedralMesh* GetMesh() const { return this->Mesh; }
   /// The context this mapper's GPU resources live in (null before the first frame).
   vtkOpenGLRenderWindow* GetContext() const { return this->Context; }
 
@@ -154,7 +154,7 @@ private:
   vtkTetrahedralVolumeMapper(const vtkTetrahedralVolumeMapper&) = delete;
   void operator=(const vtkTetrahedralVolumeMapper&) = delete;
 
-  vtkSmartPointer<vtkTetrahedralMesh> Mesh;
+  vtkNew<vtkTetrahedralMesh> Mesh;
   vtkOpenGLRenderWindow* Context = nullptr;
   vtkMTimeType ReportedMeshError = 0;
   vtkMTimeType ReportedSkippedCells = 0;

@@ -10,7 +10,6 @@
 #include "vtkShaderProgram.h"
 #include "vtkVolume.h"
 
-#include "vtkShaderSourceUtilities.h"
 #include "vtkTetrahedralMesh.h"
 
 #include <algorithm>
@@ -18,6 +17,19 @@
 
 namespace
 {
+// A row-major n x n matrix (acting on column vectors) as the column-major floats that
+// glUniformMatrix*fv expect without transposition.
+void ToColumnMajor(const double* rowMajor, int n, float* out)
+{
+  for (int column = 0; column < n; ++column)
+  {
+    for (int row = 0; row < n; ++row)
+    {
+      out[n * column + row] = static_cast<float>(rowMajor[n * row + column]);
+    }
+  }
+}
+
 // The linear part (upper left 3x3) of a row-major 4x4 matrix.
 void LinearPart(const double matrix[4][4], double linear[3][3])
 {
@@ -85,19 +97,6 @@ BoundsInClipSpace ProjectBounds(
   return result;
 }
 
-// The largest factor by which a linear map stretches a length (its largest singular value),
-// from the eigenvalues of its normal matrix.
-double LargestStretch(const double linear[3][3])
-{
-  double ata[3][3], values[3], vectors[3][3];
-  vtkMath::Transpose3x3(linear, ata);
-  vtkMath::Multiply3x3(ata, linear, ata);
-  double* rows[3] = { ata[0], ata[1], ata[2] };
-  double* vectorRows[3] = { vectors[0], vectors[1], vectors[2] };
-  vtkMath::Jacobi(rows, values, vectorRows);
-  return std::sqrt(std::max(values[0], 0.0));
-}
-
 // For points a and b in front of the near plane, with |x / w| <= m at b:
 // |x_a / w_a - x_b / w_b| <= (|x_a - x_b| + m |w_a - w_b|) / min(w_a, w_b), and the clip
 // differences are at most the rows' norms times the view distance |a - b|, itself at most the
@@ -111,7 +110,7 @@ void ScreenLengths(const BoundsInClipSpace& box, const double bounds[6],
   {
     return;
   }
-  const double stretch = LargestStretch(m.ModelToViewLinear);
+  const double stretch = vtkVolumeViewMatrices::LargestSingularValue(m.ModelToViewLinear);
   const double center[3] = { 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
     0.5 * (bounds[4] + bounds[5]) };
   double centerW = m.ViewToClip[3][3];
@@ -162,9 +161,9 @@ void vtkVolumeViewMatrices::Compute(
   ToNormalizedView(modelToView, viewToClip, this->ViewScale);
   vtkNew<vtkMatrix4x4> clipToView;
   vtkMatrix4x4::Invert(viewToClip, clipToView);
-  vtkShaderSourceUtilities::ToColumnMajor(modelToView, this->MCVC);
-  vtkShaderSourceUtilities::ToColumnMajor(viewToClip, this->VCDC);
-  vtkShaderSourceUtilities::ToColumnMajor(clipToView, this->DCVC);
+  ToColumnMajor(modelToView->GetData(), 4, this->MCVC);
+  ToColumnMajor(viewToClip->GetData(), 4, this->VCDC);
+  ToColumnMajor(clipToView->GetData(), 4, this->DCVC);
   vtkMatrix4x4::DeepCopy(&this->ModelToView[0][0], modelToView);
   vtkMatrix4x4::DeepCopy(&this->ViewToClip[0][0], viewToClip);
   LinearPart(this->ModelToView, this->ModelToViewLinear);
@@ -189,13 +188,7 @@ void vtkVolumeViewMatrices::Compute(
     this->ClippingDistance[side] = view[3] != 0.0 ? -view[2] / view[3] * this->ViewScale : 0.0;
   }
   vtkMath::Invert3x3(this->ModelToViewLinear, this->ViewToModelLinear);
-  for (int column = 0; column < 3; ++column)
-  {
-    for (int row = 0; row < 3; ++row)
-    {
-      this->VCMCLinear[3 * column + row] = static_cast<float>(this->ViewToModelLinear[row][column]);
-    }
-  }
+  ToColumnMajor(&this->ViewToModelLinear[0][0], 3, this->VCMCLinear);
 }
 
 bool vtkVolumeViewMatrices::ComputeClippingPlanes(vtkRenderer* ren, vtkPlaneCollection* planes)
