@@ -354,7 +354,7 @@ bool vtkSPTFrame::TraverseAdding(
   {
     return true;
   }
-  vtkSPTComputeTraversal::UnbindSumsImage(SumsImageUnit);
+  vtkSPTDepthKeyBuffer::UnbindImage(SumsImageUnit);
   // The color traversal's depth test (against the farthest survivor) is not the sums'.
   vtkOpenGLState* ostate = this->Window->GetState();
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
