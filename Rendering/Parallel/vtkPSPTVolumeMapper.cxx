@@ -36,10 +36,10 @@ namespace
  * them).
  *
  * With an error target, the steps are those of vtkSPTFrame::DrawToTarget(), each followed by
- * the noise estimate of the whole image on rank 0, which every rank follows: every rank draws
- * the same repetitions and makes the same exchanges. A rank whose drawing fails goes on taking
- * part in every exchange with nothing kept and nothing added, and the ranks learn of it at the
- * next shared decision: no rank waits for another. Every drawing call is collective.
+ * the noise estimate of the whole image on rank 0 (EstimateNoise()), which every rank follows:
+ * every rank draws the same repetitions and makes the same exchanges. A rank whose drawing fails
+ * goes on taking part in every exchange with nothing kept and nothing added, and the ranks learn of
+ * it at the next shared decision: no rank waits for another. Every drawing call is collective.
  */
 class vtkSPTParallelFrame : public vtkSPTFrame
 {
@@ -59,9 +59,10 @@ public:
   /// This rank could not start the accumulation: it draws nothing and still takes part.
   void Fail() { this->Ok = false; }
 
-  /// vtkSPTFrame::DrawRepetitions() with the key exchanges of every group; whether this rank
-  /// drew everything so far.
-  bool DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves = false)
+  /// vtkSPTFrame::DrawRepetitions() with the key exchanges of every group. True: a failure is
+  /// known to all ranks at the next estimate or at Finish().
+  bool DrawRepetitions(
+    int first, int count, int perPass, bool coverage, bool halves = false) override
   {
     const int before = this->Exchanges;
     this->Ok =
@@ -86,31 +87,12 @@ public:
     }
     this->SumsPending = true;
     this->CoveragePending = this->CoveragePending || coverage;
-    return this->Ok;
-  }
-
-  /// vtkSPTFrame::DrawToTarget() across the ranks: how many repetitions were drawn, or -1 on
-  /// every rank when any rank failed.
-  int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
-    double target, vtkSPTErrorTarget::State& state)
-  {
-    // The steps of one process, each decided by the shared estimate alone, so that every rank
-    // takes them.
-    vtkSPTErrorTarget::Steps steps;
-    steps.Draw = [this, perPass](int from, int repetitions, bool withCoverage, bool halves)
-    {
-      this->DrawRepetitions(from, repetitions, perPass, withCoverage, halves);
-      this->Ensemble->GetTiles().AddRepetitions(repetitions);
-      return true; // a failure is known to all at the next estimate
-    };
-    steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
-    { return this->Estimate(halfCount, exactCoverage, target, estimate, median); };
-    return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
+    return true;
   }
 
   /// Move what was drawn since the last move to rank 0; true on every rank when every rank
   /// drew everything (`drawn` on this one).
-  bool Finish(bool drawn)
+  bool Finish(bool drawn) override
   {
     this->Ok = this->Ok && drawn;
     if (this->SumsPending || this->CoveragePending)
@@ -118,6 +100,29 @@ public:
       this->Ok = this->MoveSums(false) && this->Ok;
     }
     return this->Reduction->AllSucceeded(this->Ok);
+  }
+
+protected:
+  // Move the halves to rank 0, estimate there, and share; false when any rank failed.
+  bool EstimateNoise(
+    int halfCount, bool exactCoverage, double target, double& estimate, double& median) override
+  {
+    this->Ok = this->MoveSums(true) && this->Ok;
+    // Rank 0 holds the whole image's halves; every rank restricts its later repetitions to the
+    // same tiles, those whose noise rank 0 estimated above the target.
+    std::vector<double> tileNoise;
+    if (this->Reduction->GetController()->GetLocalProcessId() == 0 && this->Ok)
+    {
+      tileNoise = this->Ensemble->EstimateTileNoise(halfCount, exactCoverage);
+    }
+    if (!this->Reduction->ShareTileNoise(this->Ok, tileNoise))
+    {
+      return false;
+    }
+    std::vector<bool> active;
+    estimate = vtkSPTErrorTarget::ChooseTiles(tileNoise, target, active, median);
+    this->Ok = (estimate <= target || this->Ensemble->RestrictToTiles(active)) && this->Ok;
+    return true;
   }
 
 private:
@@ -149,27 +154,6 @@ private:
     this->SumsPending = false;
     this->CoveragePending = false;
     return this->Reduction->ReduceSums(textures, this->Samples);
-  }
-
-  // Move the halves to rank 0, estimate there, and share; false when any rank failed.
-  bool Estimate(int halfCount, bool exactCoverage, double target, double& estimate, double& median)
-  {
-    this->Ok = this->MoveSums(true) && this->Ok;
-    // Rank 0 holds the whole image's halves; every rank restricts its later repetitions to the
-    // same tiles, those whose noise rank 0 estimated above the target.
-    std::vector<double> tileNoise;
-    if (this->Reduction->GetController()->GetLocalProcessId() == 0 && this->Ok)
-    {
-      tileNoise = this->Ensemble->EstimateTileNoise(halfCount, exactCoverage);
-    }
-    if (!this->Reduction->ShareTileNoise(this->Ok, tileNoise))
-    {
-      return false;
-    }
-    std::vector<bool> active;
-    estimate = vtkSPTErrorTarget::ChooseTiles(tileNoise, target, active, median);
-    this->Ok = (estimate <= target || this->Ensemble->RestrictToTiles(active)) && this->Ok;
-    return true;
   }
 
   vtkEnsembleBuffer* Ensemble;

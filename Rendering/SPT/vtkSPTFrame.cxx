@@ -582,11 +582,15 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
     return drawn;
   };
   steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
-  {
-    std::vector<bool> active;
-    estimate = vtkSPTErrorTarget::ChooseTiles(
-      this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
-    return estimate <= target || this->Ensemble->RestrictToTiles(active);
-  };
+  { return this->EstimateNoise(halfCount, exactCoverage, target, estimate, median); };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
+}
+
+bool vtkSPTFrame::EstimateNoise(
+  int halfCount, bool exactCoverage, double target, double& estimate, double& median)
+{
+  std::vector<bool> active;
+  estimate = vtkSPTErrorTarget::ChooseTiles(
+    this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
+  return estimate <= target || this->Ensemble->RestrictToTiles(active);
 }

@@ -113,6 +113,7 @@ public:
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
     vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
     vtkObject* reporter);
+  virtual ~vtkSPTFrame() = default;
 
   /**
    * Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal;
@@ -120,7 +121,8 @@ public:
    * of strata of its own. With coverage, the exact coverage is drawn too. False, after an
    * error on the reporter, when a shader or a buffer fails.
    */
-  bool DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves = false);
+  virtual bool DrawRepetitions(
+    int first, int count, int perPass, bool coverage, bool halves = false);
 
   /// Draw at most count repetitions from first on, in rounds of two halves of equal size,
   /// until the noise estimated from the halves is at most target. Returns how many were drawn,
@@ -129,7 +131,7 @@ public:
     double target, vtkSPTErrorTarget::State& state);
 
   /// Whether every part of the frame was drawn: `drawn`, in one process.
-  bool Finish(bool drawn) { return drawn; }
+  virtual bool Finish(bool drawn) { return drawn; }
 
   /// The depth slabs this frame draws (Settings::DepthSlabs, clamped).
   int GetDepthSlabs() const { return this->FrameSettings.DepthSlabs; }
@@ -138,6 +140,13 @@ public:
   /// traversal of this frame visited in a compute pass (Settings::Compute).
   vtkIdType GetPointCellCount(size_t volume) const { return this->PointCellCounts[volume]; }
   vtkIdType GetComputedCellCount(size_t volume) const { return this->ComputedCellCounts[volume]; }
+
+protected:
+  /// DrawToTarget()'s estimate, once the halves hold `halfCount` repetitions each: the noise
+  /// of the image's largest tile and of its median tile; the repetitions that follow are drawn
+  /// into the tiles still above `target`. False on failure.
+  virtual bool EstimateNoise(
+    int halfCount, bool exactCoverage, double target, double& estimate, double& median);
 
 private:
   // The image units of the frame's images (depth keys, the compute traversal's fixed-point

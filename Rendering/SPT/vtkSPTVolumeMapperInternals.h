@@ -134,11 +134,10 @@ public:
   void DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
     const std::vector<vtkSPTVolumeMapper*>& mappers);
-  // Draw the plan's repetitions into `frame` (a vtkSPTFrame, or a vtkSPTParallelFrame, whose
+  // Draw the plan's repetitions into `frame` (one process's, or a parallel frame, whose
   // Finish() all ranks make) and measure them for the budget; false, with the accumulation
   // forgotten, where any drawing failed.
-  template <class Frame>
-  bool DrawTimed(vtkSPTVolumeMapper* self, Frame& frame, const FramePlan& plan)
+  bool DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
   {
     self->StartTiming();
     int drawn = 0;
