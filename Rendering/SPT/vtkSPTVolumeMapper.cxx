@@ -257,6 +257,34 @@ void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
   }
 }
 
+bool vtkSPTVolumeMapper::vtkInternals::DrawTimed(
+  vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
+{
+  self->StartTiming();
+  int drawn = 0;
+  if (plan.Count > 0 && self->TargetError > 0.0)
+  {
+    drawn = frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
+      self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
+      this->Target);
+  }
+  else if (plan.Count > 0)
+  {
+    drawn =
+      frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count : -1;
+  }
+  const bool ok = frame.Finish(drawn >= 0);
+  const double seconds = self->StopTiming();
+  if (!ok)
+  {
+    self->ForgetAccumulation();
+    return false;
+  }
+  self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
+  this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
+  return true;
+}
+
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // Several SPT volumes in one renderer share one ensemble, so that their segments interleave

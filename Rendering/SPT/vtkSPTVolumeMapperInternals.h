@@ -137,33 +137,7 @@ public:
   // Draw the plan's repetitions into `frame` (one process's, or a parallel frame, whose
   // Finish() all ranks make) and measure them for the budget; false, with the accumulation
   // forgotten, where any drawing failed.
-  bool DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
-  {
-    self->StartTiming();
-    int drawn = 0;
-    if (plan.Count > 0 && self->TargetError > 0.0)
-    {
-      drawn = frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
-        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
-        this->Target);
-    }
-    else if (plan.Count > 0)
-    {
-      drawn = frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage)
-        ? plan.Count
-        : -1;
-    }
-    const bool ok = frame.Finish(drawn >= 0);
-    const double seconds = self->StopTiming();
-    if (!ok)
-    {
-      self->ForgetAccumulation();
-      return false;
-    }
-    self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
-    this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
-    return true;
-  }
+  bool DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 };
 
 #endif
