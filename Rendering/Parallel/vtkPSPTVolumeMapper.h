@@ -48,11 +48,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /**
-   * The processes of a parallel render, each with its own piece of the data set; null (the
-   * default): this process renders alone. Every process must render every frame with the
-   * same settings, image size and scalars; rank 0 shows the image of the whole.
-   */
+  /// The processes of a parallel render, each with its own piece of the data set; null (the
+  /// default): this process renders alone. Every process must render every frame with the
+  /// same settings, image size and scalars; rank 0 shows the image of the whole.
   void SetController(vtkMultiProcessController* controller);
   vtkMultiProcessController* GetController();
   ///@}
@@ -66,9 +64,6 @@ protected:
 private:
   vtkPSPTVolumeMapper(const vtkPSPTVolumeMapper&) = delete;
   void operator=(const vtkPSPTVolumeMapper&) = delete;
-
-  // Warn once when a parallel render's renderer may cull this rank's piece.
-  void WarnOfCulling(vtkRenderer* ren);
 
   class vtkInternals;
   std::unique_ptr<vtkInternals> Internals;

@@ -276,39 +276,30 @@ bool vtkSPTParallelReduction::AllReduceWords(
            local.data(), global.data(), vtkIdType(local.size()), operation) != 0;
 }
 
-bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys)
+bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys, size_t missed)
 {
   std::vector<unsigned int> global;
-  if (!this->AllReduceWords(keys->Read(), vtkCommunicator::MIN_OP, global))
+  const bool reduced =
+    this->AllReduceWords(keys ? keys->Read() : std::vector<unsigned int>(missed, 0xFFFFFFFFu),
+      vtkCommunicator::MIN_OP, global);
+  if (reduced && keys)
   {
-    return false;
+    keys->Write(global);
   }
-  keys->Write(global);
-  return true;
+  return reduced;
 }
 
-bool vtkSPTParallelReduction::ReduceNothingKept(size_t keys)
+bool vtkSPTParallelReduction::ReduceSlabs(vtkSPTDepthKeyBuffer* keys, size_t missed)
 {
   std::vector<unsigned int> global;
-  return this->AllReduceWords(
-    std::vector<unsigned int>(keys, 0xFFFFFFFFu), vtkCommunicator::MIN_OP, global);
-}
-
-bool vtkSPTParallelReduction::ReduceSlabs(vtkSPTDepthKeyBuffer* keys)
-{
-  std::vector<unsigned int> global;
-  if (!this->AllReduceWords(keys->ReadSlabs(), vtkCommunicator::SUM_OP, global))
+  const bool reduced =
+    this->AllReduceWords(keys ? keys->ReadSlabs() : std::vector<unsigned int>(missed, 0u),
+      vtkCommunicator::SUM_OP, global);
+  if (reduced && keys)
   {
-    return false;
+    keys->WriteSlabs(global);
   }
-  keys->WriteSlabs(global);
-  return true;
-}
-
-bool vtkSPTParallelReduction::ReduceNoSlabs(size_t sums)
-{
-  std::vector<unsigned int> global;
-  return this->AllReduceWords(std::vector<unsigned int>(sums, 0u), vtkCommunicator::SUM_OP, global);
+  return reduced;
 }
 
 bool vtkSPTParallelReduction::AllSucceeded(bool ok)

@@ -96,14 +96,17 @@ public:
    */
   bool CompositeScene(vtkTextureObject* depth, std::vector<unsigned char>& color);
 
-  /// The global minimum of the depth keys, on every rank. Collective.
-  bool ReduceKeys(vtkSPTDepthKeyBuffer* keys);
+  ///@{
+  /// The global minimum of the depth keys, and the sum of the depth slabs' optical depths
+  /// (fixed point, the same in any order), on every rank. Null `keys`: this rank's part of a
+  /// reduction it could not draw, `missed` keys of "nothing kept" or sums of zero. Collective.
+  bool ReduceKeys(vtkSPTDepthKeyBuffer* keys, size_t missed = 0);
+  bool ReduceSlabs(vtkSPTDepthKeyBuffer* keys, size_t missed = 0);
+  ///@}
 
-  /**
-   * Move float RGBA textures of `texels` texels each to rank 0: rank 0's hold the global sums,
-   * the others' are cleared, so that what any rank adds later is added once when they move
-   * again. A texture of another size (not allocated after a failure) adds zeros. Collective.
-   */
+  /// Move float RGBA textures of `texels` texels each to rank 0: rank 0's hold the global sums,
+  /// the others' are cleared, so that what any rank adds later is added once when they move
+  /// again. A texture of another size (not allocated after a failure) adds zeros. Collective.
   bool ReduceSums(const std::vector<vtkTextureObject*>& textures, size_t texels);
 
   /**
@@ -121,30 +124,16 @@ public:
   /// The minimum of each of `count` values over the ranks, on every rank. Collective.
   bool AllMinimum(int* values, int count);
 
-  /**
-   * Whether `ok` holds on every rank, and rank 0's `values` on every rank (the others' are
-   * ignored): the noise of each tile of the image. Collective.
-   */
+  /// Whether `ok` holds on every rank, and rank 0's `values` on every rank (the others' are
+  /// ignored): the noise of each tile of the image. Collective.
   bool ShareTileNoise(bool ok, std::vector<double>& values);
-
-  /// This rank's part of a key reduction it could not draw: `keys` keys of "nothing kept".
-  bool ReduceNothingKept(size_t keys);
-
-  /// The sum of the depth slabs' optical depths (fixed point, the same in any order), on
-  /// every rank. Collective.
-  bool ReduceSlabs(vtkSPTDepthKeyBuffer* keys);
-
-  /// This rank's part of a slab reduction it could not draw: `sums` zeros.
-  bool ReduceNoSlabs(size_t sums);
 
   /// Whether `ok` holds on every rank. Collective.
   bool AllSucceeded(bool ok);
 
   ///@{
-  /**
-   * The bytes this rank contributed to the reductions since the last ResetBytes() (what it
-   * sends once into a tree or ring reduction; MPI moves about that much per rank).
-   */
+  /// The bytes this rank contributed to the reductions since the last ResetBytes() (what it
+  /// sends once into a tree or ring reduction; MPI moves about that much per rank).
   void ResetBytes() { this->Bytes = 0; }
   size_t GetBytes() const { return this->Bytes; }
   ///@}

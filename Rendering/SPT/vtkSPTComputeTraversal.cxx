@@ -9,6 +9,7 @@
 #include "vtkTextureObject.h"
 
 #include "vtkSPTComputeSumsFS.h"
+#include "vtkSPTDepthKeyBuffer.h"
 
 #include <algorithm>
 #include <initializer_list>
@@ -210,13 +211,7 @@ bool vtkSPTComputeTraversal::PrepareSums(vtkOpenGLRenderWindow* renWin, int widt
     {
       this->Sums->ReleaseGraphicsResources(renWin);
     }
-    this->Sums->SetContext(renWin);
-    this->Sums->SetInternalFormat(GL_R32UI);
-    this->Sums->SetFormat(GL_RED_INTEGER);
-    this->Sums->SetDataType(GL_UNSIGNED_INT);
-    this->Sums->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Sums->SetMagnificationFilter(vtkTextureObject::Nearest);
-    if (!this->Sums->Create3DFromRaw(Layers, width, height, 1, VTK_UNSIGNED_INT, nullptr))
+    if (!vtkSPTDepthKeyBuffer::CreateIntegerImage(this->Sums, renWin, Layers, width, height))
     {
       vtkErrorMacro("Could not allocate the compute traversal's " << width << "x" << height
                                                                   << " fixed-point sums.");
@@ -233,13 +228,7 @@ bool vtkSPTComputeTraversal::PrepareSums(vtkOpenGLRenderWindow* renWin, int widt
 
 void vtkSPTComputeTraversal::BindSumsImage(int unit)
 {
-  glBindImageTexture(
-    static_cast<GLuint>(unit), this->Sums->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-}
-
-void vtkSPTComputeTraversal::UnbindSumsImage(int unit)
-{
-  glBindImageTexture(static_cast<GLuint>(unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+  vtkSPTDepthKeyBuffer::BindIntegerImage(this->Sums, unit);
 }
 
 bool vtkSPTComputeTraversal::AddSums(vtkOpenGLRenderWindow* renWin, bool secondTarget)

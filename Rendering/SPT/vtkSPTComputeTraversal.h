@@ -2,23 +2,16 @@
  * @class   vtkSPTComputeTraversal
  * @brief   SPT's traversals of the small cells as compute passes
  *
- * The cells that SPT draws as points (one point per cell, a square that holds its projection)
- * cover a few samples each. On a software rasterizer such as llvmpipe, setting up and binning
- * one point per cell runs on the application's thread and is most of a traversal of a large
- * mesh. A compute pass does the same work per (cell, sample) on every core: a work group finds
- * its cells, one per invocation, then shares out the samples whose centres lie in their squares
- * and runs the keys pass's or the colors pass's fragment code there (vtkSPTTetrahedraCS.glsl).
- *
- * The results are the points' results: the depth keys are atomic minima, the same in any
- * order, and what the fragments add by blending (the exact coverage's optical depth terms, the
- * colors, the second half's colors) is added as fixed-point integers (FixedPointOne per unit),
- * whose sums do not depend on the order either; AddSums() then adds them into the float
- * targets. So an image is the same from one run to the next, and differs from the points'
- * image only by the fixed point's rounding.
+ * The cells that SPT draws as points cover a few samples each. On a software rasterizer such
+ * as llvmpipe, setting up and binning one point per cell runs on the application's thread and
+ * is most of a traversal of a large mesh; a compute pass does the same work per (cell, sample)
+ * on every core (vtkSPTTetrahedraCS.glsl). Its depth keys are atomic minima and its sums fixed
+ * point (FixedPointOne per unit), both the same in any order: an image is the same from one
+ * run to the next, and differs from the points' image only by the fixed point's rounding.
  *
  * This object holds the compiled programs (VTK 9.2's vtkShaderProgram has no compute stage:
- * the programs are built through OpenGL and set their uniforms through vtkShaderProgram's
- * setters) and the fixed-point sums.
+ * they are built through OpenGL and set their uniforms through vtkShaderProgram's setters)
+ * and the fixed-point sums.
  *
  * Private helper of the SPT module; not wrapped.
  */
@@ -57,20 +50,14 @@ public:
    */
   static constexpr double FixedPointOne = 65536.0;
 
-  /**
-   * The invocations per work group of the programs (SPT_COMPUTE_GROUP_SIZE).
-   */
+  /// The invocations per work group of the programs (SPT_COMPUTE_GROUP_SIZE).
   static constexpr int GroupSize = 64;
 
-  /**
-   * Whether the context has compute shaders (OpenGL 4.3, or the ARB extension).
-   */
+  /// Whether the context has compute shaders (OpenGL 4.3, or the ARB extension).
   static bool IsSupported(vtkOpenGLRenderWindow* renWin);
 
-  /**
-   * Whether the context's renderer is a software rasterizer (Mesa's llvmpipe or softpipe,
-   * SwiftShader), where compute passes pay for small cells.
-   */
+  /// Whether the context's renderer is a software rasterizer (Mesa's llvmpipe or softpipe,
+  /// SwiftShader), where compute passes pay for small cells.
   static bool IsSoftwareRasterizer(vtkOpenGLRenderWindow* renWin);
 
   /**
@@ -83,51 +70,35 @@ public:
    */
   bool IsWanted(vtkOpenGLRenderWindow* renWin, bool onAnyRenderer, int width, int height);
 
-  /**
-   * The program built from this compute shader source, compiled once per source and context;
-   * nullptr (with the compiler's log as a warning) if it does not build, and from then on
-   * IsWanted() is false in this context: the caller rasterizes those cells instead.
-   */
+  /// The program built from this compute shader source, compiled once per source and context;
+  /// nullptr (with the compiler's log as a warning) if it does not build, and from then on
+  /// IsWanted() is false in this context: the caller rasterizes those cells instead.
   vtkShaderProgram* GetProgram(vtkOpenGLRenderWindow* renWin, const std::string& source);
 
-  /**
-   * Bind `program` (one of GetProgram()'s), after VTK's shader cache has released its own:
-   * uniforms set next go to it.
-   */
+  /// Bind `program` (one of GetProgram()'s), after VTK's shader cache has released its own:
+  /// uniforms set next go to it.
   static void Use(vtkOpenGLRenderWindow* renWin, vtkShaderProgram* program);
 
-  /**
-   * Run the bound `program` over the cells [first, first + count) (it sets firstCell and
-   * cellCount), and make its writes visible to what reads them next. The caller sets the
-   * other uniforms and binds the textures and images it reads.
-   */
+  /// Run the bound `program` over the cells [first, first + count) (it sets firstCell and
+  /// cellCount), and make its writes visible to what reads them next. The caller sets the
+  /// other uniforms and binds the textures and images it reads.
   static void Dispatch(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
 
-  /**
-   * Size the fixed-point sums for width x height samples (eight per sample: two targets of
-   * four terms) and set them to zero. False (with an error) if the texture cannot be
-   * allocated.
-   */
+  /// Size the fixed-point sums for width x height samples (eight per sample: two targets of
+  /// four terms) and set them to zero. False (with an error) if the texture cannot be
+  /// allocated.
   bool PrepareSums(vtkOpenGLRenderWindow* renWin, int width, int height);
 
-  ///@{
-  /**
-   * Bind the sums as image unit `unit` for the compute pass, and release it.
-   */
+  /// Bind the sums as image unit `unit` for the compute pass (vtkSPTDepthKeyBuffer::UnbindImage()
+  /// releases it).
   void BindSumsImage(int unit);
-  static void UnbindSumsImage(int unit);
-  ///@}
 
-  /**
-   * Add the sums into the bound framebuffer's first target, and with `secondTarget` the second
-   * four into its second, one fragment per sample (the caller sets additive blending and turns
-   * the depth test off). False if the shader does not compile.
-   */
+  /// Add the sums into the bound framebuffer's first target, and with `secondTarget` the second
+  /// four into its second, one fragment per sample (the caller sets additive blending and turns
+  /// the depth test off). False if the shader does not compile.
   bool AddSums(vtkOpenGLRenderWindow* renWin, bool secondTarget);
 
-  /**
-   * Bytes held on the GPU.
-   */
+  /// Bytes held on the GPU.
   size_t GetGPUMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);

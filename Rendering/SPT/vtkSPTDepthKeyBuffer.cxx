@@ -72,13 +72,7 @@ bool vtkSPTDepthKeyBuffer::Prepare(
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  this->Keys->SetContext(renWin);
-  this->Keys->SetInternalFormat(GL_R32UI);
-  this->Keys->SetFormat(GL_RED_INTEGER);
-  this->Keys->SetDataType(GL_UNSIGNED_INT);
-  this->Keys->SetMinificationFilter(vtkTextureObject::Nearest);
-  this->Keys->SetMagnificationFilter(vtkTextureObject::Nearest);
-  if (!this->Keys->Create3DFromRaw(allocated, width, height, 1, VTK_UNSIGNED_INT, nullptr))
+  if (!CreateIntegerImage(this->Keys, renWin, allocated, width, height))
   {
     vtkErrorMacro("Could not allocate the " << width << "x" << height << "x" << allocated
                                             << " depth keys of several repetitions per pass.");
@@ -103,14 +97,7 @@ bool vtkSPTDepthKeyBuffer::PrepareSlabs(
   {
     return true;
   }
-  this->SlabDepths->SetContext(renWin);
-  this->SlabDepths->SetInternalFormat(GL_R32UI);
-  this->SlabDepths->SetFormat(GL_RED_INTEGER);
-  this->SlabDepths->SetDataType(GL_UNSIGNED_INT);
-  this->SlabDepths->SetMinificationFilter(vtkTextureObject::Nearest);
-  this->SlabDepths->SetMagnificationFilter(vtkTextureObject::Nearest);
-  if (!this->SlabDepths->Create3DFromRaw(
-        SlabTerms * slabs, width, height, 1, VTK_UNSIGNED_INT, nullptr))
+  if (!CreateIntegerImage(this->SlabDepths, renWin, SlabTerms * slabs, width, height))
   {
     vtkErrorMacro("Could not allocate the optical depths of "
       << slabs << " depth slabs for " << width << "x" << height << " samples.");
@@ -135,8 +122,7 @@ void vtkSPTDepthKeyBuffer::ClearSlabs()
 
 void vtkSPTDepthKeyBuffer::BindSlabImage(int unit)
 {
-  glBindImageTexture(static_cast<GLuint>(unit), this->SlabDepths->GetHandle(), 0, GL_TRUE, 0,
-    GL_READ_WRITE, GL_R32UI);
+  BindIntegerImage(this->SlabDepths, unit);
 }
 
 int vtkSPTDepthKeyBuffer::GetCompiledRepetitions(int repetitions)
@@ -156,10 +142,27 @@ void vtkSPTDepthKeyBuffer::Clear(const int footprint[4])
   }
 }
 
-void vtkSPTDepthKeyBuffer::BindImage(int unit)
+bool vtkSPTDepthKeyBuffer::CreateIntegerImage(
+  vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int layers, int width, int height)
+{
+  texture->SetContext(renWin);
+  texture->SetInternalFormat(GL_R32UI);
+  texture->SetFormat(GL_RED_INTEGER);
+  texture->SetDataType(GL_UNSIGNED_INT);
+  texture->SetMinificationFilter(vtkTextureObject::Nearest);
+  texture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  return texture->Create3DFromRaw(layers, width, height, 1, VTK_UNSIGNED_INT, nullptr);
+}
+
+void vtkSPTDepthKeyBuffer::BindIntegerImage(vtkTextureObject* texture, int unit)
 {
   glBindImageTexture(
-    static_cast<GLuint>(unit), this->Keys->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    static_cast<GLuint>(unit), texture->GetHandle(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
+void vtkSPTDepthKeyBuffer::BindImage(int unit)
+{
+  BindIntegerImage(this->Keys, unit);
 }
 
 void vtkSPTDepthKeyBuffer::UnbindImage(int unit)

@@ -42,10 +42,8 @@ public:
   vtkTypeMacro(vtkSPTDepthKeyBuffer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /**
-   * Whether the context has what this takes: image load/store and clear-texture (OpenGL 4.4,
-   * or the ARB extensions).
-   */
+  /// Whether the context has what this takes: image load/store and clear-texture (OpenGL 4.4,
+  /// or the ARB extensions).
   static bool IsSupported(vtkOpenGLRenderWindow* renWin);
 
   /**
@@ -57,19 +55,15 @@ public:
    */
   bool Prepare(vtkOpenGLRenderWindow* renWin, int width, int height, int layers, int slabs = 1);
 
-  /**
-   * The fixed-point unit of the slabs' optical depths: their sums are the same in any order.
-   */
+  /// The fixed-point unit of the slabs' optical depths: their sums are the same in any order.
   static constexpr unsigned int GetSlabFixedOne() { return 1u << 16; }
 
   /// The sums per slab and sample: tau and the three of tau times color.
   static constexpr int SlabTerms = 4;
 
   ///@{
-  /**
-   * Set every slab's sums to zero, and bind them as image unit `unit` (with Prepare()'s
-   * slabs > 1).
-   */
+  /// Set every slab's sums to zero, and bind them as image unit `unit` (with Prepare()'s
+  /// slabs > 1).
   void ClearSlabs();
   void BindSlabImage(int unit);
 
@@ -84,19 +78,22 @@ public:
    */
   static int GetCompiledRepetitions(int repetitions);
 
-  /**
-   * Set the keys of the samples of `footprint` (x, y, width, height) to "nothing kept" (the
-   * largest key), every layer.
-   */
+  /// Set the keys of the samples of `footprint` (x, y, width, height) to "nothing kept" (the
+  /// largest key), every layer.
   void Clear(const int footprint[4]);
 
-  /**
-   * Bind the keys as image unit `unit` for the fragment shaders, and make the writes of the
-   * previous traversal visible to the next one.
-   */
+  /// Bind the keys as image unit `unit` for the fragment shaders, and make the writes of the
+  /// previous traversal visible to the next one.
   void BindImage(int unit);
   static void UnbindImage(int unit);
   static void Barrier();
+
+  /// Make `texture` an r32ui 3D texture of layers x width x height texels in the context, as
+  /// the keys, the slabs' sums and the compute traversal's sums are; false if it cannot be
+  /// allocated. BindIntegerImage() binds one as image unit `unit` for reading and writing.
+  static bool CreateIntegerImage(
+    vtkTextureObject* texture, vtkOpenGLRenderWindow* renWin, int layers, int width, int height);
+  static void BindIntegerImage(vtkTextureObject* texture, int unit);
 
   /**
    * One full-screen pass over the keys bound as image unit `unit`, between a group's keys
@@ -123,15 +120,10 @@ public:
    */
   bool DrawSlabsMeanColor(int unit, const std::string& defines);
 
-  /// The depth slabs of the last Prepare(); each has GetCompiledRepetitions(layers) layers.
-  int GetSlabs() const { return this->Slabs; }
-
   ///@{
-  /**
-   * Read the keys of the layers in use back to the host (sample by sample, each sample's
-   * layers in order; with slabs, all allocated layers), and write keys of the same size back;
-   * for reductions across processes.
-   */
+  /// Read the keys of the layers in use back to the host (sample by sample, each sample's
+  /// layers in order; with slabs, all allocated layers), and write keys of the same size back;
+  /// for reductions across processes.
   std::vector<unsigned int> Read();
   void Write(const std::vector<unsigned int>& keys);
   /// The same for the slabs' sums (sample by sample, each sample's slabs and terms in order).
@@ -139,9 +131,7 @@ public:
   void WriteSlabs(const std::vector<unsigned int>& sums);
   ///@}
 
-  /**
-   * Bytes held on the GPU (the allocated layers).
-   */
+  /// Bytes held on the GPU (the allocated layers).
   size_t GetGPUMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);

@@ -5,10 +5,9 @@
  * vtkSPTVolumeMapper::SetTargetError() draws repetitions in two independent halves, whose
  * difference estimates the noise of each tile of the image, until the estimate meets the
  * target in every tile; after each step, the repetitions that follow are drawn only into the
- * tiles still above it (vtkEnsembleTiles). This class
- * decides each step from the noise measured so far (or assumed, for a mapper's first image),
- * whoever draws it: one process (vtkSPTFrame) or the ranks of a parallel render, which share
- * each estimate (vtkSPTParallelFrame).
+ * tiles still above it (vtkEnsembleTiles). This class decides each step from the noise
+ * measured so far (or assumed, for a mapper's first image), whoever draws it: one process
+ * (vtkSPTFrame) or the ranks of a parallel render, which share each estimate.
  *
  * Private helper of the SPT modules; not wrapped.
  */
@@ -39,11 +38,9 @@ public:
     /// The repetitions per half of this image's first step; 0: not chosen yet.
     int FirstHalf = 0;
 
-    /**
-     * A new image: nothing drawn. Its first step aims with the noise per repetition of the
-     * images before it, or repeats the last image's first step where everything that shapes
-     * the image is as it was (`sameImage`), so that the same render gives the same image.
-     */
+    /// A new image: nothing drawn. Its first step aims with the noise per repetition of the
+    /// images before it, or repeats the last image's first step where everything that shapes
+    /// the image is as it was (`sameImage`), so that the same render gives the same image.
     void Restart(bool sameImage)
     {
       *this = State{ 0, true, -1.0, this->NoisePerRepetition, this->TypicalNoisePerRepetition,

@@ -354,7 +354,7 @@ bool vtkSPTFrame::TraverseAdding(
   {
     return true;
   }
-  vtkSPTComputeTraversal::UnbindSumsImage(SumsImageUnit);
+  vtkSPTDepthKeyBuffer::UnbindImage(SumsImageUnit);
   // The color traversal's depth test (against the farthest survivor) is not the sums'.
   vtkOpenGLState* ostate = this->Window->GetState();
   vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
@@ -582,11 +582,15 @@ int vtkSPTFrame::DrawToTarget(int first, int count, int perPass, bool coverage, 
     return drawn;
   };
   steps.Estimate = [this, exactCoverage, target](int halfCount, double& estimate, double& median)
-  {
-    std::vector<bool> active;
-    estimate = vtkSPTErrorTarget::ChooseTiles(
-      this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
-    return estimate <= target || this->Ensemble->RestrictToTiles(active);
-  };
+  { return this->EstimateNoise(halfCount, exactCoverage, target, estimate, median); };
   return vtkSPTErrorTarget::StepToTarget(steps, first, count, perPass, coverage, target, state);
+}
+
+bool vtkSPTFrame::EstimateNoise(
+  int halfCount, bool exactCoverage, double target, double& estimate, double& median)
+{
+  std::vector<bool> active;
+  estimate = vtkSPTErrorTarget::ChooseTiles(
+    this->Ensemble->EstimateTileNoise(halfCount, exactCoverage), target, active, median);
+  return estimate <= target || this->Ensemble->RestrictToTiles(active);
 }

@@ -113,6 +113,7 @@ public:
   vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
     vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
     vtkObject* reporter);
+  virtual ~vtkSPTFrame() = default;
 
   /**
    * Draw repetitions [first, first + count) into the ensemble's sum, perPass per traversal;
@@ -120,24 +121,32 @@ public:
    * of strata of its own. With coverage, the exact coverage is drawn too. False, after an
    * error on the reporter, when a shader or a buffer fails.
    */
-  bool DrawRepetitions(int first, int count, int perPass, bool coverage, bool halves = false);
+  virtual bool DrawRepetitions(
+    int first, int count, int perPass, bool coverage, bool halves = false);
 
-  /**
-   * Draw at most count repetitions from first on, in rounds of two halves of equal size,
-   * until the noise estimated from the halves is at most target. Returns how many were drawn,
-   * or -1 on failure. `exactCoverage`: the coverage is (or is being) drawn for this image.
-   */
+  /// Draw at most count repetitions from first on, in rounds of two halves of equal size,
+  /// until the noise estimated from the halves is at most target. Returns how many were drawn,
+  /// or -1 on failure. `exactCoverage`: the coverage is (or is being) drawn for this image.
   int DrawToTarget(int first, int count, int perPass, bool coverage, bool exactCoverage,
     double target, vtkSPTErrorTarget::State& state);
+
+  /// Whether every part of the frame was drawn: `drawn`, in one process.
+  virtual bool Finish(bool drawn) { return drawn; }
 
   /// The depth slabs this frame draws (Settings::DepthSlabs, clamped).
   int GetDepthSlabs() const { return this->FrameSettings.DepthSlabs; }
 
-  /// How many tetrahedra of a volume the traversals draw as points.
-  vtkIdType GetPointCellCount(size_t volume) const;
+  /// How many tetrahedra of a volume the traversals draw as points, and how many of those a
+  /// traversal of this frame visited in a compute pass (Settings::Compute).
+  vtkIdType GetPointCellCount(size_t volume) const { return this->PointCellCounts[volume]; }
+  vtkIdType GetComputedCellCount(size_t volume) const { return this->ComputedCellCounts[volume]; }
 
-  /// How many of those a traversal of this frame visited in a compute pass (Settings::Compute).
-  vtkIdType GetComputedCellCount(size_t volume) const;
+protected:
+  /// DrawToTarget()'s estimate, once the halves hold `halfCount` repetitions each: the noise
+  /// of the image's largest tile and of its median tile; the repetitions that follow are drawn
+  /// into the tiles still above `target`. False on failure.
+  virtual bool EstimateNoise(
+    int halfCount, bool exactCoverage, double target, double& estimate, double& median);
 
 private:
   // The image units of the frame's images (depth keys, the compute traversal's fixed-point
@@ -204,6 +213,8 @@ private:
   bool WriteSlabsMeanColor();
   // The defines of a pass kind's depth slabs; empty for one slab or a kind without them.
   std::string SlabDefines(PassKind kind) const;
+  // The defines of a pass kind's shaders, for cells with scalars per cell or per point.
+  std::string PassDefines(PassKind kind, bool cellScalars, int passRepetitions, bool halves) const;
   // Split the depth range of the volumes' bounds, as the camera sees it, into equal slabs.
   void ChooseSlabs();
   // The window depths where slabs 1 to 7 start, and 2 where none does (two vec4 uniforms).
@@ -238,8 +249,6 @@ private:
   std::vector<vtkIdType> ComputeCellCounts;
   std::vector<vtkIdType> ComputedCellCounts; // per volume: by a compute pass, in this frame
   void ChooseSmallCells();
-  // Whether the volume has cells to draw as points (or as triangles).
-  bool Draws(size_t volume, bool points) const;
   // Whether a traversal of the kind rasterizes cells of the volume as points (or triangles),
   // and the first cell it rasterizes as a point.
   bool Rasterizes(PassKind kind, size_t volume, bool points) const;

@@ -103,23 +103,6 @@ void vtkSPTFrame::ChooseSmallCells()
   this->ComputedCellCounts.assign(this->Volumes.size(), 0);
 }
 
-vtkIdType vtkSPTFrame::GetPointCellCount(size_t volume) const
-{
-  return this->PointCellCounts[volume];
-}
-
-vtkIdType vtkSPTFrame::GetComputedCellCount(size_t volume) const
-{
-  return this->ComputedCellCounts[volume];
-}
-
-bool vtkSPTFrame::Draws(size_t volume, bool points) const
-{
-  const vtkIdType pointCells = this->PointCellCounts[volume];
-  return points ? pointCells > 0
-                : pointCells < this->Volumes[volume].Buffers->GetMesh()->GetNumberOfTetrahedra();
-}
-
 bool vtkSPTFrame::Computes(PassKind kind, size_t volume) const
 {
   return this->FrameSettings.Compute &&
@@ -134,8 +117,9 @@ vtkIdType vtkSPTFrame::FirstRasterizedPoint(PassKind kind, size_t volume) const
 
 bool vtkSPTFrame::Rasterizes(PassKind kind, size_t volume, bool points) const
 {
-  return points ? this->PointCellCounts[volume] > this->FirstRasterizedPoint(kind, volume)
-                : this->Draws(volume, false);
+  const vtkIdType pointCells = this->PointCellCounts[volume];
+  return points ? pointCells > this->FirstRasterizedPoint(kind, volume)
+                : pointCells < this->Volumes[volume].Buffers->GetMesh()->GetNumberOfTetrahedra();
 }
 
 bool vtkSPTFrame::ComputesMostCells() const

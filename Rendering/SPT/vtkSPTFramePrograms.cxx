@@ -63,57 +63,66 @@ vtkShaderProgram*& vtkSPTFrame::ProgramOf(PassKind kind, size_t volume, bool poi
   return this->Programs[static_cast<int>(kind)][cellScalars ? 1 : 0][points ? 1 : 0];
 }
 
+std::string vtkSPTFrame::PassDefines(
+  PassKind kind, bool cellScalars, int passRepetitions, bool halves) const
+{
+  // The scene depth only when opaque geometry was drawn; the segments are cut by the clipping
+  // planes (and the cells wholly cut away are skipped) only where some volume has them.
+  std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
+  defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
+  defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
+  defines += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
+  defines += this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " +
+    std::to_string(passRepetitions) + "\n";
+  const bool coverage =
+    kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage;
+  defines += coverage ? "#define SPT_WRITE_COVERAGE\n" : "";
+  const bool visibility = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
+  defines += kind == PassKind::Colors && visibility ? "#define SPT_VISIBILITY_WEIGHTED\n" : "";
+  // A second output only where one is bound.
+  defines += kind == PassKind::Colors && halves ? "#define ENSEMBLE_SECOND_HALF\n" : "";
+  return defines;
+}
+
+namespace
+{
+// `defines` and the parts the shaders share, substituted into `source`.
+void SubstituteShared(std::string& source, const std::string& defines)
+{
+  vtkShaderProgram::Substitute(source, "//Volume::Defines::Dec", defines);
+  vtkShaderProgram::Substitute(source, "//Volume::Random::Impl", vtkHashRandom);
+  vtkShaderProgram::Substitute(source, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
+  vtkShaderProgram::Substitute(source, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
+  vtkShaderProgram::Substitute(source, "//SPT::PointCell::Impl", vtkSPTPointCell);
+}
+}
+
 vtkShaderProgram* vtkSPTFrame::ReadyProgram(
   bool cellScalars, bool clippedCells, bool points, PassKind kind, int passRepetitions, bool halves)
 {
   const char* const passes[NumberOfPassKinds] = { vtkSPTPassSingleFS, vtkSPTPassKeysFS,
     vtkSPTPassKeysFS, vtkSPTPassColorsFS, vtkSPTPassCoverageFS, vtkSPTPassDepthColorsFS,
     vtkSPTPassDepthColorsFS };
-  // Both stages: scalars per cell, the path for cells that a clipping plane cuts (compiled in
-  // only while one cuts some volume's bounds: a fragment stage pays for its branches),
-  // and the scene depth (only when opaque geometry was drawn).
-  std::string common = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
-  common += clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "";
-  common += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
-  common += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
-  // The segments are cut by the clipping planes (and the cells wholly cut away are skipped)
-  // only where some volume has them.
-  common += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
+  // The path for cells that a clipping plane cuts is compiled in only while one cuts some
+  // volume's bounds: a fragment stage pays for its branches.
+  const std::string defines = this->PassDefines(kind, cellScalars, passRepetitions, halves) +
+    (clippedCells && !points ? "#define SPT_CLIPPED_CELLS\n" : "");
   std::string vertex = points ? vtkSPTTetrahedraPointsVS : vtkSPTTetrahedraVS;
   std::string geometry = points ? "" : vtkSPTTetrahedraGS;
-  vtkShaderProgram::Substitute(vertex, "//Volume::Defines::Dec", common);
-  vtkShaderProgram::Substitute(geometry, "//Volume::Defines::Dec", common);
-  vtkShaderProgram::Substitute(vertex, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
-  vtkShaderProgram::Substitute(geometry, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
-  vtkShaderProgram::Substitute(vertex, "//SPT::PointCell::Impl", vtkSPTPointCell);
-
-  std::string defines = common + this->SlabDefines(kind) + "#define SPT_REPETITIONS_PER_PASS " +
-    std::to_string(passRepetitions);
-  if (kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage)
-  {
-    defines += "\n#define SPT_WRITE_COVERAGE";
-  }
-  if (kind == PassKind::Colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR)
-  {
-    defines += "\n#define SPT_VISIBILITY_WEIGHTED";
-  }
-  if (kind == PassKind::Colors && halves)
-  {
-    defines += "\n#define ENSEMBLE_SECOND_HALF"; // a second output only where one is bound
-  }
-  // VTK declares GLSL 1.50; image load/store comes as the extension.
+  // VTK declares GLSL 1.50; image load/store comes as the extension, and the slabs' controls
+  // are kept as float bits in an integer image.
   const bool atomics =
     kind == PassKind::Keys || kind == PassKind::KeysAndCoverage || kind == PassKind::Colors;
-  std::string fragment = vtkSPTTetrahedraFS;
-  // The slabs' controls are kept as float bits in an integer image.
   const std::string slabs =
     this->SlabDefines(kind).empty() ? "" : "\n#extension GL_ARB_shader_bit_encoding : require";
+  std::string fragment = vtkSPTTetrahedraFS;
   vtkShaderProgram::Substitute(fragment, "//SPT::Extensions::Dec",
     atomics ? "#extension GL_ARB_shader_image_load_store : require" + slabs : "");
-  vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Dec", defines);
-  vtkShaderProgram::Substitute(fragment, "//Volume::Random::Impl", vtkHashRandom);
-  vtkShaderProgram::Substitute(fragment, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
   vtkShaderProgram::Substitute(fragment, "//SPT::Pass::Impl", passes[static_cast<int>(kind)]);
+  for (std::string* source : { &vertex, &geometry, &fragment })
+  {
+    SubstituteShared(*source, defines);
+  }
   return this->Window->GetShaderCache()->ReadyShaderProgram(
     vertex.c_str(), fragment.c_str(), geometry.c_str());
 }
@@ -124,31 +133,17 @@ vtkShaderProgram* vtkSPTFrame::ReadyComputeProgram(
   // The pass's fragment code, with the cell's planes and the sample's position set by the
   // compute pass's main() (vtkSPTTetrahedraCS.glsl) instead of read from the points.
   const bool colors = kind == PassKind::Colors;
-  std::string defines = cellScalars ? "#define SPT_CELL_SCALARS\n" : "";
-  defines += this->FrameSettings.OpaqueScene ? "#define SPT_SCENE_DEPTH\n" : "";
-  defines += this->FrameSettings.GlobalIds ? "#define SPT_GLOBAL_IDS\n" : "";
-  defines += this->ClippingPlanes ? "#define SPT_CLIPPING_PLANES\n" : "";
-  defines += this->SlabDefines(kind);
-  defines += "#define SPT_REPETITIONS_PER_PASS " + std::to_string(passRepetitions) + "\n";
-  defines += kind == PassKind::KeysAndCoverage ? "#define SPT_WRITE_COVERAGE\n" : "";
-  defines += colors ? "#define SPT_COMPUTE_COLORS\n" : "";
-  defines += colors && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR
-    ? "#define SPT_VISIBILITY_WEIGHTED\n"
-    : "";
-  defines += colors && halves ? "#define ENSEMBLE_SECOND_HALF\n" : "";
-  defines += "#define SPT_COMPUTE_GROUP_SIZE " + std::to_string(vtkSPTComputeTraversal::GroupSize) +
-    "\n#define SPT_FIXED_ONE " + std::to_string(vtkSPTComputeTraversal::FixedPointOne);
+  const std::string defines = this->PassDefines(kind, cellScalars, passRepetitions, halves) +
+    (colors ? "#define SPT_COMPUTE_COLORS\n" : "") + "#define SPT_COMPUTE_GROUP_SIZE " +
+    std::to_string(vtkSPTComputeTraversal::GroupSize) + "\n#define SPT_FIXED_ONE " +
+    std::to_string(vtkSPTComputeTraversal::FixedPointOne);
   std::string source = vtkSPTTetrahedraFS;
   vtkShaderProgram::Substitute(source, "//VTK::System::Dec", "#version 430\n#define SPT_COMPUTE");
   vtkShaderProgram::Substitute(source, "//SPT::Extensions::Dec", "");
   vtkShaderProgram::Substitute(source, "//VTK::Output::Dec", "");
-  vtkShaderProgram::Substitute(source, "//SPT::Pass::Dec", defines);
-  vtkShaderProgram::Substitute(source, "//Volume::Random::Impl", vtkHashRandom);
-  vtkShaderProgram::Substitute(source, "//SPT::Slabs::Impl", vtkSPTDepthSlabs);
   vtkShaderProgram::Substitute(source, "//SPT::Pass::Impl",
     std::string(colors ? vtkSPTPassColorsFS : vtkSPTPassKeysFS) + vtkSPTTetrahedraCS);
-  vtkShaderProgram::Substitute(source, "//SPT::FacePlane::Impl", vtkSPTFacePlane);
-  vtkShaderProgram::Substitute(source, "//SPT::PointCell::Impl", vtkSPTPointCell);
+  SubstituteShared(source, defines);
   return this->FrameSettings.Compute->GetProgram(this->Window, source);
 }
 
@@ -156,17 +151,8 @@ bool vtkSPTFrame::ReadyPrograms(
   const bool (&needed)[NumberOfPassKinds], int passRepetitions, int first, int count, bool halves)
 {
   // Each call has uniforms of its own (first, count, halves).
-  for (auto& byScalars : this->Programs)
-  {
-    for (auto& byPrimitive : byScalars)
-    {
-      byPrimitive[0] = byPrimitive[1] = nullptr;
-    }
-  }
-  for (auto& byScalars : this->ComputePrograms)
-  {
-    byScalars[0] = byScalars[1] = nullptr;
-  }
+  std::fill_n(&this->Programs[0][0][0], NumberOfPassKinds * 2 * 2, nullptr);
+  std::fill_n(&this->ComputePrograms[0][0], NumberOfPassKinds * 2, nullptr);
   for (int k = 0; k < NumberOfPassKinds; ++k)
   {
     for (size_t v = 0; v < this->Volumes.size(); ++v)

@@ -142,8 +142,6 @@ bool vtkSPTMeshBuffers::Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh
     this->ReleaseGraphicsResources(renWin);
     return false;
   }
-  // The scalars are a vertex attribute for point scalars; every buffer is also a buffer
-  // texture, for the cells that the fragment stage reads whole.
   const std::vector<unsigned int> order = this->ClassifyBySize(mesh);
   bool ok = this->PointBuffer->Upload(points, vtkOpenGLBufferObject::ArrayBuffer) &&
     MakeBufferTexture(

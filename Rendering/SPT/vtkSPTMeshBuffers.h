@@ -45,29 +45,21 @@ public:
   vtkTypeMacro(vtkSPTMeshBuffers, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /**
-   * Upload the mesh to the context's buffers, unless this mesh, as built, is there already.
-   * False, with an error, when the context cannot hold it.
-   */
+  /// Upload the mesh to the context's buffers, unless this mesh, as built, is there already.
+  /// False, with an error, when the context cannot hold it.
   bool Upload(vtkOpenGLRenderWindow* renWin, vtkTetrahedralMesh* mesh);
 
-  /**
-   * The mesh last uploaded (null before the first Upload()).
-   */
+  /// The mesh last uploaded (null before the first Upload()).
   vtkTetrahedralMesh* GetMesh() const { return this->Mesh; }
 
-  /**
-   * Bind the vertex arrays to the attributes `vertexMC` (and `scalarTF` for point scalars) of
-   * the program, and the tetrahedron indices; the cell scalars, if any, are a buffer texture.
-   */
+  /// Bind the vertex arrays to the attributes `vertexMC` (and `scalarTF` for point scalars) of
+  /// the program, and the tetrahedron indices; the cell scalars, if any, are a buffer texture.
   void Bind(vtkShaderProgram* program);
   void Unbind();
 
-  /**
-   * The same buffers as buffer textures, for shaders that read a whole cell: the four point
-   * ids of each tetrahedron (RGBA32UI), the points (RGB32F) and the scalars (R32F, per point
-   * or, with cell scalars, per tetrahedron). Null before a successful Upload().
-   */
+  /// The same buffers as buffer textures, for shaders that read a whole cell: the four point
+  /// ids of each tetrahedron (RGBA32UI), the points (RGB32F) and the scalars (R32F, per point
+  /// or, with cell scalars, per tetrahedron). Null before a successful Upload().
   vtkTextureObject* GetTetrahedronTexture() { return this->TetrahedronTexture; }
   vtkTextureObject* GetPointTexture() { return this->PointTexture; }
   vtkTextureObject* GetScalarTexture() { return this->ScalarTexture; }
@@ -81,17 +73,13 @@ public:
   /// length.
   vtkIdType CountSmallCells(double length) const;
 
-  /**
-   * Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
-   * `primitiveOffset` uniform is set so that gl_PrimitiveIDIn + primitiveOffset is the
-   * tetrahedron's index.
-   */
+  /// Draw tetrahedra [first, first + count) as GL_LINES_ADJACENCY. The program's
+  /// `primitiveOffset` uniform is set so that gl_PrimitiveIDIn + primitiveOffset is the
+  /// tetrahedron's index.
   void Draw(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
-  /**
-   * Draw tetrahedra [first, first + count) as one GL_POINTS vertex each, with no vertex
-   * attributes: the vertex stage reads the cell through the buffer textures, and gl_VertexID
-   * is the tetrahedron's index.
-   */
+  /// Draw tetrahedra [first, first + count) as one GL_POINTS vertex each, with no vertex
+  /// attributes: the vertex stage reads the cell through the buffer textures, and gl_VertexID
+  /// is the tetrahedron's index.
   void DrawPoints(vtkShaderProgram* program, vtkIdType first, vtkIdType count);
 
   size_t GetGPUMemorySize() const { return this->UploadedBytes; }

@@ -97,42 +97,36 @@ vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::S
 }
 
 bool vtkSPTVolumeMapper::vtkInternals::PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren,
-  vtkVolume* vol, RenderTarget& target, vtkSPTFrame::Volume& out)
+  vtkVolume* vol, vtkOpenGLRenderWindow* window, vtkSPTFrame::Volume& out,
+  const double* sharedBounds, const double* sharedRange, double sharedEdge)
 {
   vtkInternals& internals = *mapper->Internals;
-  // Input and transfer functions: rebuilt only when they changed. The mesh is normalized on
-  // its own (a mapper drawn in parallel before was normalized with the other ranks' pieces).
-  mapper->GetMesh()->SetSharedFrame(nullptr, nullptr);
-  if (!mapper->BeginFrame(ren, target) || !mapper->PrepareMesh(vol, true) ||
-    !mapper->ComputeMatrices(ren, vol, internals.Matrices))
+  // Input and transfer functions: rebuilt only when they changed.
+  vtkTetrahedralMesh* mesh = mapper->GetMesh();
+  mesh->SetSharedFrame(sharedBounds, sharedRange);
+  if (!mapper->PrepareMesh(vol, true) || !mapper->ComputeMatrices(ren, vol, internals.Matrices))
   {
     return false;
   }
-  vtkTetrahedralMesh* mesh = mapper->GetMesh();
-  const double maxThickness = mesh->GetMaxEdgeLength();
-  return internals.Upload(
-    mapper, vol, target.Window, maxThickness * mesh->GetScale(), maxThickness, out);
-}
-
-bool vtkSPTVolumeMapper::vtkInternals::Upload(vtkSPTVolumeMapper* mapper, vtkVolume* vol,
-  vtkOpenGLRenderWindow* window, double tableThickness, double maxThickness,
-  vtkSPTFrame::Volume& out)
-{
-  vtkTetrahedralMesh* mesh = mapper->GetMesh();
-  if (!this->Table->Update(vol->GetProperty(), mesh->GetScalarRange(), tableThickness,
+  // The longest edge in the data's units, and in the normalized mesh's (the table's thickness).
+  const double maxThickness =
+    sharedBounds ? sharedEdge / mesh->GetScale() : mesh->GetMaxEdgeLength();
+  const double tableThickness = sharedBounds ? sharedEdge : maxThickness * mesh->GetScale();
+  vtkPreIntegrationTable* table = internals.Table;
+  if (!table->Update(vol->GetProperty(), mesh->GetScalarRange(), tableThickness,
         mapper->PreIntegrationScalarResolution, mapper->PreIntegrationThicknessResolution))
   {
-    vtkErrorWithObjectMacro(mapper, << this->Table->GetLastError());
+    vtkErrorWithObjectMacro(mapper, << table->GetLastError());
     return false;
   }
-  if (!this->Buffers->Upload(window, mesh))
+  if (!internals.Buffers->Upload(window, mesh))
   {
     return false;
   }
-  out.Buffers = this->Buffers;
-  out.Table = this->Table;
-  out.TableTexture = this->Table->GetTexture(window);
-  out.Matrices = &this->Matrices;
+  out.Buffers = internals.Buffers;
+  out.Table = table;
+  out.TableTexture = table->GetTexture(window);
+  out.Matrices = &internals.Matrices;
   out.MaxThickness = maxThickness;
   return out.TableTexture != nullptr;
 }
@@ -168,7 +162,8 @@ bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren, const Sh
   for (const auto& member : shared)
   {
     vtkSPTFrame::Volume volume;
-    if (PrepareVolume(member.second, ren, member.first, target, volume))
+    if (member.second->BeginFrame(ren, target) &&
+      PrepareVolume(member.second, ren, member.first, target.Window, volume))
     {
       // The volumes' cells are numbered one after another, so that each has random numbers
       // of its own.
@@ -239,25 +234,55 @@ double vtkSPTVolumeMapper::vtkInternals::ImageError(vtkSPTVolumeMapper* self) co
   return std::sqrt(this->Target.Estimate * this->Target.Estimate + rounding * rounding);
 }
 
-int vtkSPTVolumeMapper::vtkInternals::DrawTimed(
+void vtkSPTVolumeMapper::vtkInternals::Report(vtkSPTVolumeMapper* self,
+  const std::vector<vtkSPTVolumeMapper*>& all, const std::vector<vtkSPTVolumeMapper*>& owners,
+  const vtkSPTFrame& frame, vtkIdType parallelBytes) const
+{
+  vtkSPTFrameStatistics::Values values;
+  values.RepetitionCount = self->GetAccumulatedRepetitions();
+  values.FewestRepetitionCount =
+    std::max(0, values.RepetitionCount - self->GetEnsemble()->GetTiles().GetMostMissed());
+  values.EstimatedError = this->ImageError(self);
+  values.DepthSlabs = frame.GetDepthSlabs();
+  values.ParallelBytes = parallelBytes;
+  for (vtkSPTVolumeMapper* mapper : all)
+  {
+    mapper->EstimatedError = values.EstimatedError;
+    mapper->LastRepetitionCount = values.RepetitionCount;
+    const auto owner = std::find(owners.begin(), owners.end(), mapper);
+    const size_t v = static_cast<size_t>(owner - owners.begin());
+    values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
+    values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
+    mapper->FrameStatistics->Record(values);
+  }
+}
+
+bool vtkSPTVolumeMapper::vtkInternals::DrawTimed(
   vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan)
 {
   self->StartTiming();
-  const int drawn = self->TargetError > 0.0
-    ? frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
-        self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
-        this->Target)
-    : (frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count
-                                                                                  : -1);
+  int drawn = 0;
+  if (plan.Count > 0 && self->TargetError > 0.0)
+  {
+    drawn = frame.DrawToTarget(plan.First, plan.Count, plan.PerPass, plan.Coverage,
+      self->ExactCoverage && (this->CoverageDrawn || plan.Coverage), this->NoiseTarget(self),
+      this->Target);
+  }
+  else if (plan.Count > 0)
+  {
+    drawn =
+      frame.DrawRepetitions(plan.First, plan.Count, plan.PerPass, plan.Coverage) ? plan.Count : -1;
+  }
+  const bool ok = frame.Finish(drawn >= 0);
   const double seconds = self->StopTiming();
-  if (drawn < 0)
+  if (!ok)
   {
     self->ForgetAccumulation();
-    return drawn;
+    return false;
   }
   self->AddRepetitions(drawn, plan.PerPass, plan.Kind, seconds);
   this->CoverageDrawn = this->CoverageDrawn || (plan.Coverage && drawn > 0);
-  return drawn;
+  return true;
 }
 
 void vtkSPTVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
@@ -322,7 +347,7 @@ void vtkSPTVolumeMapper::vtkInternals::DrawFrame(vtkSPTVolumeMapper* self, vtkRe
   const bool started = plan.First > 0 ||
     internals.StartAccumulation(self, target, self->TargetError > 0.0, plan.SameImage);
   vtkSPTFrame frame(renWin, ensemble, internals.DepthKeys, volumes, settings, self);
-  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(self, frame, plan) >= 0);
+  const bool drawn = started && (plan.Count <= 0 || internals.DrawTimed(self, frame, plan));
   ostate->PopFramebufferBindings();
   if (!drawn)
   {

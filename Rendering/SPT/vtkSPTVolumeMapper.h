@@ -49,10 +49,7 @@
  * (a warning says so); give each vtkVolume its own mapper, sharing the input if need be.
  *
  * For the same reason, the ranks of a parallel job draw their own pieces of one data set as
- * they are (any shape, interleaved, with overlapping bounds), with no redistribution and no
- * compositing in visibility order (vtkPSPTVolumeMapper::SetController(), in
- * SPT::RenderingParallel): their depth keys are combined by a
- * global minimum and their sums by a global sum, and rank 0 resolves the image of the whole.
+ * they are, combined by reductions (vtkPSPTVolumeMapper::SetController()).
  *
  * @sa
  * vtkProjectedTetrahedraMapper vtkUnstructuredGridVolumeRayCastMapper
@@ -95,18 +92,14 @@ public:
   vtkGetMacro(TargetError, double);
   ///@}
 
-  /**
-   * The error estimated for the image of the last render, as TargetError counts it (its
-   * largest tile's); -1 when
-   * none was (TargetError off, fewer than two repetitions, or nothing drawn).
-   */
+  /// The error estimated for the image of the last render, as TargetError counts it (its
+  /// largest tile's); -1 when none was (TargetError off, fewer than two repetitions, or
+  /// nothing drawn).
   vtkGetMacro(EstimatedError, double);
 
-  /**
-   * What the last render drew: repetitions, estimated error, depth slabs, the cells drawn as
-   * points or in compute passes, and the bytes a parallel render exchanged. Updated by every
-   * render; owned by the mapper.
-   */
+  /// What the last render drew: repetitions, estimated error, depth slabs, the cells drawn as
+  /// points or in compute passes, and the bytes a parallel render exchanged. Updated by every
+  /// render; owned by the mapper.
   vtkSPTFrameStatistics* GetFrameStatistics();
 
   /**
@@ -117,11 +110,9 @@ public:
    * the cells' size on the screen; Documentation/advanced-settings.md explains each one.
    */
   ///@{
-  /**
-   * The sampling of the paper: one repetition per traversal, the survivor estimator, no
-   * stratification, no exact coverage, one depth slab. SetSamplingToDefault() restores the
-   * defaults of all five.
-   */
+  /// The sampling of the paper: one repetition per traversal, the survivor estimator, no
+  /// stratification, no exact coverage, one depth slab. SetSamplingToDefault() restores the
+  /// defaults of all five.
   void SetSamplingToPaper();
   void SetSamplingToDefault();
   ///@}
@@ -171,11 +162,9 @@ public:
   ///@}
 
   ///@{
-  /**
-   * Stratified keep-or-discard thresholds: over an image's repetitions, each fragment visits
-   * the strata of [0, 1) once each, so a segment's kept count is exact to within one and the
-   * error falls faster than 1 / sqrt(RepetitionLevel). Default on.
-   */
+  /// Stratified keep-or-discard thresholds: over an image's repetitions, each fragment visits
+  /// the strata of [0, 1) once each, so a segment's kept count is exact to within one and the
+  /// error falls faster than 1 / sqrt(RepetitionLevel). Default on.
   vtkSetMacro(StratifiedSampling, vtkTypeBool);
   vtkGetMacro(StratifiedSampling, vtkTypeBool);
   vtkBooleanMacro(StratifiedSampling, vtkTypeBool);
@@ -202,11 +191,9 @@ public:
   ///@}
 
   ///@{
-  /**
-   * Exact coverage: once per image, add every segment's optical depth, so that the image's
-   * alpha is exact and its color is corrected by a control variate (the expectation stays
-   * exact). 16 bytes per sample. Default on.
-   */
+  /// Exact coverage: once per image, add every segment's optical depth, so that the image's
+  /// alpha is exact and its color is corrected by a control variate (the expectation stays
+  /// exact). 16 bytes per sample. Default on.
   vtkSetMacro(ExactCoverage, vtkTypeBool);
   vtkGetMacro(ExactCoverage, vtkTypeBool);
   vtkBooleanMacro(ExactCoverage, vtkTypeBool);
@@ -224,30 +211,19 @@ public:
   ///@}
 
   ///@{
-  /**
-   * With TargetError, let a new image's first step aim with the noise per repetition measured
-   * in the images before it. Off, every image starts from an assumed noise, and the same seed
-   * and view always give the same image. Default on.
-   */
+  /// With TargetError, let a new image's first step aim with the noise per repetition measured
+  /// in the images before it. Off, every image starts from an assumed noise, and the same seed
+  /// and view always give the same image. Default on.
   vtkSetMacro(ReuseNoiseEstimate, vtkTypeBool);
   vtkGetMacro(ReuseNoiseEstimate, vtkTypeBool);
   vtkBooleanMacro(ReuseNoiseEstimate, vtkTypeBool);
   ///@}
 
-  /**
-   * The bytes this mapper holds on the GPU after the last render: mesh buffers,
-   * pre-integration table, depth keys and ensemble framebuffers.
-   */
+  /// The bytes this mapper holds on the GPU after the last render: mesh buffers,
+  /// pre-integration table, depth keys and ensemble framebuffers.
   vtkIdType GetGPUMemorySize() override;
 
-  /**
-   * Render the volume. Called by vtkVolume; not meant to be called directly.
-   */
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
-
-  /**
-   * Release every GPU resource this mapper holds for the window.
-   */
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
 protected:
@@ -269,11 +245,9 @@ protected:
   /// The renderer's visible SPT volumes that one frame draws together, each with its mapper.
   using SharedVolumeList = std::vector<std::pair<vtkVolume*, vtkSPTVolumeMapper*>>;
 
-  /**
-   * Draw the frame of `shared`, which this mapper leads, across the processes of a parallel
-   * render; false where this process draws it alone (here, always). vtkPSPTVolumeMapper
-   * overrides it.
-   */
+  /// Draw the frame of `shared`, which this mapper leads, across the processes of a parallel
+  /// render; false where this process draws it alone (here, always). vtkPSPTVolumeMapper
+  /// overrides it.
   virtual bool RenderAcrossRanks(vtkRenderer* ren, const SharedVolumeList& shared);
 
 private:

@@ -123,26 +123,24 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
 void vtkSPTVolumeMapper::vtkInternals::ReportLargeImage(vtkSPTVolumeMapper* self, int maxSize)
 {
   const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
+  std::ostringstream message;
+  message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
+          << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
+          << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
+  if (self->TargetError > 0.0 || self->DepthSlabs > 1)
   {
-    std::ostringstream message;
-    message << "The image is " << ensemble->GetPassWidth() << " x " << ensemble->GetPassHeight()
-            << " samples, more than this OpenGL's 3D textures hold per side (" << maxSize
-            << ", GL_MAX_3D_TEXTURE_SIZE), which the depth keys of several repetitions need";
-    if (self->TargetError > 0.0 || self->DepthSlabs > 1)
-    {
-      const char* setting = self->TargetError > 0.0 ? "TargetError" : "DepthSlabs";
-      const char* off = self->TargetError > 0.0 ? "0" : "1";
-      vtkErrorWithObjectMacro(self, << message.str() << ". " << setting
-                                    << " needs them: nothing is drawn. Render a smaller image "
-                                       "(the viewport times SubpixelLevel), or set "
-                                    << setting << " to " << off << ".");
-    }
-    else
-    {
-      vtkWarningWithObjectMacro(self, << message.str()
-                                      << ": drawing one repetition per traversal pair (the "
-                                         "same image, more traversals).");
-    }
+    const char* setting = self->TargetError > 0.0 ? "TargetError" : "DepthSlabs";
+    const char* off = self->TargetError > 0.0 ? "0" : "1";
+    vtkErrorWithObjectMacro(self, << message.str() << ". " << setting
+                                  << " needs them: nothing is drawn. Render a smaller image "
+                                     "(the viewport times SubpixelLevel), or set "
+                                  << setting << " to " << off << ".");
+  }
+  else
+  {
+    vtkWarningWithObjectMacro(self, << message.str()
+                                    << ": drawing one repetition per traversal pair (the "
+                                       "same image, more traversals).");
   }
 }
 
@@ -156,34 +154,35 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   // image). When not even one pair fits, the cheapest frame: the paper's single passes, one
   // traversal each, unbiased too; the exact coverage waits for a later frame.
   FramePlan plan;
-  plan.PerPass = perPass;
   plan.Kind = settings.Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
-  PlanAgreement terms;
-  terms.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, plan.PerPass, plan.Kind);
-  terms.PerPass = plan.PerPass;
-  terms.SameImage = self->IsLastSignature(signature) ? 1 : 0;
-  terms.Pairs = plan.Kind == Traversal::Single ? 0 : 1;
-  int continued = terms.Count;
-  terms.First = self->ContinueAccumulation(std::move(signature), continued);
-  if (agree && !agree(terms))
+  const int count = self->ChooseRepetitions(vol, self->RepetitionLevel, perPass, plan.Kind);
+  const int sameImage = self->IsLastSignature(signature) ? 1 : 0;
+  int continued = count;
+  const int first = self->ContinueAccumulation(std::move(signature), continued);
+  // The terms the ranks of a parallel render agree on, each the least of any rank's: a rank's
+  // image continues only if all continue it, and every rank draws the fewest repetitions, and
+  // the fewest per traversal, that any rank's time budget allows. The last: a repetition at a
+  // time is a pair of traversals (1) or a single pass (0).
+  int terms[] = { first, count, perPass, sameImage, plan.Kind == Traversal::Single ? 0 : 1 };
+  if (agree && !agree(terms, 5))
   {
-    terms.First = terms.Count = 0; // nothing drawn; a parallel frame's last exchange fails too
+    terms[0] = terms[1] = 0; // nothing drawn; a parallel frame's last exchange fails too
   }
-  plan.First = terms.First;
-  plan.Count = plan.First > 0
-    ? std::min(terms.Count, self->MaximumProgressiveRepetitions - plan.First)
-    : terms.Count;
-  plan.PerPass = terms.PerPass;
-  plan.SameImage = terms.SameImage != 0;
+  plan.First = terms[0];
+  plan.Count = plan.First > 0 ? std::min(terms[1], self->MaximumProgressiveRepetitions - plan.First)
+                              : terms[1];
+  plan.PerPass = terms[2];
+  plan.SameImage = terms[3] != 0;
   plan.Kind = plan.PerPass > 1 ? Traversal::Group
-    : terms.Pairs != 0         ? Traversal::Pair
+    : terms[4] != 0            ? Traversal::Pair
                                : Traversal::Single;
   plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw
   // it, and a new accumulation starts without it. Depth slabs weight their colors by the
   // slabs' optical depths, which the coverage traversal adds up: drawn for them even without
   // the exact coverage.
-  plan.Coverage = this->DrawsCoverage(self, plan);
+  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
+  plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
   if (plan.Cheapest)
   {
     settings.Estimator = SURVIVOR_ESTIMATOR;
@@ -213,11 +212,4 @@ vtkSPTFrame::Settings vtkSPTVolumeMapper::vtkInternals::FrameSettings(
     : nullptr;
   settings.ComputeEveryPoint = everyPoint;
   return settings;
-}
-
-bool vtkSPTVolumeMapper::vtkInternals::DrawsCoverage(
-  vtkSPTVolumeMapper* self, const FramePlan& plan) const
-{
-  const bool coverageDrawn = plan.First > 0 && this->CoverageDrawn;
-  return (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
 }

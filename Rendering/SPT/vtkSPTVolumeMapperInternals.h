@@ -22,7 +22,6 @@
 #include "vtkSPTMeshBuffers.h"
 #include "vtkVolumeViewMatrices.h"
 
-#include <algorithm>  // For the report
 #include <functional> // For the ranks' agreement
 #include <string>     // For the errors
 #include <utility>    // For the shared volumes
@@ -55,42 +54,21 @@ public:
   // several volumes draw is left out of the others' frames.
   static SharedList SharedVolumes(
     vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps);
-  // Bring a volume's mesh, table and matrices up to date and onto the GPU.
+  // Bring a volume's mesh, table and matrices up to date and onto the GPU as `out`. The mesh
+  // is normalized on its own, or with `sharedBounds` and `sharedRange` as the whole of the
+  // ranks' pieces is, whose longest edge is then `sharedEdge` (normalized units).
   static bool PrepareVolume(vtkSPTVolumeMapper* mapper, vtkRenderer* ren, vtkVolume* vol,
-    RenderTarget& target, vtkSPTFrame::Volume& out);
-  // Bring the table (over `tableThickness`, in the normalized mesh's units) and the mesh onto
-  // the GPU as `out`, whose cells are at most `maxThickness` thick (in the data's units).
-  bool Upload(vtkSPTVolumeMapper* mapper, vtkVolume* vol, vtkOpenGLRenderWindow* window,
-    double tableThickness, double maxThickness, vtkSPTFrame::Volume& out);
+    vtkOpenGLRenderWindow* window, vtkSPTFrame::Volume& out, const double* sharedBounds = nullptr,
+    const double* sharedRange = nullptr, double sharedEdge = 0.0);
   static std::vector<double> Signature(
     vtkRenderer* ren, const std::vector<vtkSPTVolumeMapper*>& mappers, const RenderTarget& target);
   // What the mappers of a frame report of its render (GetFrameStatistics()): the image's
   // repetitions and error, the bytes the ranks exchanged, and the cells of the volumes of
   // `owners` (those this process drew, in the frame's order) drawn as points and computed;
   // none for the others of `all`.
-  template <class Frame>
   void Report(vtkSPTVolumeMapper* self, const std::vector<vtkSPTVolumeMapper*>& all,
-    const std::vector<vtkSPTVolumeMapper*>& owners, const Frame& frame,
-    vtkIdType parallelBytes = 0) const
-  {
-    vtkSPTFrameStatistics::Values values;
-    values.RepetitionCount = self->GetAccumulatedRepetitions();
-    values.FewestRepetitionCount =
-      std::max(0, values.RepetitionCount - self->GetEnsemble()->GetTiles().GetMostMissed());
-    values.EstimatedError = this->ImageError(self);
-    values.DepthSlabs = frame.GetDepthSlabs();
-    values.ParallelBytes = parallelBytes;
-    for (vtkSPTVolumeMapper* mapper : all)
-    {
-      mapper->EstimatedError = values.EstimatedError;
-      mapper->LastRepetitionCount = values.RepetitionCount;
-      const auto owner = std::find(owners.begin(), owners.end(), mapper);
-      const size_t v = static_cast<size_t>(owner - owners.begin());
-      values.PointCellCount = owner != owners.end() ? frame.GetPointCellCount(v) : 0;
-      values.ComputedCellCount = owner != owners.end() ? frame.GetComputedCellCount(v) : 0;
-      mapper->FrameStatistics->Record(values);
-    }
-  }
+    const std::vector<vtkSPTVolumeMapper*>& owners, const vtkSPTFrame& frame,
+    vtkIdType parallelBytes = 0) const;
   // Prepare every shared volume that can be drawn; false when none can.
   static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
@@ -127,19 +105,9 @@ public:
     bool Coverage = false;  // draw the exact coverage in this frame
     bool SameImage = false; // all that shapes the image is as in the last render
   };
-  // What the ranks of a parallel render agree on before a frame, each the least of any rank's:
-  // a rank's image continues only if all continue it, and every rank draws the fewest
-  // repetitions, and the fewest per traversal, that any rank's time budget allows.
-  struct PlanAgreement
-  {
-    int First = 0;     // repetitions accumulated (0: a new accumulation)
-    int Count = 0;     // repetitions the time budget allows
-    int PerPass = 1;   // repetitions per traversal
-    int SameImage = 0; // 1: all that shapes the image is as in the last render
-    int Pairs = 0;     // 1: a repetition at a time is a pair of traversals, 0: a single pass
-  };
-  // Makes `agreement` the ranks' on every rank; false, on every rank, where they cannot agree.
-  using AgreeOnPlan = std::function<bool(PlanAgreement& agreement)>;
+  // Makes each of `count` terms the least of any rank's, on every rank; false, on every rank,
+  // where the ranks cannot agree.
+  using AgreeOnPlan = std::function<bool(int* terms, int count)>;
   // The frame's plan, with `perPass` repetitions per traversal at most: the repetitions that
   // fit the time allotted, added to what is accumulated when refining progressively, agreed
   // through `agree` where it is given (a collective call then). The cheapest frame draws with
@@ -147,9 +115,6 @@ public:
   FramePlan Plan(vtkSPTVolumeMapper* self, vtkVolume* vol, int perPass,
     std::vector<double> signature, vtkSPTFrame::Settings& settings,
     const AgreeOnPlan& agree = nullptr);
-  // Whether the plan's frame draws the exact coverage (with the depth slabs' optical depths):
-  // once per accumulation, never in the cheapest frame.
-  bool DrawsCoverage(vtkSPTVolumeMapper* self, const FramePlan& plan) const;
   // A new accumulation: the scene depth, the halves of the error target, a cleared sum.
   bool StartAccumulation(
     vtkSPTVolumeMapper* self, const RenderTarget& target, bool halves, bool sameImage);
@@ -169,8 +134,10 @@ public:
   void DrawFrame(vtkSPTVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
     const RenderTarget& target, const std::vector<vtkSPTFrame::Volume>& volumes,
     const std::vector<vtkSPTVolumeMapper*>& mappers);
-  // Draw the plan's repetitions and measure them for the budget; the number drawn, or -1.
-  int DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
+  // Draw the plan's repetitions into `frame` (one process's, or a parallel frame, whose
+  // Finish() all ranks make) and measure them for the budget; false, with the accumulation
+  // forgotten, where any drawing failed.
+  bool DrawTimed(vtkSPTVolumeMapper* self, vtkSPTFrame& frame, const FramePlan& plan);
 };
 
 #endif

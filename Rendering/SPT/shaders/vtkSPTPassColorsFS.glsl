@@ -43,9 +43,7 @@ int survivorsNotInFront(uint key, ivec2 pixel, int begin, int end)
   }
   return end - low;
 }
-#endif
 
-#ifdef SPT_VISIBILITY_WEIGHTED
 // The visibility estimator's counts: of the group's repetitions, how many have their nearest
 // survivor (in the key layers [base, base + passRepetitions) of the segment's slab) not in
 // front of the key (x), and how many of those are in the second half (y). Each half's keys are

@@ -68,9 +68,7 @@ int sortKeys(int begin, int end)
   }
   return from;
 }
-#endif
 
-#ifdef SPT_SORT_KEYS
 // Sorts a slab's kept keys, gathered in keys[] (kept[0] of the first half from 0, kept[1] of
 // the second from `split`), and writes them back to its key layers from `base`: each half's at
 // the start of the half, and the rest of the half "nothing kept", the largest key, as a sort

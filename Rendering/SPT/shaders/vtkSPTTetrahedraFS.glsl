@@ -1,7 +1,7 @@
 //VTK::System::Dec
 //SPT::Extensions::Dec
 //VTK::Output::Dec
-//SPT::Pass::Dec
+//Volume::Defines::Dec
 
 // SPT fragment stage (Sakamoto, Kawamura, Kuwano and Koyamada 2009): each fragment is one ray
 // segment through one tetrahedron. This file finds the segment and its pre-integrated color
