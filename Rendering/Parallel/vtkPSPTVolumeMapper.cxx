@@ -431,7 +431,15 @@ public:
       self->GetEnsemble(), settings.DepthSlabs, SPTInternals::FixedKeyBudget);
     const FramePlan plan =
       spt.Plan(self, vol, perPass, SPTInternals::Signature(ren, all, target), settings,
-        [this](int* terms, int count) { return this->Reduction->AllMinimum(terms, count); });
+        [this](SPTInternals::PlanAgreement& planned)
+        {
+          // The terms in the order of the aggregate, for the reduction.
+          int terms[] = { planned.First, planned.Count, planned.PerPass, planned.SameImage,
+            planned.Pairs };
+          const bool agreed = this->Reduction->AllMinimum(terms, 5);
+          planned = { terms[0], terms[1], terms[2], terms[3], terms[4] };
+          return agreed;
+        });
     ostate->PushFramebufferBindings();
     const bool started = this->StartParallelAccumulation(self, target, settings, plan);
     vtkSPTParallelFrame frame(

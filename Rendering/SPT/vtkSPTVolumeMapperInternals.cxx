@@ -155,26 +155,25 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   // traversal each, unbiased too; the exact coverage waits for a later frame.
   FramePlan plan;
   plan.Kind = settings.Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
-  const int count = self->ChooseRepetitions(vol, self->RepetitionLevel, perPass, plan.Kind);
-  const int sameImage = self->IsLastSignature(signature) ? 1 : 0;
-  int continued = count;
-  const int first = self->ContinueAccumulation(std::move(signature), continued);
-  // The terms the ranks of a parallel render agree on, each the least of any rank's: a rank's
-  // image continues only if all continue it, and every rank draws the fewest repetitions, and
-  // the fewest per traversal, that any rank's time budget allows. The last: a repetition at a
-  // time is a pair of traversals (1) or a single pass (0).
-  int terms[] = { first, count, perPass, sameImage, plan.Kind == Traversal::Single ? 0 : 1 };
-  if (agree && !agree(terms, 5))
+  PlanAgreement terms;
+  terms.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, perPass, plan.Kind);
+  terms.PerPass = perPass;
+  terms.SameImage = self->IsLastSignature(signature) ? 1 : 0;
+  terms.Pairs = plan.Kind == Traversal::Single ? 0 : 1;
+  int continued = terms.Count;
+  terms.First = self->ContinueAccumulation(std::move(signature), continued);
+  if (agree && !agree(terms))
   {
-    terms[0] = terms[1] = 0; // nothing drawn; a parallel frame's last exchange fails too
+    terms.First = terms.Count = 0; // nothing drawn; a parallel frame's last exchange fails too
   }
-  plan.First = terms[0];
-  plan.Count = plan.First > 0 ? std::min(terms[1], self->MaximumProgressiveRepetitions - plan.First)
-                              : terms[1];
-  plan.PerPass = terms[2];
-  plan.SameImage = terms[3] != 0;
+  plan.First = terms.First;
+  plan.Count = plan.First > 0
+    ? std::min(terms.Count, self->MaximumProgressiveRepetitions - plan.First)
+    : terms.Count;
+  plan.PerPass = terms.PerPass;
+  plan.SameImage = terms.SameImage != 0;
   plan.Kind = plan.PerPass > 1 ? Traversal::Group
-    : terms[4] != 0            ? Traversal::Pair
+    : terms.Pairs != 0         ? Traversal::Pair
                                : Traversal::Single;
   plan.Cheapest = plan.Kind == Traversal::Single && self->RepetitionsPerPass > 1;
   // The coverage is additive and needs nothing random: any frame of an accumulation may draw

@@ -105,9 +105,19 @@ public:
     bool Coverage = false;  // draw the exact coverage in this frame
     bool SameImage = false; // all that shapes the image is as in the last render
   };
-  // Makes each of `count` terms the least of any rank's, on every rank; false, on every rank,
-  // where the ranks cannot agree.
-  using AgreeOnPlan = std::function<bool(int* terms, int count)>;
+  // What the ranks of a parallel render agree on before a frame, each the least of any rank's:
+  // a rank's image continues only if all continue it, and every rank draws the fewest
+  // repetitions, and the fewest per traversal, that any rank's time budget allows.
+  struct PlanAgreement
+  {
+    int First = 0;     // repetitions accumulated (0: a new accumulation)
+    int Count = 0;     // repetitions the time budget allows
+    int PerPass = 1;   // repetitions per traversal
+    int SameImage = 0; // 1: all that shapes the image is as in the last render
+    int Pairs = 0;     // 1: a repetition at a time is a pair of traversals, 0: a single pass
+  };
+  // Makes `agreement` the ranks' on every rank; false, on every rank, where they cannot agree.
+  using AgreeOnPlan = std::function<bool(PlanAgreement& agreement)>;
   // The frame's plan, with `perPass` repetitions per traversal at most: the repetitions that
   // fit the time allotted, added to what is accumulated when refining progressively, agreed
   // through `agree` where it is given (a collective call then). The cheapest frame draws with
