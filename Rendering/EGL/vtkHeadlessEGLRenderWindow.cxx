@@ -402,15 +402,10 @@ void vtkHeadlessEGLRenderWindow::OpenGLInitContext()
   {
     // glewInit() loads OpenGL's functions (glewContextInit(), through libGLdispatch, which
     // EGL's contexts use too) and then GLX's, which need an X display: without one it returns
-    // GLEW_ERROR_NO_GLX_DISPLAY after OpenGL's functions are loaded. The rest is what
-    // vtkOpenGLRenderWindow::OpenGLInitContext() does.
+    // GLEW_ERROR_NO_GLX_DISPLAY (GLEW 2.0 on; VTK's own GLEW is 2.1 or later) after OpenGL's
+    // functions are loaded. The rest is what vtkOpenGLRenderWindow::OpenGLInitContext() does.
     const GLenum result = glewInit();
-#ifdef GLEW_ERROR_NO_GLX_DISPLAY
-    const bool loaded = result == GLEW_OK || result == GLEW_ERROR_NO_GLX_DISPLAY;
-#else
-    const bool loaded = result == GLEW_OK;
-#endif
-    if (!loaded)
+    if (result != GLEW_OK && result != GLEW_ERROR_NO_GLX_DISPLAY)
     {
       vtkErrorMacro("GLEW could not load OpenGL's functions in the EGL context: "
         << reinterpret_cast<const char*>(glewGetErrorString(result)) << ".");
