@@ -18,7 +18,6 @@
 #include "vtkBatchedVertexArray.h"
 #include "vtkEnsembleBuffer.h"
 #include "vtkPBVRParticleGenerator.h"
-#include "vtkPBVRParticleKey.h"
 #include "vtkSavedGLState.h"
 #include "vtkTetrahedralMesh.h"
 #include "vtkTransferFunctionSamples.h"
@@ -51,6 +50,49 @@ size_t ParticlesInMemory(int memory)
   return std::min(size_t(memory) * 1024 * 1024 / vtkPBVRParticleGenerator::BytesPerParticle,
     size_t(std::numeric_limits<int>::max() - 1));
 }
+
+// What a particle set was generated for (the generator's settings, and the mesh and opacity
+// they were applied to), and which views it serves. Particles follow the opacity (their
+// density) and the cross-section of the pixels they are drawn into: a set made for a
+// cross-section S serves every view that needs S to 2 S (the surplus is thinned when drawn);
+// beyond that, or below S, particles are made again. A generation that failed (too many
+// particles for the memory bound) is not tried again until a view needs particles larger by a
+// quarter, fewer sets or more memory.
+struct ParticleKey : vtkPBVRParticleGenerator::Settings
+{
+  // Particles serve views whose cross-section is at most this multiple of theirs.
+  static constexpr double LargestFootprintRatio = 2.0;
+  // After a failed generation, a view must need particles this much larger to try again.
+  static constexpr double RetryFootprintRatio = 1.25;
+
+  vtkMTimeType MeshBuild = 0;
+  vtkMTimeType OpacityChange = 0;
+
+  // Whether both keys describe the same density of particles.
+  bool SameModel(const ParticleKey& o) const
+  {
+    return this->MeshBuild == o.MeshBuild && this->OpacityChange == o.OpacityChange &&
+      this->Seed == o.Seed && this->SamplingMode == o.SamplingMode;
+  }
+
+  // Whether particles generated for this key serve a view that needs a cross-section `needed`
+  // and `sets` particle sets within the memory of `wanted`.
+  bool Serves(const ParticleKey& wanted, double needed, int sets, size_t particles) const
+  {
+    return this->SameModel(wanted) && needed >= this->Footprint &&
+      needed <= LargestFootprintRatio * this->Footprint && this->Sets >= sets &&
+      particles <= wanted.MaximumParticles;
+  }
+
+  // Whether a generation for `wanted` fails again as the one for this key did: it can only
+  // succeed with larger particles, fewer sets or more memory.
+  bool FailsAgain(const ParticleKey& wanted) const
+  {
+    return this->SameModel(wanted) && this->Sets <= wanted.Sets &&
+      wanted.Footprint <= RetryFootprintRatio * this->Footprint &&
+      this->MaximumParticles >= wanted.MaximumParticles;
+  }
+};
 }
 
 class vtkPBVRVolumeMapper::vtkInternals
@@ -72,9 +114,9 @@ public:
   vtkMTimeType RadiusBuild = 0;
 
   // The particles and what they were made for.
-  vtkPBVRParticleKey Generated;
+  ParticleKey Generated;
   bool HaveParticles = false;
-  vtkPBVRParticleKey Failed;
+  ParticleKey Failed;
   bool HaveFailed = false;
   vtkIdType GenerationCount = 0;
   vtkNew<vtkOpenGLBufferObject> ParticleBuffer;
@@ -184,7 +226,7 @@ public:
       this->LargestPointSize > 1.0 ? int(std::ceil(0.5 * this->LargestPointSize)) : 0;
   }
 
-  bool Generate(const vtkPBVRParticleKey& wanted)
+  bool Generate(const ParticleKey& wanted)
   {
     this->ReleaseParticles();
     std::vector<double> attenuation(this->Samples.GetAttenuation());
@@ -341,7 +383,7 @@ bool vtkPBVRVolumeMapper::PrepareParticles(
     return false;
   }
 
-  vtkPBVRParticleKey wanted;
+  ParticleKey wanted;
   wanted.MeshBuild = internals.Mesh->GetBuildTime();
   wanted.OpacityChange = internals.Samples.GetAttenuationTime();
   wanted.Seed = this->Seed;
