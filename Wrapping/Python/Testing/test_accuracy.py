@@ -47,14 +47,10 @@ def test_error_slope_is_minus_one_half():
     assert np.all(np.diff(result["error"]) < 0.0)
 
 
-def test_run_is_deterministic():
+def test_run_is_deterministic_and_plots_a_png(tmp_path):
     first = accuracy.run(n_segments=8, levels=(1, 4, 16), n_rays=50, seed=9)
     second = accuracy.run(n_segments=8, levels=(1, 4, 16), n_rays=50, seed=9)
     np.testing.assert_array_equal(first["error"], second["error"])
-
-
-def test_plot_writes_png(tmp_path):
-    result = accuracy.run(n_segments=8, levels=(1, 2, 4, 8), n_rays=50)
     path = tmp_path / "accuracy.png"
-    accuracy.plot(result, path)
+    accuracy.plot(first, path)
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -104,13 +104,13 @@ class UnreadableDataError(RuntimeError):
     """VTK's reader could not read a data file that is present."""
 
 
-def _read(reader, filename: str, all_scalars: bool = True) -> vtkDataSet:
-    """The output of one of VTK's file readers (a legacy reader reads all scalars if
-    ``all_scalars``); UnreadableDataError, naming the file, when the reader fails or reads no
-    cells (a truncated file, or a Git LFS pointer in its place)."""
+def _read(reader, filename: str) -> vtkDataSet:
+    """The output of one of VTK's file readers (a legacy reader reads all scalars);
+    UnreadableDataError, naming the file, when the reader fails or reads no cells (a truncated
+    file, or a Git LFS pointer in its place)."""
     path = _data_file(filename)
     reader.SetFileName(path)
-    if all_scalars and hasattr(reader, "ReadAllScalarsOn"):
+    if hasattr(reader, "ReadAllScalarsOn"):
         reader.ReadAllScalarsOn()
     reader.Update()
     output = reader.GetOutput()
@@ -191,7 +191,7 @@ def _threshold(dataset: vtkDataSet, association: int, array: str, low: float,
 def _read_iron_protein(threshold: bool) -> vtkDataSet:
     """ironProt.vtk; with ``threshold`` keep voxels with all values in 80..255, like VTK's own
     projected-tetrahedra test."""
-    image = _read(vtkStructuredPointsReader(), "ironProt.vtk", all_scalars=False)
+    image = _read(vtkStructuredPointsReader(), "ironProt.vtk")
     if not threshold:
         return image
     return _threshold(image, vtkDataObject.FIELD_ASSOCIATION_POINTS, "scalars", 80.0, 255.0)

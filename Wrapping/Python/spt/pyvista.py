@@ -168,18 +168,16 @@ def lookup_table(values: np.ndarray, clim: Union[None, float, Sequence[float]] =
 
 
 def _mapper(method: str, target_error: float):
+    if method not in METHODS:
+        raise ValueError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
     if method == "spt":
         mapper = vtkSPTVolumeMapper()
         mapper.SetTargetError(target_error)
         return mapper
-    if method in ("havs", "pbvr") and not HAVE_BASELINES:
+    if not HAVE_BASELINES:
         raise ValueError(f"method '{method}' needs the baselines, which this build leaves out")
     from . import vtkHAVSVolumeMapper, vtkPBVRVolumeMapper
-    if method == "havs":
-        return vtkHAVSVolumeMapper()
-    if method == "pbvr":
-        return vtkPBVRVolumeMapper()
-    raise ValueError(f"unknown method '{method}'; choose from {', '.join(METHODS)}")
+    return vtkHAVSVolumeMapper() if method == "havs" else vtkPBVRVolumeMapper()
 
 
 def add_volume(plotter: pyvista.Plotter, mesh: Any, scalars: Any = None, clim=None,

@@ -57,11 +57,9 @@ class TransferFunction:
         self.range = (float(low), float(high))
         alpha = np.empty(n)
         opacity.GetTable(low, high, n, alpha)
-        rgb = np.empty(3 * n)
+        rgb = np.ones(3 * n)  # white where the property has no color function
         if color.GetSize() > 0:
             color.GetTable(low, high, n, rgb)
-        else:
-            rgb[:] = 1.0
         self.tau = alpha / unit_distance
         self.rgb = np.ascontiguousarray(rgb.reshape(n, 3))
 
