@@ -3,8 +3,9 @@
 // mappers split the hexahedra themselves), with a point and a cell scalar, in two viewports:
 // - left: perspective, with an opaque sphere inside the shell that hides part of it;
 // - right: parallel projection, the volume rotated and scaled as the test chooses.
-// Also the checks the three tests share: the input unmodified and split into tetrahedra, OpenGL
-// errors, covered pixels per viewport, and the baseline comparison.
+// Also the checks the three tests share (counted in an SPTTestChecks::FailureCount): the input
+// unmodified and split into tetrahedra, OpenGL errors, covered pixels per viewport, and the
+// baseline comparison.
 
 #ifndef SPTTestScene_h
 #define SPTTestScene_h
@@ -32,11 +33,13 @@
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include "SPTTestChecks.h"
 #include "SPTTestWindow.h"
 
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 #include <vector>
 
 namespace SPTTestScene
@@ -105,13 +108,6 @@ inline vtkSmartPointer<vtkVolume> MakeVolume(
   return volume;
 }
 
-// The mapper renders the shell's cell scalar.
-inline void SelectCellField(vtkAbstractVolumeMapper* mapper)
-{
-  mapper->SetScalarModeToUseCellFieldData();
-  mapper->SelectScalarArray("cellField");
-}
-
 // The baseline scene's two volumes of one stochastic mapper class, at 64 repetitions: the
 // shell by its point scalar (seed 1) and, transformed, by its cell scalar (seed 2).
 template <class Mapper>
@@ -129,7 +125,8 @@ struct ShellVolumes
     this->PointMapper->SetSeed(1);
     this->Point = MakeVolume(this->PointMapper, property);
     this->CellMapper->SetInputData(shell);
-    SelectCellField(this->CellMapper);
+    this->CellMapper->SetScalarModeToUseCellFieldData();
+    this->CellMapper->SelectScalarArray("cellField");
     this->CellMapper->SetRepetitionLevel(64);
     this->CellMapper->SetSeed(2);
     this->Cell = MakeVolume(this->CellMapper, property, 0.7);
@@ -161,18 +158,16 @@ struct ShellInput
   vtkIdType Cells = this->Shell->GetNumberOfCells();
   vtkSmartPointer<vtkVolumeProperty> Property = MakeProperty();
 
-  // A failure if the shell was modified, or if the mapper that made `tetrahedra` of it did not
-  // split each hexahedron into 5 or 6.
-  int CheckInputAndSplit(vtkIdType tetrahedra) const
+  // The shell unmodified, and each hexahedron split into 5 or 6 by the mapper that made
+  // `tetrahedra` of it.
+  void CheckInputAndSplit(vtkIdType tetrahedra, SPTTestChecks::FailureCount& failures) const
   {
-    if (this->Shell->GetMTime() != this->Time || this->Shell->GetNumberOfCells() != this->Cells ||
-      tetrahedra < 5 * this->Cells || tetrahedra > 6 * this->Cells)
-    {
-      std::cerr << "The input was modified, or its hexahedra not split into 5 or 6 tetrahedra "
-                << "each (" << tetrahedra << " tetrahedra for " << this->Cells << " hexahedra).\n";
-      return 1;
-    }
-    return 0;
+    failures.Check(this->Shell->GetMTime() == this->Time &&
+        this->Shell->GetNumberOfCells() == this->Cells && tetrahedra >= 5 * this->Cells &&
+        tetrahedra <= 6 * this->Cells,
+      "the input unmodified, its hexahedra split into 5 or 6 tetrahedra each (" +
+        std::to_string(tetrahedra) + " tetrahedra for " + std::to_string(this->Cells) +
+        " hexahedra)");
   }
 };
 
@@ -234,32 +229,24 @@ public:
     }
   }
 
-  // Render; a failure for an OpenGL error.
-  int Render()
+  // Render, without an OpenGL error.
+  void Render(SPTTestChecks::FailureCount& failures)
   {
     this->Window->Render();
     const GLenum error = glGetError();
-    if (error != GL_NO_ERROR)
-    {
-      std::cerr << "OpenGL error " << error << " after rendering.\n";
-      return 1;
-    }
-    return 0;
+    failures.Check(error == GL_NO_ERROR, "no OpenGL error (" + std::to_string(error) + ")");
   }
 
-  // A failure unless each viewport of `rgb` shows at least `minimum` covered pixels.
-  int CheckCovered(const std::vector<unsigned char>& rgb, int minimum)
+  // Each viewport of `rgb` shows at least `minimum` covered pixels.
+  void CheckCovered(
+    const std::vector<unsigned char>& rgb, int minimum, SPTTestChecks::FailureCount& failures)
   {
     const int width = this->Window->GetSize()[0];
     const int leftCovered = CountCovered(rgb, width, 0, width / 2);
     const int rightCovered = CountCovered(rgb, width, width / 2, width);
     std::cout << "Covered pixels: " << leftCovered << " left, " << rightCovered << " right\n";
-    if (leftCovered < minimum || rightCovered < minimum)
-    {
-      std::cerr << "A viewport shows (almost) only the background.\n";
-      return 1;
-    }
-    return 0;
+    failures.Check(leftCovered >= minimum && rightCovered >= minimum,
+      "each viewport shows the volume, not (almost) only the background");
   }
 
   // The baseline comparison (or the interactor, with -I): vtkRegressionTester's result.
@@ -273,9 +260,9 @@ public:
     return result;
   }
 
-  static int ExitStatus(int result, int failures)
+  static int ExitStatus(int result, const SPTTestChecks::FailureCount& failures)
   {
-    return (result != vtkRegressionTester::FAILED && failures == 0) ? EXIT_SUCCESS : EXIT_FAILURE;
+    return result == vtkRegressionTester::FAILED ? EXIT_FAILURE : failures.ExitStatus();
   }
 
   vtkSmartPointer<vtkRenderWindow> Window;

@@ -9,7 +9,6 @@
 
 #include "vtkHAVSVolumeMapper.h"
 
-#include "SPTTestChecks.h"
 #include "SPTTestScene.h"
 
 using namespace SPTTestScene;
@@ -29,14 +28,13 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
 
   TwoViewports scene(400, 200, leftVolume, rightVolume);
   SPTTestChecks::FailureCount failures;
-  failures.Check(scene.Render() == 0, "no OpenGL error");
+  scene.Render(failures);
   if (leftMapper->GetKBufferSynchronizationInUse() < 0)
   {
     std::cout << "This context cannot synchronize the k-buffer; nothing to test.\n";
     return VTK_SKIP_RETURN_CODE;
   }
-  failures.Check(
-    scene.CheckCovered(Capture(scene.Window), 4000) == 0, "each viewport shows the volume");
+  scene.CheckCovered(Capture(scene.Window), 4000, failures);
   const vtkIdType tetrahedra = leftMapper->GetNumberOfTetrahedra();
   const vtkIdType faces = leftMapper->GetNumberOfFaces();
   const vtkIdType boundary = leftMapper->GetNumberOfBoundaryFaces();
@@ -44,10 +42,10 @@ int TestHAVSVolumeMapper(int argc, char* argv[])
             << " on the boundary; sort " << leftMapper->GetLastSortTime() << " s, GPU "
             << leftMapper->GetLastGPUTime() << " s; synchronization "
             << leftMapper->GetKBufferSynchronizationInUse() << "\n";
-  failures.Check(input.CheckInputAndSplit(tetrahedra) == 0, "the input unmodified and split");
+  input.CheckInputAndSplit(tetrahedra, failures);
   failures.Check(2 * faces == 4 * tetrahedra + boundary && rightMapper->GetNumberOfFaces() == faces,
     "the faces match the tetrahedra");
   failures.Check(leftMapper->GetLastSortTime() > 0.0 && rightMapper->GetLastGPUTime() > 0.0,
     "the mapper reports its sort and GPU times");
-  return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures.GetCount());
+  return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures);
 }

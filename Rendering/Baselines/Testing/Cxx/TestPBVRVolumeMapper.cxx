@@ -9,7 +9,6 @@
 
 #include "vtkPBVRVolumeMapper.h"
 
-#include "SPTTestChecks.h"
 #include "SPTTestScene.h"
 
 using namespace SPTTestScene;
@@ -30,8 +29,7 @@ void CheckParticles(vtkPBVRVolumeMapper* pointMapper, vtkPBVRVolumeMapper* cellM
       pointMapper->GetGPUMemorySize() >= 8 * particles && cellMapper->GetNumberOfParticles() > 0 &&
       pointMapper->GetGenerationCount() == 1 && cellMapper->GetGenerationCount() == 1,
     "the particle count, sets, memory and generation count");
-  failures.Check(input.CheckInputAndSplit(pointMapper->GetNumberOfTetrahedra()) == 0,
-    "the input unmodified and split");
+  input.CheckInputAndSplit(pointMapper->GetNumberOfTetrahedra(), failures);
 }
 
 // Particles are kept while nothing that shapes them changes, and made anew when it does.
@@ -63,14 +61,14 @@ int TestPBVRVolumeMapper(int argc, char* argv[])
 
   TwoViewports scene(256, 128, volumes.Point, volumes.Cell);
   SPTTestChecks::FailureCount failures;
-  failures.Check(scene.Render() == 0, "no OpenGL error");
+  scene.Render(failures);
   const std::vector<unsigned char> first = Capture(scene.Window);
-  failures.Check(scene.CheckCovered(first, 1500) == 0, "each viewport shows the volume");
+  scene.CheckCovered(first, 1500, failures);
   CheckParticles(volumes.PointMapper, volumes.CellMapper, input, failures);
 
   const int result = scene.CompareWithBaseline(argc, argv);
 
   CheckRegeneration(
     scene, first, input.Property, volumes.PointMapper, volumes.CellMapper, failures);
-  return TwoViewports::ExitStatus(result, failures.GetCount());
+  return TwoViewports::ExitStatus(result, failures);
 }

@@ -9,34 +9,25 @@
 
 #include "SPTTestScene.h"
 
-#include <cstring>
+#include <string>
 
 using namespace SPTTestScene;
 
 namespace
 {
-// A failure unless the window made its context, on the EGL platform asked for:
-// SPT_EGL_DEVICE_INDEX=i asks for device i of EGL_EXT_device_enumeration (with Mesa, device 0
-// is its software rasterizer, which makes the device platform testable without a GPU).
-int CheckContext(vtkHeadlessEGLRenderWindow* window, bool deviceAsked)
+// The window made its context, on the EGL platform asked for: SPT_EGL_DEVICE_INDEX=i asks for
+// device i of EGL_EXT_device_enumeration (with Mesa, device 0 is its software rasterizer, which
+// makes the device platform testable without a GPU).
+void CheckContext(
+  vtkHeadlessEGLRenderWindow* window, bool deviceAsked, SPTTestChecks::FailureCount& failures)
 {
-  std::cout << "EGL platform: " << window->GetPlatformName()
-            << ", renderer: " << window->GetRendererName()
+  const std::string platform = window->GetPlatformName();
+  std::cout << "EGL platform: " << platform << ", renderer: " << window->GetRendererName()
             << ", OpenGL: " << window->GetOpenGLVersion() << "\n";
-  if (!window->SupportsOpenGL())
-  {
-    std::cerr << "No OpenGL through EGL: " << window->GetOpenGLSupportMessage() << "\n";
-    return 1;
-  }
-  const char* platform = window->GetPlatformName();
-  if (deviceAsked
-      ? std::strcmp(platform, "device") != 0
-      : std::strcmp(platform, "device") != 0 && std::strcmp(platform, "surfaceless") != 0)
-  {
-    std::cerr << "Unexpected EGL platform '" << platform << "'.\n";
-    return 1;
-  }
-  return 0;
+  failures.Check(window->SupportsOpenGL(),
+    std::string("OpenGL through EGL: ") + window->GetOpenGLSupportMessage());
+  failures.Check(platform == "device" || (!deviceAsked && platform == "surfaceless"),
+    "the EGL platform asked for, not '" + platform + "'");
 }
 }
 
@@ -52,8 +43,9 @@ int TestHeadlessEGLRenderWindow(int argc, char* argv[])
     window->SetDeviceIndex(std::atoi(device));
   }
   TwoViewports scene(400, 200, volumes.Point, volumes.Cell, window);
-  int failures = scene.Render();
-  failures += CheckContext(window, device != nullptr);
-  failures += scene.CheckCovered(Capture(scene.Window), 4000);
+  SPTTestChecks::FailureCount failures;
+  scene.Render(failures);
+  CheckContext(window, device != nullptr, failures);
+  scene.CheckCovered(Capture(scene.Window), 4000, failures);
   return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures);
 }

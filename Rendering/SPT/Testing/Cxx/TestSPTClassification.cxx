@@ -11,7 +11,12 @@
 // - the triangles lie no deeper than any of their segments' fronts (the early depth test).
 // The exact geometry, on the CPU, is SPTClassificationModel.h.
 
+#include "vtkNew.h"
 #include "vtkOpenGLLoader.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkShaderProgram.h"
+#include "vtkTransformFeedback.h"
 
 #include "SPTClassificationModel.h"
 #include "SPTTestWindow.h"
@@ -47,55 +52,20 @@ struct Captured
 };
 static_assert(sizeof(Captured) == 24 * sizeof(float), "captured vertices must be packed");
 
+// A shader file as the mapper has it, its defines empty and the face-plane code substituted.
 std::string ReadShader(const char* name)
 {
   std::ifstream file(std::string(SPT_SHADER_DIR) + "/" + name);
   std::stringstream text;
   text << file.rdbuf();
   std::string source = text.str();
-  auto replace = [&](const std::string& tag, const std::string& with)
-  {
-    const size_t at = source.find(tag);
-    if (at != std::string::npos)
-    {
-      source.replace(at, tag.size(), with);
-    }
-  };
-  replace("//VTK::System::Dec", "#version 150");
-  replace("//Volume::Defines::Dec", "");
+  vtkShaderProgram::Substitute(source, "//Volume::Defines::Dec", "");
   if (source.find("//SPT::FacePlane::Impl") != std::string::npos)
   {
-    replace("//SPT::FacePlane::Impl", ReadShader("vtkSPTFacePlane.glsl"));
+    vtkShaderProgram::Substitute(
+      source, "//SPT::FacePlane::Impl", ReadShader("vtkSPTFacePlane.glsl"));
   }
   return source;
-}
-
-// Whether the shader or program object has `status` set; otherwise its log is printed after
-// `failure`.
-template <class GetParameter, class GetLog>
-bool HasStatus(
-  GLuint object, GLenum status, GetParameter getParameter, GetLog getLog, const char* failure)
-{
-  GLint ok = 0;
-  getParameter(object, status, &ok);
-  if (!ok)
-  {
-    char log[4096];
-    getLog(object, sizeof(log), nullptr, log);
-    std::cerr << failure << ":\n" << log << "\n";
-  }
-  return ok != 0;
-}
-
-GLuint Compile(GLenum type, const std::string& source)
-{
-  GLuint shader = glCreateShader(type);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  const bool compiled = HasStatus(
-    shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, "Shader compilation failed");
-  return compiled ? shader : 0;
 }
 
 std::vector<Tetrahedron> MakeTetrahedra()
@@ -333,24 +303,25 @@ private:
   const char* Name;
 };
 
-// The mapper's vertex and geometry shaders, outputs captured; 0 if they do not link.
-GLuint LinkProgram(GLuint vs, GLuint gs)
+// The mapper's vertex and geometry shaders, compiled by the window's shader cache as the
+// mapper's are, with their outputs captured; null (after the cache's error) if they do not link.
+vtkShaderProgram* ReadyProgram(vtkOpenGLRenderWindow* window, vtkTransformFeedback* capture)
 {
-  GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, gs);
-  const char* varyings[] = { "gl_Position", "facePlaneNDC[0]", "facePlaneNDC[1]", "facePlaneNDC[2]",
-    "facePlaneNDC[3]", "scalarPlaneNDC" };
-  glTransformFeedbackVaryings(program, 6, varyings, GL_INTERLEAVED_ATTRIBS);
-  glLinkProgram(program);
-  const bool linked =
-    HasStatus(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, "Link failed");
-  return linked ? program : 0;
+  // A role gives only the size of a captured output: four floats for each of these.
+  capture->AddVarying(vtkTransformFeedback::Vertex_ClipCoordinate_F, "gl_Position");
+  for (const char* plane : { "facePlaneNDC[0]", "facePlaneNDC[1]", "facePlaneNDC[2]",
+         "facePlaneNDC[3]", "scalarPlaneNDC" })
+  {
+    capture->AddVarying(vtkTransformFeedback::Color_RGBA_F, plane);
+  }
+  return window->GetShaderCache()->ReadyShaderProgram(ReadShader("vtkSPTTetrahedraVS.glsl").c_str(),
+    "//VTK::System::Dec\nvoid main()\n{\n}\n", ReadShader("vtkSPTTetrahedraGS.glsl").c_str(),
+    capture);
 }
 
 // Four vertices per tetrahedron in, up to two triangles each out.
-void UploadTetrahedra(
-  GLuint program, const std::vector<Tetrahedron>& tetrahedra, GLuint vao, const GLuint buffers[3])
+void UploadTetrahedra(vtkShaderProgram* program, const std::vector<Tetrahedron>& tetrahedra,
+  GLuint vao, const GLuint buffers[3])
 {
   std::vector<float> points, scalars;
   for (const Tetrahedron& t : tetrahedra)
@@ -366,7 +337,7 @@ void UploadTetrahedra(
   {
     glBindBuffer(GL_ARRAY_BUFFER, buffer);
     glBufferData(GL_ARRAY_BUFFER, values.size() * sizeof(float), values.data(), GL_STATIC_DRAW);
-    const GLint location = glGetAttribLocation(program, name);
+    const GLint location = glGetAttribLocation(program->GetHandle(), name);
     glEnableVertexAttribArray(location);
     glVertexAttribPointer(location, size, GL_FLOAT, GL_FALSE, 0, nullptr);
   };
@@ -397,17 +368,15 @@ std::vector<Captured> CaptureTriangles(GLuint query, size_t n)
 }
 
 // Every tetrahedron in one projection, until the failures (counted on from those given) pass 20.
-int CheckProjection(GLuint program, GLuint query, const std::vector<Tetrahedron>& tetrahedra,
-  bool parallel, std::mt19937& random, int failures)
+int CheckProjection(vtkShaderProgram* program, GLuint query,
+  const std::vector<Tetrahedron>& tetrahedra, bool parallel, std::mt19937& random, int failures)
 {
   Checker checker(parallel);
-  glUseProgram(program);
-  auto matrix = [program](const char* name, const glm::mat4& value)
-  { glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, glm::value_ptr(value)); };
-  matrix("MCVCMatrix", glm::mat4(1.0f));
-  matrix("VCDCMatrix", checker.Projection);
-  matrix("DCVCMatrix", glm::inverse(checker.Projection));
-  glUniform1i(glGetUniformLocation(program, "primitiveOffset"), 0);
+  glm::mat4 matrices[3] = { glm::mat4(1.0f), checker.Projection, glm::inverse(checker.Projection) };
+  program->SetUniformMatrix4x4("MCVCMatrix", glm::value_ptr(matrices[0]));
+  program->SetUniformMatrix4x4("VCDCMatrix", glm::value_ptr(matrices[1]));
+  program->SetUniformMatrix4x4("DCVCMatrix", glm::value_ptr(matrices[2]));
+  program->SetUniformi("primitiveOffset", 0);
   for (size_t n = 0; n < tetrahedra.size(); ++n)
   {
     failures += checker.Check(tetrahedra[n], CaptureTriangles(query, n), random);
@@ -429,9 +398,8 @@ int TestSPTClassification(int, char*[])
     return 125;
   }
 
-  GLuint vs = Compile(GL_VERTEX_SHADER, ReadShader("vtkSPTTetrahedraVS.glsl"));
-  GLuint gs = Compile(GL_GEOMETRY_SHADER, ReadShader("vtkSPTTetrahedraGS.glsl"));
-  const GLuint program = vs && gs ? LinkProgram(vs, gs) : 0;
+  vtkNew<vtkTransformFeedback> capture;
+  vtkShaderProgram* program = ReadyProgram(raw.Context, capture);
   if (!program)
   {
     return EXIT_FAILURE;
@@ -456,14 +424,10 @@ int TestSPTClassification(int, char*[])
     std::cerr << "OpenGL error " << error << "\n";
     ++failures;
   }
-  glUseProgram(0);
   glBindVertexArray(0);
   glDeleteQueries(1, &query);
   glDeleteBuffers(3, buffers);
   glDeleteVertexArrays(1, &vao);
-  glDeleteProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(gs);
   std::cout << tetrahedra.size() << " tetrahedra checked in two projections, " << failures
             << " failures\n";
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -16,14 +16,12 @@ int TestSPTVolumeMapper(int argc, char* argv[])
   ShellVolumes<vtkSPTVolumeMapper> volumes(input.Shell, input.Property);
 
   TwoViewports scene(400, 200, volumes.Point, volumes.Cell);
-  int failures = scene.Render();
-  failures += scene.CheckCovered(Capture(scene.Window), 4000);
+  SPTTestChecks::FailureCount failures;
+  scene.Render(failures);
+  scene.CheckCovered(Capture(scene.Window), 4000, failures);
   const vtkIdType tetrahedra = volumes.PointMapper->GetNumberOfTetrahedra();
-  failures += input.CheckInputAndSplit(tetrahedra);
-  if (volumes.CellMapper->GetNumberOfTetrahedra() != tetrahedra)
-  {
-    std::cerr << "The two mappers split the same shell into different tetrahedra.\n";
-    ++failures;
-  }
+  input.CheckInputAndSplit(tetrahedra, failures);
+  failures.Check(volumes.CellMapper->GetNumberOfTetrahedra() == tetrahedra,
+    "the two mappers split the same shell into the same tetrahedra");
   return TwoViewports::ExitStatus(scene.CompareWithBaseline(argc, argv), failures);
 }
