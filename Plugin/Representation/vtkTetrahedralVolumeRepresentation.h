@@ -6,9 +6,8 @@
  * One class for every representation type that the SPT plugin adds to ParaView ("Volume
  * (SPT)", "Volume (HAVS-like)", "Volume (PBVR)"): each type is a proxy of this class whose
  * subproxy "VolumeMapper" is the mapper that draws it, a vtkTetrahedralVolumeMapper
- * (vtkPSPTVolumeMapper, vtkHAVSVolumeMapper, vtkPBVRVolumeMapper).
- * vtkSITetrahedralVolumeRepresentationProxy hands that mapper over with SetVolumeMapper() on
- * every process.
+ * (vtkPSPTVolumeMapper, vtkHAVSVolumeMapper, vtkPBVRVolumeMapper). The subproxy's XML
+ * command hands that mapper over with SetVolumeMapper() on every process.
  *
  * Everything else is vtkUnstructuredGridVolumeRepresentation's: the split into tetrahedra, the
  * translucent-surface LOD, and, under MPI, the request for ordered compositing, for which
@@ -27,8 +26,7 @@
  * own mapper.
  *
  * @sa
- * vtkUnstructuredGridVolumeRepresentation vtkSITetrahedralVolumeRepresentationProxy
- * vtkTetrahedralVolumeMapper vtkPSPTVolumeMapper
+ * vtkUnstructuredGridVolumeRepresentation vtkTetrahedralVolumeMapper vtkPSPTVolumeMapper
  */
 
 #ifndef vtkTetrahedralVolumeRepresentation_h

@@ -21,10 +21,12 @@ def mesh():
     return pv.wrap(data.make_default_mesh())
 
 
-def _plotter():
+@pytest.fixture
+def plotter():
     plotter = pv.Plotter(off_screen=True, window_size=SIZE)
     plotter.background_color = "black"
-    return plotter
+    yield plotter
+    plotter.close()
 
 
 def _screenshot(plotter) -> np.ndarray:
@@ -33,8 +35,7 @@ def _screenshot(plotter) -> np.ndarray:
 
 
 @pytest.mark.parametrize("opacity, cmap", [("linear", "viridis"), ("sigmoid", "coolwarm")])
-def test_screenshot_is_within_the_target_error_of_the_exact_reference(mesh, opacity, cmap):
-    plotter = _plotter()
+def test_screenshot_is_within_the_target_error_of_the_exact_reference(plotter, mesh, opacity, cmap):
     actor = spt.pyvista.add_volume(plotter, mesh, cmap=cmap, opacity=opacity,
                                    show_scalar_bar=False, target_error=TARGET_ERROR)
     assert isinstance(actor.mapper, spt.vtkSPTVolumeMapper)
@@ -42,14 +43,12 @@ def test_screenshot_is_within_the_target_error_of_the_exact_reference(mesh, opac
     image = _screenshot(plotter)
     exact = raycast.render(actor.mapper.GetInput(), actor.prop,
                            plotter.renderer.GetActiveCamera(), SIZE)
-    plotter.close()
     assert exact[..., 3].max() > 0.5
     assert metrics.rmse(image, exact) <= TOLERANCE
 
 
-def test_presets_and_colour_maps_are_pyvistas(mesh):
+def test_presets_and_colour_maps_are_pyvistas(plotter, mesh):
     low, high = mesh.get_data_range()
-    plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, mesh, cmap="coolwarm", opacity="sigmoid",
                                    n_colors=256, show_scalar_bar=False)
     expected = pv.opacity_transfer_function("sigmoid", 256) / 255.0
@@ -61,15 +60,13 @@ def test_presets_and_colour_maps_are_pyvistas(mesh):
     rgb = actor.prop.GetRGBTransferFunction()
     assert np.allclose(rgb.GetColor(low), np.array(colours.values[0, :3]) / 255.0, atol=0.02)
     assert np.allclose(rgb.GetColor(high), np.array(colours.values[-1, :3]) / 255.0, atol=0.02)
-    plotter.close()
 
 
-def test_opacity_unit_distance_follows_pyvistas_rule_for_images(mesh):
+def test_opacity_unit_distance_follows_pyvistas_rule_for_images(plotter, mesh):
     image = pv.ImageData(dimensions=(9, 9, 9))
     image.point_data["x"] = image.points[:, 0]
     pyvistas = image.length / (np.mean(image.dimensions) - 1)
     assert spt.pyvista.default_opacity_unit_distance(image) == pytest.approx(pyvistas)
-    plotter = _plotter()
     # An image's unit distance is PyVista's, from its own cells, not from the tetrahedra.
     drawn = spt.pyvista.add_volume(plotter, image, show_scalar_bar=False)
     assert drawn.prop.GetScalarOpacityUnitDistance() == pytest.approx(pyvistas)
@@ -79,14 +76,12 @@ def test_opacity_unit_distance_follows_pyvistas_rule_for_images(mesh):
     given = spt.pyvista.add_volume(plotter, mesh, opacity_unit_distance=0.25,
                                    show_scalar_bar=False)
     assert given.prop.GetScalarOpacityUnitDistance() == pytest.approx(0.25)
-    plotter.close()
 
 
-def test_any_mesh_is_split_into_tetrahedra_and_left_as_it_was():
+def test_any_mesh_is_split_into_tetrahedra_and_left_as_it_was(plotter):
     image = pv.ImageData(dimensions=(6, 7, 8), spacing=(0.2, 0.2, 0.2))
     image.cell_data["heat"] = np.arange(image.n_cells, dtype=float)
     before = image.copy(deep=True)
-    plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, image, scalars="heat", show_scalar_bar=True)
     drawn = actor.mapper.GetInput()
     assert drawn.GetNumberOfCells() == 5 * image.n_cells or \
@@ -96,22 +91,18 @@ def test_any_mesh_is_split_into_tetrahedra_and_left_as_it_was():
     assert list(image.point_data.keys()) == []
     shot = _screenshot(plotter)
     assert shot[..., 3].max() > 0.2, "nothing drawn"
-    plotter.close()
 
 
-def test_baselines_through_the_same_function(mesh):
-    plotter = _plotter()
+def test_baselines_through_the_same_function(plotter, mesh):
     assert isinstance(spt.pyvista.add_volume(plotter, mesh, method="havs").mapper,
                       spt.vtkHAVSVolumeMapper)
     assert isinstance(spt.pyvista.add_volume(plotter, mesh, method="pbvr").mapper,
                       spt.vtkPBVRVolumeMapper)
     with pytest.raises(ValueError, match="unknown method"):
         spt.pyvista.add_volume(plotter, mesh, method="zsweep")
-    plotter.close()
 
 
-def test_bad_input_gets_a_clear_error(mesh):
-    plotter = _plotter()
+def test_bad_input_gets_a_clear_error(plotter, mesh):
     with pytest.raises(TypeError, match="no volume"):
         spt.pyvista.add_volume(plotter, pv.Sphere())
     bare = pv.ImageData(dimensions=(3, 3, 3))
@@ -121,13 +112,11 @@ def test_bad_input_gets_a_clear_error(mesh):
         spt.pyvista.add_volume(plotter, mesh, scalars=[1.0, 2.0])
     with pytest.raises(TypeError, match="unexpected"):
         spt.pyvista.add_volume(plotter, mesh, colour="red")
-    plotter.close()
 
 
-def test_pyvistas_clip_plane_widget_cuts_the_volume(mesh):
+def test_pyvistas_clip_plane_widget_cuts_the_volume(plotter, mesh):
     """PyVista's add_volume_clip_plane adds a plane to the volume's mapper and moves it in place
     as the widget moves: SPT cuts the volume there exactly, without re-meshing."""
-    plotter = _plotter()
     actor = spt.pyvista.add_volume(plotter, mesh, cmap="viridis", show_scalar_bar=False,
                                    target_error=TARGET_ERROR)
     plotter.camera_position = "iso"
@@ -147,4 +136,3 @@ def test_pyvistas_clip_plane_widget_cuts_the_volume(mesh):
         assert exact[..., 3].max() > 0.3
         assert metrics.rmse(image, exact) <= TOLERANCE
         assert metrics.rmse(image, unclipped) > 3 * TOLERANCE
-    plotter.close()

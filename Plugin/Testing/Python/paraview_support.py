@@ -134,21 +134,20 @@ def wait_for(process: subprocess.Popen, text: str, seconds: float) -> None:
     raise AssertionError(f"{process.args[0]} never said {text!r}:\n{''.join(lines)}")
 
 
-def free_port() -> int:
+def render_on_pvserver(server: Sequence, scenes: Sequence[Sequence], env: Dict[str, str],
+                       seconds: float) -> None:
+    """Start a pvserver (``server``: its command, given a free port here), run a pvpython client
+    that renders the scenes (each a scene()) on it once it accepts connections, and check the
+    server ends with its client."""
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
-        return probe.getsockname()[1]
-
-
-def run_client_of_server(server: Sequence[str], client: Sequence[str], env: Dict[str, str],
-                         seconds: float) -> None:
-    """Start a pvserver (``server``, which names its port), run the pvpython ``client`` that
-    connects to it once it accepts connections, and check the server ends with its client."""
-    process = subprocess.Popen(server, env=env, stdout=subprocess.PIPE,
-                               stderr=subprocess.STDOUT, text=True)
+        port = probe.getsockname()[1]
+    process = subprocess.Popen([*map(str, server), f"--server-port={port}"], env=env,
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
         wait_for(process, "Accepting connection", seconds)
-        run(client, env=env)
+        run(render_command(*[[*scene, "--connect", f"localhost:{port}"] for scene in scenes]),
+            env=env)
         assert process.wait(timeout=seconds) == 0
     finally:
         if process.poll() is None:

@@ -387,13 +387,10 @@ def client_images(have_x_display, pieces, preload, tmp_path_factory):
     then HAVS-like on it: the images and reports by method."""
     directory = tmp_path_factory.mktemp("mpi_client")
     outputs = {SPT: directory / "client.png", HAVS: directory / "havs_client.png"}
-    port = pvs.free_port()
-    plugins = str(pvs.plugin_path().parents[1])
-    pvs.run_client_of_server(
-        pvs.mpirun(2, [pvs.executable("pvserver"), f"--server-port={port}"], preload),
-        pvs.render_command(*[scene(pieces, output, method, "--connect", f"localhost:{port}")
-                             for method, output in outputs.items()]),
-        pvs.environment(PV_PLUGIN_PATH=plugins), 180)
+    pvs.render_on_pvserver(
+        pvs.mpirun(2, [pvs.executable("pvserver")], preload),
+        [scene(pieces, output, method) for method, output in outputs.items()],
+        pvs.environment(PV_PLUGIN_PATH=str(pvs.plugin_path().parents[1])), 180)
     for output in outputs.values():
         pvs.keep(output, f"mpi_{output.stem.replace('client', 'pvserver_client')}.png")
     return {method: Rendered(pvs.read_png(output), pvs.read_report(output))

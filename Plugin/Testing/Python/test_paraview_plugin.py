@@ -180,12 +180,10 @@ def client_images(have_x_display, mesh, tmp_path_factory):
     one after the other."""
     directory = tmp_path_factory.mktemp("client")
     outputs = {method: directory / f"client_{ARTIFACT[method]}.png" for method in METHODS}
-    port = pvs.free_port()
-    pvs.run_client_of_server(
-        [pvs.executable("pvserver"), f"--server-port={port}"],
-        pvs.render_command(*[scene(mesh, output, "--plugin", pvs.plugin_path(),
-                                   "--connect", f"localhost:{port}", representation=method)
-                             for method, output in outputs.items()]),
+    pvs.render_on_pvserver(
+        [pvs.executable("pvserver")],
+        [scene(mesh, output, "--plugin", pvs.plugin_path(), representation=method)
+         for method, output in outputs.items()],
         pvs.environment(), 120)
     for method, output in outputs.items():
         pvs.keep(output, f"pvserver_client_{ARTIFACT[method]}.png")

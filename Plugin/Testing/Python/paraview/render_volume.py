@@ -121,14 +121,6 @@ def mapper_settings(display, args):
             for name in property_groups(display)[chosen["group"]]}
 
 
-def setting_names(display, args):
-    """Exposed name: the mapper's name, of every setting to report."""
-    names = mapper_settings(display, args)
-    for name, _ in args.set:
-        names.setdefault(name, name)
-    return names
-
-
 def _is_double(display, name):
     return display.SMProxy.GetProperty(name).IsA("vtkSMDoubleVectorProperty")
 
@@ -157,7 +149,7 @@ def show_volume(reader, view, args, like):
         display.RescaleTransferFunctionToDataRange(False, True)
     display.SetRepresentationType(args.representation)
     # What the representation starts with: the defaults the plugin's XML declares.
-    defaults = {name: get_setting(display, name) for name in setting_names(display, args)}
+    defaults = {name: get_setting(display, name) for name in mapper_settings(display, args)}
     chosen = METHODS[args.representation]
     if "target" in chosen:
         set_setting(display, chosen["target"], args.target_error)
@@ -305,7 +297,7 @@ def report(display, defaults, reader, view, args, flight):
     info = {"rank": rank, "ranks": module.GetNumberOfLocalPartitions(), "fly_in": flight}
     info["representation"] = display.SMProxy.GetProperty("Representation").GetElement(0)
     info["representation_types"] = list(display.GetProperty("Representation").Available)
-    names = setting_names(display, args)
+    names = mapper_settings(display, args)
     info["settings"] = {name: get_setting(display, name) for name in names}
     info["defaults"] = defaults
     info["documentation"] = {name: documentation(display, name) for name in names}
