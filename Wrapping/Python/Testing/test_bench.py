@@ -195,7 +195,7 @@ def test_host_time_adds_every_application_thread_and_leaves_out_the_rasterizer()
     assert roles["project"] == pytest.approx(0.75)
     assert roles["system"] == pytest.approx(0.0625)
     assert roles["application_thread"] == pytest.approx(2.9375)
-    assert roles["workers"] == pytest.approx(24.0)
+    assert roles["worker"] == pytest.approx(24.0)
     assert host.host_objects(by_object, frames=2, count=1) == {"libSPTRendering.so": 0.375}
 
 

@@ -26,20 +26,16 @@ PT_SECONDS = 0.1
 PT_RMSE = 0.01
 
 
-def _row(scene, *arguments, **options):
-    return dict(race_row(*arguments, **options), scene=scene)
-
-
 def bench_json(ratios, size=256):
     """A bench.json whose race gives SPT the ratio ``ratios[scene]`` at L = 2 (None: SPT
     never reaches VTK PT's error), summarized by the race's own code."""
     rows = []
     for scene, ratio in ratios.items():
-        rows.append(_row(scene, "pt", 1, PT_RMSE, PT_SECONDS, stochastic=False))
-        rows.append(_row(scene, "spt", 1, 2 * PT_RMSE, 0.5 * PT_SECONDS))
+        rows.append(race_row("pt", 1, PT_RMSE, PT_SECONDS, stochastic=False, scene=scene))
+        rows.append(race_row("spt", 1, 2 * PT_RMSE, 0.5 * PT_SECONDS, scene=scene))
         reached = ratio is not None
-        rows.append(_row(scene, "spt", 2, 0.9 * PT_RMSE if reached else 1.5 * PT_RMSE,
-                         (ratio or 3.0) * PT_SECONDS))
+        rows.append(race_row("spt", 2, 0.9 * PT_RMSE if reached else 1.5 * PT_RMSE,
+                             (ratio or 3.0) * PT_SECONDS, scene=scene))
     return {"race": {"size": size, "rows": rows, "summary": race.summarize(rows)}}
 
 

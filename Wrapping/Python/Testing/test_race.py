@@ -32,8 +32,8 @@ def test_levels_double_up_to_the_cap():
     assert race.levels(64)[-1] == 64
 
 
-def race_row(method, level, rmse, seconds, stochastic=True, floor=0.00113):
-    return {"scene": "s", "method": method, "label": method, "stochastic": stochastic,
+def race_row(method, level, rmse, seconds, stochastic=True, floor=0.00113, scene="s"):
+    return {"scene": scene, "method": method, "label": method, "stochastic": stochastic,
             "repetitions": level, "rmse": rmse, "seconds": seconds, "cpu_seconds": seconds,
             "host_seconds": level * 1e-3, "read_back_floor": floor}
 

@@ -42,9 +42,7 @@ from .bench import race, runner
 PathLike = pathlib.Path
 Entry = Dict[str, object]
 
-#: The demo's scenes by default: the interpenetrating pair's cells, and the large scene: the
-#: iron protein in full (1.5M tetrahedra) where the data sets are (:func:`spt.data.data_dir`),
-#: else the generated drill at 10^6.
+#: The interpenetrating pair's cells, and the large scenes of :func:`default_large_scene`.
 PAIR_CELLS = 200_000
 LARGE_SCENE = "drill-1M"
 LARGE_DATA_SCENE, LARGE_DATA_FILE = "ironprot_full", "ironProt.vtk"

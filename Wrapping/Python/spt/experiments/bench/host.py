@@ -41,12 +41,12 @@ def perf_available() -> bool:
     return probe.returncode == 0
 
 
-def perf_attach(path: str, frequency: int = FREQUENCY) -> FramesHook:
+def perf_attach(path: str) -> FramesHook:
     """An ``on_frames`` hook of :func:`time_method`: perf samples this process (all its
     threads) while the timed frames run."""
     def start() -> Callable[[], None]:
         process = subprocess.Popen(
-            ["perf", "record", "-e", "cpu-clock", "-F", str(frequency), "-p", str(os.getpid()),
+            ["perf", "record", "-e", "cpu-clock", "-F", str(FREQUENCY), "-p", str(os.getpid()),
              "-o", path, "--quiet"],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         time.sleep(1.0)   # let perf attach to every thread
@@ -58,8 +58,7 @@ def perf_attach(path: str, frequency: int = FREQUENCY) -> FramesHook:
     return start
 
 
-def perf_seconds_by_object(path: str, frequency: int = FREQUENCY
-                           ) -> Dict[Tuple[str, str], float]:
+def perf_seconds_by_object(path: str) -> Dict[Tuple[str, str], float]:
     """Seconds of CPU per (thread name, shared object) in a perf recording."""
     report = subprocess.run(
         ["perf", "report", "-i", path, "--stdio", "--sort", "comm,dso", "-g", "none", "-n",
@@ -71,7 +70,7 @@ def perf_seconds_by_object(path: str, frequency: int = FREQUENCY
             continue
         samples, comm, dso = int(fields[1]), fields[2], " ".join(fields[3:])
         key = (comm, dso)
-        seconds[key] = seconds.get(key, 0.0) + samples / frequency
+        seconds[key] = seconds.get(key, 0.0) + samples / FREQUENCY
     return seconds
 
 
@@ -92,7 +91,7 @@ def _is_host(dso: str) -> bool:
 def split_by_role(by_object: Dict[Tuple[str, str], float]) -> Dict[str, float]:
     """CPU seconds of a recording by role: ``host`` (this project, VTK and Python on the
     application thread), ``project`` (this project's library alone), ``system`` (kernel and
-    C library on that thread), ``application_thread`` (all of it) and ``workers`` (the
+    C library on that thread), ``application_thread`` (all of it) and ``worker`` (the
     rasterizer threads)."""
     main = application_objects(by_object)
     return {
@@ -100,7 +99,7 @@ def split_by_role(by_object: Dict[Tuple[str, str], float]) -> Dict[str, float]:
         "project": sum(t for dso, t in main.items() if "SPTRendering" in dso),
         "system": sum(t for dso, t in main.items() if dso.startswith(SYSTEM_OBJECTS)),
         "application_thread": sum(main.values()),
-        "workers": sum(t for (comm, _), t in by_object.items() if comm.startswith("llvmpipe")),
+        "worker": sum(t for (comm, _), t in by_object.items() if comm.startswith("llvmpipe")),
     }
 
 
@@ -150,16 +149,12 @@ def host_time(settings: Settings, progress: Progress) -> List[Dict[str, object]]
         s = generated_scene(settings.shape, cells)
         timing, by_object = profiled(lambda hook: time_method(
             s, METHODS["spt"], settings.size, 16, 1, frames, on_frames=hook))
-        roles = split_by_role(by_object)
         main = application_objects(by_object)
         results.append({
             "scene": s.name, "cells": s.grid.GetNumberOfCells(), "frames": frames,
             "frame_seconds": timing.median,
-            "host_seconds_per_frame": roles["host"] / frames,
-            "project_seconds_per_frame": roles["project"] / frames,
-            "system_seconds_per_frame": roles["system"] / frames,
-            "application_thread_seconds_per_frame": roles["application_thread"] / frames,
-            "worker_seconds_per_frame": roles["workers"] / frames,
+            **{f"{role}_seconds_per_frame": seconds / frames
+               for role, seconds in split_by_role(by_object).items()},
             "top_objects": sorted(((t / frames, dso) for dso, t in main.items()),
                                   reverse=True)[:8]})
         progress.step(f"host {cells} cells")

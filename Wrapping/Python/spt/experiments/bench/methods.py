@@ -159,9 +159,8 @@ def time_method(s: Scene, method: Method, size: int, repetitions: int = 16,
                 subpixels: int = 1, frames: int = 3, keep_image: bool = False,
                 on_frames: Optional[FramesHook] = None) -> Timing:
     """Render ``s`` with ``method`` ``frames`` times after one untimed frame; every frame
-    does the whole work (SPT's progressive refinement is off). ``on_frames``, if given, is
-    called right before the timed frames and returns what to call right after them (the
-    host-time profiler uses it)."""
+    does the whole work (SPT's progressive refinement is off). ``on_frames``: the host-time
+    profiler's hook around the timed frames."""
     window, renderer = render.make_window(size, size)
     volume_mapper = None
     if method.make is None:

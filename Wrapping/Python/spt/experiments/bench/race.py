@@ -54,7 +54,7 @@ STOCHASTIC_METHODS: Tuple[Method, ...] = (
            lambda r, s: render.spt_mapper(r, s, **render.PAPER_SAMPLING), True),
     Method("spt-slabs", f"SPT, {RACE_DEPTH_SLABS} depth slabs",
            lambda r, s: render.spt_mapper(r, s, depth_slabs=RACE_DEPTH_SLABS), True),
-    Method("pbvr", "PBVR", lambda r, s: render.pbvr_mapper(r, s), True),
+    METHODS["pbvr"],
 )
 
 

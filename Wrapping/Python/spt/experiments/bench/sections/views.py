@@ -164,12 +164,9 @@ def paraview_part(results: Results) -> List[str]:
             "other in one process. Time: the second still render (`StillRender`, finished); "
             "RMSE: the image that render left in the view (over black, the premultiplied "
             "color) against the exact reference of the same camera and size (spt.raycast on "
-            "the tetrahedra ParaView hands the mappers). SPT interactive: "
-            + ("the median of the last three of six `InteractiveRender`s, the camera turned by "
-               "half a degree before each as a drag turns it, "
-               if any("interactive_all_seconds" in row for scene in measured["scenes"]
-                      for row in scene["rows"]) else "the second `InteractiveRender`, ")
-            + "and its ratio to the time ParaView asks for (one over the "
+            "the tetrahedra ParaView hands the mappers). SPT interactive: the median of the "
+            "last three of six `InteractiveRender`s, the camera turned by half a degree before "
+            "each as a drag turns it, and its ratio to the time ParaView asks for (one over the "
             "render window's desired update rate), with the repetitions L and, where "
             "measured, the image's sample distance d and \"Volume\"'s interactive render "
             "measured alike; LOD where ParaView drew its stand-in. "
