@@ -234,8 +234,6 @@ private:
   // only there: no fragment lands outside it.
   int Footprint[4] = { 0, 0, 0, 0 };
   void ChooseFootprint();
-  // Limit the full-screen passes over the keys to the footprint, until it goes out of scope.
-  class ScopedFootprint;
   bool ClippingPlanes = false; // some volume has clipping planes (vtkVolumeViewMatrices)
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of
