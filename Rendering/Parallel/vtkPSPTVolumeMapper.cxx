@@ -249,37 +249,30 @@ public:
   {
     // The ranks agree on the first volume, whose settings include the number of volumes, then
     // on each later one: every rank makes the same collective calls, or stops at the same one.
-    vtkSPTParallelReduction* reduction = this->Reduction;
-    bool agreed = true;
-    for (size_t v = 0; v < shared.size() && agreed; ++v)
+    for (size_t v = 0; v < shared.size(); ++v)
     {
       RenderTarget own;
       const auto settings = Describe(
         shared[v].second, ren, shared[v].first, v, shared.size(), v == 0 ? target : own, pieces[v]);
-      agreed = reduction->Agree(settings, pieces[v], agreements[v], error);
-      if (!agreed && v > 0)
-      {
-        error = "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error;
-      }
-      else if (agreed && v == 0 && settings.back().second == 0.0)
+      bool agreed = this->Reduction->Agree(settings, pieces[v], agreements[v], error);
+      if (agreed && v == 0 && settings.back().second == 0.0)
       {
         agreed = false;
         error = "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
       }
-    }
-    // Each volume's table, in shares: every rank takes part (the agreement is the same on all),
-    // whether its piece has cells or not.
-    for (size_t v = 0; v < shared.size() && agreed; ++v)
-    {
-      if (agreements[v].AnyCells &&
-        !ShareTable(shared[v].second, shared[v].first, agreements[v], reduction, error))
+      // The volume's table, in shares: every rank takes part (the agreement is the same on
+      // all), whether its piece has cells or not.
+      agreed = agreed &&
+        (!agreements[v].AnyCells ||
+          ShareTable(shared[v].second, shared[v].first, agreements[v], this->Reduction, error));
+      if (!agreed)
       {
-        agreed = false;
-        error =
-          v > 0 ? "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error : error;
+        const std::string volume = "SPT volume " + std::to_string(v + 1) + " of the renderer: ";
+        error = v > 0 ? volume + error : error;
+        return false;
       }
     }
-    return agreed;
+    return true;
   }
 
   // This rank's settings and piece of the `index`th volume of the frame (of `shared`), for the
