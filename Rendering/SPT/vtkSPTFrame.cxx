@@ -238,9 +238,9 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // whatever the repetitions (the mapper's cheapest frame draws no slabs).
   const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys &&
     this->FrameSettings.DepthSlabs == 1;
-  const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
-  const bool depthSurvivors = oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR &&
-    !halves && !this->ComputesMostCells();
+  const bool single = oneAtATime && !this->FrameSettings.VisibilityEstimator;
+  const bool depthSurvivors =
+    oneAtATime && this->FrameSettings.VisibilityEstimator && !halves && !this->ComputesMostCells();
   const bool keys = !single && !depthSurvivors;
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,
@@ -534,7 +534,7 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled
   // a binary search. Every fragment is rasterized at its cell's nearest vertex, no deeper than
   // its segment's front, but the exit faces of the cells that the near plane cuts lie behind
   // theirs: then no culling.
-  const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
+  const bool sortKeys = this->FrameSettings.VisibilityEstimator;
   const bool cull = !this->NearPlaneCuts;
   culled = false;
   if (!sortKeys && !cull)

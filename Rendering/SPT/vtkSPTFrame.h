@@ -74,16 +74,11 @@ public:
   };
   static constexpr int NumberOfPassKinds = 7;
 
-  enum EstimatorType
-  {
-    SURVIVOR_ESTIMATOR = 0,
-    VISIBILITY_ESTIMATOR = 1
-  };
-
   /// The frame's settings (the mapper's, where several volumes share the frame).
   struct Settings
   {
-    int Estimator = VISIBILITY_ESTIMATOR;
+    /// The visibility estimator, else the survivor estimator (vtkSPTVolumeMapper::Estimator).
+    bool VisibilityEstimator = true;
     bool StratifiedSampling = true;
     /// Cells at most this many pixels across on the screen are drawn as points (0: none).
     double SmallCellSize = 0.0;
