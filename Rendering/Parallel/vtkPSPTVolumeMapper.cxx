@@ -176,7 +176,6 @@ class vtkPSPTVolumeMapper::vtkInternals
 public:
   using SPTInternals = vtkSPTVolumeMapper::vtkInternals;
   using FramePlan = SPTInternals::FramePlan;
-  using SharedList = vtkSPTVolumeMapper::SharedVolumeList;
   using Piece = vtkSPTParallelReduction::Piece;
   using Agreement = vtkSPTParallelReduction::Agreement;
 
@@ -217,7 +216,7 @@ public:
   }
 
   // This rank's pieces of the shared volumes, combined with the other ranks' by reductions.
-  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared)
+  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedVolumeList& shared)
   {
     this->Reduction->ResetBytes();
     RenderTarget target;
@@ -244,7 +243,7 @@ public:
 
   // The ranks agree on each volume's settings and axes and share its table; false on every
   // rank where they do not (the reason in `error`, empty where the image has no pixels).
-  bool AgreeOnVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
+  bool AgreeOnVolumes(vtkRenderer* ren, const SharedVolumeList& shared, RenderTarget& target,
     std::vector<Piece>& pieces, std::vector<Agreement>& agreements, std::string& error)
   {
     // The ranks agree on the first volume, whose settings include the number of volumes, then
@@ -359,7 +358,7 @@ public:
 
   // Prepare this rank's pieces that have cells, numbered as one process numbers the whole,
   // and draw them with the other ranks'.
-  void DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared,
+  void DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedVolumeList& shared,
     const RenderTarget& target, const std::vector<Piece>& pieces,
     const std::vector<Agreement>& agreements)
   {
