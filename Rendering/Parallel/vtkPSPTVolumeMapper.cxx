@@ -176,7 +176,6 @@ class vtkPSPTVolumeMapper::vtkInternals
 public:
   using SPTInternals = vtkSPTVolumeMapper::vtkInternals;
   using FramePlan = SPTInternals::FramePlan;
-  using SharedList = vtkSPTVolumeMapper::SharedVolumeList;
   using Piece = vtkSPTParallelReduction::Piece;
   using Agreement = vtkSPTParallelReduction::Agreement;
 
@@ -217,7 +216,7 @@ public:
   }
 
   // This rank's pieces of the shared volumes, combined with the other ranks' by reductions.
-  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared)
+  void RenderParallel(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedVolumeList& shared)
   {
     this->Reduction->ResetBytes();
     RenderTarget target;
@@ -244,42 +243,35 @@ public:
 
   // The ranks agree on each volume's settings and axes and share its table; false on every
   // rank where they do not (the reason in `error`, empty where the image has no pixels).
-  bool AgreeOnVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
+  bool AgreeOnVolumes(vtkRenderer* ren, const SharedVolumeList& shared, RenderTarget& target,
     std::vector<Piece>& pieces, std::vector<Agreement>& agreements, std::string& error)
   {
     // The ranks agree on the first volume, whose settings include the number of volumes, then
     // on each later one: every rank makes the same collective calls, or stops at the same one.
-    vtkSPTParallelReduction* reduction = this->Reduction;
-    bool agreed = true;
-    for (size_t v = 0; v < shared.size() && agreed; ++v)
+    for (size_t v = 0; v < shared.size(); ++v)
     {
       RenderTarget own;
       const auto settings = Describe(
         shared[v].second, ren, shared[v].first, v, shared.size(), v == 0 ? target : own, pieces[v]);
-      agreed = reduction->Agree(settings, pieces[v], agreements[v], error);
-      if (!agreed && v > 0)
-      {
-        error = "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error;
-      }
-      else if (agreed && v == 0 && settings.back().second == 0.0)
+      bool agreed = this->Reduction->Agree(settings, pieces[v], agreements[v], error);
+      if (agreed && v == 0 && settings.back().second == 0.0)
       {
         agreed = false;
         error = "Parallel SPT needs image load/store (OpenGL 4.4) on every rank";
       }
-    }
-    // Each volume's table, in shares: every rank takes part (the agreement is the same on all),
-    // whether its piece has cells or not.
-    for (size_t v = 0; v < shared.size() && agreed; ++v)
-    {
-      if (agreements[v].AnyCells &&
-        !ShareTable(shared[v].second, shared[v].first, agreements[v], reduction, error))
+      // The volume's table, in shares: every rank takes part (the agreement is the same on
+      // all), whether its piece has cells or not.
+      agreed = agreed &&
+        (!agreements[v].AnyCells ||
+          ShareTable(shared[v].second, shared[v].first, agreements[v], this->Reduction, error));
+      if (!agreed)
       {
-        agreed = false;
-        error =
-          v > 0 ? "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error : error;
+        const std::string volume = "SPT volume " + std::to_string(v + 1) + " of the renderer: ";
+        error = v > 0 ? volume + error : error;
+        return false;
       }
     }
-    return agreed;
+    return true;
   }
 
   // This rank's settings and piece of the `index`th volume of the frame (of `shared`), for the
@@ -366,7 +358,7 @@ public:
 
   // Prepare this rank's pieces that have cells, numbered as one process numbers the whole,
   // and draw them with the other ranks'.
-  void DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedList& shared,
+  void DrawPieces(vtkSPTVolumeMapper* self, vtkRenderer* ren, const SharedVolumeList& shared,
     const RenderTarget& target, const std::vector<Piece>& pieces,
     const std::vector<Agreement>& agreements)
   {

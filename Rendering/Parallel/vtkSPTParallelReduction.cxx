@@ -267,39 +267,32 @@ bool vtkSPTParallelReduction::CompositeScene(
   return true;
 }
 
-bool vtkSPTParallelReduction::AllReduceWords(
-  const std::vector<unsigned int>& local, int operation, std::vector<unsigned int>& global)
+bool vtkSPTParallelReduction::ReduceWords(vtkSPTDepthKeyBuffer* keys, ReadWords read,
+  WriteWords write, size_t missed, unsigned int identity, int operation)
 {
-  global.resize(local.size());
+  const std::vector<unsigned int> local =
+    keys ? (keys->*read)() : std::vector<unsigned int>(missed, identity);
+  std::vector<unsigned int> global(local.size());
   this->Bytes += local.size() * sizeof(unsigned int);
-  return this->Controller->AllReduce(
-           local.data(), global.data(), vtkIdType(local.size()), operation) != 0;
+  const bool reduced = this->Controller->AllReduce(
+                         local.data(), global.data(), vtkIdType(local.size()), operation) != 0;
+  if (reduced && keys)
+  {
+    (keys->*write)(global);
+  }
+  return reduced;
 }
 
 bool vtkSPTParallelReduction::ReduceKeys(vtkSPTDepthKeyBuffer* keys, size_t missed)
 {
-  std::vector<unsigned int> global;
-  const bool reduced =
-    this->AllReduceWords(keys ? keys->Read() : std::vector<unsigned int>(missed, 0xFFFFFFFFu),
-      vtkCommunicator::MIN_OP, global);
-  if (reduced && keys)
-  {
-    keys->Write(global);
-  }
-  return reduced;
+  return this->ReduceWords(keys, &vtkSPTDepthKeyBuffer::Read, &vtkSPTDepthKeyBuffer::Write, missed,
+    0xFFFFFFFFu, vtkCommunicator::MIN_OP);
 }
 
 bool vtkSPTParallelReduction::ReduceSlabs(vtkSPTDepthKeyBuffer* keys, size_t missed)
 {
-  std::vector<unsigned int> global;
-  const bool reduced =
-    this->AllReduceWords(keys ? keys->ReadSlabs() : std::vector<unsigned int>(missed, 0u),
-      vtkCommunicator::SUM_OP, global);
-  if (reduced && keys)
-  {
-    keys->WriteSlabs(global);
-  }
-  return reduced;
+  return this->ReduceWords(keys, &vtkSPTDepthKeyBuffer::ReadSlabs,
+    &vtkSPTDepthKeyBuffer::WriteSlabs, missed, 0u, vtkCommunicator::SUM_OP);
 }
 
 bool vtkSPTParallelReduction::AllSucceeded(bool ok)

@@ -152,9 +152,12 @@ private:
 
   vtkMultiProcessController* Controller = nullptr;
   size_t Bytes = 0;
-  // The element-wise reduction of `local` over the ranks into `global`, on every rank.
-  bool AllReduceWords(
-    const std::vector<unsigned int>& local, int operation, std::vector<unsigned int>& global);
+  // The element-wise reduction over the ranks of the words that `read` reads from `keys`,
+  // written back with `write`, on every rank; null `keys`: `missed` words of `identity`.
+  using ReadWords = std::vector<unsigned int> (vtkSPTDepthKeyBuffer::*)();
+  using WriteWords = void (vtkSPTDepthKeyBuffer::*)(const std::vector<unsigned int>&);
+  bool ReduceWords(vtkSPTDepthKeyBuffer* keys, ReadWords read, WriteWords write, size_t missed,
+    unsigned int identity, int operation);
 };
 
 #endif

@@ -73,9 +73,10 @@ private:
   vtkOpenGLState::ScopedglEnableDisable Stencil;
   GLint WriteMask = 0;
 };
-}
 
-class vtkSPTFrame::ScopedFootprint
+// The passes over the keys limited to the footprint (vtkSPTFrame::Footprint), until it goes out
+// of scope.
+class ScopedFootprint
 {
 public:
   ScopedFootprint(vtkOpenGLState* state, const int footprint[4])
@@ -90,6 +91,7 @@ private:
   vtkOpenGLState::ScopedglScissor Box;
   vtkOpenGLState::ScopedglEnableDisable Test;
 };
+}
 
 vtkSPTFrame::vtkSPTFrame(vtkOpenGLRenderWindow* window, vtkEnsembleBuffer* ensemble,
   vtkSPTDepthKeyBuffer* depthKeys, const std::vector<Volume>& volumes, const Settings& settings,
@@ -236,9 +238,9 @@ bool vtkSPTFrame::DrawRepetitions(int first, int count, int perPass, bool covera
   // whatever the repetitions (the mapper's cheapest frame draws no slabs).
   const bool oneAtATime = std::min(perPass, count) == 1 && !this->FrameSettings.AlwaysKeys &&
     this->FrameSettings.DepthSlabs == 1;
-  const bool single = oneAtATime && this->FrameSettings.Estimator == SURVIVOR_ESTIMATOR;
-  const bool depthSurvivors = oneAtATime && this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR &&
-    !halves && !this->ComputesMostCells();
+  const bool single = oneAtATime && !this->FrameSettings.VisibilityEstimator;
+  const bool depthSurvivors =
+    oneAtATime && this->FrameSettings.VisibilityEstimator && !halves && !this->ComputesMostCells();
   const bool keys = !single && !depthSurvivors;
   const bool needed[NumberOfPassKinds] = { single || depthSurvivors,
     keys && (!coverage || count > perPass), keys && coverage, keys, single && coverage,
@@ -382,6 +384,9 @@ void vtkSPTFrame::ChooseFootprint()
     }
   }
   const bool whole = this->NearPlaneCuts || this->FrameSettings.AfterKeys;
+  // Only the tiles drawn, where the error target restricted the image to some.
+  int tiles[4];
+  this->Ensemble->GetTiles().GetSampleBox(tiles);
   for (int axis = 0; axis < 2; ++axis)
   {
     // A sample is drawn where its center, (i + 0.5) / size in [0, 1], lies in a primitive.
@@ -389,9 +394,6 @@ void vtkSPTFrame::ChooseFootprint()
     const double high = 0.5 * (ndc[2 * axis + 1] + 1.0) * size[axis];
     const int from = whole ? 0 : std::max(0, static_cast<int>(std::floor(low)) - 1);
     const int to = whole ? size[axis] : std::min(size[axis], static_cast<int>(std::ceil(high)) + 1);
-    // Only the tiles drawn, where the error target restricted the image to some.
-    int tiles[4];
-    this->Ensemble->GetTiles().GetSampleBox(tiles);
     const int first = std::max(from, tiles[axis]);
     const int last = std::min(to, tiles[axis] + tiles[2 + axis]);
     this->Footprint[axis] = first;
@@ -532,7 +534,7 @@ bool vtkSPTFrame::PrepareSurvivors(int inGroup, int secondHalfFrom, bool& culled
   // a binary search. Every fragment is rasterized at its cell's nearest vertex, no deeper than
   // its segment's front, but the exit faces of the cells that the near plane cuts lie behind
   // theirs: then no culling.
-  const bool sortKeys = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
+  const bool sortKeys = this->FrameSettings.VisibilityEstimator;
   const bool cull = !this->NearPlaneCuts;
   culled = false;
   if (!sortKeys && !cull)

@@ -74,16 +74,11 @@ public:
   };
   static constexpr int NumberOfPassKinds = 7;
 
-  enum EstimatorType
-  {
-    SURVIVOR_ESTIMATOR = 0,
-    VISIBILITY_ESTIMATOR = 1
-  };
-
   /// The frame's settings (the mapper's, where several volumes share the frame).
   struct Settings
   {
-    int Estimator = VISIBILITY_ESTIMATOR;
+    /// The visibility estimator, else the survivor estimator (vtkSPTVolumeMapper::Estimator).
+    bool VisibilityEstimator = true;
     bool StratifiedSampling = true;
     /// Cells at most this many pixels across on the screen are drawn as points (0: none).
     double SmallCellSize = 0.0;
@@ -234,8 +229,6 @@ private:
   // only there: no fragment lands outside it.
   int Footprint[4] = { 0, 0, 0, 0 };
   void ChooseFootprint();
-  // Limit the full-screen passes over the keys to the footprint, until it goes out of scope.
-  class ScopedFootprint;
   bool ClippingPlanes = false; // some volume has clipping planes (vtkVolumeViewMatrices)
   // Per volume: its leading tetrahedra drawn as one point each, whose fragments clip their
   // rays by the cell's face planes (vtkSPTTetrahedraPointsVS.glsl), the classes of size of

@@ -77,8 +77,8 @@ std::string vtkSPTFrame::PassDefines(
   const bool coverage =
     kind == PassKind::KeysAndCoverage || kind == PassKind::DepthColorsAndCoverage;
   defines += coverage ? "#define SPT_WRITE_COVERAGE\n" : "";
-  const bool visibility = this->FrameSettings.Estimator == VISIBILITY_ESTIMATOR;
-  defines += kind == PassKind::Colors && visibility ? "#define SPT_VISIBILITY_WEIGHTED\n" : "";
+  const bool weighted = kind == PassKind::Colors && this->FrameSettings.VisibilityEstimator;
+  defines += weighted ? "#define SPT_VISIBILITY_WEIGHTED\n" : "";
   // A second output only where one is bound.
   defines += kind == PassKind::Colors && halves ? "#define ENSEMBLE_SECOND_HALF\n" : "";
   return defines;

@@ -50,10 +50,10 @@ vtkIdType vtkSPTVolumeMapper::GetGPUMemorySize()
     internals.DepthKeys->GetGPUMemorySize() + internals.Compute->GetGPUMemorySize());
 }
 
-vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
+vtkSPTVolumeMapper::SharedVolumeList vtkSPTVolumeMapper::vtkInternals::SharedVolumes(
   vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps)
 {
-  SharedList visible;
+  SharedVolumeList visible;
   vtkPropCollection* props = ren->GetViewProps();
   vtkCollectionSimpleIterator it;
   props->InitTraversal(it);
@@ -75,7 +75,7 @@ vtkSPTVolumeMapper::vtkInternals::SharedList vtkSPTVolumeMapper::vtkInternals::S
       { return v.second == mapper; }));
   };
   selfProps = propsOf(self);
-  SharedList shared;
+  SharedVolumeList shared;
   bool listed = false;
   for (const auto& entry : visible)
   {
@@ -154,8 +154,8 @@ std::vector<double> vtkSPTVolumeMapper::vtkInternals::Signature(
   return signature;
 }
 
-bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren, const SharedList& shared,
-  RenderTarget& target, std::vector<vtkSPTFrame::Volume>& volumes,
+bool vtkSPTVolumeMapper::vtkInternals::CollectVolumes(vtkRenderer* ren,
+  const SharedVolumeList& shared, RenderTarget& target, std::vector<vtkSPTFrame::Volume>& volumes,
   std::vector<vtkSPTVolumeMapper*>& mappers)
 {
   unsigned int cellIds = 0;

@@ -95,7 +95,7 @@ int vtkSPTVolumeMapper::vtkInternals::ChooseTraversal(
         self, "Depth slabs need image load/store (OpenGL 4.4); drawing without them.");
       this->WarnedNoSlabs = true;
     }
-    settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.VisibilityEstimator = false;
     settings.DepthSlabs = 1;
     return 1;
   }
@@ -154,7 +154,7 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   // image). When not even one pair fits, the cheapest frame: the paper's single passes, one
   // traversal each, unbiased too; the exact coverage waits for a later frame.
   FramePlan plan;
-  plan.Kind = settings.Estimator == VISIBILITY_ESTIMATOR ? Traversal::Pair : Traversal::Single;
+  plan.Kind = settings.VisibilityEstimator ? Traversal::Pair : Traversal::Single;
   PlanAgreement terms;
   terms.Count = self->ChooseRepetitions(vol, self->RepetitionLevel, perPass, plan.Kind);
   terms.PerPass = perPass;
@@ -184,7 +184,7 @@ vtkSPTVolumeMapper::vtkInternals::FramePlan vtkSPTVolumeMapper::vtkInternals::Pl
   plan.Coverage = (self->ExactCoverage || self->DepthSlabs > 1) && !coverageDrawn && !plan.Cheapest;
   if (plan.Cheapest)
   {
-    settings.Estimator = SURVIVOR_ESTIMATOR;
+    settings.VisibilityEstimator = false;
     settings.DepthSlabs = 1;
   }
   return plan;
@@ -195,7 +195,7 @@ vtkSPTFrame::Settings vtkSPTVolumeMapper::vtkInternals::FrameSettings(
 {
   const vtkEnsembleBuffer* ensemble = self->GetEnsemble();
   vtkSPTFrame::Settings settings;
-  settings.Estimator = self->Estimator;
+  settings.VisibilityEstimator = self->Estimator == VISIBILITY_ESTIMATOR;
   settings.DepthSlabs = DepthSlabsThatFit(self->DepthSlabs, ensemble);
   settings.StratifiedSampling = self->StratifiedSampling != 0;
   settings.SmallCellSize = self->SmallCellSize;

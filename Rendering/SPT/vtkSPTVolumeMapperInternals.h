@@ -47,12 +47,11 @@ public:
   bool WarnedNoSlabs = false;
   bool WarnedLargeImage = false; // while the pass is too large for the depth keys
   bool CoverageDrawn = false;    // the coverage buffer belongs to the accumulated sum
-  // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order.
-  using SharedList = vtkSPTVolumeMapper::SharedVolumeList;
-  // The renderer's; vol alone when it is not among them, or when `selfProps` (set to the
+  // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order;
+  // vol alone when it is not among them, or when `selfProps` (set to the
   // number of the renderer's visible volumes that draw `self`) is more than one. A mapper that
   // several volumes draw is left out of the others' frames.
-  static SharedList SharedVolumes(
+  static SharedVolumeList SharedVolumes(
     vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps);
   // Bring a volume's mesh, table and matrices up to date and onto the GPU as `out`. The mesh
   // is normalized on its own, or with `sharedBounds` and `sharedRange` as the whole of the
@@ -70,7 +69,7 @@ public:
     const std::vector<vtkSPTVolumeMapper*>& owners, const vtkSPTFrame& frame,
     vtkIdType parallelBytes = 0) const;
   // Prepare every shared volume that can be drawn; false when none can.
-  static bool CollectVolumes(vtkRenderer* ren, const SharedList& shared, RenderTarget& target,
+  static bool CollectVolumes(vtkRenderer* ren, const SharedVolumeList& shared, RenderTarget& target,
     std::vector<vtkSPTFrame::Volume>& volumes, std::vector<vtkSPTVolumeMapper*>& mappers);
 
   // What a frame draws (vtkSPTVolumeMapperInternals.cxx).

@@ -88,6 +88,43 @@ float scalarAt(uint pointId)
 #endif
 }
 
+// The segment of this fragment's ray through its tetrahedron, clipped in normalized device
+// coordinates, where the ray is a line along z: each face plane bounds z from one side. False
+// when the ray misses the cell (a point's square is larger than the cell's projection, and a
+// sample on the outline's edge may fall just outside the cell).
+bool planeSegment(out Segment segment)
+{
+  vec2 ndc = samplePosition / passSizeInPixels * 2.0 - 1.0;
+  float enter = -1.0;
+  float leave = 1.0;
+  for (int k = 0; k < 4; ++k)
+  {
+    float atZero = dot(facePlaneNDC[k].xyw, vec3(ndc, 1.0));
+    float slope = facePlaneNDC[k].z;
+    float bound = -atZero / slope;
+    enter = slope < 0.0 ? max(enter, bound) : enter;
+    leave = slope > 0.0 ? min(leave, bound) : leave;
+    if (slope == 0.0 && atZero > 0.0)
+    {
+      return false;
+    }
+  }
+  if (enter >= leave)
+  {
+    return false;
+  }
+  vec4 front = vec4(ndc, enter, 1.0);
+  vec4 back = vec4(ndc, leave, 1.0);
+  vec4 frontVC = DCVCMatrix * front;
+  vec4 backVC = DCVCMatrix * back;
+  segment.frontVC = frontVC.xyz / frontVC.w;
+  segment.backVC = backVC.xyz / backVC.w;
+  segment.frontScalar = -dot(scalarPlaneNDC, front) / frontVC.w;
+  segment.backScalar = -dot(scalarPlaneNDC, back) / backVC.w;
+  segment.frontDepth = 0.5 * enter + 0.5;
+  return true;
+}
+
 #ifdef SPT_CLIPPED_CELLS
 // The sample's ray in view coordinates, from the near plane (t = 0) to the far plane (t = 1).
 void sampleRay(out vec3 origin, out vec3 direction)
@@ -139,46 +176,6 @@ void rayCellSegment(vec4 facePlane[4], vec4 vertexScalar, vec3 origin, vec3 dire
   vec4 frontDC = VCDCMatrix * front;
   segment.frontDepth = clamp(0.5 * frontDC.z / frontDC.w + 0.5, 0.0, 1.0);
 }
-#endif
-
-// The segment of this fragment's ray through its tetrahedron, clipped in normalized device
-// coordinates, where the ray is a line along z: each face plane bounds z from one side. False
-// when the ray misses the cell (a point's square is larger than the cell's projection, and a
-// sample on the outline's edge may fall just outside the cell).
-bool planeSegment(out Segment segment)
-{
-  vec2 ndc = samplePosition / passSizeInPixels * 2.0 - 1.0;
-  float enter = -1.0;
-  float leave = 1.0;
-  for (int k = 0; k < 4; ++k)
-  {
-    float atZero = dot(facePlaneNDC[k].xyw, vec3(ndc, 1.0));
-    float slope = facePlaneNDC[k].z;
-    float bound = -atZero / slope;
-    enter = slope < 0.0 ? max(enter, bound) : enter;
-    leave = slope > 0.0 ? min(leave, bound) : leave;
-    if (slope == 0.0 && atZero > 0.0)
-    {
-      return false;
-    }
-  }
-  if (enter >= leave)
-  {
-    return false;
-  }
-  vec4 front = vec4(ndc, enter, 1.0);
-  vec4 back = vec4(ndc, leave, 1.0);
-  vec4 frontVC = DCVCMatrix * front;
-  vec4 backVC = DCVCMatrix * back;
-  segment.frontVC = frontVC.xyz / frontVC.w;
-  segment.backVC = backVC.xyz / backVC.w;
-  segment.frontScalar = -dot(scalarPlaneNDC, front) / frontVC.w;
-  segment.backScalar = -dot(scalarPlaneNDC, back) / backVC.w;
-  segment.frontDepth = 0.5 * enter + 0.5;
-  return true;
-}
-
-#ifdef SPT_CLIPPED_CELLS
 
 // The outward face planes of a tetrahedron (view coordinates): facePlane[k] is the plane of the
 // face opposite vertex k, scaled so that the vertex is at -1. False for a flat tetrahedron,

@@ -25,12 +25,7 @@ uniform int clippingPlaneCount;
 #endif
 
 flat out int tetrahedronId;
-// The cell's face planes as functions of normalized device coordinates (x, y, z, 1): the
-// face opposite vertex k is facePlaneNDC[k] = 0, and the value, divided by the w of the point
-// in view coordinates (DCVCMatrix * (x, y, z, 1)), is minus the point's barycentric weight of
-// vertex k (so negative inside). scalarPlaneNDC is the sum of the four weighted by the
-// vertices' scalars: minus the interpolated scalar, times the same w.
-flat out vec4 facePlaneNDC[4];
+flat out vec4 facePlaneNDC[4]; // the cell's face planes and scalar plane (vtkSPTPointCell.glsl)
 flat out vec4 scalarPlaneNDC;
 
 //SPT::FacePlane::Impl
