@@ -319,10 +319,13 @@ def mixed_cells(with_2d=False):
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_2d_cells_are_left_out(kind, have_display):
-    with_triangle, _, messages = draw(kind, mixed_cells(with_2d=True))
+def test_mixed_cells_are_split_and_2d_cells_left_out(kind, have_display):
+    """The hexahedron, pyramid, wedge and tetrahedron give at least 5 + 2 + 3 + 1 tetrahedra;
+    the triangle adds none, and nothing to the image."""
+    with_triangle, mapper, messages = draw(kind, mixed_cells(with_2d=True))
     without, _, _ = draw(kind, mixed_cells())
-    assert not messages.errors
+    assert not messages.errors and mapper.GetNumberOfTetrahedra() >= 11
+    assert with_triangle[..., 3].max() > 0.2
     assert np.array_equal(with_triangle, without)
 
 
