@@ -174,25 +174,3 @@ def assert_unchanged(grid: vtk.vtkDataSet, before: Dict[str, object]) -> None:
                 f"the input's {key} changed")
         else:
             assert value == after[key], f"the input's {key} changed: {value} -> {after[key]}"
-
-
-def plane_actor(origin, point1, point2) -> vtk.vtkActor:
-    """An opaque actor of the parallelogram with corners ``origin``, ``point1`` and
-    ``point2``."""
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(*origin)
-    plane.SetPoint1(*point1)
-    plane.SetPoint2(*point2)
-    plane_mapper = vtk.vtkPolyDataMapper()
-    plane_mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(plane_mapper)
-    return actor
-
-
-def opaque_plane(z: float = 0.2, gray: float = 0.5) -> vtk.vtkActor:
-    """An unlit gray plane at height z, large enough to fill the view of the default mesh."""
-    actor = plane_actor((-50.0, -50.0, z), (50.0, -50.0, z), (-50.0, 50.0, z))
-    actor.GetProperty().SetColor(gray, gray, gray)
-    actor.GetProperty().LightingOff()
-    return actor

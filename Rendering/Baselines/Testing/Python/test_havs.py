@@ -17,8 +17,8 @@ import vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import check_clamped_setting, opaque_plane, property_for, split_box, watch
-from scene_support import scene, with_moved_copy
+from robustness_support import check_clamped_setting, property_for, split_box, watch
+from scene_support import gray_plane, scene, with_moved_copy
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -125,7 +125,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     The segment that reaches into the plane ends at the last face in front of it. Measured
     RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
     s = scene("default")
-    actor = opaque_plane()
+    actor = gray_plane()
     rmse, reference = errors(s.grid, s.view, {"havs": render.havs_mapper(6)}, [actor], s.property)
     without = render.render(s.grid, s.property, render.havs_mapper(6), s.view, SIZE).image
     assert np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1).mean() > 0.3
