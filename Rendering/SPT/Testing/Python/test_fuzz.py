@@ -117,17 +117,14 @@ def random_property(rng: np.random.Generator) -> vtk.vtkVolumeProperty:
 
 
 def random_mapper(kind: str, rng: np.random.Generator):
-    if kind == "spt":
-        mapper = render.spt_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
-        mapper.SetPreIntegrationScalarResolution(16)
-        mapper.SetPreIntegrationThicknessResolution(8)
-    elif kind == "havs":
-        mapper = render.havs_mapper(int(rng.integers(2, 7)))
-        mapper.SetPreIntegrationScalarResolution(16)
-        mapper.SetPreIntegrationThicknessResolution(8)
-    else:
+    if kind == "pbvr":
         mapper = render.pbvr_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
         mapper.SetMaximumParticleMemory(16)  # random optical depths: a clear error, not hours
+    else:
+        mapper = (render.spt_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
+                  if kind == "spt" else render.havs_mapper(int(rng.integers(2, 7))))
+        mapper.SetPreIntegrationScalarResolution(16)
+        mapper.SetPreIntegrationThicknessResolution(8)
     if rng.random() < 0.3:
         mapper.SetScalarModeToUsePointFieldData() if rng.random() < 0.5 else \
             mapper.SetScalarModeToUseCellFieldData()
