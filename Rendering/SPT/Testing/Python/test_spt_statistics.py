@@ -51,7 +51,7 @@ import pytest
 from spt import metrics, render
 
 from scene_support import reference, scene, scene_image, window_with
-from statistics_checks import (SCENE_CHECKS, SceneRenders,
+from statistics_checks import (BIAS_FLOOR, SCENE_CHECKS, SceneRenders,
                                check_noise_falls_as_one_over_repetitions,
                                check_opaque_geometry_hides_and_cuts_the_volume,
                                check_subpixel_level_averages_subpixels)
@@ -97,7 +97,7 @@ def test_default_estimator_is_unbiased(name, have_display):
     independent)."""
     estimates = [RENDERS["independent"].estimate(name, level) for level in DEFAULT_LEVELS]
     check_noise_falls_as_one_over_repetitions(estimates)
-    assert estimates[-1].bias <= 0.012, f"bias {estimates[-1].bias:.4f}"
+    assert estimates[-1].bias <= BIAS_FLOOR, f"bias {estimates[-1].bias:.4f}"
 
 
 @pytest.mark.parametrize("name", SCENES)
