@@ -36,17 +36,17 @@ PBVR_LEVEL = 64  # repetitions of the renders compared with the reference
 Z = 4.0  # standard errors
 
 
-def make_mapper(kind, seed=1, repetitions=PBVR_LEVEL):
+def make_mapper(kind, seed=1):
     if kind == "spt":
         return render.spt_mapper(8, seed=seed)
-    return render.havs_mapper(6) if kind == "havs" else render.pbvr_mapper(repetitions, seed=seed)
+    return render.havs_mapper(6) if kind == "havs" else render.pbvr_mapper(PBVR_LEVEL, seed=seed)
 
 
-def draw(kind, grid, prop=None, mapper=None, seed=1, size=SIZE):
+def draw(kind, grid, prop=None, mapper=None, seed=1):
     """Render with a fresh mapper of `kind` (or `mapper`); returns (image, mapper, messages).
     The input must be unchanged afterwards."""
     mapper = mapper or make_mapper(kind, seed)
-    rendering, messages = watched_render(mapper, grid, prop, size, VIEW)
+    rendering, messages = watched_render(mapper, grid, prop, SIZE, VIEW)
     assert np.isfinite(rendering.image).all()
     return rendering.image, mapper, messages
 

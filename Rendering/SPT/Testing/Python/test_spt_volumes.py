@@ -38,8 +38,8 @@ def _two_volumes(name, make, second_property=None, second_first=False):
     return draw_once(window)
 
 
-def _spt():
-    return render.spt_mapper(REPETITIONS, seed=1)
+def _spt(seed=1):
+    return render.spt_mapper(REPETITIONS, seed=seed)
 
 
 def _check_as_close_as_the_union(name, make):
@@ -61,8 +61,7 @@ def _check_as_close_as_the_union(name, make):
 
 @pytest.mark.parametrize("name", SCENES)
 def test_two_volumes_composite_as_their_union(name, have_display):
-    two_error = _check_as_close_as_the_union(
-        name, lambda seed: render.spt_mapper(REPETITIONS, seed=seed))
+    two_error = _check_as_close_as_the_union(name, _spt)
     reference = union_reference(name, SIZE)
     sorted_one_by_one = metrics.rmse(
         _two_volumes(name, render.projected_tetrahedra_mapper), reference)
