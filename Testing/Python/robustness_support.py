@@ -139,12 +139,6 @@ UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
-def property_with_points(points: int) -> vtk.vtkVolumeProperty:
-    """A volume property whose color and opacity functions have no point (``points`` 0) or
-    one point (``points`` 1)."""
-    return volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
-
-
 def snapshot(grid: vtk.vtkDataSet) -> Dict[str, object]:
     """Everything a mapper could change in a grid, copied: MTime, points, cells, arrays."""
     state: Dict[str, object] = {"mtime": grid.GetMTime(),

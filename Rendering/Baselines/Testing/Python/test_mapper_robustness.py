@@ -21,9 +21,9 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from spt import metrics, render
 
 import image_statistics
-from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for,
-                                property_with_points, split_box, tetrahedra, watch,
-                                watched_render, with_constant_scalars, with_point_scalars)
+from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for, split_box,
+                                tetrahedra, volume_property, watch, watched_render,
+                                with_constant_scalars, with_point_scalars)
 from scene_support import draw_once
 
 SIZE = (64, 64)
@@ -445,7 +445,7 @@ def test_extreme_coordinates_give_the_same_image(kind, scale, have_display):
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("points", [0, 1])
 def test_transfer_functions_with_no_or_one_point(kind, points, have_display):
-    prop = property_with_points(points)
+    prop = volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
     image, _, messages = draw(kind, ONE, prop)
     assert not messages.errors
     if points:  # one point: constant over the range, as VTK's transfer functions clamp
