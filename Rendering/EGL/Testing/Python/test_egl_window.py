@@ -13,7 +13,7 @@ import pytest
 import spt
 from spt import metrics, render
 
-from scene_support import reference, scene
+from scene_support import reference, scene_image
 from spt_pytest_fixtures import run_python
 
 SIZE = 96
@@ -61,9 +61,7 @@ def test_without_display_the_image_is_the_one_x_renders(without_x):
     if not os.environ.get("DISPLAY"):
         pytest.skip("no X display to render the same scene through X (GLX)")
     image, _, _ = without_x
-    s = scene("default")
-    with_x = render.render(s.grid, s.property, render.spt_mapper(LEVEL, seed=1), s.view,
-                           (SIZE, SIZE)).image
+    with_x = scene_image("default", render.spt_mapper(LEVEL, seed=1), SIZE)
     # The same driver (Mesa) draws both, with the same seed: the same image up to rounding.
     assert np.abs(image - with_x).max() <= 2.0 / 255.0
 

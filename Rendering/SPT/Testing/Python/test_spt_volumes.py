@@ -19,7 +19,7 @@ from vtkmodules.vtkRenderingCore import vtkVolumeProperty
 
 import image_statistics
 from robustness_support import watch
-from scene_support import draw_once, scene, union, union_offset, union_reference
+from scene_support import draw_once, scene, union, union_offset, union_reference, window_with
 
 SIZE = 128
 REPETITIONS = 32
@@ -94,10 +94,8 @@ def test_each_volume_keeps_its_transfer_function(have_display):
     transparent.GetScalarOpacity().AddPoint(-1.0e30, 0.0)
     transparent.GetScalarOpacity().AddPoint(1.0e30, 0.0)
     alone = render.render(s.grid, s.property, _spt(), s.view, (SIZE, SIZE)).image
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, _spt())
+    window, renderer = window_with(_spt(), SIZE, prop=s.property)
     render.add_volume(renderer, s.grid, transparent, _spt())
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
     both = draw_once(window)
     assert alone[..., 3].max() > 0.2
     assert np.abs(both - alone).max() <= 1.0 / 255.0 + 1e-6
