@@ -204,12 +204,6 @@ def main(argv) -> int:
     return status
 
 
-def run_worker(kind: str, first: int, count: int) -> subprocess.CompletedProcess:
-    """This file run as a program (its folder, with the helpers, comes first on its path)."""
-    return subprocess.run([sys.executable, str(WORKER), kind, str(first), str(count)],
-                          capture_output=True, text=True, timeout=TIMEOUT, check=False)
-
-
 def outcomes(stdout: str):
     """{seed: outcome} of the seeds that finished, the seeds that failed a check (with why),
     and the last seed begun."""
@@ -229,7 +223,9 @@ def outcomes(stdout: str):
 @pytest.mark.parametrize("kind", ["spt", "havs", "pbvr"])
 def test_random_meshes(kind, have_display):
     try:
-        result = run_worker(kind, 0, SEEDS)
+        # This file run as a program (its folder, with the helpers, comes first on its path).
+        result = subprocess.run([sys.executable, str(WORKER), kind, "0", str(SEEDS)],
+                                capture_output=True, text=True, timeout=TIMEOUT, check=False)
     except subprocess.TimeoutExpired as timeout:
         _, _, last = outcomes(timeout.stdout.decode() if timeout.stdout else "")
         pytest.fail(f"{kind}: no answer within {TIMEOUT} s, at seed {last}")
