@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Optional
 
 import numpy as np
 
@@ -52,13 +51,13 @@ def _mean_and_error(values: np.ndarray) -> tuple:
     return float(values.mean()), float(values.std(ddof=1) / math.sqrt(values.size))
 
 
-def estimate(first: np.ndarray, second: np.ndarray, reference: np.ndarray, level: int,
-             mask: Optional[np.ndarray] = None) -> Estimate:
-    """Noise and bias of renders at `level` repetitions from two independent renders."""
+def estimate(first: np.ndarray, second: np.ndarray, reference: np.ndarray,
+             level: int) -> Estimate:
+    """Noise and bias of renders at `level` repetitions from two independent renders, over
+    the footprint of either."""
     first, second = metrics.as_float(first), metrics.as_float(second)
     reference = metrics.as_float(reference)
-    if mask is None:
-        mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
+    mask = metrics.footprint(first, reference) | metrics.footprint(second, reference)
     a, b, r = first[mask], second[mask], reference[mask]
     half_square = 0.5 * (a - b) ** 2
     noise, noise_error = _mean_and_error(half_square.mean(axis=1))

@@ -139,12 +139,6 @@ UNIT_TETRAHEDRON = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 ONE = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [0.0, 0.3, 0.6, 1.0])
 
 
-def property_with_points(points: int) -> vtk.vtkVolumeProperty:
-    """A volume property whose color and opacity functions have no point (``points`` 0) or
-    one point (``points`` 1)."""
-    return volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
-
-
 def snapshot(grid: vtk.vtkDataSet) -> Dict[str, object]:
     """Everything a mapper could change in a grid, copied: MTime, points, cells, arrays."""
     state: Dict[str, object] = {"mtime": grid.GetMTime(),
@@ -174,25 +168,3 @@ def assert_unchanged(grid: vtk.vtkDataSet, before: Dict[str, object]) -> None:
                 f"the input's {key} changed")
         else:
             assert value == after[key], f"the input's {key} changed: {value} -> {after[key]}"
-
-
-def plane_actor(origin, point1, point2) -> vtk.vtkActor:
-    """An opaque actor of the parallelogram with corners ``origin``, ``point1`` and
-    ``point2``."""
-    plane = vtk.vtkPlaneSource()
-    plane.SetOrigin(*origin)
-    plane.SetPoint1(*point1)
-    plane.SetPoint2(*point2)
-    plane_mapper = vtk.vtkPolyDataMapper()
-    plane_mapper.SetInputConnection(plane.GetOutputPort())
-    actor = vtk.vtkActor()
-    actor.SetMapper(plane_mapper)
-    return actor
-
-
-def opaque_plane(z: float = 0.2, gray: float = 0.5) -> vtk.vtkActor:
-    """An unlit gray plane at height z, large enough to fill the view of the default mesh."""
-    actor = plane_actor((-50.0, -50.0, z), (50.0, -50.0, z), (-50.0, 50.0, z))
-    actor.GetProperty().SetColor(gray, gray, gray)
-    actor.GetProperty().LightingOff()
-    return actor

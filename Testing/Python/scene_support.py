@@ -1,4 +1,5 @@
-"""The tests' scenes and their exact references, made once per test process."""
+"""The tests' scenes and their exact references, made once per test process, and the opaque
+planes put in them."""
 
 from functools import lru_cache
 
@@ -7,7 +8,6 @@ import vtk
 
 from spt import data, render, scenes
 
-from robustness_support import plane_actor
 from spt_pytest_fixtures import load_or_skip
 
 
@@ -44,11 +44,33 @@ def with_cell_scalars(grid):
     return cells
 
 
+def plane_actor(origin, point1, point2) -> vtk.vtkActor:
+    """An opaque actor of the parallelogram with corners ``origin``, ``point1`` and
+    ``point2``."""
+    plane = vtk.vtkPlaneSource()
+    plane.SetOrigin(*origin)
+    plane.SetPoint1(*point1)
+    plane.SetPoint2(*point2)
+    plane_mapper = vtk.vtkPolyDataMapper()
+    plane_mapper.SetInputConnection(plane.GetOutputPort())
+    actor = vtk.vtkActor()
+    actor.SetMapper(plane_mapper)
+    return actor
+
+
 def opaque_plane(grid):
     """An opaque plane actor through the middle of the mesh, across the view."""
     b = grid.GetBounds()
     x = 0.5 * (b[0] + b[1])
     return plane_actor((x, b[2] - 1, b[4] - 1), (x, b[3] + 1, b[4] - 1), (x, b[2] - 1, b[5] + 1))
+
+
+def gray_plane() -> vtk.vtkActor:
+    """An unlit gray plane at height 0.2, large enough to fill the view of the default mesh."""
+    actor = plane_actor((-50.0, -50.0, 0.2), (50.0, -50.0, 0.2), (-50.0, 50.0, 0.2))
+    actor.GetProperty().SetColor(0.5, 0.5, 0.5)
+    actor.GetProperty().LightingOff()
+    return actor
 
 
 def moved_copy(grid, offset):

@@ -1,6 +1,10 @@
-"""Shared fixtures: an off-screen render window per test module and access to the data sets."""
+"""Shared fixtures: an off-screen render window per test module, access to the data sets, and
+Python in a child process."""
 
 import os
+import pathlib
+import subprocess
+import sys
 
 import pytest
 
@@ -30,3 +34,19 @@ def load_or_skip(name: str):
         return data.load(name)
     except FileNotFoundError as error:
         pytest.skip(str(error))
+
+
+def run_python(code: str, *arguments: str, without_display: bool = False,
+               **variables: str) -> subprocess.CompletedProcess:
+    """Python ``code`` run with ``arguments`` in a child process, with the package under test
+    first on its path and the environment's ``variables`` set; without DISPLAY if
+    ``without_display``. A crash or a failed check there fails the test, not pytest."""
+    import spt
+
+    env = dict(os.environ, **variables)
+    if without_display:
+        env.pop("DISPLAY", None)
+    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
+    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
+    return subprocess.run([sys.executable, "-c", code, *arguments], capture_output=True,
+                          text=True, env=env, check=False, timeout=600)

@@ -17,8 +17,8 @@ import vtk
 import spt
 from spt import data, metrics, render
 
-from robustness_support import check_clamped_setting, opaque_plane, property_for, split_box, watch
-from scene_support import scene, with_moved_copy
+from robustness_support import check_clamped_setting, property_for, split_box, watch
+from scene_support import gray_plane, scene, with_moved_copy
 
 SIZE = (128, 128)
 HAVS = spt.vtkHAVSVolumeMapper
@@ -42,11 +42,6 @@ def two_blocks(gap):
     return with_moved_copy(block(), (0.0, 6.0 + gap, 0.0))
 
 
-@lru_cache(maxsize=None)
-def convex():
-    return block((12, 12, 12))
-
-
 def see_through(grid):
     """Constant opacity, so that gaps would show: a block 6 deep lets 45 % through, and a gap
     composited as a cell (at most the longest edge, 1.73) would add an opacity of 0.2."""
@@ -68,7 +63,7 @@ def errors(grid, view, mappers, actors=(), prop=None):
 @pytest.mark.parametrize("parallel", [False, True])
 def test_convex_mesh_with_k6_is_as_close_as_vtk_projected_tetrahedra(parallel, have_display):
     """Measured: 0.0119 (perspective) and 0.0132 (parallel); VTK PT 0.0141 and 0.0151."""
-    rmse, _ = errors(convex(), render.View(30, 20, parallel=parallel),
+    rmse, _ = errors(block((12, 12, 12)), render.View(30, 20, parallel=parallel),
                      {"havs": render.havs_mapper(6), "pt": render.projected_tetrahedra_mapper()})
     assert rmse["havs"] <= 0.02, rmse
     assert rmse["havs"] <= 1.1 * rmse["pt"], rmse
@@ -125,7 +120,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     The segment that reaches into the plane ends at the last face in front of it. Measured
     RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
     s = scene("default")
-    actor = opaque_plane()
+    actor = gray_plane()
     rmse, reference = errors(s.grid, s.view, {"havs": render.havs_mapper(6)}, [actor], s.property)
     without = render.render(s.grid, s.property, render.havs_mapper(6), s.view, SIZE).image
     assert np.isclose(reference[..., :3], 0.5, atol=0.02).all(axis=-1).mean() > 0.3

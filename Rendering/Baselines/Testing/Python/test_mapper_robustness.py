@@ -21,9 +21,9 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from spt import metrics, render
 
 import image_statistics
-from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for,
-                                property_with_points, split_box, tetrahedra, watch,
-                                watched_render, with_constant_scalars, with_point_scalars)
+from robustness_support import (ONE, UNIT_TETRAHEDRON, named_array, property_for, split_box,
+                                tetrahedra, volume_property, watch, watched_render,
+                                with_constant_scalars, with_point_scalars)
 from scene_support import draw_once
 
 SIZE = (64, 64)
@@ -36,17 +36,17 @@ PBVR_LEVEL = 64  # repetitions of the renders compared with the reference
 Z = 4.0  # standard errors
 
 
-def make_mapper(kind, seed=1, repetitions=PBVR_LEVEL):
+def make_mapper(kind, seed=1):
     if kind == "spt":
         return render.spt_mapper(8, seed=seed)
-    return render.havs_mapper(6) if kind == "havs" else render.pbvr_mapper(repetitions, seed=seed)
+    return render.havs_mapper(6) if kind == "havs" else render.pbvr_mapper(PBVR_LEVEL, seed=seed)
 
 
-def draw(kind, grid, prop=None, mapper=None, seed=1, size=SIZE):
+def draw(kind, grid, prop=None, mapper=None, seed=1):
     """Render with a fresh mapper of `kind` (or `mapper`); returns (image, mapper, messages).
     The input must be unchanged afterwards."""
     mapper = mapper or make_mapper(kind, seed)
-    rendering, messages = watched_render(mapper, grid, prop, size, VIEW)
+    rendering, messages = watched_render(mapper, grid, prop, SIZE, VIEW)
     assert np.isfinite(rendering.image).all()
     return rendering.image, mapper, messages
 
@@ -319,10 +319,13 @@ def mixed_cells(with_2d=False):
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_2d_cells_are_left_out(kind, have_display):
-    with_triangle, _, messages = draw(kind, mixed_cells(with_2d=True))
+def test_mixed_cells_are_split_and_2d_cells_left_out(kind, have_display):
+    """The hexahedron, pyramid, wedge and tetrahedron give at least 5 + 2 + 3 + 1 tetrahedra;
+    the triangle adds none, and nothing to the image."""
+    with_triangle, mapper, messages = draw(kind, mixed_cells(with_2d=True))
     without, _, _ = draw(kind, mixed_cells())
-    assert not messages.errors
+    assert not messages.errors and mapper.GetNumberOfTetrahedra() >= 11
+    assert with_triangle[..., 3].max() > 0.2
     assert np.array_equal(with_triangle, without)
 
 
@@ -442,7 +445,7 @@ def test_extreme_coordinates_give_the_same_image(kind, scale, have_display):
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("points", [0, 1])
 def test_transfer_functions_with_no_or_one_point(kind, points, have_display):
-    prop = property_with_points(points)
+    prop = volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
     image, _, messages = draw(kind, ONE, prop)
     assert not messages.errors
     if points:  # one point: constant over the range, as VTK's transfer functions clamp

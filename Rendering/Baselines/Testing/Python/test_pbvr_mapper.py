@@ -208,10 +208,6 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     full_window.Finalize()
 
 
-def _pbvr_image(mapper, size):
-    return draw_once(window_with(mapper, size)[0])
-
-
 def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated(have_display):
     """At sample distance 2 in a viewport of 2n x 2n pixels PBVR draws the particles of an
     n x n viewport (their size and number follow the image's pixels) and the resolve
@@ -219,8 +215,8 @@ def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated
     fine_mapper = render.pbvr_mapper(8, seed=3)
     fine_mapper.AutoAdjustSampleDistancesOff()
     fine_mapper.SetImageSampleDistance(2.0)
-    fine = _pbvr_image(fine_mapper, 2 * SIZE[0])
-    coarse = _pbvr_image(render.pbvr_mapper(8, seed=3), SIZE[0])
+    fine = draw_once(window_with(fine_mapper, 2 * SIZE[0])[0])
+    coarse = draw_once(window_with(render.pbvr_mapper(8, seed=3), SIZE[0])[0])
     assert coarse[..., 3].max() > 0.2, "an empty image"
     assert np.abs(fine - bilinear_upsampled(coarse, 2)).max() <= 1.0 / 255.0 + 1e-6
 

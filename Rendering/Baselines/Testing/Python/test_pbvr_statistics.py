@@ -25,7 +25,7 @@ from spt import data, render, scenes
 import image_statistics
 from robustness_support import property_for, with_constant_scalars
 from spt_pytest_fixtures import load_or_skip
-from statistics_checks import (SCENE_CHECKS, Z, SceneRenders,
+from statistics_checks import (BIAS_FLOOR, SCENE_CHECKS, Z, SceneRenders,
                                check_opaque_geometry_hides_and_cuts_the_volume,
                                check_subpixel_level_averages_subpixels)
 
@@ -94,7 +94,7 @@ def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display)
                          for seed in (1, 2))
         biases[cell_average] = image_statistics.estimate(first, second, reference, level)
     exact, average = biases[False], biases[True]
-    assert exact.bias <= 0.012, f"rejection: bias {exact.bias:.4f}"
+    assert exact.bias <= BIAS_FLOOR, f"rejection: bias {exact.bias:.4f}"
     assert average.bias >= 4.0 * max(exact.bias, 0.005), (
         f"cell average: bias {average.bias:.4f}, rejection {exact.bias:.4f}")
     assert average.bias >= math.sqrt(average.noise), "the cell-average bias is hidden in noise"

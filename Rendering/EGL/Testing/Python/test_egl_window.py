@@ -6,9 +6,6 @@ with the exact reference (spt.raycast) in any case.
 
 import json
 import os
-import pathlib
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -16,7 +13,8 @@ import pytest
 import spt
 from spt import metrics, render
 
-from scene_support import reference, scene
+from scene_support import reference, scene_image
+from spt_pytest_fixtures import run_python
 
 SIZE = 96
 LEVEL = 64
@@ -36,20 +34,11 @@ print(json.dumps({{"class": window.GetClassName(), "platform": window.GetPlatfor
 """
 
 
-def run_without_display(code: str, *arguments: str) -> subprocess.CompletedProcess:
-    """Python ``code`` in a child process with the package under test and no DISPLAY."""
-    env = {key: value for key, value in os.environ.items() if key != "DISPLAY"}
-    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
-    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
-    return subprocess.run([sys.executable, "-c", code, *arguments], capture_output=True,
-                          text=True, env=env, check=False, timeout=600)
-
-
 @pytest.fixture(scope="module")
 def without_x(tmp_path_factory):
     """The child's image and what it reported of its window."""
     path = tmp_path_factory.mktemp("egl") / "image.npy"
-    result = run_without_display(CHILD.format(level=LEVEL, size=SIZE), str(path))
+    result = run_python(CHILD.format(level=LEVEL, size=SIZE), str(path), without_display=True)
     assert result.returncode == 0, result.stderr
     return np.load(path), json.loads(result.stdout.strip().splitlines()[-1]), result.stderr
 
@@ -72,9 +61,7 @@ def test_without_display_the_image_is_the_one_x_renders(without_x):
     if not os.environ.get("DISPLAY"):
         pytest.skip("no X display to render the same scene through X (GLX)")
     image, _, _ = without_x
-    s = scene("default")
-    with_x = render.render(s.grid, s.property, render.spt_mapper(LEVEL, seed=1), s.view,
-                           (SIZE, SIZE)).image
+    with_x = scene_image("default", render.spt_mapper(LEVEL, seed=1), SIZE)
     # The same driver (Mesa) draws both, with the same seed: the same image up to rounding.
     assert np.abs(image - with_x).max() <= 2.0 / 255.0
 
@@ -115,7 +102,7 @@ print("rendered", window.GetInteractor() is None)
     (X_INTERACTOR, "rendered True", "cannot drive a window without X"),
 ], ids=["a missing device", "an X interactor"])
 def test_a_misuse_is_a_clear_error_not_a_crash(code, printed, error):
-    result = run_without_display(code)
+    result = run_python(code, without_display=True)
     assert result.returncode == 0, result.stderr
     assert printed in result.stdout
     assert error in result.stderr

@@ -15,6 +15,19 @@ import pathlib
 import numpy as np
 
 
+#: The options that name one rank (none by default) and what that rank does differently.
+RANK_OPTIONS = {
+    "--other-array-on": "this rank renders an array of another name (in the second volume "
+                        "with --second-volume)",
+    "--other-seed-on": "this rank renders with seed 7",
+    "--other-opacity-on": "this rank's opacity transfer function is half the others'",
+    "--empty-rank": "this rank has no cells",
+    "--opaque-on": "this rank draws an opaque sphere in the middle of the mesh",
+    "--other-target-on": "this rank renders with TargetError 0.01 (the others without, unless "
+                         "--target-error)",
+}
+
+
 def parse() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--output", type=pathlib.Path, required=True)
@@ -22,21 +35,10 @@ def parse() -> argparse.Namespace:
     parser.add_argument("--repetitions", type=int, default=16)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--serial", action="store_true", help="no MPI, no controller")
-    parser.add_argument("--other-array-on", type=int, default=-1,
-                        help="this rank renders an array of another name (in the second "
-                             "volume with --second-volume)")
+    for option, help_text in RANK_OPTIONS.items():
+        parser.add_argument(option, type=int, default=-1, help=help_text)
     parser.add_argument("--second-volume", action="store_true",
                         help="a second SPT volume: the mesh moved by scene_support.union_offset()")
-    parser.add_argument("--other-seed-on", type=int, default=-1,
-                        help="this rank renders with seed 7")
-    parser.add_argument("--other-opacity-on", type=int, default=-1,
-                        help="this rank's opacity transfer function is half the others'")
-    parser.add_argument("--empty-rank", type=int, default=-1, help="this rank has no cells")
-    parser.add_argument("--opaque-on", type=int, default=-1,
-                        help="this rank draws an opaque sphere in the middle of the mesh")
-    parser.add_argument("--other-target-on", type=int, default=-1,
-                        help="this rank renders with TargetError 0.01 (the others without, "
-                             "unless --target-error)")
     parser.add_argument("--empty-viewport-on", default="",
                         help="this rank's renderer (or every rank's: 'all') has a viewport "
                              "with no pixels")

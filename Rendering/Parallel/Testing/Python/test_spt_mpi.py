@@ -50,7 +50,7 @@ REFERENCE_RMSE = 0.008
 #: tiles still above the target.
 TARGET = 0.005
 TARGET_CAP = 256
-TARGET_PER_PASS = "4"
+TARGET_OPTIONS = ("--target-error", str(TARGET), "--per-pass", "4")
 
 
 def mpiexec():
@@ -142,10 +142,22 @@ def test_later_frames_equal_the_first(runs):
     assert largest_difference(two[0], two[1]) == 0.0
 
 
-def test_image_is_the_volume(runs):
-    """Not black, and as close to the exact reference as one process's image."""
-    two, _, _ = runs(2)
-    reference = scene_support.reference("default", SIZE)
+#: Runs of two ranks that draw the default mesh: their options, their repetitions, and
+#: whether they show it twice (--second-volume), composited where the volumes overlap.
+VOLUME_RUNS = {"one volume": ((), REPETITIONS, False),
+               "error target": (TARGET_OPTIONS, TARGET_CAP, False),
+               "two volumes": (("--second-volume",), REPETITIONS, True)}
+
+
+@pytest.mark.parametrize("case", VOLUME_RUNS)
+def test_image_is_the_volume(runs, case):
+    """Not black, and as close to the exact reference (of the union, for two volumes) as one
+    process's image is to its own (an image missing a volume or a piece is off by more than
+    0.02)."""
+    options, repetitions, union = VOLUME_RUNS[case]
+    two, _, _ = runs(2, *options, repetitions=repetitions)
+    reference = (scene_support.union_reference if union else scene_support.reference)(
+        "default", SIZE)
     assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
     assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
 
@@ -247,8 +259,7 @@ def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, repet
 
 
 def target_run(runs, ranks: int):
-    return runs(ranks, "--target-error", str(TARGET), "--per-pass", TARGET_PER_PASS,
-                repetitions=TARGET_CAP)
+    return runs(ranks, *TARGET_OPTIONS, repetitions=TARGET_CAP)
 
 
 @pytest.mark.parametrize("ranks", [1, 2])
@@ -266,12 +277,6 @@ def test_target_error_as_one_process(runs, ranks):
     assert 0.0 < report["estimated_errors"][0] <= TARGET
     assert largest_difference(serial[0], images[0]) <= 1.0
     assert largest_difference(images[0], images[1]) == 0.0
-
-
-def test_target_error_image_is_the_volume(runs):
-    images, _, _ = target_run(runs, 2)
-    reference = scene_support.reference("default", SIZE)
-    assert metrics.rmse(images[0], reference) < REFERENCE_RMSE
 
 
 def test_target_error_bytes(runs):
@@ -320,15 +325,6 @@ def test_two_volumes_on_two_ranks_equal_one_process(runs):
     (_, serial_report, _), (two, report, _) = run_serial_and_two_ranks(runs, "--second-volume")
     assert report["repetitions"][0] == serial_report["repetitions"][0] == [REPETITIONS] * 2
     assert largest_difference(two[0], two[1]) == 0.0
-
-
-def test_two_volumes_on_two_ranks_are_the_union(runs):
-    """Both volumes, composited where they overlap: as close to the union's reference as one
-    volume is to its own (an image missing a volume or a piece is off by more than 0.02)."""
-    two, _, _ = runs(2, "--second-volume")
-    reference = scene_support.union_reference("default", SIZE)
-    assert two[0][..., 3].mean() > 0.5 * reference[..., 3].mean()
-    assert metrics.rmse(two[0], reference) < REFERENCE_RMSE
 
 
 def test_an_empty_viewport_on_every_rank_draws_nothing_without_error(runs):

@@ -18,16 +18,16 @@ cells that the near plane cuts drawn 20 % short fail it on Blunt Fin from inside
 5.8 x 10^-6 against 1.2 x 10^-6 outside, tolerance 3.3 x 10^-7).
 """
 
+import dataclasses
 from functools import lru_cache
 
 import numpy as np
 import pytest
-import vtk
 
 from spt import metrics, raycast, render
 
 import image_statistics
-from scene_support import draw_once, scene
+from scene_support import draw_once, scene, window_with
 from statistics_checks import Z
 
 SIZE = 96
@@ -48,18 +48,12 @@ SCENE_CAMERAS = [(name, camera) for name in SCENES for camera in CAMERAS
 def _render(name, mapper, dolly, parallel=False):
     """The image and the camera that drew it: the scene's view dollied in by ``dolly``."""
     s = scene(name)
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, mapper)
-    view = render.View(s.view.azimuth, s.view.elevation, s.view.zoom, parallel)
-    render.place_camera(renderer, s.grid.GetBounds(), view)
-    renderer.GetActiveCamera().Dolly(dolly)
+    window, renderer = window_with(mapper, SIZE, name, s.property,
+                                   dataclasses.replace(s.view, parallel=parallel))
+    camera = renderer.GetActiveCamera()
+    camera.Dolly(dolly)
     renderer.ResetCameraClippingRange(s.grid.GetBounds())
-    window.Render()
-    image = render.read_rgba(window)
-    camera = vtk.vtkCamera()
-    camera.DeepCopy(renderer.GetActiveCamera())
-    window.Finalize()
-    return image, camera
+    return draw_once(window), camera
 
 
 #: The stochastic mappers, by name, for a seed.

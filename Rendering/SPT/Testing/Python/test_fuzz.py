@@ -117,17 +117,14 @@ def random_property(rng: np.random.Generator) -> vtk.vtkVolumeProperty:
 
 
 def random_mapper(kind: str, rng: np.random.Generator):
-    if kind == "spt":
-        mapper = render.spt_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
-        mapper.SetPreIntegrationScalarResolution(16)
-        mapper.SetPreIntegrationThicknessResolution(8)
-    elif kind == "havs":
-        mapper = render.havs_mapper(int(rng.integers(2, 7)))
-        mapper.SetPreIntegrationScalarResolution(16)
-        mapper.SetPreIntegrationThicknessResolution(8)
-    else:
+    if kind == "pbvr":
         mapper = render.pbvr_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
         mapper.SetMaximumParticleMemory(16)  # random optical depths: a clear error, not hours
+    else:
+        mapper = (render.spt_mapper(int(rng.integers(1, 4)), seed=int(rng.integers(0, 1000)))
+                  if kind == "spt" else render.havs_mapper(int(rng.integers(2, 7))))
+        mapper.SetPreIntegrationScalarResolution(16)
+        mapper.SetPreIntegrationThicknessResolution(8)
     if rng.random() < 0.3:
         mapper.SetScalarModeToUsePointFieldData() if rng.random() < 0.5 else \
             mapper.SetScalarModeToUseCellFieldData()
@@ -207,12 +204,6 @@ def main(argv) -> int:
     return status
 
 
-def run_worker(kind: str, first: int, count: int) -> subprocess.CompletedProcess:
-    """This file run as a program (its folder, with the helpers, comes first on its path)."""
-    return subprocess.run([sys.executable, str(WORKER), kind, str(first), str(count)],
-                          capture_output=True, text=True, timeout=TIMEOUT, check=False)
-
-
 def outcomes(stdout: str):
     """{seed: outcome} of the seeds that finished, the seeds that failed a check (with why),
     and the last seed begun."""
@@ -232,7 +223,9 @@ def outcomes(stdout: str):
 @pytest.mark.parametrize("kind", ["spt", "havs", "pbvr"])
 def test_random_meshes(kind, have_display):
     try:
-        result = run_worker(kind, 0, SEEDS)
+        # This file run as a program (its folder, with the helpers, comes first on its path).
+        result = subprocess.run([sys.executable, str(WORKER), kind, "0", str(SEEDS)],
+                                capture_output=True, text=True, timeout=TIMEOUT, check=False)
     except subprocess.TimeoutExpired as timeout:
         _, _, last = outcomes(timeout.stdout.decode() if timeout.stdout else "")
         pytest.fail(f"{kind}: no answer within {TIMEOUT} s, at seed {last}")

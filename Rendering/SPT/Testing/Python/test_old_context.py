@@ -8,13 +8,11 @@ never drawn.
 """
 
 import os
-import pathlib
 import subprocess
-import sys
 
 import pytest
 
-import spt
+from spt_pytest_fixtures import run_python
 
 # The child renders the default mesh with one mapper and prints the image's largest alpha.
 CHILD = """
@@ -28,13 +26,7 @@ print("alpha", image[..., 3].max())
 
 
 def run_with_gl_version(version: str, kind: str, x: bool) -> subprocess.CompletedProcess:
-    env = dict(os.environ, MESA_GL_VERSION_OVERRIDE=version)
-    if not x:
-        env.pop("DISPLAY", None)
-    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
-    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
-    return subprocess.run([sys.executable, "-c", CHILD, kind], capture_output=True, text=True,
-                          env=env, check=False, timeout=600)
+    return run_python(CHILD, kind, without_display=not x, MESA_GL_VERSION_OVERRIDE=version)
 
 
 @pytest.mark.parametrize("kind", ["spt", "havs", "pbvr"])
@@ -94,11 +86,8 @@ def test_a_compute_traversal_that_does_not_build_is_rasterized():
     and draws the image it draws with the compute traversal off."""
     # Mesa's shader disk cache does not key on the override: a compute program cached by an
     # earlier test makes Mesa 25 (Debian 13) crash in the child. The child compiles afresh.
-    env = dict(os.environ, MESA_GLSL_VERSION_OVERRIDE="420", MESA_SHADER_CACHE_DISABLE="true")
-    package_parent = str(pathlib.Path(spt.__file__).resolve().parent.parent)
-    env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
-    result = subprocess.run([sys.executable, "-c", COMPUTE_CHILD], capture_output=True, text=True,
-                            env=env, check=False, timeout=600)
+    result = run_python(COMPUTE_CHILD, MESA_GLSL_VERSION_OVERRIDE="420",
+                        MESA_SHADER_CACHE_DISABLE="true")
     assert result.returncode == 0, result.stderr[-2000:]
     lines = dict(line.split(" ", 1) for line in result.stdout.splitlines())
     counts = [line.split() for line in result.stdout.splitlines() if line.startswith("points")]

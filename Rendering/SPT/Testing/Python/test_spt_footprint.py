@@ -16,13 +16,11 @@ import pytest
 
 import image_statistics
 import scene_support
-from statistics_checks import Z
+from statistics_checks import BIAS_FLOOR, Z
 from spt import raycast, render
 
 SIZE = 192
 REPETITIONS = 16
-#: The bias floor of SPT's statistical tests (statistics_checks).
-BIAS_FLOOR = 0.012
 
 
 def _volumes(renderer, grid, prop, apart, seed=3):

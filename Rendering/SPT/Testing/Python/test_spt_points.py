@@ -16,8 +16,9 @@ same seed the two images may differ only by that rounding, at most one 8-bit lev
 compute pass's image is the same from one render to the next.
 
 The tests compare the images pixel by pixel on the test scenes and in every mode that changes
-the fragment code (CASES), and check where points are not used (the camera inside the mesh,
-cells whose projection would fill little of their square) and where the compute pass is not.
+the fragment code (POINT_CASES, COMPUTE_CASES), and check where points are not used (the camera
+inside the mesh, cells whose projection would fill little of their square) and where the
+compute pass is not.
 """
 
 from functools import lru_cache
@@ -61,6 +62,12 @@ COMPUTE_CASES = ["cell scalars", "opaque", "zoomed", "parallel", "survivor", "er
                  "depth slabs"]
 
 
+def _cases(modes):
+    """(scene, case) of each test scene as it is, and of the default scene in each mode."""
+    return [(name, "") for name in ("default", "spx", "bluntfin")] + [
+        ("default", mode) for mode in modes]
+
+
 class Drawn(NamedTuple):
     """A render and what its frame statistics and mapper report."""
 
@@ -92,7 +99,8 @@ def _render(name, seed, small_cell_size=ALL_SMALL, compute=AUTO, case="", level=
                  mapper.GetEstimatedError(), mapper.GetNumberOfTetrahedra())
 
 
-def _check_points_draw_the_triangles_image(name, case=""):
+@pytest.mark.parametrize("name, case", _cases(POINT_CASES))
+def test_points_and_triangles_draw_the_same_image(name, case, have_display):
     level = 8 if case == "paper" else 16
     points = _render(name, POINTS_SEED, case=case, level=level)
     triangles = _render(name, POINTS_SEED, 0.0, case=case, level=level)
@@ -106,19 +114,10 @@ def _check_points_draw_the_triangles_image(name, case=""):
     assert difference.mean() < 1e-3
 
 
-@pytest.mark.parametrize("name", ["default", "spx", "bluntfin"])
-def test_points_and_triangles_draw_the_same_image(name, have_display):
-    _check_points_draw_the_triangles_image(name)
-
-
-@pytest.mark.parametrize("case", POINT_CASES)
-def test_points_draw_the_same_image_in_every_mode(case, have_display):
-    _check_points_draw_the_triangles_image("default", case)
-
-
-def _check_compute_draws_the_points_image(name, case="", level=16):
-    computed = _render(name, COMPUTE_SEED, compute=ON, case=case, level=level)
-    points = _render(name, COMPUTE_SEED, compute=OFF, case=case, level=level)
+@pytest.mark.parametrize("name, case", _cases(COMPUTE_CASES))
+def test_compute_and_points_draw_the_same_image(name, case, have_display):
+    computed = _render(name, COMPUTE_SEED, compute=ON, case=case)
+    points = _render(name, COMPUTE_SEED, compute=OFF, case=case)
     assert computed.points > 0 and computed.points == points.points, "the scene draws no points"
     assert computed.computed == computed.points, (
         "the keys traversal did not visit the points in a compute pass")
@@ -129,16 +128,6 @@ def _check_compute_draws_the_points_image(name, case="", level=16):
     assert difference.mean() < 1e-4
     # The error target's estimate compares the two halves' sums (the second target).
     assert computed.estimate == pytest.approx(points.estimate, rel=1e-3)
-
-
-@pytest.mark.parametrize("name", ["default", "spx", "bluntfin"])
-def test_compute_and_points_draw_the_same_image(name, have_display):
-    _check_compute_draws_the_points_image(name)
-
-
-@pytest.mark.parametrize("case", COMPUTE_CASES)
-def test_compute_draws_the_same_image_in_every_mode(case, have_display):
-    _check_compute_draws_the_points_image("default", case)
 
 
 def test_points_need_the_mesh_in_front_of_the_near_plane(have_display):

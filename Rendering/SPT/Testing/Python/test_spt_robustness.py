@@ -1,8 +1,8 @@
 """vtkSPTVolumeMapper on bad and unusual input: a correct image or a clear error, never a crash,
 and the input is never modified. Also: repeated renders, and images wider than 3D textures. The
 cases that every mapper meets alike (empty grids, bad input, values that are not finite, vector
-arrays, 2D and degenerate cells, extreme coordinates, transfer functions of no or one point,
-input changed between renders, releases, resizes and a second window) are
+arrays, mixed, 2D and degenerate cells, extreme coordinates, transfer functions of no or one
+point, input changed between renders, releases, resizes and a second window) are
 test_mapper_robustness.py's, for SPT too."""
 
 import numpy as np
@@ -51,18 +51,6 @@ def test_constant_field_matches_the_reference(have_display):
     reference = render.reference(grid, prop, render.View(30, 30), SIZE).image
     assert not messages.errors
     assert metrics.rmse(image, reference) < 0.05
-
-
-def test_mixed_and_quadratic_cells_are_split(have_display):
-    grid = tetrahedra([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1),
-                       (1, 1, 1), (0, 1, 1), (0.5, 0.5, 2)], [], np.linspace(0.0, 1.0, 9))
-    grid.InsertNextCell(vtk.VTK_HEXAHEDRON, 8, list(range(8)))
-    grid.InsertNextCell(vtk.VTK_PYRAMID, 5, [4, 5, 6, 7, 8])
-    grid.InsertNextCell(vtk.VTK_TRIANGLE, 3, [0, 1, 2])  # 2D cells are not volumes
-    image, mapper, messages = draw(grid)
-    assert not messages.errors
-    assert mapper.GetNumberOfTetrahedra() >= 7
-    assert image[..., 3].max() > 0.2
 
 
 @pytest.mark.parametrize("sampling", [render.PAPER_SAMPLING, {}])

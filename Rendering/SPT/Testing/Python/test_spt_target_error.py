@@ -40,22 +40,17 @@ ROUNDING_8_BITS = 1.0 / (255.0 * np.sqrt(12.0))
 TILE = 32
 
 
-def _largest_tile(values, mask):
-    """The largest over the tiles of the mean of ``values`` (per pixel) over the tile's
-    pixels in ``mask``."""
-    means = [values[y:y + TILE, x:x + TILE][mask[y:y + TILE, x:x + TILE]].mean()
-             for y in range(0, mask.shape[0], TILE) for x in range(0, mask.shape[1], TILE)
-             if mask[y:y + TILE, x:x + TILE].any()]
-    return max(means)
-
-
 def tile_error(image, name, other=None):
     """The largest tile's root mean square error against the exact reference (premultiplied
     RGBA over the footprint of either image); with ``other``, a render with another seed,
     the largest tile's noise of one render instead (half their mean squared difference)."""
     image, exact = metrics.as_float(image), metrics.as_float(reference(name, SIZE))
-    squared = (image - exact) ** 2 if other is None else 0.5 * (image - other) ** 2
-    return np.sqrt(_largest_tile(squared.mean(axis=2), metrics.footprint(image, exact)))
+    squared = ((image - exact) ** 2 if other is None else 0.5 * (image - other) ** 2).mean(axis=2)
+    mask = metrics.footprint(image, exact)
+    means = [squared[y:y + TILE, x:x + TILE][mask[y:y + TILE, x:x + TILE]].mean()
+             for y in range(0, mask.shape[0], TILE) for x in range(0, mask.shape[1], TILE)
+             if mask[y:y + TILE, x:x + TILE].any()]
+    return np.sqrt(max(means))
 
 
 #: Repetitions per traversal for the tests of the estimate. A first image's first step is at

@@ -19,7 +19,7 @@ from vtkmodules.vtkRenderingCore import vtkVolumeProperty
 
 import image_statistics
 from robustness_support import watch
-from scene_support import draw_once, scene, union, union_offset, union_reference
+from scene_support import draw_once, scene, union, union_offset, union_reference, window_with
 
 SIZE = 128
 REPETITIONS = 32
@@ -38,8 +38,8 @@ def _two_volumes(name, make, second_property=None, second_first=False):
     return draw_once(window)
 
 
-def _spt():
-    return render.spt_mapper(REPETITIONS, seed=1)
+def _spt(seed=1):
+    return render.spt_mapper(REPETITIONS, seed=seed)
 
 
 def _check_as_close_as_the_union(name, make):
@@ -61,8 +61,7 @@ def _check_as_close_as_the_union(name, make):
 
 @pytest.mark.parametrize("name", SCENES)
 def test_two_volumes_composite_as_their_union(name, have_display):
-    two_error = _check_as_close_as_the_union(
-        name, lambda seed: render.spt_mapper(REPETITIONS, seed=seed))
+    two_error = _check_as_close_as_the_union(name, _spt)
     reference = union_reference(name, SIZE)
     sorted_one_by_one = metrics.rmse(
         _two_volumes(name, render.projected_tetrahedra_mapper), reference)
@@ -95,10 +94,8 @@ def test_each_volume_keeps_its_transfer_function(have_display):
     transparent.GetScalarOpacity().AddPoint(-1.0e30, 0.0)
     transparent.GetScalarOpacity().AddPoint(1.0e30, 0.0)
     alone = render.render(s.grid, s.property, _spt(), s.view, (SIZE, SIZE)).image
-    window, renderer = render.make_window(SIZE, SIZE)
-    render.add_volume(renderer, s.grid, s.property, _spt())
+    window, renderer = window_with(_spt(), SIZE, prop=s.property)
     render.add_volume(renderer, s.grid, transparent, _spt())
-    render.place_camera(renderer, s.grid.GetBounds(), s.view)
     both = draw_once(window)
     assert alone[..., 3].max() > 0.2
     assert np.abs(both - alone).max() <= 1.0 / 255.0 + 1e-6
