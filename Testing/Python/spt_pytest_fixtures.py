@@ -1,5 +1,5 @@
-"""Shared fixtures: an off-screen render window per test module, access to the data sets, and
-Python in a child process."""
+"""Shared fixtures and helpers: an X display for ParaView's windows, access to the data sets,
+and Python in a child process."""
 
 import os
 import pathlib
@@ -7,13 +7,6 @@ import subprocess
 import sys
 
 import pytest
-
-
-@pytest.fixture(scope="session")
-def have_display() -> bool:
-    """A window to render in: an X display (the tests run under xvfb-run), or else the EGL
-    window (spt.render.new_render_window), which must then work: no skip."""
-    return True
 
 
 @pytest.fixture(scope="session")

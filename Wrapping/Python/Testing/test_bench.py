@@ -142,7 +142,7 @@ def test_a_small_run_writes_results_plots_and_report(tmp_path):
     assert f"Measured in runs up to {written['date']}" in summary
 
 
-def test_the_camera_section_compares_inside_with_outside(tmp_path, have_display):
+def test_the_camera_section_compares_inside_with_outside(tmp_path):
     settings = dataclasses.replace(bench.Settings.quick(), camera_size=48)
     results = bench.run(tmp_path, ["camera"], settings)
     rows = results["camera"]["rows"]
@@ -199,7 +199,7 @@ def test_host_time_adds_every_application_thread_and_leaves_out_the_rasterizer()
     assert host.host_objects(by_object, frames=2, count=1) == {"libSPTRendering.so": 0.375}
 
 
-def test_the_parallel_section_runs_ranks_with_the_same_image(have_display, tmp_path):
+def test_the_parallel_section_runs_ranks_with_the_same_image(tmp_path):
     """SPT on 1 and 2 MPI ranks with interleaved pieces, with the plugin's error target: the
     same repetitions and image, and the bytes each rank moves per frame (4 bytes per sample and
     repetition; 48 per sample for the sums, the second half's and the coverage after the first
@@ -223,8 +223,7 @@ def test_the_parallel_section_runs_ranks_with_the_same_image(have_display, tmp_p
     assert "## Parallel" in (tmp_path / "bench.md").read_text()
 
 
-def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, have_display,
-                                                           monkeypatch):
+def test_the_race_at_two_sizes_reports_each_and_the_growth(tmp_path, monkeypatch):
     """``--size 24,16``: the race at each size in one run (smallest first in bench.json), a
     table per size in results.md and each method's growth from the rows' own frames; a later
     run at one size keeps the other."""

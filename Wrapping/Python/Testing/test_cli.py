@@ -141,7 +141,7 @@ def _check_ladder(scene, target):
         assert reached["ratio"] == pytest.approx(first["seconds"] / pt["seconds"])
 
 
-def test_demo_writes_images_and_the_race(tmp_path, have_display):
+def test_demo_writes_images_and_the_race(tmp_path):
     """The demo at a small size: its images, and results.json consistent with itself; on
     the interpenetrating volumes, which VTK composites one after the other, SPT's image is far
     closer to the exact one than the sorted renderers'."""
@@ -192,7 +192,7 @@ def test_a_damaged_data_file_is_a_clear_error(tmp_path, where):
     assert str(tmp_path / "spx.vtk") in result.stderr and "Traceback" not in result.stderr
 
 
-def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
+def test_sorting_figure_writes_images_and_a_table(tmp_path):
     """The sorting figure on the default mesh only, tiny and with few repetitions."""
     output = tmp_path / "sorting"
     result = run("figures", "sorting", "--datasets", "default", "--size", "48",
@@ -211,7 +211,7 @@ def test_sorting_figure_writes_images_and_a_table(tmp_path, have_display):
     assert 0.0 < float(havs[2]) < 0.05 and float(havs[5]) > 0.0 and float(havs[6]) > 0.0
 
 
-def test_pbvr_figure_writes_images_tables_and_curves(tmp_path, have_display):
+def test_pbvr_figure_writes_images_tables_and_curves(tmp_path):
     output = tmp_path / "pbvr"
     result = run("figures", "pbvr", "--datasets", "default", "--size", "48", "--repetitions", "8",
                  "--levels", "2", "--output", str(output))

@@ -114,7 +114,7 @@ def test_an_earlier_race_measured_otherwise_is_dropped(key, value):
     assert race.merge_runs(_race(["drill-3M"]), None)["runs"] == [{"scenes": ["drill-3M"]}]
 
 
-def test_a_small_race_on_the_default_scene(tmp_path, have_display):
+def test_a_small_race_on_the_default_scene(tmp_path):
     settings = Settings(race_scenes=("default",), race_size=48, race_max_repetitions=2)
     progress = Progress(race.steps(settings), "race", stream=None)
     result = race.race(settings, progress, tmp_path)

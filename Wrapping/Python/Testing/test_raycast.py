@@ -50,7 +50,7 @@ def _volume_integral_of_attenuation(grid, prop):
     return float((volume * tau).sum())
 
 
-def test_optical_depth_integrates_the_attenuation_over_the_volume(have_display):
+def test_optical_depth_integrates_the_attenuation_over_the_volume():
     """For a parallel view, sum over pixels of -ln(1 - alpha) x pixel area = integral of tau
     over the volume, for any mesh, convex or not. This checks the chords, the scalars and the
     integration at once, independently of the ray caster's own geometry."""
@@ -128,7 +128,7 @@ def _alpha_from_the_near_plane(camera, corners, prop, size):
 
 
 @pytest.mark.parametrize("method, tolerance", [("exact", 1e-6), ("spt", 3.0 / 255.0)])
-def test_chord_from_the_near_plane_inside_one_tetrahedron(method, tolerance, request):
+def test_chord_from_the_near_plane_inside_one_tetrahedron(method, tolerance):
     """The eye inside the cell: every ray starts at the near plane, inside, and its chord runs
     from there to the exit face, alpha = 1 - exp(-tau chord). SPT draws the same chords
     (constant field: the pre-integrated opacity is exact up to the table's sampling and the
@@ -139,7 +139,6 @@ def test_chord_from_the_near_plane_inside_one_tetrahedron(method, tolerance, req
     if method == "exact":
         image = raycast.render(grid, prop, camera, (size, size))
     else:
-        request.getfixturevalue("have_display")
         window, renderer = render.make_window(size, size)
         render.add_volume(renderer, grid, prop, render.spt_mapper(4, seed=1))
         renderer.GetActiveCamera().DeepCopy(camera)
@@ -160,7 +159,7 @@ def _box_mesh():
     return split_image(with_point_scalars(image, field.ravel(order="F"), "field"))
 
 
-def test_agrees_with_vtk_ray_caster_inside_the_silhouette(have_display):
+def test_agrees_with_vtk_ray_caster_inside_the_silhouette():
     """On a convex mesh the two ray casters agree away from the silhouette (where VTK's
     misses or doubles grazing segments), to about the 8-bit quantization of VTK's image."""
     grid = _box_mesh()
@@ -198,7 +197,7 @@ def test_bad_input_raises_with_the_reason():
         render.reference(grid, prop, method="nonsense")
 
 
-def test_several_volumes_are_the_image_of_their_union(have_display):
+def test_several_volumes_are_the_image_of_their_union():
     """Two interpenetrating volumes with one property: every ray's segments of both,
     composited together, are the image of the two meshes appended into one grid; a second
     volume with another, transparent property leaves the first as it is alone."""

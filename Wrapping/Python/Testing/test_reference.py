@@ -46,7 +46,7 @@ def test_reference_property_makes_vtk_integrator_exact():
     assert fixed.GetRGBTransferFunction().GetColor(7.5) == pytest.approx(color.GetColor(7.5))
 
 
-def test_reference_rays_pass_through_pixel_centres(have_display):
+def test_reference_rays_pass_through_pixel_centres():
     """VTK's projected tetrahedra samples pixel centres (it rasterizes); the reference agrees
     with it best unshifted, and clearly worse one pixel off in any direction."""
     grid = data.make_default_mesh()
@@ -85,7 +85,7 @@ def test_reference_grid_orients_tetrahedra_and_drops_flat_ones():
     assert repaired.GetPointData().GetScalars().GetNumberOfTuples() == 5
 
 
-def test_reference_of_the_torus_has_no_holes(have_display):
+def test_reference_of_the_torus_has_no_holes():
     """VTK's ray caster loses rays in the torus as stored (about half its tetrahedra inverted,
     30 flat): black holes, RMSE 0.08 against VTK's projected tetrahedra. From the repaired copy
     that render() gives it, 0.017."""

@@ -23,7 +23,7 @@ CLIPPED = ["one oblique", "two, moved", "coarse, two"]
 
 
 @pytest.mark.parametrize("parallel", [False, True])
-def test_havs_draws_a_cut_tetrahedron_exactly(parallel, have_display):
+def test_havs_draws_a_cut_tetrahedron_exactly(parallel):
     name = "one tetrahedron, one"
     expected = reference(name, SIZE, parallel=parallel)
     drawn = image(render.havs_mapper(), CASES[name], SIZE, parallel=parallel)
@@ -34,7 +34,7 @@ def test_havs_draws_a_cut_tetrahedron_exactly(parallel, have_display):
 
 @pytest.mark.parametrize("parallel", [False, True])
 @pytest.mark.parametrize("name", CLIPPED)
-def test_havs_clipped_is_as_close_as_unclipped(name, parallel, have_display):
+def test_havs_clipped_is_as_close_as_unclipped(name, parallel):
     other = unclipped_name(name)
     clipped = image(render.havs_mapper(), CASES[name], SIZE, parallel=parallel)
     unclipped = image(render.havs_mapper(), CASES[other], SIZE, parallel=parallel)
@@ -54,12 +54,12 @@ def test_havs_clipped_is_as_close_as_unclipped(name, parallel, have_display):
 
 
 @pytest.mark.parametrize("name", CLIPPED)
-def test_pbvr_clipped_is_unbiased(name, have_display):
+def test_pbvr_clipped_is_unbiased(name):
     check_clipped_is_unbiased("pbvr", lambda seed: render.pbvr_mapper(PBVR_LEVEL, seed=seed),
                               name, SIZE, PBVR_LEVEL)
 
 
 @pytest.mark.parametrize("mapper", ["havs", "pbvr"])
-def test_more_than_six_planes_or_a_nan_plane_is_an_error(mapper, have_display):
+def test_more_than_six_planes_or_a_nan_plane_is_an_error(mapper):
     check_bad_planes(render.havs_mapper() if mapper == "havs"
                      else render.pbvr_mapper(8, seed=1), SIZE)

@@ -61,7 +61,7 @@ def errors(grid, view, mappers, actors=(), prop=None):
 
 
 @pytest.mark.parametrize("parallel", [False, True])
-def test_convex_mesh_with_k6_is_as_close_as_vtk_projected_tetrahedra(parallel, have_display):
+def test_convex_mesh_with_k6_is_as_close_as_vtk_projected_tetrahedra(parallel):
     """Measured: 0.0119 (perspective) and 0.0132 (parallel); VTK PT 0.0141 and 0.0151."""
     rmse, _ = errors(block((12, 12, 12)), render.View(30, 20, parallel=parallel),
                      {"havs": render.havs_mapper(6), "pt": render.projected_tetrahedra_mapper()})
@@ -70,7 +70,7 @@ def test_convex_mesh_with_k6_is_as_close_as_vtk_projected_tetrahedra(parallel, h
 
 
 @pytest.mark.parametrize("gap", [0.8, 3.0])
-def test_gaps_between_disjoint_blocks_contribute_nothing(gap, have_display):
+def test_gaps_between_disjoint_blocks_contribute_nothing(gap):
     """Rays leave one block and enter the other. A gap of 0.8 is half the longest tetrahedron
     edge, below what a length threshold could tell from a cell. Measured RMSE: 0.0041 (VTK PT
     0.0040); with the gaps composited (the gap test of the shader turned off): 0.016 and 0.023.
@@ -101,7 +101,7 @@ def _render_transformed(grid, prop, mapper, scale, orientation, view):
 
 
 @pytest.mark.parametrize("parallel", [False, True])
-def test_mirrored_volume_keeps_gaps_and_cells_apart(parallel, have_display):
+def test_mirrored_volume_keeps_gaps_and_cells_apart(parallel):
     """A negative scale mirrors the faces: the mapper must swap which boundary faces rays
     leave the mesh through, or it takes the gap for a cell. Measured RMSE: 0.0046 and 0.0042
     (parallel); with gaps composited 0.016 and 0.017."""
@@ -115,7 +115,7 @@ def test_mirrored_volume_keeps_gaps_and_cells_apart(parallel, have_display):
     assert metrics.rmse(havs, reference) <= 0.008
 
 
-def test_opaque_geometry_hides_the_volume(have_display):
+def test_opaque_geometry_hides_the_volume():
     """An opaque plane through the middle of the default mesh, which must change the image.
     The segment that reaches into the plane ends at the last face in front of it. Measured
     RMSE: 0.0013 (VTK PT 0.0015; the plane's own pixels agree exactly)."""
@@ -128,7 +128,7 @@ def test_opaque_geometry_hides_the_volume(have_display):
     assert rmse["havs"] <= 0.003, rmse
 
 
-def test_every_synchronization_gives_the_same_image(have_display):
+def test_every_synchronization_gives_the_same_image():
     """Framebuffer fetch and llvmpipe's rasterization order (both exact, see
     TestHAVSKBufferOrdering) agree bit for bit; interlock, where the context has it, too."""
     s = scene("default")
@@ -150,7 +150,7 @@ def test_every_synchronization_gives_the_same_image(have_display):
         assert np.array_equal(image, first)
 
 
-def test_automatic_synchronization_and_time_split(have_display):
+def test_automatic_synchronization_and_time_split():
     s = scene("default")
     mapper = render.havs_mapper()
     rendering = render.render(s.grid, s.property, mapper, s.view, SIZE)

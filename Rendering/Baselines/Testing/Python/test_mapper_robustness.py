@@ -180,7 +180,7 @@ BAD_INPUT = {
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("points", [0, 4])
-def test_empty_grid_draws_nothing_without_error(kind, points, have_display):
+def test_empty_grid_draws_nothing_without_error(kind, points):
     grid = tetrahedra(UNIT_TETRAHEDRON[:points], [], [0.1] * points) if points else \
         vtk.vtkUnstructuredGrid()
     image, mapper, messages = draw(kind, grid)
@@ -190,7 +190,7 @@ def test_empty_grid_draws_nothing_without_error(kind, points, have_display):
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("case", BAD_INPUT)
-def test_bad_input_is_a_clear_error(kind, case, have_display):
+def test_bad_input_is_a_clear_error(kind, case):
     """One error that names the problem (a bad property is reported at each of its checks),
     and nothing drawn."""
     make_grid, change_mapper, change_property, words = BAD_INPUT[case]
@@ -207,7 +207,7 @@ def test_bad_input_is_a_clear_error(kind, case, have_display):
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("where", ["point", "cell"])
-def test_arrays_shorter_than_the_grid_are_a_clear_error(kind, where, have_display):
+def test_arrays_shorter_than_the_grid_are_a_clear_error(kind, where):
     """The selected array too short is named; another array too short (which VTK's own split
     into tetrahedra would read out of bounds) does not matter."""
     grid = mixed_cells()
@@ -227,7 +227,7 @@ def test_arrays_shorter_than_the_grid_are_a_clear_error(kind, where, have_displa
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_a_camera_that_is_not_finite_is_a_clear_error(kind, have_display):
+def test_a_camera_that_is_not_finite_is_a_clear_error(kind):
     window, renderer = render.make_window(*SIZE)
     mapper = make_mapper(kind)
     messages = watch(mapper)
@@ -244,8 +244,7 @@ def test_a_camera_that_is_not_finite_is_a_clear_error(kind, have_display):
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("point, scalar", [((1, 1, 1), math.nan), ((1, 1, 1), math.inf),
                                            ((1, 1, 1), -math.inf), ((math.nan, 1, 1), 0.5)])
-def test_non_finite_values_leave_their_cells_out_with_a_warning(kind, point, scalar,
-                                                                have_display):
+def test_non_finite_values_leave_their_cells_out_with_a_warning(kind, point, scalar):
     """The second cell's fifth point, or its scalar, is not finite."""
     grid = tetrahedra(UNIT_TETRAHEDRON + [point], [(0, 1, 2, 3), (1, 2, 3, 4)],
                       [0.0, 0.3, 0.6, 1.0, scalar])
@@ -257,7 +256,7 @@ def test_non_finite_values_leave_their_cells_out_with_a_warning(kind, point, sca
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_only_non_finite_scalars_draw_nothing_with_a_warning(kind, have_display):
+def test_only_non_finite_scalars_draw_nothing_with_a_warning(kind):
     grid = tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)], [math.nan] * 4)
     image, mapper, messages = draw(kind, grid)
     assert not messages.errors and mapper.GetNumberOfSkippedCells() == 1
@@ -276,7 +275,7 @@ COMPONENTS = {"tensor magnitude": (np.full(9, 1.0 / 3.0), None, 1.0),
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("case", COMPONENTS)
-def test_arrays_of_several_components(kind, case, have_display):
+def test_arrays_of_several_components(kind, case):
     """The magnitude, or one component, is rendered: the same image as that single array."""
     per_point, component, factor = COMPONENTS[case]
     grid = with_point_scalars(tetrahedra(UNIT_TETRAHEDRON, [(0, 1, 2, 3)]),
@@ -292,7 +291,7 @@ def test_arrays_of_several_components(kind, case, have_display):
     assert np.array_equal(image, expected)
 
 
-def test_havs_refuses_cell_scalars_clearly(have_display):
+def test_havs_refuses_cell_scalars_clearly():
     image, _, messages = draw("havs", cell_scalars_grid())
     assert len(messages.errors) == 1
     assert "point scalars" in messages.errors[0] and "vtkCellDataToPointData" in messages.errors[0]
@@ -319,7 +318,7 @@ def mixed_cells(with_2d=False):
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_mixed_cells_are_split_and_2d_cells_left_out(kind, have_display):
+def test_mixed_cells_are_split_and_2d_cells_left_out(kind):
     """The hexahedron, pyramid, wedge and tetrahedron give at least 5 + 2 + 3 + 1 tetrahedra;
     the triangle adds none, and nothing to the image."""
     with_triangle, mapper, messages = draw(kind, mixed_cells(with_2d=True))
@@ -339,7 +338,7 @@ def quadratic_tetrahedron():
 
 
 @pytest.mark.parametrize("kind", KINDS)
-def test_quadratic_cells_are_linearized(kind, have_display):
+def test_quadratic_cells_are_linearized(kind):
     """A quadratic tetrahedron with a linear field: the same picture as the linear one
     (within the rasterization of its inner faces for HAVS, the noise for PBVR)."""
     grid = quadratic_tetrahedron()
@@ -381,7 +380,7 @@ MATCHES_REFERENCE = {
 
 @pytest.mark.parametrize("case, kind", [(case, kind) for case, (_, _, kinds, _)
                                         in MATCHES_REFERENCE.items() for kind in kinds])
-def test_input_matches_the_reference(case, kind, have_display):
+def test_input_matches_the_reference(case, kind):
     make_grid, opacity, _, tetrahedra_count = MATCHES_REFERENCE[case]
     mapper = assert_matches_reference(kind, make_grid(), property_for(opacity=opacity),
                                       havs_rmse=0.005, pbvr_bias=0.012)
@@ -391,7 +390,7 @@ def test_input_matches_the_reference(case, kind, have_display):
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_degenerate_inverted_and_duplicate_tetrahedra(kind, have_display):
+def test_degenerate_inverted_and_duplicate_tetrahedra(kind):
     """Inverted tetrahedra draw as the others; flat ones hold no volume and add nothing; a
     listed twice adds its opacity twice (two cells)."""
     points = UNIT_TETRAHEDRON + [(0.5, 0.5, 0)]
@@ -433,7 +432,7 @@ def scaled_image(kind, grid, prop, scale):
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("scale", [1e30, 1e-30])
-def test_extreme_coordinates_give_the_same_image(kind, scale, have_display):
+def test_extreme_coordinates_give_the_same_image(kind, scale):
     """Coordinates and unit distance scaled together: the same picture."""
     grid, prop = field_grid(), property_for(0.0, 1.0, unit=1.0, opacity=0.6)
     expected = scaled_image(kind, grid, prop, 1.0)
@@ -444,7 +443,7 @@ def test_extreme_coordinates_give_the_same_image(kind, scale, have_display):
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
 @pytest.mark.parametrize("points", [0, 1])
-def test_transfer_functions_with_no_or_one_point(kind, points, have_display):
+def test_transfer_functions_with_no_or_one_point(kind, points):
     prop = volume_property([(0.5, 1.0, 0.5, 0.0)][:points], [(0.5, 0.7)][:points])
     image, _, messages = draw(kind, ONE, prop)
     assert not messages.errors
@@ -460,7 +459,7 @@ def test_transfer_functions_with_no_or_one_point(kind, points, have_display):
 
 
 @pytest.mark.parametrize("kind", KINDS)
-def test_opacity_one_everywhere(kind, have_display):
+def test_opacity_one_everywhere(kind):
     image, _, messages = draw(kind, ONE, property_for(opacity=1.0, unit=0.01))
     assert not messages.errors
     covered = image[..., 3] > 0
@@ -470,7 +469,7 @@ def test_opacity_one_everywhere(kind, have_display):
 # --- Changes between renders, windows, viewports ---------------------------------------------
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_input_changes_between_renders(kind, have_display):
+def test_input_changes_between_renders(kind):
     """Points moved, cells removed and added, the array swapped: each render is what a new
     mapper draws of the changed input."""
     scene = Scene(kind, field_grid())
@@ -504,7 +503,7 @@ def test_input_changes_between_renders(kind, have_display):
 
 
 @pytest.mark.parametrize("kind", ALL_KINDS)
-def test_release_windows_resizes_and_empty_viewports(kind, have_display):
+def test_release_windows_resizes_and_empty_viewports(kind):
     """Released resources (PBVR's particles too), resizes, an empty viewport and a second
     window: each render as a fresh mapper's; repeated renders leave nothing behind (HAVS's
     k-buffer is cleared); a turned camera changes the image."""

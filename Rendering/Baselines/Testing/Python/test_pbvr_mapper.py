@@ -47,7 +47,7 @@ def test_print_self_lists_every_setting_and_report():
         assert setting in text
 
 
-def test_one_tetrahedron_renders_and_reports(have_display):
+def test_one_tetrahedron_renders_and_reports():
     rendering, messages = watched_render(render.pbvr_mapper(8, seed=1), ONE, size=SIZE)
     report = rendering.report
     assert not messages.errors
@@ -57,7 +57,7 @@ def test_one_tetrahedron_renders_and_reports(have_display):
     assert report["generation_count"] == 1 and report["generation_seconds"] > 0.0
 
 
-def test_particles_over_the_memory_cap_are_a_clear_error(have_display):
+def test_particles_over_the_memory_cap_are_a_clear_error():
     """1 MiB holds 131072 particles; 512 sets of the default mesh need millions. The error says
     what to change, comes once however often the view is drawn, and nothing is drawn; a larger
     cap then renders."""
@@ -109,7 +109,7 @@ class Scene:
         return self.mapper.GetGenerationCount()
 
 
-def test_particles_are_made_again_only_when_they_must(have_display):
+def test_particles_are_made_again_only_when_they_must():
     scene = Scene()
     first = scene.draw()
     assert scene.generations == 1
@@ -155,7 +155,7 @@ def test_particles_are_made_again_only_when_they_must(have_display):
     assert scene.generations == count
 
 
-def test_particle_count_follows_the_optical_model(have_display):
+def test_particle_count_follows_the_optical_model():
     """Twice the attenuation, twice the particles; 2x2 subpixels, four times; each within
     five standard deviations of the Poisson count."""
     scene = Scene(16)
@@ -172,7 +172,7 @@ def test_particle_count_follows_the_optical_model(have_display):
     assert scene.mapper.GetGPUMemorySize() >= 8 * scene.mapper.GetNumberOfParticles()
 
 
-def test_time_budget_and_progressive_refinement_complete_the_image(have_display):
+def test_time_budget_and_progressive_refinement_complete_the_image():
     """With a budget of 1 ms a render draws only the sets that fit (at least one); progressive
     refinement adds the next sets at each render until all are drawn, and the image is then
     the image of one render of all of them, bit for bit. A change of the camera starts anew."""
@@ -208,7 +208,7 @@ def test_time_budget_and_progressive_refinement_complete_the_image(have_display)
     full_window.Finalize()
 
 
-def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated(have_display):
+def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated():
     """At sample distance 2 in a viewport of 2n x 2n pixels PBVR draws the particles of an
     n x n viewport (their size and number follow the image's pixels) and the resolve
     interpolates them bilinearly."""
@@ -221,7 +221,7 @@ def test_a_sample_distance_of_two_draws_the_sets_of_half_the_pixels_interpolated
     assert np.abs(fine - bilinear_upsampled(coarse, 2)).max() <= 1.0 / 255.0 + 1e-6
 
 
-def test_with_the_time_budget_interactive_sets_have_fewer_pixels(have_display):
+def test_with_the_time_budget_interactive_sets_have_fewer_pixels():
     mapper = render.pbvr_mapper(4, seed=1)
     mapper.AutoAdjustRepetitionsOn()
     window, _ = window_with(mapper, SIZE[0])

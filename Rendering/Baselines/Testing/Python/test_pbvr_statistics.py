@@ -37,13 +37,13 @@ PBVR = SceneRenders(lambda level, seed: render.pbvr_mapper(level, seed=seed), LE
 
 @pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("check", SCENE_CHECKS)
-def test_scene_statistics(check, name, have_display):
+def test_scene_statistics(check, name):
     """Each check of statistics_checks.SCENE_CHECKS on each scene."""
     SCENE_CHECKS[check](PBVR, name)
 
 
 @pytest.mark.parametrize("parallel", [False, True])
-def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display):
+def test_constant_field_is_unbiased_inside_the_footprint(parallel):
     """alpha = 1 - exp(-tau d) along every ray. Away from the silhouettes (where a particle
     averages the optical depth over its pixel and the reference samples the pixel centre),
     the mean alpha of PBVR equals the reference's within its standard error, also with the
@@ -67,17 +67,17 @@ def test_constant_field_is_unbiased_inside_the_footprint(parallel, have_display)
             f"(tolerance {tolerance:.5f})")
 
 
-def test_subpixel_level_averages_subpixels(have_display):
+def test_subpixel_level_averages_subpixels():
     check_subpixel_level_averages_subpixels(
         lambda level, subpixels, seed: render.pbvr_mapper(level, subpixels, seed), SIZE // 2)
 
 
-def test_opaque_geometry_hides_and_cuts_the_volume(have_display):
+def test_opaque_geometry_hides_and_cuts_the_volume():
     check_opaque_geometry_hides_and_cuts_the_volume(
         lambda level, subpixels, seed: render.pbvr_mapper(level, subpixels, seed), SIZE)
 
 
-def test_rejection_keeps_thin_features_that_the_cell_average_loses(have_display):
+def test_rejection_keeps_thin_features_that_the_cell_average_loses():
     """Blunt Fin with a steep transfer function (a thin shell around 30 % of the density
     range): rejection sampling converges to the reference; the cell-average density of the
     papers is biased several times more than the noise at 64 repetitions."""

@@ -90,7 +90,7 @@ def run(output: pathlib.Path, ranks: int, *options: str, repetitions: int = REPE
 
 
 @pytest.fixture(scope="module")
-def runs(have_display, tmp_path_factory):
+def runs(tmp_path_factory):
     """run() with no error expected, each set of ranks, options and repetitions once per
     module."""
     directory = tmp_path_factory.mktemp("spt_mpi")
@@ -250,7 +250,7 @@ OTHER_ARRAY = ("Rank 1 renders the point array 'another name' of 1 component(s),
     (("--second-volume", "--other-array-on", "1"), REPETITIONS,
      "SPT volume 2 of the renderer: " + OTHER_ARRAY),
 ])
-def test_ranks_that_differ_give_one_error(have_display, tmp_path, options, repetitions, message):
+def test_ranks_that_differ_give_one_error(tmp_path, options, repetitions, message):
     images, _, errors = run(tmp_path / "differ.npy", 2, *options, repetitions=repetitions,
                             errors=1)
     assert errors.count(message) == 1, errors

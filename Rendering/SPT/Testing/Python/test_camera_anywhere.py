@@ -98,7 +98,7 @@ def _error_and_noise(name, dolly, parallel=False, method="spt"):
 
 @pytest.mark.parametrize("method", MAPPERS)
 @pytest.mark.parametrize("name, camera", SCENE_CAMERAS)
-def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera, have_display):
+def test_inside_is_as_close_to_the_reference_as_outside(method, name, camera):
     outside, outside_estimate = _error_and_noise(name, CAMERAS["outside"], method=method)
     error, estimate = _error_and_noise(name, CAMERAS[camera], method=method)
     image, seen_by = _image(method, name, CAMERAS[camera])
@@ -123,14 +123,14 @@ def _check_error_within_noise(error, outside, estimate, camera):
 
 @pytest.mark.parametrize("method", MAPPERS)
 @pytest.mark.parametrize("name", SCENES)
-def test_inside_in_parallel_projection(method, name, have_display):
+def test_inside_in_parallel_projection(method, name):
     outside, _ = _error_and_noise(name, CAMERAS["outside"], True, method)
     error, estimate = _error_and_noise(name, CAMERAS["inside"], True, method)
     _check_error_within_noise(error, outside, estimate, "inside, parallel")
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_no_holes_with_the_camera_inside(name, have_display):
+def test_no_holes_with_the_camera_inside(name):
     """No pixel of the footprint is empty where the reference has alpha above 0.05."""
     image, _ = _image("spt", name, CAMERAS["inside"], 1, False)
     reference = _reference(name, CAMERAS["inside"])
@@ -139,7 +139,7 @@ def test_no_holes_with_the_camera_inside(name, have_display):
 
 
 @pytest.mark.parametrize("camera", ["near plane cutting", "inside"])
-def test_one_repetition_per_pass_draws_the_groups_image(camera, have_display):
+def test_one_repetition_per_pass_draws_the_groups_image(camera):
     """With the near plane cutting the mesh, one repetition per pass (the survivor found by the
     depth test) draws the image of groups (the survivor found from depth keys): the same
     random numbers, the same segments from the near plane on."""
@@ -165,8 +165,7 @@ HAVS_INSIDE_FACTOR = 2.0
 
 @pytest.mark.parametrize("parallel", [False, True], ids=["perspective", "parallel"])
 @pytest.mark.parametrize("name, camera", SCENE_CAMERAS)
-def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, parallel,
-                                                             have_display):
+def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, parallel):
     outside = metrics.rmse(_havs(name, CAMERAS["outside"], parallel),
                            _reference(name, CAMERAS["outside"], parallel))
     image = _havs(name, CAMERAS[camera], parallel)
@@ -180,7 +179,7 @@ def test_havs_inside_is_as_close_to_the_reference_as_outside(name, camera, paral
 
 @pytest.mark.parametrize("where", ["vertex", "edge", "face"])
 @pytest.mark.parametrize("method", ["spt", "pbvr", "havs"])
-def test_camera_exactly_on_the_mesh_gives_no_nan(method, where, have_display):
+def test_camera_exactly_on_the_mesh_gives_no_nan(method, where):
     s = scene("default")
     points = s.grid.GetPoints()
     cell = s.grid.GetCell(s.grid.GetNumberOfCells() // 2)

@@ -221,7 +221,7 @@ def outcomes(stdout: str):
 
 
 @pytest.mark.parametrize("kind", ["spt", "havs", "pbvr"])
-def test_random_meshes(kind, have_display):
+def test_random_meshes(kind):
     try:
         # This file run as a program (its folder, with the helpers, comes first on its path).
         result = subprocess.run([sys.executable, str(WORKER), kind, "0", str(SEEDS)],

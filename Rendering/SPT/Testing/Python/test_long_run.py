@@ -59,7 +59,7 @@ def _particle_bytes(mapper) -> int:
 
 
 @pytest.mark.parametrize("kind", list(MAPPERS))
-def test_a_thousand_renders_do_not_grow(kind, have_display):
+def test_a_thousand_renders_do_not_grow(kind):
     """1000 renders with transfer-function edits, camera moves and resizes: the process's RSS
     and the GPU memory the mapper reports stop growing after the first renders."""
     grid = _small_mesh()

@@ -33,7 +33,7 @@ def _mapper(seed, compute=False):
     return mapper
 
 
-def test_the_planes_cut_the_references(have_display):
+def test_the_planes_cut_the_references():
     """The clipped references differ from the unclipped one, by more than any mapper's error
     here (so a mapper that ignored the planes would fail)."""
     for name, case in CASES.items():
@@ -44,7 +44,7 @@ def test_the_planes_cut_the_references(have_display):
                 f"{name}: the planes cut nothing")
 
 
-def test_a_cut_tetrahedron_is_exact(have_display):
+def test_a_cut_tetrahedron_is_exact():
     """One tetrahedron, one segment per ray: the default estimator (exact coverage) draws it
     without noise, so the cut segments' colours are compared exactly: within the 8-bit
     read-back of the reference (its scalars interpolated at the cut and its thickness
@@ -60,13 +60,13 @@ def test_a_cut_tetrahedron_is_exact(have_display):
 
 
 @pytest.mark.parametrize("name", ["one oblique", "two, moved", "coarse, two"])
-def test_clipped_volume_is_unbiased(name, have_display):
+def test_clipped_volume_is_unbiased(name):
     clipped = check_clipped_is_unbiased("spt", _mapper, name, SIZE, LEVEL)
     check_alpha_noise_is_bernoulli([clipped])
 
 
 @pytest.mark.parametrize("where", ["near plane cutting", "compute"])
-def test_clipped_segments_of_every_path(where, have_display):
+def test_clipped_segments_of_every_path(where):
     """The cells that the near plane cuts and the compute traversal's cells
     are cut by the planes too."""
     dolly, name = (NEAR_PLANE_CUTTING, "the other side") if where == "near plane cutting" \
@@ -82,7 +82,7 @@ def test_clipped_segments_of_every_path(where, have_display):
     assert metrics.rmse(reference(name, SIZE, dolly), reference("none", SIZE, dolly)) > 0.02
 
 
-def test_a_plane_changed_in_place_restarts_refinement(have_display):
+def test_a_plane_changed_in_place_restarts_refinement():
     """PyVista's add_volume_clip_plane widget moves the vtkPlane it gave AddClippingPlane():
     the next render must draw the new cut, not add to the old one's image."""
     mapper = _mapper(5)
@@ -103,5 +103,5 @@ def test_a_plane_changed_in_place_restarts_refinement(have_display):
     w.window.Finalize()
 
 
-def test_more_than_six_planes_or_a_nan_plane_is_an_error(have_display):
+def test_more_than_six_planes_or_a_nan_plane_is_an_error():
     check_bad_planes(_mapper(1), SIZE)

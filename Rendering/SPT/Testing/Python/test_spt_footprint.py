@@ -74,7 +74,7 @@ def _small_view(apart, first_fills):
 
 
 @pytest.mark.parametrize("apart", [False, True], ids=["one off centre", "two apart"])
-def test_keys_outside_the_footprint_are_never_read(apart, have_display):
+def test_keys_outside_the_footprint_are_never_read(apart):
     after = _small_view(apart, first_fills=True)
     first = _small_view(apart, first_fills=False)
     covered = (first[..., 3] > 0.0).mean()
@@ -102,7 +102,7 @@ def _unbiased_estimate(centre):
     return image_statistics.estimate(images[0], images[1], exact, REPETITIONS)
 
 
-def test_volume_cut_by_the_view_is_unbiased(have_display):
+def test_volume_cut_by_the_view_is_unbiased():
     """Where the view's edges cut the volume, and its footprint with it, the image is as
     unbiased against the exact reference as the same view centred."""
     centred, cut = _unbiased_estimate((0.0, 0.0)), _unbiased_estimate((0.875, 0.75))

@@ -100,7 +100,7 @@ def _render(name, seed, small_cell_size=ALL_SMALL, compute=AUTO, case="", level=
 
 
 @pytest.mark.parametrize("name, case", _cases(POINT_CASES))
-def test_points_and_triangles_draw_the_same_image(name, case, have_display):
+def test_points_and_triangles_draw_the_same_image(name, case):
     level = 8 if case == "paper" else 16
     points = _render(name, POINTS_SEED, case=case, level=level)
     triangles = _render(name, POINTS_SEED, 0.0, case=case, level=level)
@@ -115,7 +115,7 @@ def test_points_and_triangles_draw_the_same_image(name, case, have_display):
 
 
 @pytest.mark.parametrize("name, case", _cases(COMPUTE_CASES))
-def test_compute_and_points_draw_the_same_image(name, case, have_display):
+def test_compute_and_points_draw_the_same_image(name, case):
     computed = _render(name, COMPUTE_SEED, compute=ON, case=case)
     points = _render(name, COMPUTE_SEED, compute=OFF, case=case)
     assert computed.points > 0 and computed.points == points.points, "the scene draws no points"
@@ -130,7 +130,7 @@ def test_compute_and_points_draw_the_same_image(name, case, have_display):
     assert computed.estimate == pytest.approx(points.estimate, rel=1e-3)
 
 
-def test_points_need_the_mesh_in_front_of_the_near_plane(have_display):
+def test_points_need_the_mesh_in_front_of_the_near_plane():
     """With the camera inside the mesh every cell is drawn as triangles (their clipped path),
     and a smaller SmallCellSize draws fewer cells as points."""
     s = scene("default")
@@ -147,7 +147,7 @@ def test_points_need_the_mesh_in_front_of_the_near_plane(have_display):
     assert small.points < most.points <= most.tetrahedra
 
 
-def test_needles_are_drawn_as_triangles(have_display):
+def test_needles_are_drawn_as_triangles():
     """A cell whose mean projection fills little of the square of its longest edge (a
     needle) is drawn as triangles however small; a regular one of the same size as a point.
     Both are drawn."""
@@ -168,7 +168,7 @@ def test_needles_are_drawn_as_triangles(have_display):
     assert np.any(np.diff(columns) > 1), "the two cells are not both drawn"
 
 
-def test_compute_images_repeat(have_display):
+def test_compute_images_repeat():
     """The fixed-point sums do not depend on the order of the invocations: a second mapper
     (not the cached render) draws the same image."""
     first = _render("spx", COMPUTE_SEED, compute=ON)
@@ -177,7 +177,7 @@ def test_compute_images_repeat(have_display):
     np.testing.assert_array_equal(first.image, again.image)
 
 
-def test_one_repetition_computes_where_most_cells_are_computed(have_display):
+def test_one_repetition_computes_where_most_cells_are_computed():
     """One repetition is a group of one, with keys, where the compute pass takes most of the
     cells (here every cell is a point): the image of the depth test's survivor without it."""
     computed = _render("default", COMPUTE_SEED, compute=ON, level=1)
@@ -188,7 +188,7 @@ def test_one_repetition_computes_where_most_cells_are_computed(have_display):
     assert np.abs(computed.image - points.image).max() <= ONE_LEVEL
 
 
-def test_one_repetition_needs_no_keys(have_display):
+def test_one_repetition_needs_no_keys():
     """Where the compute pass would take few of the cells (SPX's few hundred points at
     256 x 256), one repetition finds its survivor by the depth test: no keys to compute."""
     s = scene("spx")
@@ -205,7 +205,7 @@ def test_one_repetition_needs_no_keys(have_display):
     assert computed == points, "a group computes every point"
 
 
-def test_two_volumes_share_the_compute_traversal(have_display):
+def test_two_volumes_share_the_compute_traversal():
     """Two interpenetrating volumes in one renderer: both volumes' points go through the
     compute pass into the same keys and sums."""
     s = scene("default")
@@ -241,7 +241,7 @@ def _software_rasterizer():
     return any(name in capabilities for name in ("llvmpipe", "softpipe", "SwiftShader"))
 
 
-def test_automatic_computes_where_small_points_are_many(have_display):
+def test_automatic_computes_where_small_points_are_many():
     """The default computes the points about 4 pixels across or less on a software rasterizer,
     where they are at least a quarter as many as the samples: the default mesh's 47,700 points
     at 128 x 128 (16,384 samples), and the same image as without the compute pass to a level."""
@@ -257,7 +257,7 @@ def test_automatic_computes_where_small_points_are_many(have_display):
 
 
 @pytest.mark.parametrize("name", ["default", "spx"])
-def test_automatic_leaves_large_or_few_points_to_the_rasterizer(name, have_display):
+def test_automatic_leaves_large_or_few_points_to_the_rasterizer(name):
     """At 256 x 256 the default mesh's points are larger than 4 pixels, and SPX has a few
     hundred points: nothing to compute."""
     automatic = _render(name, COMPUTE_SEED, None, AUTO, size=256)

@@ -24,14 +24,14 @@ def draw(grid, prop=None, mapper=None, repetitions=8):
     return rendering.image, mapper, messages
 
 
-def test_one_tetrahedron_renders(have_display):
+def test_one_tetrahedron_renders():
     image, mapper, messages = draw(ONE)
     assert not messages.errors
     assert mapper.GetNumberOfTetrahedra() == 1
     assert image[..., 3].max() > 0.2
 
 
-def test_short_global_ids_are_a_clear_error(have_display):
+def test_short_global_ids_are_a_clear_error():
     grid = tetrahedra(UNIT_TETRAHEDRON + [(1, 1, 1)], [(0, 1, 2, 3), (1, 2, 3, 4)],
                       [0.0, 0.3, 0.6, 1.0, 0.5])
     ids = vtk.vtkIdTypeArray()
@@ -44,7 +44,7 @@ def test_short_global_ids_are_a_clear_error(have_display):
     assert image.max() == 0.0
 
 
-def test_constant_field_matches_the_reference(have_display):
+def test_constant_field_matches_the_reference():
     grid = with_constant_scalars(data.make_default_mesh())
     prop = property_for(0.0, 1.0, unit=0.3, opacity=0.5)
     image, _, messages = draw(grid, prop, repetitions=64)
@@ -54,7 +54,7 @@ def test_constant_field_matches_the_reference(have_display):
 
 
 @pytest.mark.parametrize("sampling", [render.PAPER_SAMPLING, {}])
-def test_opacity_one_everywhere(sampling, have_display):
+def test_opacity_one_everywhere(sampling):
     """Opacity 1 over a tenth of the tetrahedron's size: the paper's estimator keeps the
     nearest segment in every repetition, so almost every covered pixel is opaque at once; the
     default's exact coverage is the reference's, opaque inside and fractional only at the
@@ -72,7 +72,7 @@ def test_opacity_one_everywhere(sampling, have_display):
         assert np.abs(image[..., 3] - exact).mean() < 0.01
 
 
-def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
+def test_repeated_renders_are_identical_and_do_not_accumulate():
     """The ensemble is cleared every frame, also for a viewport away from the window's origin
     (the renderer's scissor box must not keep the clear from reaching it)."""
     window, renderer = render.make_window(2 * SIZE[0], SIZE[1])
@@ -88,7 +88,7 @@ def test_repeated_renders_are_identical_and_do_not_accumulate(have_display):
     assert np.array_equal(render.read_rgba(window), first)
 
 
-def test_an_image_wider_than_3d_textures_draws_the_same_image(have_display):
+def test_an_image_wider_than_3d_textures_draws_the_same_image():
     """The depth keys of several repetitions and the compute traversal's sums are 3D textures
     of (repetition, sample), at most GL_MAX_3D_TEXTURE_SIZE per side (2048 on llvmpipe). A wider
     image draws one repetition per traversal pair, with the depth test, and rasterizes every

@@ -44,7 +44,7 @@ def _image(level, seed, stratified, per_pass=16, sampling="survivor"):
 
 @pytest.mark.parametrize("sampling", list(SAMPLING))
 @pytest.mark.parametrize("stratified", [False, True])
-def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling, have_display):
+def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling):
     """12 repetitions one per pass, 16 per pass (one short group) and 5 per pass (groups of
     5, 5 and 2): the same random numbers, so the same image up to the 8-bit read-back. (One
     per pass, both estimators find the survivor with the depth test; groups, with depth
@@ -56,7 +56,7 @@ def test_several_repetitions_per_pass_draw_the_same_image(stratified, sampling, 
         assert np.abs(several - single).max() <= 1.0 / 255.0 + 1e-6, per_pass
 
 
-def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
+def test_paper_sampling_in_one_call_draws_the_papers_image():
     """SetSamplingToPaper() is the paper's method: the image of the survivor estimator with
     independent thresholds, no exact coverage and one repetition per pass, set one by one; the
     frame statistics report what the render drew."""
@@ -78,7 +78,7 @@ def test_paper_sampling_in_one_call_draws_the_papers_image(have_display):
     assert metrics.rmse(default, exact) < metrics.rmse(paper, exact)
 
 
-def test_depth_keys_are_reported_and_released(have_display):
+def test_depth_keys_are_reported_and_released():
     s = scene("default")
     mapper = render.spt_mapper(12, per_pass=1, **SAMPLING["survivor"])
     window, _ = window_with(mapper, SIZE, prop=s.property)
@@ -116,7 +116,7 @@ def test_depth_keys_are_reported_and_released(have_display):
     window.Finalize()
 
 
-def test_stratified_thresholds_keep_the_expectation_and_lower_the_error(have_display):
+def test_stratified_thresholds_keep_the_expectation_and_lower_the_error():
     """Same bias floor as independent thresholds, a clearly lower RMSE at 64 repetitions, and
     the issue's target: stratified at 128 repetitions is at least as close to the reference
     as independent at 256."""
@@ -135,7 +135,7 @@ def test_stratified_thresholds_keep_the_expectation_and_lower_the_error(have_dis
     assert at_128 <= at_256, f"stratified at 128 {at_128:.4f}, independent at 256 {at_256:.4f}"
 
 
-def test_progressive_refinement_accumulates_until_something_changes(have_display):
+def test_progressive_refinement_accumulates_until_something_changes():
     """Independent thresholds: four renders of 8 repetitions are the image of 32 (with the
     default estimator, whose exact coverage is drawn with the first)."""
     mapper = render.spt_mapper(8, seed=5, stratified=False)
@@ -164,7 +164,7 @@ def test_progressive_refinement_accumulates_until_something_changes(have_display
     window.Finalize()
 
 
-def test_stratified_progressive_refinement_converges(have_display):
+def test_stratified_progressive_refinement_converges():
     """With the survivor estimator, whose error at 16 repetitions is far above the 8-bit
     read-back's (the default estimator's is near it already: 0.0024 after 16, 0.0013 after
     128)."""
@@ -181,7 +181,7 @@ def test_stratified_progressive_refinement_converges(have_display):
     window.Finalize()
 
 
-def test_time_budget_cuts_repetitions_during_interaction(have_display):
+def test_time_budget_cuts_repetitions_during_interaction():
     """As a vtkRenderWindowInteractor does: a high desired update rate while interacting,
     its still update rate afterwards."""
     mapper = render.spt_mapper(64, seed=1)
@@ -219,7 +219,7 @@ def _budget_mapper_after_a_still_render():
     return mapper, window, renderer
 
 
-def test_time_budget_is_spent_in_whole_traversal_groups(have_display):
+def test_time_budget_is_spent_in_whole_traversal_groups():
     """A traversal of 16 repetitions costs little more than one of fewer, so a budget of 2.5
     traversals gets two whole ones (32 repetitions). The budget is set from the mapper's own
     measure of the still render (64 repetitions, 4 traversals), so the count is exact."""
@@ -249,7 +249,7 @@ def _still_image(mapper, size=SIZE, plane=False):
     return image
 
 
-def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
+def test_time_budget_below_a_group_draws_pairs_then_single_passes():
     """Below one group, one repetition of the visibility estimator, drawn by a pair of
     traversals (the depth test finds its survivor, the colors read it): the image a render of
     one repetition gives. Once a pair is timed and does not fit either, the paper's single
@@ -275,7 +275,7 @@ def test_time_budget_below_a_group_draws_pairs_then_single_passes(have_display):
     assert pair_error < 0.25 * single_error, f"pair {pair_error:.4f}, single {single_error:.4f}"
 
 
-def test_depth_keys_follow_the_device_memory(have_display):
+def test_depth_keys_follow_the_device_memory():
     """On a software rasterizer the depth keys' budget is an eighth of the host's memory (at
     most 1 GiB): at 1024 x 1024, 64 repetitions are one group, where a fixed 128 MiB would
     hold 32. The GPU memory counts the keys of the repetitions drawn per traversal."""
@@ -301,7 +301,7 @@ def _fixed_distance(mapper, distance):
     return mapper
 
 
-def test_a_sample_distance_of_two_draws_the_image_of_half_the_pixels_interpolated(have_display):
+def test_a_sample_distance_of_two_draws_the_image_of_half_the_pixels_interpolated():
     fine = _still_image(_fixed_distance(render.spt_mapper(16, seed=2), 2.0), 2 * SIZE)
     coarse = _still_image(render.spt_mapper(16, seed=2), SIZE)
     assert coarse[..., 3].max() > 0.2, "an empty image"
@@ -310,7 +310,7 @@ def test_a_sample_distance_of_two_draws_the_image_of_half_the_pixels_interpolate
     assert difference.max() <= 1.0 / 255.0 + 1e-6, f"{difference.max() * 255:.2f} / 255"
 
 
-def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers(have_display):
+def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers():
     """The opaque scene's depth is read at the center of each image pixel: behind an opaque
     plane, the image at sample distance 2 is that of half the pixels, interpolated, but where
     the plane cuts the volume (there the depth is read half a pixel of the smaller image
@@ -327,7 +327,7 @@ def test_the_opaque_scene_hides_the_volume_at_the_pixel_centers(have_display):
     assert error < 0.25 * hiding, f"RMSE {error:.4f} against {hiding:.4f}"
 
 
-def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel(have_display):
+def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel():
     """With a budget of 1 us not even one repetition fits, so the sample distance is its
     maximum from the first interactive render on (planned from the still render's time, not
     drawn at every pixel first); a lower maximum caps it; a still render draws every pixel, the
@@ -355,7 +355,7 @@ def test_interactive_renders_draw_fewer_pixels_and_still_renders_every_pixel(hav
     window.Finalize()
 
 
-def test_without_the_adjustment_the_distance_is_the_one_set(have_display):
+def test_without_the_adjustment_the_distance_is_the_one_set():
     mapper = _fixed_distance(render.spt_mapper(4, seed=4), 3.0)
     mapper.AutoAdjustRepetitionsOn()
     window, _ = window_with(mapper, SIZE)

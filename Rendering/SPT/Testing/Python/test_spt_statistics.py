@@ -81,7 +81,7 @@ RENDERS = {mode: SceneRenders(lambda level, seed, sampling=sampling:
 
 @pytest.mark.parametrize("name", SCENES)
 @pytest.mark.parametrize("check", SCENE_CHECKS)
-def test_scene_statistics(check, name, have_display):
+def test_scene_statistics(check, name):
     """Each check of statistics_checks.SCENE_CHECKS on each scene, with the paper's sampling."""
     SCENE_CHECKS[check](RENDERS["paper"], name)
 
@@ -90,7 +90,7 @@ DEFAULT_LEVELS = (1, 4)
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_default_estimator_is_unbiased(name, have_display):
+def test_default_estimator_is_unbiased(name):
     """The visibility estimator with exact coverage, independent thresholds: unbiased (the
     control variate's coefficient does not depend on the random numbers), so its RMSE falls
     to the same small bias floor, with noise falling as 1 / L (its repetitions are
@@ -101,7 +101,7 @@ def test_default_estimator_is_unbiased(name, have_display):
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_default_estimator_has_exact_alpha_and_less_noise(name, have_display):
+def test_default_estimator_has_exact_alpha_and_less_noise(name):
     """Exact coverage: two seeds give the same alpha (to 8-bit rounding); the colour noise
     left is a fraction of the paper's estimator's at the same repetitions (measured 5-60 %
     of its RMSE at 4 to 256 repetitions on these scenes; required: under half its noise)."""
@@ -119,7 +119,7 @@ def _spt_1024_rmse(name):
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin", "post"])
-def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_display):
+def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name):
     """Measured against VTK's projected tetrahedra; and better than the prediction for the
     paper's sampling. (The survivor estimator alone, stratified, did not get there on the
     Oxygen Post: 0.0056 against VTK PT's 0.0044, many thin layers per pixel making the nearest
@@ -133,12 +133,12 @@ def test_at_1024_repetitions_as_close_as_vtk_projected_tetrahedra(name, have_dis
 
 @pytest.mark.parametrize("name, method", [("torus", "havs2"), ("torus", "pt"),
                                           ("default", "havs2"), ("default", "pt")])
-def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method, have_display):
+def test_spt_at_1024_repetitions_is_closer_than_sorted_methods(name, method):
     measured, other = _spt_1024_rmse(name), _rmse(name, method)
     assert measured < other, f"SPT at 1024 {measured:.4f}, {method} {other:.4f}"
 
 
-def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
+def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have():
     """Blunt Fin: measured HAVS-like k=6 0.083 and SPT (144) 0.026 at 256 x 256."""
     spt_144 = RENDERS["paper"].estimate("bluntfin", 16).predicted_rmse(144)
     havs = _rmse("bluntfin", "havs6")
@@ -146,14 +146,14 @@ def test_sorting_artifacts_on_thin_cells_that_spt_does_not_have(have_display):
     assert _rmse("bluntfin", "havs2") > havs, "k = 2 repairs less of the order than k = 6"
 
 
-def test_subpixel_level_averages_subpixels(have_display):
+def test_subpixel_level_averages_subpixels():
     check_subpixel_level_averages_subpixels(
         lambda level, subpixels, seed: render.spt_mapper(level, subpixels, seed,
                                                          **render.PAPER_SAMPLING), SIZE // 2)
 
 
 @pytest.mark.parametrize("slabs", [None, 8], ids=["one slab", "8 slabs"])
-def test_opaque_geometry_hides_and_cuts_the_volume(slabs, have_display):
+def test_opaque_geometry_hides_and_cuts_the_volume(slabs):
     check_opaque_geometry_hides_and_cuts_the_volume(
         lambda level, subpixels, seed: render.spt_mapper(level, subpixels, seed,
                                                          depth_slabs=slabs), SIZE)
@@ -181,7 +181,7 @@ def _check_bias_is_one_slabs(name, slabs, estimator="visibility"):
 
 
 @pytest.mark.parametrize("name", SLAB_SCENES)
-def test_depth_slabs_are_unbiased(name, have_display):
+def test_depth_slabs_are_unbiased(name):
     check_noise_falls_as_one_over_repetitions(
         [_slabs(SLABS).estimate(name, level) for level in (1, 4)])
     _check_bias_is_one_slabs(name, SLABS)
@@ -189,7 +189,7 @@ def test_depth_slabs_are_unbiased(name, have_display):
 
 @pytest.mark.parametrize("slabs, estimator", [(2, "visibility"), (3, "visibility"),
                                               (SLABS, "survivor")])
-def test_any_split_and_the_survivor_estimator_are_unbiased(slabs, estimator, have_display):
+def test_any_split_and_the_survivor_estimator_are_unbiased(slabs, estimator):
     _check_bias_is_one_slabs("default", slabs, estimator)
 
 
@@ -199,7 +199,7 @@ NOISE_SHARE = 0.5
 
 
 @pytest.mark.parametrize("name", SLAB_SCENES)
-def test_depth_slabs_keep_the_alpha_exact_with_less_noise(name, have_display):
+def test_depth_slabs_keep_the_alpha_exact_with_less_noise(name):
     first, second = (_slabs(SLABS).image(name, 4, seed) for seed in (1, 2))
     assert np.abs(first[..., 3] - second[..., 3]).max() <= 1.0 / 255.0 + 1e-6
     split, whole = _slabs(SLABS).estimate(name, 4), _slabs(1).estimate(name, 4)
@@ -208,7 +208,7 @@ def test_depth_slabs_keep_the_alpha_exact_with_less_noise(name, have_display):
         f"noise at L=4: {SLABS} slabs {split.noise:.3g}, one slab {whole.noise:.3g}")
 
 
-def test_one_repetition_at_a_time_with_slabs(have_display):
+def test_one_repetition_at_a_time_with_slabs():
     """The survivor estimator one repetition per render, refined progressively: with slabs
     each is a group of one with keys; the first render draws the slabs' sums with the
     coverage, the later ones use them, and the image is as close to the reference as a render

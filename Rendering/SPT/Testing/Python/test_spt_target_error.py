@@ -72,8 +72,7 @@ def _fixed(name, level, seed):
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
-        name, have_display):
+def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(name):
     _, level, estimated, measured = _stopped(name, 1)
     assert 2 <= level, f"stopped at {level} repetitions"
     assert measured / 1.5 <= estimated <= 1.5 * measured, (
@@ -87,7 +86,7 @@ def test_estimate_is_within_a_factor_of_one_and_a_half_of_the_measured_error(
 
 
 @pytest.mark.parametrize("name", ["post", "spx"])
-def test_every_tile_meets_the_target_and_quiet_tiles_stop_first(name, have_display):
+def test_every_tile_meets_the_target_and_quiet_tiles_stop_first(name):
     """After the first step, the repetitions go only to the tiles whose noise is still above
     the target: the image's quietest tiles hold fewer than its noisiest, and every tile's error
     against the exact reference meets the target (within a tenth: the measured error is
@@ -107,7 +106,7 @@ def _check_tiles_meet_the_target(mapper, image, name, target):
         f"largest tile's error {measured:.4f} at {fewest} to {most} repetitions")
 
 
-def test_a_new_image_aims_its_first_step_at_the_median_tile(have_display):
+def test_a_new_image_aims_its_first_step_at_the_median_tile():
     """On the Post, the noisiest tiles need about twice the repetitions of the median one: a
     new image's first step aims at the median tile, and only the tiles still above the target
     draw the later steps; every tile meets the target."""
@@ -143,7 +142,7 @@ def _stopped(name, seed):
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
-def test_default_group_stops_at_or_below_the_target(name, have_display):
+def test_default_group_stops_at_or_below_the_target(name):
     """With the default 256 repetitions per traversal the first step aims with a noise per
     repetition above these meshes' own: the render stops at the first estimate that meets the
     target, and its error against the reference (the 8-bit read-back's floor included) meets
@@ -155,7 +154,7 @@ def test_default_group_stops_at_or_below_the_target(name, have_display):
     assert measured <= TARGETS[name], f"measured {measured:.4f} at {level} repetitions"
 
 
-def test_a_first_image_steps_by_its_target(have_display):
+def test_a_first_image_steps_by_its_target():
     """A mapper's first image has no noise measured before it: its first step aims with an
     assumed noise per repetition, so a lower target draws more repetitions in that one step,
     and each image meets its own target."""
@@ -169,7 +168,7 @@ def test_a_first_image_steps_by_its_target(have_display):
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
-def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name, have_display):
+def test_a_new_image_aims_with_the_noise_per_repetition_of_the_last(name):
     """The first image's first step aims with an assumed noise per repetition, above these
     meshes' own. A new image (the same view with another seed) draws at once as many as the
     last image's noise per repetition predicts for the target: fewer here, and its estimate
@@ -201,7 +200,7 @@ def _renders_with_seeds(seeds, reuse=True):
     return images, counts
 
 
-def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
+def test_the_same_image_rendered_again_takes_the_same_steps():
     """Where nothing that shapes the image changed, a render repeats the last one's steps
     (it does not aim with the noise that image measured), so it gives the same image; a
     change of the seed makes a new image, which aims with that noise."""
@@ -211,7 +210,7 @@ def test_the_same_image_rendered_again_takes_the_same_steps(have_display):
     assert counts[2] < counts[0], counts
 
 
-def test_without_reusing_the_noise_every_image_starts_alike(have_display):
+def test_without_reusing_the_noise_every_image_starts_alike():
     """ReuseNoiseEstimate off: an image drawn after another one is the image a new mapper
     draws for the same seed and view."""
     after, after_counts = _renders_with_seeds((1, 2), reuse=False)
@@ -221,7 +220,7 @@ def test_without_reusing_the_noise_every_image_starts_alike(have_display):
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_stopped_images_are_unbiased(name, have_display):
+def test_stopped_images_are_unbiased(name):
     """Two seeds at the target against two seeds at the same fixed count: the same bias."""
     first, level, _, _ = _stopped(name, 1)
     second, second_level, _, _ = _stopped(name, 2)
@@ -235,7 +234,7 @@ def test_stopped_images_are_unbiased(name, have_display):
         f"{tolerance:.2e}")
 
 
-def test_repetition_level_caps_an_unreachable_target(have_display):
+def test_repetition_level_caps_an_unreachable_target():
     """A target below what rounding to 8 bits costs an exact image cannot be met: a warning
     says so, the render draws the cap, and its estimate is at least that rounding's."""
     mapper = _mapper(8, 1, 1.0e-5)
@@ -249,7 +248,7 @@ def test_repetition_level_caps_an_unreachable_target(have_display):
 
 
 @pytest.mark.parametrize("name", ["spx", "bluntfin"])
-def test_a_target_near_the_rounding_is_met_against_the_reference(name, have_display):
+def test_a_target_near_the_rounding_is_met_against_the_reference(name):
     """The image shown is rounded to 8 bits, whose error adds to the noise in variance: a
     target near that rounding's (0.00113) leaves the noise less than itself. The estimate
     counts both, and the error measured against the exact reference meets the target.
@@ -263,7 +262,7 @@ def test_a_target_near_the_rounding_is_met_against_the_reference(name, have_disp
         f"estimated {estimated:.5f}, measured {measured:.5f} at {level} repetitions")
 
 
-def test_no_estimate_without_a_target_or_with_one_repetition(have_display):
+def test_no_estimate_without_a_target_or_with_one_repetition():
     mapper = render.spt_mapper(8, seed=1)
     window, _ = window_with(mapper, SIZE)
     window.Render()
@@ -276,7 +275,7 @@ def test_no_estimate_without_a_target_or_with_one_repetition(have_display):
     window.Finalize()
 
 
-def test_progressive_refinement_stops_adding_at_the_target(have_display):
+def test_progressive_refinement_stops_adding_at_the_target():
     """Each render adds at most RepetitionLevel; once the estimate meets the target, renders
     add nothing and show the same image."""
     mapper = _mapper(4, 1, 0.004)
@@ -299,7 +298,7 @@ def test_progressive_refinement_stops_adding_at_the_target(have_display):
     window.Finalize()
 
 
-def test_time_budget_comes_first_when_it_is_shorter(have_display):
+def test_time_budget_comes_first_when_it_is_shorter():
     mapper = _mapper(256, 1, 1.0e-4)
     mapper.AutoAdjustRepetitionsOn()
     window, _ = window_with(mapper, SIZE)

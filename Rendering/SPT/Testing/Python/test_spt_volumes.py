@@ -60,7 +60,7 @@ def _check_as_close_as_the_union(name, make):
 
 
 @pytest.mark.parametrize("name", SCENES)
-def test_two_volumes_composite_as_their_union(name, have_display):
+def test_two_volumes_composite_as_their_union(name):
     two_error = _check_as_close_as_the_union(name, _spt)
     reference = union_reference(name, SIZE)
     sorted_one_by_one = metrics.rmse(
@@ -69,14 +69,14 @@ def test_two_volumes_composite_as_their_union(name, have_display):
         f"SPT {two_error:.4f}, VTK PT with two volumes {sorted_one_by_one:.4f}")
 
 
-def test_two_volumes_with_depth_slabs_composite_as_their_union(have_display):
+def test_two_volumes_with_depth_slabs_composite_as_their_union():
     """The slabs split the depth range of both volumes' bounds: two volumes with slabs draw
     the image of their union drawn as one grid with slabs, to within the noise."""
     _check_as_close_as_the_union(
         "default", lambda seed: render.spt_mapper(REPETITIONS, seed=seed, depth_slabs=8))
 
 
-def test_one_repetition_per_pass_draws_the_groups_image(have_display):
+def test_one_repetition_per_pass_draws_the_groups_image():
     """Two interpenetrating volumes, one repetition per pass (each survivor found by the depth
     test over both) against groups (found from depth keys): the same image."""
     name = SCENES[0]
@@ -86,7 +86,7 @@ def test_one_repetition_per_pass_draws_the_groups_image(have_display):
     assert np.abs(one - groups).max() <= 1.0 / 255.0 + 1e-6
 
 
-def test_each_volume_keeps_its_transfer_function(have_display):
+def test_each_volume_keeps_its_transfer_function():
     s = scene("default")
     transparent = vtkVolumeProperty()
     transparent.DeepCopy(s.property)
@@ -101,7 +101,7 @@ def test_each_volume_keeps_its_transfer_function(have_display):
     assert np.abs(both - alone).max() <= 1.0 / 255.0 + 1e-6
 
 
-def test_the_order_of_the_volumes_does_not_matter(have_display):
+def test_the_order_of_the_volumes_does_not_matter():
     forward = _two_volumes("default", _spt)
     backward = _two_volumes("default", _spt, second_first=True)
     # The same segments and random numbers per cell; only the cell ids' offsets swap.
@@ -109,7 +109,7 @@ def test_the_order_of_the_volumes_does_not_matter(have_display):
     assert forward[..., 3].max() > 0.2
 
 
-def test_one_mapper_drawn_by_two_volumes_draws_each_once(have_display):
+def test_one_mapper_drawn_by_two_volumes_draws_each_once():
     """A mapper holds one mesh, table and set of matrices: two vtkVolumes that share it are
     drawn one frame each, side by side here, each exactly as when it is the only one shown,
     with one warning."""
