@@ -63,11 +63,14 @@ def commit_of(reference: str) -> str:
 
 def checkout(commit: str, folder: pathlib.Path) -> pathlib.Path:
     """The sources of ``commit`` in ``folder/src`` (git archive), extracted again only when
-    the commit changed; returns that folder."""
+    the commit changed, and then built from scratch; returns that folder."""
     source, stamp = folder / "src", folder / "src.commit"
     if source.is_dir() and stamp.exists() and stamp.read_text().strip() == commit:
         return source
-    shutil.rmtree(source, ignore_errors=True)
+    # The archive's files carry their commit's time, which can be older than the objects built
+    # from another commit: a build kept from there would link those stale objects.
+    for stale in (source, folder / "build"):
+        shutil.rmtree(stale, ignore_errors=True)
     source.mkdir(parents=True)
     archive = subprocess.Popen(["git", "-C", str(ROOT), "archive", "--format=tar", commit],
                                stdout=subprocess.PIPE)

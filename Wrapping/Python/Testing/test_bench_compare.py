@@ -1,7 +1,8 @@
 """The side-by-side comparison's arithmetic (Utilities/BenchCompare) on made-up races: each
 run's ratio as the race's own summary gives it, the medians, the head's over the base's, the
-spread, "not reached", the table, the order of the runs, and the check that a run loaded only
-its own build's libraries. No timing is asserted; nothing here builds or races."""
+spread, "not reached", the table, the order of the runs, the check that a run loaded only its
+own build's libraries, and a new base's fresh sources and build. No timing is asserted; nothing
+here builds or races."""
 
 import json
 import os
@@ -143,3 +144,18 @@ def test_a_run_records_the_package_and_libraries_it_loaded(tmp_path):
 def test_a_base_that_names_no_commit_is_refused():
     with pytest.raises(ValueError, match="no-such-reference-anywhere names no commit"):
         bench_compare.commit_of("no-such-reference-anywhere")
+
+
+@pytest.mark.skipif(shutil.which("git") is None
+                    or not (TOOL.parents[1] / ".git").exists(), reason="not a git clone")
+def test_a_base_of_another_commit_is_extracted_and_built_again(tmp_path):
+    first, second = bench_compare.commit_of("HEAD"), bench_compare.commit_of("HEAD^")
+    source = bench_compare.checkout(first, tmp_path)
+    assert (source / "CMakeLists.txt").is_file()
+    built = tmp_path / "build" / "object.o"
+    built.parent.mkdir()
+    built.write_text("built from the first commit")
+    assert bench_compare.checkout(first, tmp_path) == source and built.exists()  # kept
+    bench_compare.checkout(second, tmp_path)
+    assert (tmp_path / "src.commit").read_text().strip() == second
+    assert not built.exists() and (source / "CMakeLists.txt").is_file()
