@@ -264,10 +264,12 @@ public:
       agreed = agreed &&
         (!agreements[v].AnyCells ||
           ShareTable(shared[v].second, shared[v].first, agreements[v], this->Reduction, error));
+      if (!agreed && v > 0)
+      {
+        error = "SPT volume " + std::to_string(v + 1) + " of the renderer: " + error;
+      }
       if (!agreed)
       {
-        const std::string volume = "SPT volume " + std::to_string(v + 1) + " of the renderer: ";
-        error = v > 0 ? volume + error : error;
         return false;
       }
     }

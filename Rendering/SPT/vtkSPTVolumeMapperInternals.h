@@ -48,9 +48,9 @@ public:
   bool WarnedLargeImage = false; // while the pass is too large for the depth keys
   bool CoverageDrawn = false;    // the coverage buffer belongs to the accumulated sum
   // The visible SPT volumes of the renderer, each with its mapper, in the renderer's order;
-  // vol alone when it is not among them, or when `selfProps` (set to the
-  // number of the renderer's visible volumes that draw `self`) is more than one. A mapper that
-  // several volumes draw is left out of the others' frames.
+  // vol alone when it is not among them, or when `selfProps` (set to the number of the
+  // renderer's visible volumes that draw `self`) is more than one. A mapper that several
+  // volumes draw is left out of the others' frames.
   static SharedVolumeList SharedVolumes(
     vtkRenderer* ren, vtkVolume* vol, vtkSPTVolumeMapper* self, int& selfProps);
   // Bring a volume's mesh, table and matrices up to date and onto the GPU as `out`. The mesh
